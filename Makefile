@@ -1,0 +1,98 @@
+# pointcalc - plain Makefile, out-of-tree build in $(B)/ (default build/).
+#   make          build/pointcalc and build/libpointcalc.a
+#   make check    build and run every test (unit, schemes, codegen, fuzz-lite)
+#   make asan     the same tests built with AddressSanitizer + UBSan (build-asan/)
+#   make valgrind the same tests under valgrind's memcheck
+#   make bench    in-process benchmarks (bench/)
+#   make format   clang-format the sources
+
+B       ?= build
+CC      ?= cc
+BISON   ?= bison
+FLEX    ?= flex
+OPT     ?= -O2
+CFLAGS  ?= $(OPT) -g
+WARN    = -Wall -Wextra -Wshadow -Wundef -Wwrite-strings -Wstrict-prototypes \
+          -Wmissing-prototypes -Wold-style-definition
+ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) $(CFLAGS) $(SAN) \
+             -I. -I$(B) -MMD -MP
+LDLIBS  = -lflint -lgmp -lm
+TEST_LDLIBS = -lcmocka $(LDLIBS)
+
+LIB_SRC = $(filter-out compiler/main.c,$(wildcard compiler/*.c)) \
+          $(wildcard grammar/*.c) $(wildcard codegen/*.c) $(wildcard runtime/*.c)
+GEN_SRC = $(B)/grammar/parser.c $(B)/grammar/lexer.c
+LIB_OBJ = $(LIB_SRC:%.c=$(B)/%.o) $(GEN_SRC:.c=.o)
+TESTS   = $(patsubst tests/unit/%.c,$(B)/tests/%,$(wildcard tests/unit/test_*.c))
+BENCHES = $(patsubst bench/%.c,$(B)/bench/%,$(wildcard bench/bench_*.c))
+
+all: $(B)/pointcalc $(B)/libpointcalc.a
+
+$(B)/grammar/parser.c $(B)/grammar/parser.h: grammar/parser.y
+	@mkdir -p $(@D)
+	$(BISON) -Wall -Werror --defines=$(B)/grammar/parser.h -o $(B)/grammar/parser.c $<
+
+$(B)/grammar/lexer.c $(B)/grammar/lexer.h: grammar/lexer.l $(B)/grammar/parser.h
+	@mkdir -p $(@D)
+	$(FLEX) --header-file=$(B)/grammar/lexer.h -o $(B)/grammar/lexer.c $<
+
+# every object may include the generated headers
+$(LIB_SRC:%.c=$(B)/%.o) $(B)/compiler/main.o: $(B)/grammar/parser.h $(B)/grammar/lexer.h
+
+$(B)/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -c -o $@ $<
+
+# generated code is not ours to warn about beyond -Wall
+$(B)/grammar/%.o: $(B)/grammar/%.c
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -Wno-unused-function -Wno-missing-prototypes -c -o $@ $<
+
+$(B)/libpointcalc.a: $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(B)/pointcalc: $(B)/compiler/main.o $(B)/libpointcalc.a
+	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDLIBS)
+
+$(B)/tests/%: tests/unit/%.c $(B)/libpointcalc.a
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libpointcalc.a $(TEST_LDLIBS)
+
+$(B)/bench/%: bench/%.c $(B)/libpointcalc.a
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libpointcalc.a $(LDLIBS)
+
+tests: $(TESTS) $(B)/pointcalc
+
+# Tests run from the repo root; each binary is a cmocka group.
+check: tests
+	@fail=0; for t in $(TESTS); do \
+	  echo "== $$t"; PC_BIN=$(B)/pointcalc $$t || fail=1; done; \
+	  tests/cli_test.sh $(B)/pointcalc || fail=1; \
+	  exit $$fail
+
+asan:
+	$(MAKE) B=build-asan OPT=-O1 \
+	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" check
+
+# the same suite under valgrind (fewer fuzz mutations: valgrind is ~30x slower)
+VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full \
+           --errors-for-leak-kinds=definite,indirect
+valgrind: tests
+	@fail=0; for t in $(TESTS); do \
+	  echo "== valgrind $$t"; PC_FUZZ_MUTATIONS=15 PC_VALGRIND=1 PC_BIN=$(B)/pointcalc \
+	    $(VALGRIND) $$t || fail=1; done; exit $$fail
+
+bench: $(BENCHES) $(B)/pointcalc
+	@for b in $(BENCHES); do $$b || exit 1; done
+	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
+
+format:
+	clang-format -i $(wildcard */*.c */*.h */*/*.c)
+
+clean:
+	rm -rf build build-asan
+
+.PHONY: all tests check asan valgrind bench format clean
+-include $(shell find $(B) -name '*.d' 2>/dev/null)

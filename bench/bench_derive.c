@@ -1,0 +1,102 @@
+/*
+ * bench_derive.c - derivation speed: every example derived many times
+ * in-process (read once, then parse + sema + exact reduction each time);
+ * prints the median and the first-call time in milliseconds per scheme.
+ *
+ * Goals (issue #2): Desargues arc <= 0.3 ms, five-point conic <= 2 ms,
+ * every example <= 5 ms.
+ */
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <flint/flint.h>
+
+#include "compiler/derive.h"
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+    return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+int main(int argc, char **argv)
+{
+    const char *dir = argc > 1 ? argv[1] : "examples";
+    int reps = argc > 2 ? atoi(argv[2]) : 0;
+    DIR *d = opendir(dir);
+    if (!d) {
+        perror(dir);
+        return 1;
+    }
+    char *names[512];
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) && n < 512) {
+        size_t l = strlen(e->d_name);
+        if (l > 4 && strcmp(e->d_name + l - 4, ".pcs") == 0)
+            names[n++] = strdup(e->d_name);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof(char *), cmp_str);
+
+    printf("derive: median over repeated in-process derivations\n");
+    printf("%-34s %10s %10s %8s\n", "scheme", "first ms", "median ms",
+           "runs");
+    int bad = 0;
+    for (int i = 0; i < n; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        FILE *f = fopen(path, "rb");
+        if (!f)
+            continue;
+        char *buf = malloc(1 << 20);
+        size_t len = fread(buf, 1, (1 << 20) - 1, f);
+        fclose(f);
+        double t0 = now_ms();
+        Derived *dv = derive_source(path, buf, len, stderr, NULL);
+        double first = now_ms() - t0;
+        if (!dv) {
+            printf("%-34s %10s\n", names[i], "ERROR");
+            bad = 1;
+            free(buf);
+            continue;
+        }
+        derived_free(dv);
+        /* enough runs for ~0.3 s per scheme, at least 20 */
+        int runs = reps > 0 ? reps : (int)(300.0 / (first + 1e-3));
+        if (runs < 20)
+            runs = 20;
+        if (runs > 5000)
+            runs = 5000;
+        double *t = malloc(sizeof(double) * (size_t)runs);
+        for (int k = 0; k < runs; k++) {
+            double s = now_ms();
+            dv = derive_source(path, buf, len, NULL, NULL);
+            t[k] = now_ms() - s;
+            derived_free(dv);
+        }
+        qsort(t, (size_t)runs, sizeof(double), cmp_double);
+        printf("%-34s %10.4f %10.4f %8d\n", names[i], first, t[runs / 2],
+               runs);
+        free(t);
+        free(buf);
+        free(names[i]);
+    }
+    flint_cleanup_master();
+    return bad;
+}

@@ -1,0 +1,107 @@
+#include "compiler/arena.h"
+
+#include <stdalign.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { BLOCK_SIZE = 64 * 1024 };
+
+struct ArenaBlock {
+    ArenaBlock *next;
+    size_t used, size;
+    alignas(max_align_t) unsigned char data[];
+};
+
+struct ArenaCleanup {
+    ArenaCleanup *next;
+    void (*fn)(void *);
+    void *arg;
+};
+
+void arena_init(Arena *a)
+{
+    a->blocks = NULL;
+    a->cleanups = NULL;
+}
+
+static ArenaBlock *new_block(size_t size)
+{
+    ArenaBlock *b = malloc(sizeof(ArenaBlock) + size);
+    if (!b) {
+        fputs("pointcalc: out of memory\n", stderr);
+        abort();
+    }
+    b->next = NULL;
+    b->used = 0;
+    b->size = size;
+    return b;
+}
+
+void *arena_alloc(Arena *a, size_t size)
+{
+    const size_t align = alignof(max_align_t);
+    size = (size + align - 1) & ~(align - 1);
+    if (size == 0)
+        size = align;
+    ArenaBlock *b = a->blocks;
+    if (!b || b->size - b->used < size) {
+        if (size > BLOCK_SIZE / 4) {
+            /* big request: own block, kept behind the current one */
+            ArenaBlock *big = new_block(size);
+            big->used = size;
+            if (b) {
+                big->next = b->next;
+                b->next = big;
+            } else {
+                a->blocks = big;
+            }
+            memset(big->data, 0, size);
+            return big->data;
+        }
+        b = new_block(BLOCK_SIZE);
+        b->next = a->blocks;
+        a->blocks = b;
+    }
+    void *p = b->data + b->used;
+    b->used += size;
+    memset(p, 0, size);
+    return p;
+}
+
+char *arena_strndup(Arena *a, const char *s, size_t n)
+{
+    char *d = arena_alloc(a, n + 1);
+    memcpy(d, s, n);
+    d[n] = '\0';
+    return d;
+}
+
+char *arena_strdup(Arena *a, const char *s)
+{
+    return arena_strndup(a, s, strlen(s));
+}
+
+void arena_on_reset(Arena *a, void (*fn)(void *), void *arg)
+{
+    ArenaCleanup *c = arena_new(a, ArenaCleanup);
+    c->fn = fn;
+    c->arg = arg;
+    c->next = a->cleanups;
+    a->cleanups = c;
+}
+
+void arena_reset(Arena *a)
+{
+    /* callbacks first: their records live in the blocks freed below */
+    for (ArenaCleanup *c = a->cleanups; c; c = c->next)
+        c->fn(c->arg);
+    a->cleanups = NULL;
+    ArenaBlock *b = a->blocks;
+    while (b) {
+        ArenaBlock *next = b->next;
+        free(b);
+        b = next;
+    }
+    a->blocks = NULL;
+}

@@ -1,0 +1,729 @@
+/*
+ * derive.c - the pipeline front half: parse -> sema_check -> derive.
+ *
+ * Definitions are reduced in source order, each to an exact Value (a RatFun
+ * for scalars, a PointEq for combinations of points), memoised per
+ * definition; a name refers to the memoised value.  The weight sum of every
+ * combination-valued definition is checked here (contract section 3): it must
+ * be identically 1 (a point) or 0 (a vector).
+ */
+#include "compiler/derive.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "compiler/arena.h"
+#include "compiler/construct.h"
+#include "compiler/diag.h"
+#include "compiler/sema.h"
+#include "grammar/parse.h"
+
+/* the value of an expression while deriving */
+typedef struct Value {
+    int is_point; // 1: p holds a combination of base points; 0: s a scalar
+    RatFun s;
+    PointEq p;
+} Value;
+
+typedef struct Deriver {
+    Diag *diag;
+    const Ring *r;
+    SemaInfo *info;
+    Value *defs; // one per definition, initialised
+    int *state;  // per definition: 0 not yet, 1 done, -1 failed
+} Deriver;
+
+static void value_init(Value *v, const Ring *r)
+{
+    v->is_point = 0;
+    ratfun_init(v->s, r);
+    pteq_init(v->p, r);
+}
+
+static void value_clear(Value *v, const Ring *r)
+{
+    pteq_clear(v->p, r);
+    ratfun_clear(v->s, r);
+}
+
+static void value_set(Value *res, const Value *x, const Ring *r)
+{
+    res->is_point = x->is_point;
+    if (x->is_point)
+        pteq_set(res->p, x->p, r);
+    else
+        ratfun_set(res->s, x->s, r);
+}
+
+/* "0.3" -> 3/10, "1e-3" -> 1/1000 exactly.  The lexer guarantees the form
+ * digits[.digits][e[+-]digits]. */
+static int number_to_fmpq(fmpq_t q, const char *text)
+{
+    size_t n = strlen(text);
+    char *digits = malloc(n + 2);
+    size_t k = 0;
+    long frac = 0, exp10 = 0;
+    int in_frac = 0;
+    const char *c = text;
+    for (; *c && *c != 'e' && *c != 'E'; c++) {
+        if (*c == '.') {
+            in_frac = 1;
+            continue;
+        }
+        digits[k++] = *c;
+        frac += in_frac;
+    }
+    if (k == 0)
+        digits[k++] = '0';
+    digits[k] = '\0';
+    if (*c == 'e' || *c == 'E') {
+        exp10 = strtol(c + 1, NULL, 10);
+        if (exp10 > 1000 || exp10 < -1000) {
+            free(digits);
+            return -1;
+        }
+    }
+    fmpz_set_str(fmpq_numref(q), digits, 10);
+    fmpz_one(fmpq_denref(q));
+    free(digits);
+    long e = exp10 - frac;
+    fmpz_t p;
+    fmpz_init(p);
+    fmpz_set_ui(p, 10);
+    fmpz_pow_ui(p, p, (ulong)(e < 0 ? -e : e));
+    if (e < 0)
+        fmpz_set(fmpq_denref(q), p);
+    else
+        fmpz_mul(fmpq_numref(q), fmpq_numref(q), p);
+    fmpz_clear(p);
+    fmpq_canonicalise(q);
+    return 0;
+}
+
+static int eval(Deriver *D, Value *res, const Node *n);
+
+/* evaluates a combination-valued argument */
+static int eval_point(Deriver *D, PointEq res, const Node *n)
+{
+    Value v;
+    value_init(&v, D->r);
+    int st = eval(D, &v, n);
+    if (st == 0)
+        pteq_swap(res, v.p, D->r);
+    value_clear(&v, D->r);
+    return st;
+}
+
+static int eval_scalar(Deriver *D, RatFun res, const Node *n)
+{
+    Value v;
+    value_init(&v, D->r);
+    int st = eval(D, &v, n);
+    if (st == 0)
+        ratfun_swap(res, v.s, D->r);
+    value_clear(&v, D->r);
+    return st;
+}
+
+static const Node *nth(const Node *call, int i)
+{
+    const Node *a = call->args;
+    while (a && i-- > 0)
+        a = a->next;
+    return a;
+}
+
+/* prints a RatFun into a diagnostic-sized string (caller frees) */
+static char *show(const RatFun x, const Ring *r)
+{
+    return ratfun_get_str(x, r);
+}
+
+static int eval_meet(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    const Node *fa = nth(n, 0), *fb = nth(n, 1);
+    PointEq pa[2], pb[3];
+    int st = 0;
+    for (int i = 0; i < 2; i++)
+        pteq_init(pa[i], r);
+    for (int i = 0; i < 3; i++)
+        pteq_init(pb[i], r);
+    int i = 0;
+    for (const Node *a = fa->args; a; a = a->next)
+        if (eval_point(D, pa[i++], a) < 0)
+            st = -1;
+    i = 0;
+    for (const Node *a = fb->args; a; a = a->next)
+        if (eval_point(D, pb[i++], a) < 0)
+            st = -1;
+    if (st == 0) {
+        MeetStatus ms =
+            construct_meet(res->p, pa, fa->nargs, pb, fb->nargs, r);
+        int plane = fb->nargs == 3;
+        st = -1;
+        switch (ms) {
+        case MEET_OK:
+            st = 0;
+            break;
+        case MEET_DEGENERATE_FIRST:
+            diag_error(D->diag, fa->span,
+                       "degenerate line: its two points coincide, so it "
+                       "defines no line");
+            break;
+        case MEET_DEGENERATE_SECOND:
+            diag_error(D->diag, fb->span,
+                       plane ? "degenerate plane: its three points are "
+                               "collinear, so they define no plane"
+                             : "degenerate line: its two points coincide, "
+                               "so it defines no line");
+            break;
+        case MEET_PARALLEL:
+            diag_error(D->diag, n->span,
+                       plane ? "the line is parallel to the plane: no "
+                               "intersection"
+                             : "lines in meet() are parallel: no "
+                               "intersection");
+            break;
+        case MEET_COINCIDENT:
+            diag_error(D->diag, n->span,
+                       plane ? "the line lies in the plane: no single "
+                               "intersection point"
+                             : "lines in meet() coincide: no single "
+                               "intersection point");
+            break;
+        case MEET_SKEW:
+            diag_error(D->diag, n->span,
+                       plane ? "the line and the plane do not lie in one "
+                               "3-space: they do not meet"
+                             : "lines in meet() are skew (not coplanar): "
+                               "they do not meet");
+            break;
+        case MEET_NO_POINT:
+            diag_error(D->diag, n->span,
+                       "every argument of %s() is a vector; expected at "
+                       "least one point",
+                       fa->nargs == 2 ? "line" : "plane");
+            break;
+        }
+    }
+    for (int k = 0; k < 3; k++)
+        pteq_clear(pb[k], r);
+    for (int k = 0; k < 2; k++)
+        pteq_clear(pa[k], r);
+    res->is_point = 1;
+    return st;
+}
+
+static int eval_subst(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    const Node *e = nth(n, 0), *x = nth(n, 1), *by = nth(n, 2);
+    Value ve, vb;
+    int st = 0;
+    value_init(&ve, r);
+    value_init(&vb, r);
+    if (eval(D, &ve, e) < 0 || eval(D, &vb, by) < 0) {
+        st = -1;
+        goto done;
+    }
+    res->is_point = ve.is_point;
+    if (x->sym->kind == SYM_POINT) {
+        RatFun sum;
+        ratfun_init(sum, r);
+        pteq_weight_sum(sum, vb.p, r);
+        if (!ratfun_is_one(sum, r)) {
+            char *s = show(sum, r);
+            diag_error(D->diag, by->span,
+                       "the replacement of base point '%s' must be a point, "
+                       "but its weights sum to %s, not 1",
+                       x->sym->name, s);
+            flint_free(s);
+            st = -1;
+        } else if (ve.is_point) {
+            pteq_subst_point(res->p, ve.p, x->sym->index, vb.p, r);
+        } else {
+            ratfun_set(res->s, ve.s, r);
+        }
+        ratfun_clear(sum, r);
+    } else {
+        slong var = x->sym->index + (x->sym->kind == SYM_CONST
+                                         ? D->info->nparams
+                                         : 0);
+        int rc = ve.is_point ? pteq_compose_var(res->p, ve.p, var, vb.s, r)
+                             : ratfun_compose_var(res->s, ve.s, var, vb.s, r);
+        if (rc != 0) {
+            char *s = show(vb.s, r);
+            diag_error(D->diag, n->span,
+                       "vanishing denominator: substituting %s = %s makes a "
+                       "denominator of the expression identically zero",
+                       x->sym->name, s);
+            flint_free(s);
+            st = -1;
+        }
+    }
+done:
+    value_clear(&vb, r);
+    value_clear(&ve, r);
+    return st;
+}
+
+static int eval_call(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    int st = 0;
+    switch ((Builtin)n->builtin) {
+    case BI_ALONG:
+    case BI_DIVIDE: {
+        PointEq p, q;
+        RatFun s;
+        pteq_init(p, r);
+        pteq_init(q, r);
+        ratfun_init(s, r);
+        if (eval_point(D, p, nth(n, 0)) < 0 ||
+            eval_point(D, q, nth(n, 1)) < 0 ||
+            eval_scalar(D, s, nth(n, 2)) < 0) {
+            st = -1;
+        } else if (n->builtin == BI_ALONG) {
+            construct_along(res->p, p, q, s, r);
+        } else if (construct_divide(res->p, p, q, s, r) != 0) {
+            diag_error(D->diag, nth(n, 2)->span,
+                       "the simple ratio of divide() is identically -1: the "
+                       "dividing point would be at infinity");
+            st = -1;
+        }
+        ratfun_clear(s, r);
+        pteq_clear(q, r);
+        pteq_clear(p, r);
+        res->is_point = 1;
+        return st;
+    }
+    case BI_MEET:
+        return eval_meet(D, res, n);
+    case BI_SUBST:
+        return eval_subst(D, res, n);
+    case BI_DIFF: {
+        const Node *x = nth(n, 1), *order = nth(n, 2);
+        long k = order ? strtol(order->text, NULL, 10) : 1;
+        slong var = x->sym->index +
+                    (x->sym->kind == SYM_CONST ? D->info->nparams : 0);
+        if (eval(D, res, nth(n, 0)) < 0)
+            return -1;
+        for (long i = 0; i < k; i++) {
+            if (res->is_point)
+                pteq_derivative(res->p, res->p, var, r);
+            else
+                ratfun_derivative(res->s, res->s, var, r);
+        }
+        return 0;
+    }
+    case BI_BEZIER: {
+        slong npts = n->nargs - 1;
+        RatFun s;
+        PointEq *pts = malloc(sizeof(PointEq) * (size_t)npts);
+        ratfun_init(s, r);
+        for (slong i = 0; i < npts; i++)
+            pteq_init(pts[i], r);
+        if (eval_scalar(D, s, nth(n, 0)) < 0)
+            st = -1;
+        for (slong i = 0; i < npts; i++)
+            if (eval_point(D, pts[i], nth(n, (int)i + 1)) < 0)
+                st = -1;
+        if (st == 0)
+            construct_bezier(res->p, s, (const PointEq *)pts, npts, r);
+        for (slong i = 0; i < npts; i++)
+            pteq_clear(pts[i], r);
+        free(pts);
+        ratfun_clear(s, r);
+        res->is_point = 1;
+        return st;
+    }
+    default:
+        /* sema reports unimplemented builtins and stray line()/plane() */
+        diag_error(D->diag, n->span, "internal error: unexpected %s()",
+                   n->text);
+        return -1;
+    }
+}
+
+static int eval_pow(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    RatFun e;
+    fmpq_t q;
+    int st = -1;
+    ratfun_init(e, r);
+    fmpq_init(q);
+    if (eval(D, res, n->lhs) < 0 || eval_scalar(D, e, n->rhs) < 0)
+        goto done;
+    if (!ratfun_get_fmpq(q, e, r)) {
+        diag_error(D->diag, n->rhs->span,
+                   "expected a constant exponent; a power depending on "
+                   "parameters or constants is transcendental");
+        goto done;
+    }
+    if (!fmpz_is_one(fmpq_denref(q))) {
+        diag_error(D->diag, n->rhs->span,
+                   "rational exponents (roots) are not supported yet; "
+                   "expected an integer exponent");
+        goto done;
+    }
+    if (!fmpz_fits_si(fmpq_numref(q)) ||
+        labs(fmpz_get_si(fmpq_numref(q))) > 1000) {
+        diag_error(D->diag, n->rhs->span,
+                   "exponent too large; expected an integer from -1000 "
+                   "to 1000");
+        goto done;
+    }
+    if (ratfun_pow_si(res->s, res->s, fmpz_get_si(fmpq_numref(q)), r) != 0) {
+        diag_error(D->diag, n->span,
+                   "division by zero: a negative power of an expression "
+                   "that is identically zero");
+        goto done;
+    }
+    st = 0;
+done:
+    fmpq_clear(q);
+    ratfun_clear(e, r);
+    return st;
+}
+
+/* res receives the exact value of n; 0 or -1 (reported) */
+static int eval(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    switch (n->kind) {
+    case ND_NUM: {
+        fmpq_t q;
+        fmpq_init(q);
+        int st = number_to_fmpq(q, n->text);
+        if (st == 0)
+            ratfun_set_fmpq(res->s, q, r);
+        else
+            diag_error(D->diag, n->span,
+                       "number out of range: expected an exponent within "
+                       "+-1000");
+        fmpq_clear(q);
+        res->is_point = 0;
+        return st;
+    }
+    case ND_NAME: {
+        Sym *s = n->sym;
+        switch (s->kind) {
+        case SYM_POINT:
+            res->is_point = 1;
+            pteq_set_point(res->p, s->index, r);
+            return 0;
+        case SYM_PARAM:
+        case SYM_CONST:
+            res->is_point = 0;
+            ratfun_gen(res->s,
+                       s->index + (s->kind == SYM_CONST ? D->info->nparams
+                                                        : 0),
+                       r);
+            return 0;
+        case SYM_DEF:
+            if (D->state[s->index] != 1)
+                return -1; /* its own error was reported */
+            value_set(res, &D->defs[s->index], r);
+            return 0;
+        case SYM_UNKNOWN:
+            return -1;
+        }
+        return -1;
+    }
+    case ND_NEG:
+        if (eval(D, res, n->lhs) < 0)
+            return -1;
+        if (res->is_point)
+            pteq_neg(res->p, res->p, r);
+        else
+            ratfun_neg(res->s, res->s, r);
+        return 0;
+    case ND_ADD:
+    case ND_SUB:
+    case ND_MUL:
+    case ND_DIV: {
+        Value b;
+        int st = 0;
+        value_init(&b, r);
+        if (eval(D, res, n->lhs) < 0 || eval(D, &b, n->rhs) < 0) {
+            value_clear(&b, r);
+            return -1;
+        }
+        if (n->kind == ND_ADD) {
+            if (res->is_point)
+                pteq_add(res->p, res->p, b.p, r);
+            else
+                ratfun_add(res->s, res->s, b.s, r);
+        } else if (n->kind == ND_SUB) {
+            if (res->is_point)
+                pteq_sub(res->p, res->p, b.p, r);
+            else
+                ratfun_sub(res->s, res->s, b.s, r);
+        } else if (n->kind == ND_MUL) {
+            if (res->is_point)
+                pteq_scalar_mul(res->p, res->p, b.s, r);
+            else if (b.is_point) {
+                pteq_scalar_mul(res->p, b.p, res->s, r);
+                res->is_point = 1;
+            } else
+                ratfun_mul(res->s, res->s, b.s, r);
+        } else {
+            int rc = res->is_point ? pteq_scalar_div(res->p, res->p, b.s, r)
+                                   : ratfun_div(res->s, res->s, b.s, r);
+            if (rc != 0) {
+                diag_error(D->diag, n->rhs->span,
+                           "division by zero: the divisor is identically "
+                           "zero");
+                st = -1;
+            }
+        }
+        value_clear(&b, r);
+        return st;
+    }
+    case ND_POW:
+        res->is_point = 0;
+        return eval_pow(D, res, n);
+    case ND_CALL:
+        return eval_call(D, res, n);
+    }
+    return -1;
+}
+
+/* derives definition i and checks its weight sum */
+static void derive_def(Deriver *D, Sym *s)
+{
+    const Ring *r = D->r;
+    Value *v = &D->defs[s->index];
+    if (s->bad || eval(D, v, s->def->expr) < 0) {
+        D->state[s->index] = -1;
+        return;
+    }
+    D->state[s->index] = 1;
+    if (!v->is_point)
+        return;
+    RatFun sum;
+    ratfun_init(sum, r);
+    pteq_weight_sum(sum, v->p, r);
+    if (!ratfun_is_zero(sum, r) && !ratfun_is_one(sum, r)) {
+        char *txt = show(sum, r);
+        diag_error(D->diag, s->def->expr->span,
+                   "weights of %s sum to %s, not 0 (a vector) or 1 (a "
+                   "point)",
+                   s->name, txt);
+        flint_free(txt);
+        D->state[s->index] = -1;
+    }
+    ratfun_clear(sum, r);
+}
+
+static char *xstrdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    memcpy(d, s, n);
+    return d;
+}
+
+static char **copy_names(Sym **syms, int n)
+{
+    char **names = calloc((size_t)(n ? n : 1), sizeof(char *));
+    for (int i = 0; i < n; i++)
+        names[i] = xstrdup(syms[i]->name);
+    return names;
+}
+
+/* the file's base name without directory and extension */
+static char *base_name(const char *filename)
+{
+    const char *b = strrchr(filename, '/');
+    b = b ? b + 1 : filename;
+    char *s = xstrdup(b);
+    char *dot = strrchr(s, '.');
+    if (dot && dot != s)
+        *dot = '\0';
+    return s;
+}
+
+Derived *derive_source(const char *filename, const char *text, size_t len,
+                       FILE *err, int *nerrors)
+{
+    Arena arena;
+    Source src;
+    Diag diag;
+    Derived *d = NULL;
+    arena_init(&arena);
+    source_init(&src, filename, text, len);
+    diag_init(&diag, &src, err);
+
+    Scheme *scheme = parse_scheme(&src, &arena, &diag);
+    SemaInfo *info = NULL;
+    if (diag.nerrors == 0)
+        info = sema_check(scheme, &arena, &diag);
+    if (!info)
+        goto done;
+
+    d = calloc(1, sizeof(Derived));
+    d->filename = xstrdup(filename);
+    d->scheme = info->scheme_name ? xstrdup(info->scheme_name)
+                                  : base_name(filename);
+    d->npoints = info->npoints;
+    d->points = copy_names(info->points, info->npoints);
+    d->nparams = info->nparams;
+    d->params = copy_names(info->params, info->nparams);
+    d->nconsts = info->nconsts;
+    d->consts = copy_names(info->consts, info->nconsts);
+    {
+        slong nv = d->nparams + d->nconsts;
+        const char **vars = malloc(sizeof(char *) * (size_t)(nv ? nv : 1));
+        for (slong i = 0; i < d->nparams; i++)
+            vars[i] = d->params[i];
+        for (slong i = 0; i < d->nconsts; i++)
+            vars[d->nparams + i] = d->consts[i];
+        ring_init(&d->ring, nv, vars);
+        free(vars);
+    }
+    const Ring *r = &d->ring;
+
+    Deriver D = {.diag = &diag, .r = r, .info = info};
+    D.defs = malloc(sizeof(Value) * (size_t)(info->ndefs ? info->ndefs : 1));
+    D.state = calloc((size_t)(info->ndefs ? info->ndefs : 1), sizeof(int));
+    for (int i = 0; i < info->ndefs; i++)
+        value_init(&D.defs[i], r);
+    for (int i = 0; i < info->ndefs; i++)
+        derive_def(&D, info->defs[i]);
+
+    if (diag.nerrors == 0) {
+        d->noutputs = info->noutputs;
+        d->outputs = calloc((size_t)(info->noutputs ? info->noutputs : 1),
+                            sizeof(DerivedOutput));
+        for (int i = 0; i < info->noutputs; i++) {
+            Sym *s = info->outputs[i];
+            DerivedOutput *o = &d->outputs[i];
+            Value *v = &D.defs[s->index];
+            int line, col;
+            o->name = xstrdup(s->name);
+            source_locate(&src, s->span.start, &line, &col);
+            o->line = line;
+            pteq_init(o->eq, r);
+            ratfun_init(o->scalar, r);
+            if (v->is_point) {
+                RatFun sum;
+                ratfun_init(sum, r);
+                pteq_weight_sum(sum, v->p, r);
+                o->kind = ratfun_is_one(sum, r) ? KIND_POINT : KIND_VECTOR;
+                ratfun_clear(sum, r);
+                pteq_set(o->eq, v->p, r);
+            } else {
+                o->kind = KIND_SCALAR;
+                ratfun_set(o->scalar, v->s, r);
+            }
+        }
+    }
+    for (int i = 0; i < info->ndefs; i++)
+        value_clear(&D.defs[i], r);
+    free(D.defs);
+    free(D.state);
+    if (diag.nerrors) {
+        derived_free(d);
+        d = NULL;
+    }
+done:
+    if (nerrors)
+        *nerrors = diag.nerrors;
+    source_clear(&src);
+    arena_reset(&arena);
+    return d;
+}
+
+Derived *derive_file(const char *filename, FILE *err, int *nerrors)
+{
+    FILE *f = fopen(filename, "rb");
+    if (!f) {
+        if (err)
+            fprintf(err, "%s: error: cannot open the file\n", filename);
+        if (nerrors)
+            *nerrors = 1;
+        return NULL;
+    }
+    size_t cap = 4096, len = 0;
+    char *buf = malloc(cap);
+    size_t got;
+    while ((got = fread(buf + len, 1, cap - len, f)) > 0) {
+        len += got;
+        if (len == cap) {
+            cap *= 2;
+            buf = realloc(buf, cap);
+        }
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        free(buf);
+        if (err)
+            fprintf(err, "%s: error: cannot read the file\n", filename);
+        if (nerrors)
+            *nerrors = 1;
+        return NULL;
+    }
+    Derived *d = derive_source(filename, buf, len, err, nerrors);
+    free(buf);
+    return d;
+}
+
+void derived_free(Derived *d)
+{
+    if (!d)
+        return;
+    for (slong i = 0; i < d->noutputs; i++) {
+        pteq_clear(d->outputs[i].eq, &d->ring);
+        ratfun_clear(d->outputs[i].scalar, &d->ring);
+        free((char *)d->outputs[i].name);
+    }
+    free(d->outputs);
+    ring_clear(&d->ring);
+    for (slong i = 0; i < d->npoints; i++)
+        free(d->points[i]);
+    for (slong i = 0; i < d->nparams; i++)
+        free(d->params[i]);
+    for (slong i = 0; i < d->nconsts; i++)
+        free(d->consts[i]);
+    free(d->points);
+    free(d->params);
+    free(d->consts);
+    free(d->scheme);
+    free(d->filename);
+    free(d);
+}
+
+static slong find(char *const *names, slong n, const char *name)
+{
+    for (slong i = 0; i < n; i++)
+        if (strcmp(names[i], name) == 0)
+            return i;
+    return -1;
+}
+
+slong derived_find_output(const Derived *d, const char *name)
+{
+    for (slong i = 0; i < d->noutputs; i++)
+        if (strcmp(d->outputs[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+slong derived_find_point(const Derived *d, const char *name)
+{
+    return find(d->points, d->npoints, name);
+}
+
+slong derived_find_param(const Derived *d, const char *name)
+{
+    return find(d->params, d->nparams, name);
+}
+
+slong derived_find_const(const Derived *d, const char *name)
+{
+    return find(d->consts, d->nconsts, name);
+}

@@ -1,0 +1,62 @@
+/*
+ * derive.h - the whole front half of the pipeline as one call, and its
+ * result: the exact, reduced point equations of a scheme's outputs.
+ *
+ *   source -> parse -> sema_check -> derive  ==>  Derived
+ *
+ * A Derived is what every back end reads: `derive` prints it, codegen lowers
+ * it to a Plan for emit-c and eval.  It owns its Ring and every value.
+ */
+#ifndef PC_DERIVE_H
+#define PC_DERIVE_H
+
+#include <stdio.h>
+
+#include "compiler/pteq.h"
+#include "compiler/ratfun.h"
+#include "compiler/ring.h"
+
+typedef enum Kind {
+    KIND_SCALAR, // a rational function of params and consts
+    KIND_POINT,  // a point equation whose weights sum to 1
+    KIND_VECTOR, // a point equation whose weights sum to 0
+} Kind;
+
+typedef struct DerivedOutput {
+    const char *name; // the defined name (owned by the Derived)
+    Kind kind;
+    PointEq eq;    // KIND_POINT / KIND_VECTOR: the reduced equation
+    RatFun scalar; // KIND_SCALAR: the reduced value
+    int line;      // 1-based line of its definition in the scheme
+} DerivedOutput;
+
+typedef struct Derived {
+    char *scheme;   // scheme name (`scheme NAME` or the file's base name)
+    char *filename; // as given
+    slong npoints;  // base points, declaration order
+    char **points;
+    slong nparams; // params, declaration order: ring variables 0..nparams-1
+    char **params;
+    slong nconsts; // consts: ring variables nparams..nparams+nconsts-1
+    char **consts;
+    Ring ring;
+    slong noutputs; // `output` list (default: the last definition)
+    DerivedOutput *outputs;
+} Derived;
+
+/* Derive a scheme from source text.  Diagnostics (contract section 4 format)
+ * go to err, which may be NULL to discard them; *nerrors (if not NULL)
+ * receives their count.  Returns NULL when the scheme has an error. */
+Derived *derive_source(const char *filename, const char *text, size_t len,
+                       FILE *err, int *nerrors);
+/* Same, reading the file; an unreadable file is one error. */
+Derived *derive_file(const char *filename, FILE *err, int *nerrors);
+void derived_free(Derived *d);
+
+/* Index of the output / point / param / const called name, or -1. */
+slong derived_find_output(const Derived *d, const char *name);
+slong derived_find_point(const Derived *d, const char *name);
+slong derived_find_param(const Derived *d, const char *name);
+slong derived_find_const(const Derived *d, const char *name);
+
+#endif

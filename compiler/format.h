@@ -1,0 +1,34 @@
+/*
+ * format.h - printers of derived equations: text (book-like), LaTeX, JSON.
+ *
+ * text:   M = (A*(1-t)^3 + B*t^2*(1-t) + ...) / (2*t^2 - 2*t + 1)
+ *         grouped by base point, numerators factored, a denominator shared
+ *         by every weight pulled out.
+ * latex:  the same with \frac, \bar{t} for 1 - t and subscripted names.
+ * json:   contract section 4: {"scheme":..,"points":..,"params":..,
+ *         "consts":..,"outputs":[{"name":..,"kind":..,"terms":{..}}]}
+ *         (scalar outputs carry "value" instead of "terms").
+ */
+#ifndef PC_FORMAT_H
+#define PC_FORMAT_H
+
+#include <stdio.h>
+
+#include "compiler/derive.h"
+
+typedef enum FormatStyle {
+    FMT_TEXT,  // book-like plain text
+    FMT_LATEX, // LaTeX math
+    FMT_JSON,  // machine-readable, contract section 4
+} FormatStyle;
+
+/* origin: a base point index to write the equations relative to
+ * (M = (A - C)*f + (B - C)*g + C), or -1.  JSON ignores it. */
+void format_derived(FILE *out, const Derived *d, FormatStyle style,
+                    slong origin);
+
+/* One weight as a reduced, re-readable expression with '*' for every
+ * product (the JSON form).  Caller frees with free(). */
+char *format_weight(const RatFun w, const Ring *r);
+
+#endif

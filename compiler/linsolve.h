@@ -1,0 +1,30 @@
+/*
+ * linsolve.h - linear systems over the field of rational functions.
+ *
+ * Solves  sum_j a[i*n + j] * x_j = b_i  (i < m, j < n)  exactly by Gaussian
+ * elimination over Q(x1..xk), choosing at each step the structurally simplest
+ * non-zero pivot (ratfun_length).  "Non-zero" means not identically zero: the
+ * answer is the generic one, valid wherever the pivots do not vanish.
+ *
+ * Used by meet() (S-theorem: two unknowns; V-theorem: three) and later by
+ * `solve` (unknown points, monograph ch. 4).
+ */
+#ifndef PC_LINSOLVE_H
+#define PC_LINSOLVE_H
+
+#include "compiler/ratfun.h"
+
+typedef enum LinSolveResult {
+    LINSOLVE_UNIQUE,         // rank == n and consistent: x holds the solution
+    LINSOLVE_UNDERDETERMINED, // rank < n and consistent: x holds one solution
+                              // (free unknowns set to 0)
+    LINSOLVE_INCONSISTENT,    // no solution (x untouched)
+} LinSolveResult;
+
+/* x must have n initialised entries; a and b are not modified.  *rank (if
+ * rank != NULL) receives the rank of the coefficient matrix a. */
+LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
+                        const RatFunStruct *b, slong m, slong n,
+                        const Ring *r);
+
+#endif

@@ -1,0 +1,122 @@
+/*
+ * main.c - the pointcalc command line (contract section 4).
+ *
+ *   pointcalc derive FILE [--format text|latex|json] [--origin POINT]
+ *   pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]
+ *   pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=V ...] --param t=SPEC ...
+ *
+ * Exit status: 0 success, 1 an error in the scheme, 2 a usage error.
+ * Nothing reaches stdout when the scheme has an error.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include <flint/flint.h>
+
+#include "codegen/cli.h"
+#include "compiler/derive.h"
+#include "compiler/format.h"
+
+#define PC_VERSION "0.1.0"
+
+static const char usage[] =
+    "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
+    "       pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
+    "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
+    "                        --param t=SPEC ... [--output NAME] "
+    "[--format csv|json]\n"
+    "       pointcalc --help | --version\n"
+    "\n"
+    "Reduces a point-calculus scheme (.pcs) exactly to its final point\n"
+    "equations, emits C for them, or evaluates them.  SPEC is a value (0.5),\n"
+    "a list (0,0.25,1) or lo:hi:count.  See docs/language.md.\n";
+
+static int derive_main(int argc, char **argv)
+{
+    const char *file = NULL, *origin = NULL;
+    FormatStyle style = FMT_TEXT;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--format") == 0 && i + 1 < argc) {
+            const char *f = argv[++i];
+            if (strcmp(f, "text") == 0)
+                style = FMT_TEXT;
+            else if (strcmp(f, "latex") == 0)
+                style = FMT_LATEX;
+            else if (strcmp(f, "json") == 0)
+                style = FMT_JSON;
+            else {
+                fprintf(stderr,
+                        "pointcalc: unknown format '%s'; expected text, "
+                        "latex or json\n",
+                        f);
+                return 2;
+            }
+        } else if (strcmp(a, "--origin") == 0 && i + 1 < argc) {
+            origin = argv[++i];
+        } else if (a[0] == '-' && a[1] != '\0') {
+            fprintf(stderr, "pointcalc: unknown or incomplete option '%s'\n%s",
+                    a, usage);
+            return 2;
+        } else if (!file) {
+            file = a;
+        } else {
+            fprintf(stderr, "pointcalc: derive takes one FILE, found '%s'\n",
+                    a);
+            return 2;
+        }
+    }
+    if (!file) {
+        fprintf(stderr, "pointcalc: derive needs a scheme FILE\n%s", usage);
+        return 2;
+    }
+    int nerrors = 0;
+    Derived *d = derive_file(file, stderr, &nerrors);
+    if (!d)
+        return 1;
+    slong o = -1;
+    if (origin) {
+        o = derived_find_point(d, origin);
+        if (o < 0) {
+            fprintf(stderr,
+                    "pointcalc: --origin '%s' is not a base point of the "
+                    "scheme\n",
+                    origin);
+            derived_free(d);
+            return 2;
+        }
+    }
+    format_derived(stdout, d, style, o);
+    derived_free(d);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    int rc;
+    if (argc < 2) {
+        fputs(usage, stderr);
+        return 2;
+    }
+    const char *cmd = argv[1];
+    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
+        fputs(usage, stdout);
+        return 0;
+    }
+    if (strcmp(cmd, "--version") == 0) {
+        printf("pointcalc %s\n", PC_VERSION);
+        return 0;
+    }
+    if (strcmp(cmd, "derive") == 0)
+        rc = derive_main(argc - 1, argv + 1);
+    else if (strcmp(cmd, "emit-c") == 0)
+        rc = emit_c_main(argc - 1, argv + 1, stdout, stderr);
+    else if (strcmp(cmd, "eval") == 0)
+        rc = eval_main(argc - 1, argv + 1, stdout, stderr);
+    else {
+        fprintf(stderr, "pointcalc: unknown command '%s'\n%s", cmd, usage);
+        rc = 2;
+    }
+    flint_cleanup_master();
+    return rc;
+}

@@ -1,0 +1,31 @@
+/*
+ * ring.h - the polynomial ring of one compilation.
+ *
+ * A Ring is one FLINT fmpz_mpoly context whose variables are the scheme's
+ * scalar symbols: every `param`, then every `const`, in declaration order
+ * (later: transcendental and metric atoms get further variables).  All
+ * RatFun and PointEq values of one compilation live in one Ring.
+ *
+ * Variable names are borrowed: they must outlive the Ring (arena strings).
+ */
+#ifndef PC_RING_H
+#define PC_RING_H
+
+#include <flint/fmpz_mpoly.h>
+
+typedef struct Ring {
+    fmpz_mpoly_ctx_t ctx; // FLINT context, ORD_DEGREVLEX
+    slong nvars;          // number of named variables (may be 0)
+    const char **names;   // owned array of borrowed strings, nvars entries
+} Ring;
+
+/* Initialise r with nvars variables called names[0..nvars-1].  nvars may be
+ * 0 (a scheme without parameters); FLINT then still gets one unnamed,
+ * never-used variable.  Copies the array, borrows the strings. */
+void ring_init(Ring *r, slong nvars, const char *const *names);
+void ring_clear(Ring *r);
+
+/* Index of the variable called name, or -1. */
+slong ring_var_index(const Ring *r, const char *name);
+
+#endif

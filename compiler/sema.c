@@ -1,0 +1,594 @@
+/*
+ * sema.c - names, kinds and arity.
+ *
+ * Kinds here are static: an expression is either a scalar (a rational
+ * function of the params and consts) or a combination of points (a point
+ * equation, whatever its weight sum).  Whether a combination is a point, a
+ * vector or an error depends on its weight sum, which derive.c computes.
+ */
+#include "compiler/sema.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct Builtin_info {
+    const char *name;
+    int min_args, max_args;
+    int result; // 1 combination, 0 scalar, -1 as its first argument
+    int implemented;
+} BuiltinInfo;
+
+static const BuiltinInfo builtins[] = {
+#define X(id, name, lo, hi, res, impl) {name, lo, hi, res, impl},
+    PC_BUILTINS(X)
+#undef X
+};
+
+const char *sema_builtin_name(int b)
+{
+    return builtins[b].name;
+}
+
+enum { NBUCKETS = 64 };
+
+typedef struct Sema {
+    Arena *arena;
+    Diag *diag;
+    Sym *table[NBUCKETS];
+    SemaInfo *info;
+    int cap_points, cap_params, cap_consts, cap_defs;
+} Sema;
+
+static unsigned hash(const char *s)
+{
+    unsigned h = 5381;
+    while (*s)
+        h = h * 33 + (unsigned char)*s++;
+    return h % NBUCKETS;
+}
+
+static Sym *lookup(Sema *S, const char *name)
+{
+    for (Sym *s = S->table[hash(name)]; s; s = s->next)
+        if (strcmp(s->name, name) == 0)
+            return s;
+    return NULL;
+}
+
+static const char *sym_kind_word(SymKind k)
+{
+    switch (k) {
+    case SYM_POINT:
+        return "a base point";
+    case SYM_PARAM:
+        return "a parameter";
+    case SYM_CONST:
+        return "a constant";
+    case SYM_UNKNOWN:
+        return "an unknown";
+    case SYM_DEF:
+        return "a definition";
+    }
+    return "?";
+}
+
+/* grows an arena array of Sym * (old contents are copied; the arena keeps
+ * the old block, which is fine for the sizes of a scheme) */
+static void push(Sema *S, Sym ***arr, int *n, int *cap, Sym *s)
+{
+    if (*n == *cap) {
+        int nc = *cap ? 2 * *cap : 8;
+        Sym **na = arena_alloc(S->arena, sizeof(Sym *) * (size_t)nc);
+        if (*n)
+            memcpy(na, *arr, sizeof(Sym *) * (size_t)*n);
+        *arr = na;
+        *cap = nc;
+    }
+    (*arr)[(*n)++] = s;
+}
+
+static int is_reserved(const char *name)
+{
+    if (strcmp(name, "pi") == 0)
+        return 1;
+    for (int b = 0; b < BI_COUNT; b++)
+        if (strcmp(builtins[b].name, name) == 0)
+            return 1;
+    return 0;
+}
+
+static Sym *declare(Sema *S, const char *name, Span span, SymKind kind)
+{
+    Sym *old = lookup(S, name);
+    if (old) {
+        diag_error(S->diag, span, "redefinition of '%s'", name);
+        diag_note(S->diag, old->span, "'%s' was first declared here as %s",
+                  name, sym_kind_word(old->kind));
+        return NULL;
+    }
+    if (is_reserved(name)) {
+        diag_error(S->diag, span,
+                   "'%s' is a built-in name; choose another name", name);
+        return NULL;
+    }
+    Sym *s = arena_new(S->arena, Sym);
+    s->name = name;
+    s->kind = kind;
+    s->span = span;
+    unsigned h = hash(name);
+    s->next = S->table[h];
+    S->table[h] = s;
+    return s;
+}
+
+static int check_expr(Sema *S, Node *n);
+
+/* the kind of a name used in an expression: 1 point, 0 scalar, -1 error */
+static int check_name(Sema *S, Node *n)
+{
+    if (strcmp(n->text, "pi") == 0) {
+        diag_error(S->diag, n->span,
+                   "'pi' is transcendental; transcendental scalars are not "
+                   "supported yet (planned with the conics of chapter 2)");
+        return -1;
+    }
+    Sym *s = lookup(S, n->text);
+    if (!s) {
+        for (int b = 0; b < BI_COUNT; b++)
+            if (strcmp(builtins[b].name, n->text) == 0) {
+                diag_error(S->diag, n->span,
+                           "'%s' is a function; expected '%s(' with its "
+                           "arguments",
+                           n->text, n->text);
+                return -1;
+            }
+        diag_error(S->diag, n->span,
+                   "undefined name '%s'; expected a declared point, "
+                   "parameter, constant or an earlier definition",
+                   n->text);
+        return -1;
+    }
+    n->sym = s;
+    switch (s->kind) {
+    case SYM_POINT:
+        return 1;
+    case SYM_PARAM:
+    case SYM_CONST:
+        return 0;
+    case SYM_UNKNOWN:
+        diag_error(S->diag, n->span,
+                   "unknowns are not supported yet (planned: linear point "
+                   "systems, monograph ch. 4)");
+        return -1;
+    case SYM_DEF:
+        return s->bad ? -1 : s->is_point;
+    }
+    return -1;
+}
+
+static const char *kind_word(int k)
+{
+    return k ? "a point or vector" : "a scalar";
+}
+
+/* expects kind `want` (1 combination, 0 scalar) of argument n */
+static int expect(Sema *S, Node *n, int want, const char *what)
+{
+    int k = check_expr(S, n);
+    if (k < 0)
+        return -1;
+    if (k != want) {
+        if (n->kind == ND_NAME && n->sym)
+            diag_error(S->diag, n->span, "expected %s as %s, but '%s' is %s",
+                       kind_word(want), what, n->text,
+                       sym_kind_word(n->sym->kind));
+        else
+            diag_error(S->diag, n->span, "expected %s as %s, found %s",
+                       kind_word(want), what, kind_word(k));
+        return -1;
+    }
+    return k;
+}
+
+/* the Nth argument (0-based) */
+static Node *arg(Node *call, int i)
+{
+    Node *a = call->args;
+    while (a && i-- > 0)
+        a = a->next;
+    return a;
+}
+
+/* a flat inside meet(): line(P, Q) or plane(R, S, U) */
+static int check_flat(Sema *S, Node *n, int allow_plane)
+{
+    if (n->kind != ND_CALL ||
+        (strcmp(n->text, "line") != 0 && strcmp(n->text, "plane") != 0)) {
+        diag_error(S->diag, n->span,
+                   allow_plane ? "expected 'line(P, Q)' or 'plane(R, S, U)' "
+                                 "as the second argument of meet()"
+                               : "expected 'line(P, Q)' as the first "
+                                 "argument of meet()");
+        return -1;
+    }
+    int is_line = strcmp(n->text, "line") == 0;
+    if (!is_line && !allow_plane) {
+        diag_error(S->diag, n->span,
+                   "expected 'line(P, Q)' as the first argument of meet(); "
+                   "write the plane second: meet(line(P, Q), plane(R, S, U))");
+        return -1;
+    }
+    n->builtin = is_line ? BI_LINE : BI_PLANE;
+    int want = is_line ? 2 : 3;
+    if (n->nargs != want) {
+        diag_error(S->diag, n->span, "%s() takes %d points, found %d",
+                   n->text, want, n->nargs);
+        return -1;
+    }
+    int ok = 0;
+    for (Node *a = n->args; a; a = a->next)
+        if (expect(S, a, 1, is_line ? "a point of the line"
+                                    : "a point of the plane") < 0)
+            ok = -1;
+    n->is_point = 1;
+    return ok;
+}
+
+static int check_call(Sema *S, Node *n)
+{
+    int b;
+    for (b = 0; b < BI_COUNT; b++)
+        if (strcmp(builtins[b].name, n->text) == 0)
+            break;
+    if (b == BI_COUNT) {
+        Sym *s = lookup(S, n->text);
+        if (s)
+            diag_error(S->diag, n->name_span,
+                       "'%s' is %s, not a function", n->text,
+                       sym_kind_word(s->kind));
+        else
+            diag_error(S->diag, n->name_span,
+                       "unknown function '%s'; expected along, divide, meet, "
+                       "subst, diff, bezier or a scalar function",
+                       n->text);
+        return -1;
+    }
+    n->builtin = b;
+    const BuiltinInfo *bi = &builtins[b];
+    if (n->nargs < bi->min_args ||
+        (bi->max_args >= 0 && n->nargs > bi->max_args)) {
+        if (bi->max_args < 0)
+            diag_error(S->diag, n->span,
+                       "%s() takes at least %d arguments, found %d", bi->name,
+                       bi->min_args, n->nargs);
+        else if (bi->min_args == bi->max_args)
+            diag_error(S->diag, n->span, "%s() takes %d argument%s, found %d",
+                       bi->name, bi->min_args, bi->min_args == 1 ? "" : "s",
+                       n->nargs);
+        else
+            diag_error(S->diag, n->span,
+                       "%s() takes %d to %d arguments, found %d", bi->name,
+                       bi->min_args, bi->max_args, n->nargs);
+        return -1;
+    }
+    if (!bi->implemented) {
+        diag_error(S->diag, n->name_span,
+                   "%s() is not supported yet: transcendental and metric "
+                   "scalars are planned with the conics of chapter 2",
+                   bi->name);
+        return -1;
+    }
+    int ok = 0;
+    switch ((Builtin)b) {
+    case BI_ALONG:
+    case BI_DIVIDE:
+        if (expect(S, arg(n, 0), 1, "the first point") < 0)
+            ok = -1;
+        if (expect(S, arg(n, 1), 1, "the second point") < 0)
+            ok = -1;
+        if (expect(S, arg(n, 2), 0,
+                   b == BI_ALONG ? "the ratio" : "the simple ratio") < 0)
+            ok = -1;
+        return ok < 0 ? -1 : 1;
+    case BI_MEET:
+        if (check_flat(S, arg(n, 0), 0) < 0)
+            ok = -1;
+        if (check_flat(S, arg(n, 1), 1) < 0)
+            ok = -1;
+        return ok < 0 ? -1 : 1;
+    case BI_LINE:
+    case BI_PLANE:
+        diag_error(S->diag, n->span,
+                   "%s() is only meaningful inside meet(); expected "
+                   "meet(line(P, Q), line(R, S))",
+                   bi->name);
+        return -1;
+    case BI_SUBST: {
+        int k = check_expr(S, arg(n, 0));
+        Node *x = arg(n, 1);
+        if (x->kind != ND_NAME) {
+            diag_error(S->diag, x->span,
+                       "expected the name of a parameter, constant or base "
+                       "point to replace");
+            return -1;
+        }
+        Sym *s = lookup(S, x->text);
+        if (!s) {
+            diag_error(S->diag, x->span, "undefined name '%s'", x->text);
+            return -1;
+        }
+        x->sym = s;
+        if (s->kind == SYM_POINT) {
+            if (expect(S, arg(n, 2), 1, "the replacement of a base point") <
+                0)
+                return -1;
+        } else if (s->kind == SYM_PARAM || s->kind == SYM_CONST) {
+            if (expect(S, arg(n, 2), 0, "the value substituted") < 0)
+                return -1;
+        } else {
+            diag_error(S->diag, x->span,
+                       "subst() replaces a parameter, a constant or a base "
+                       "point, but '%s' is %s",
+                       x->text, sym_kind_word(s->kind));
+            return -1;
+        }
+        return k;
+    }
+    case BI_DIFF: {
+        int k = check_expr(S, arg(n, 0));
+        Node *x = arg(n, 1);
+        if (x->kind != ND_NAME || !lookup(S, x->text) ||
+            (lookup(S, x->text)->kind != SYM_PARAM &&
+             lookup(S, x->text)->kind != SYM_CONST)) {
+            diag_error(S->diag, x->span,
+                       "expected the name of a parameter or constant to "
+                       "differentiate by");
+            return -1;
+        }
+        x->sym = lookup(S, x->text);
+        Node *order = arg(n, 2);
+        if (order) {
+            int okn = order->kind == ND_NUM;
+            for (const char *c = okn ? order->text : ""; *c; c++)
+                if (*c < '0' || *c > '9')
+                    okn = 0;
+            if (!okn || strlen(order->text) > 2 || atoi(order->text) > 30) {
+                diag_error(S->diag, order->span,
+                           "expected the order of the derivative as a whole "
+                           "number from 0 to 30");
+                return -1;
+            }
+        }
+        return k;
+    }
+    case BI_BEZIER: {
+        if (expect(S, arg(n, 0), 0, "the parameter of bezier()") < 0)
+            ok = -1;
+        for (Node *a = arg(n, 1); a; a = a->next)
+            if (expect(S, a, 1, "a control point") < 0)
+                ok = -1;
+        return ok < 0 ? -1 : 1;
+    }
+    default:
+        break;
+    }
+    return -1;
+}
+
+/* returns 1 combination, 0 scalar, -1 error (already reported) */
+static int check_expr(Sema *S, Node *n)
+{
+    int k = -1;
+    switch (n->kind) {
+    case ND_NUM:
+        k = 0;
+        break;
+    case ND_NAME:
+        k = check_name(S, n);
+        break;
+    case ND_NEG:
+        k = check_expr(S, n->lhs);
+        break;
+    case ND_ADD:
+    case ND_SUB: {
+        int a = check_expr(S, n->lhs), b = check_expr(S, n->rhs);
+        if (a < 0 || b < 0)
+            break;
+        if (a != b) {
+            diag_error(S->diag, n->span,
+                       "cannot %s a scalar and a point: expected both sides "
+                       "to be scalars or both points/vectors",
+                       n->kind == ND_ADD ? "add" : "subtract");
+            break;
+        }
+        k = a;
+        break;
+    }
+    case ND_MUL: {
+        int a = check_expr(S, n->lhs), b = check_expr(S, n->rhs);
+        if (a < 0 || b < 0)
+            break;
+        if (a && b) {
+            diag_error(S->diag, n->span,
+                       "cannot multiply two points or vectors; expected a "
+                       "scalar on one side");
+            break;
+        }
+        k = a || b;
+        break;
+    }
+    case ND_DIV: {
+        int a = check_expr(S, n->lhs), b = check_expr(S, n->rhs);
+        if (a < 0 || b < 0)
+            break;
+        if (b) {
+            diag_error(S->diag, n->rhs->span,
+                       "cannot divide by a point or vector; expected a "
+                       "scalar divisor");
+            break;
+        }
+        k = a;
+        break;
+    }
+    case ND_POW: {
+        int a = check_expr(S, n->lhs), b = check_expr(S, n->rhs);
+        if (a < 0 || b < 0)
+            break;
+        if (a) {
+            diag_error(S->diag, n->lhs->span,
+                       "cannot raise a point or vector to a power; expected "
+                       "a scalar base");
+            break;
+        }
+        if (b) {
+            diag_error(S->diag, n->rhs->span, "expected a scalar exponent");
+            break;
+        }
+        k = 0;
+        break;
+    }
+    case ND_CALL:
+        k = check_call(S, n);
+        break;
+    }
+    n->is_point = k > 0;
+    return k;
+}
+
+static void declare_list(Sema *S, Stmt *st, SymKind kind)
+{
+    SemaInfo *I = S->info;
+    for (Name *nm = st->names; nm; nm = nm->next) {
+        Sym *s = declare(S, nm->text, nm->span, kind);
+        if (!s)
+            continue;
+        switch (kind) {
+        case SYM_POINT:
+            s->is_point = 1;
+            s->index = I->npoints;
+            push(S, &I->points, &I->npoints, &S->cap_points, s);
+            break;
+        case SYM_PARAM:
+            s->index = I->nparams;
+            push(S, &I->params, &I->nparams, &S->cap_params, s);
+            break;
+        case SYM_CONST:
+            s->index = I->nconsts;
+            push(S, &I->consts, &I->nconsts, &S->cap_consts, s);
+            break;
+        default:
+            break;
+        }
+    }
+}
+
+SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
+{
+    Sema S = {.arena = a, .diag = diag};
+    SemaInfo *I = arena_new(a, SemaInfo);
+    S.info = I;
+    int errors0 = diag->nerrors;
+    Stmt *output_stmt = NULL;
+    Span scheme_span = {0, 0};
+
+    for (Stmt *st = scheme->stmts; st; st = st->next) {
+        switch (st->kind) {
+        case ST_SCHEME:
+            if (I->scheme_name) {
+                diag_error(diag, st->span, "a second 'scheme' statement");
+                diag_note(diag, scheme_span, "the scheme was named here");
+            } else {
+                I->scheme_name = st->name->text;
+                scheme_span = st->span;
+            }
+            break;
+        case ST_POINT:
+            declare_list(&S, st, SYM_POINT);
+            break;
+        case ST_PARAM:
+            declare_list(&S, st, SYM_PARAM);
+            if (st->lo) {
+                if (expect(&S, st->lo, 0, "the lower end of the range") >= 0 &&
+                    expect(&S, st->hi, 0, "the upper end of the range") < 0)
+                    break;
+            }
+            break;
+        case ST_CONST:
+            declare_list(&S, st, SYM_CONST);
+            break;
+        case ST_UNKNOWN:
+            diag_error(diag, st->span,
+                       "'unknown' is not supported yet (planned: linear point "
+                       "systems, monograph ch. 4)");
+            declare_list(&S, st, SYM_UNKNOWN);
+            break;
+        case ST_SOLVE:
+            diag_error(diag, st->span,
+                       "'solve' is not supported yet (planned: linear point "
+                       "systems, monograph ch. 4)");
+            break;
+        case ST_DEF: {
+            int k = check_expr(&S, st->expr);
+            Sym *s = declare(&S, st->name->text, st->name->span, SYM_DEF);
+            if (!s)
+                break;
+            s->def = st;
+            s->bad = k < 0;
+            s->is_point = k > 0;
+            s->index = I->ndefs;
+            push(&S, &I->defs, &I->ndefs, &S.cap_defs, s);
+            break;
+        }
+        case ST_OUTPUT:
+            if (output_stmt) {
+                diag_error(diag, st->span,
+                           "a second 'output' statement; expected one "
+                           "'output' listing every name");
+                break;
+            }
+            output_stmt = st;
+            break;
+        }
+    }
+
+    /* outputs are resolved last: they may name definitions that follow */
+    int cap = 0;
+    if (output_stmt) {
+        for (Name *nm = output_stmt->names; nm; nm = nm->next) {
+            Sym *s = lookup(&S, nm->text);
+            if (!s) {
+                diag_error(diag, nm->span,
+                           "undefined name '%s' in output; expected a "
+                           "definition",
+                           nm->text);
+                continue;
+            }
+            if (s->kind != SYM_DEF) {
+                diag_error(diag, nm->span,
+                           "'%s' is %s; expected a definition (NAME = EXPR) "
+                           "in output",
+                           nm->text, sym_kind_word(s->kind));
+                continue;
+            }
+            for (int i = 0; i < I->noutputs; i++)
+                if (I->outputs[i] == s) {
+                    diag_error(diag, nm->span, "'%s' is listed twice",
+                               nm->text);
+                    s = NULL;
+                    break;
+                }
+            if (s)
+                push(&S, &I->outputs, &I->noutputs, &cap, s);
+        }
+    } else if (I->ndefs > 0) {
+        push(&S, &I->outputs, &I->noutputs, &cap, I->defs[I->ndefs - 1]);
+    } else if (diag->nerrors == errors0) {
+        int end = 0;
+        for (Stmt *st = scheme->stmts; st; st = st->next)
+            end = st->span.end;
+        diag_error(diag, (Span){end, end},
+                   "the scheme defines nothing; expected a definition "
+                   "'NAME = EXPR' to output");
+    }
+    return diag->nerrors == errors0 ? I : NULL;
+}

@@ -1,0 +1,89 @@
+/*
+ * sema.h - semantic analysis: names, kinds, arity (contract sections 2, 3).
+ *
+ * sema_check resolves every name to a Sym, every call to a Builtin, and
+ * infers statically whether each expression is a scalar or a combination of
+ * points (Node.is_point).  Weight sums need the algebra and are checked in
+ * derive.c.  All errors are reported (not just the first).
+ */
+#ifndef PC_SEMA_H
+#define PC_SEMA_H
+
+#include "compiler/arena.h"
+#include "compiler/diag.h"
+#include "grammar/ast.h"
+
+/* X-macro: builtin, name, min args, max args (-1: any), what it returns,
+ * implemented (0: reported as "not supported yet"). */
+#define PC_BUILTINS(X)                                                         \
+    X(BI_ALONG, "along", 3, 3, 1, 1)   /* P + (Q - P)*s */                     \
+    X(BI_DIVIDE, "divide", 3, 3, 1, 1) /* (P + k*Q)/(1 + k) */                 \
+    X(BI_MEET, "meet", 2, 2, 1, 1)     /* meet(line, line|plane) */            \
+    X(BI_LINE, "line", 2, 2, 1, 1)     /* only inside meet */                  \
+    X(BI_PLANE, "plane", 3, 3, 1, 1)   /* only inside meet */                  \
+    X(BI_SUBST, "subst", 3, 3, -1, 1)  /* subst(E, t|A, s|P): kind of E */     \
+    X(BI_DIFF, "diff", 2, 3, -1, 1)    /* diff(E, t[, n]) */                   \
+    X(BI_BEZIER, "bezier", 3, -1, 1, 1) /* bezier(t, P0, ..., Pn) */           \
+    X(BI_DOT, "dot", 2, 2, 0, 0)       /* metric: U . V */                     \
+    X(BI_DIST, "dist", 2, 2, 0, 0)     /* metric: |PQ| */                      \
+    X(BI_ANGLE, "angle", 3, 3, 0, 0)   /* metric: angle PQR at Q */            \
+    X(BI_SQRT, "sqrt", 1, 1, 0, 0)                                             \
+    X(BI_SIN, "sin", 1, 1, 0, 0)                                               \
+    X(BI_COS, "cos", 1, 1, 0, 0)                                               \
+    X(BI_TAN, "tan", 1, 1, 0, 0)                                               \
+    X(BI_ASIN, "asin", 1, 1, 0, 0)                                             \
+    X(BI_ACOS, "acos", 1, 1, 0, 0)                                             \
+    X(BI_ATAN, "atan", 1, 1, 0, 0)                                             \
+    X(BI_SINH, "sinh", 1, 1, 0, 0)                                             \
+    X(BI_COSH, "cosh", 1, 1, 0, 0)                                             \
+    X(BI_TANH, "tanh", 1, 1, 0, 0)                                             \
+    X(BI_EXP, "exp", 1, 1, 0, 0)                                               \
+    X(BI_LN, "ln", 1, 1, 0, 0)                                                 \
+    X(BI_ABS, "abs", 1, 1, 0, 0)
+
+typedef enum Builtin {
+#define X(id, name, lo, hi, res, impl) id,
+    PC_BUILTINS(X)
+#undef X
+        BI_COUNT
+} Builtin;
+
+typedef enum SymKind {
+    SYM_POINT,   // base point of the simplex; index = point number
+    SYM_PARAM,   // current parameter; index = ring variable
+    SYM_CONST,   // symbolic constant; index = ring variable
+    SYM_UNKNOWN, // unknown of a later `solve` (not supported yet)
+    SYM_DEF,     // NAME = EXPR; index = definition number
+} SymKind;
+
+struct Sym {
+    const char *name; // arena
+    SymKind kind;
+    Span span;     // where it was declared or defined
+    int index;     // see SymKind
+    int is_point;  // SYM_POINT, SYM_DEF of a combination: 1; scalars: 0
+    int bad;       // its definition had an error: uses are not re-reported
+    Stmt *def;     // SYM_DEF: the statement
+    Sym *next;     // in the table's bucket chain
+};
+
+typedef struct SemaInfo {
+    const char *scheme_name; // from `scheme NAME`, or NULL
+    Sym **points;            // declaration order
+    int npoints;
+    Sym **params; // ring variables 0..nparams-1
+    int nparams;
+    Sym **consts; // ring variables nparams..
+    int nconsts;
+    Sym **defs; // definition order
+    int ndefs;
+    Sym **outputs; // `output` list, default the last definition
+    int noutputs;
+} SemaInfo;
+
+/* Checks s; returns NULL if errors were reported (diag->nerrors grew). */
+SemaInfo *sema_check(Scheme *s, Arena *a, Diag *diag);
+
+const char *sema_builtin_name(int b);
+
+#endif

@@ -1,0 +1,129 @@
+/*
+ * ast.h - the syntax tree of a scheme (house style 1.3).
+ *
+ * One fat, commented Node for every expression, one Stmt for every statement
+ * form of contract section 2.  Grammar actions only call the ast_new_*
+ * constructors below; sema.c fills the annotation fields.  All nodes live in
+ * the compilation's Arena.
+ */
+#ifndef PC_AST_H
+#define PC_AST_H
+
+#include <stdio.h>
+
+#include "compiler/arena.h"
+#include "compiler/source.h"
+
+/* X-macro: node kind, dump name.  One comment of semantics per kind. */
+#define PC_NODE_KINDS(X)                                                       \
+    X(ND_NUM, "num")   /* exact number; text kept verbatim (0.3 is 3/10) */    \
+    X(ND_NAME, "name") /* a declared name: point, param, const, definition */ \
+    X(ND_NEG, "neg")   /* -lhs */                                              \
+    X(ND_ADD, "+")     /* lhs + rhs: scalars, or combinations of points */     \
+    X(ND_SUB, "-")     /* lhs - rhs */                                         \
+    X(ND_MUL, "*")     /* lhs * rhs: at most one side a combination */         \
+    X(ND_DIV, "/")     /* lhs / rhs: rhs a non-zero scalar */                  \
+    X(ND_POW, "^")     /* lhs ^ rhs: rhs an integer constant */                \
+    X(ND_CALL, "call") /* name(args): a builtin (along, meet, sin, ...) */
+
+typedef enum NodeKind {
+#define X(k, s) k,
+    PC_NODE_KINDS(X)
+#undef X
+} NodeKind;
+
+typedef struct Sym Sym; // compiler/sema.h
+
+typedef struct Node Node;
+struct Node {
+    NodeKind kind;
+    Span span; // the whole expression, blamed in diagnostics
+    Node *next; // next argument in a call's list
+
+    // ND_NEG, ND_ADD .. ND_POW
+    Node *lhs;
+    Node *rhs;
+
+    // ND_NUM: the literal text; ND_NAME, ND_CALL: the identifier
+    const char *text;
+    Span name_span; // ND_CALL: the function name only
+
+    // ND_CALL
+    Node *args; // linked by next
+    int nargs;
+
+    // filled by sema
+    Sym *sym;     // ND_NAME: what the name means
+    int builtin;  // ND_CALL: a Builtin (compiler/sema.h)
+    int is_point; // 1 if the value is a combination of points, 0 a scalar
+};
+
+/* A name in a declaration list (`point A, B`, `output M, N`). */
+typedef struct Name Name;
+struct Name {
+    const char *text;
+    Span span;
+    Name *next;
+};
+
+#define PC_STMT_KINDS(X)                                                       \
+    X(ST_SCHEME, "scheme")   /* scheme NAME */                                 \
+    X(ST_POINT, "point")     /* point A, B, ...: the simplex */                \
+    X(ST_PARAM, "param")     /* param t [in [lo, hi]] */                       \
+    X(ST_CONST, "const")     /* const k, pD */                                 \
+    X(ST_UNKNOWN, "unknown") /* unknown C1, C2 (solved by `solve`) */          \
+    X(ST_DEF, "def")         /* NAME = EXPR */                                 \
+    X(ST_SOLVE, "solve")     /* solve EQ, ... for X, ... */                    \
+    X(ST_OUTPUT, "output")   /* output NAME, ... */
+
+typedef enum StmtKind {
+#define X(k, s) k,
+    PC_STMT_KINDS(X)
+#undef X
+} StmtKind;
+
+/* `lhs = rhs` inside solve */
+typedef struct Equation Equation;
+struct Equation {
+    Node *lhs, *rhs;
+    Span span;
+    Equation *next;
+};
+
+typedef struct Stmt Stmt;
+struct Stmt {
+    StmtKind kind;
+    Span span; // the whole statement
+    Stmt *next;
+    Name *names;  // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...)
+    Name *name;   // ST_SCHEME, ST_DEF: the defined name
+    Node *expr;   // ST_DEF
+    Node *lo, *hi; // ST_PARAM range (both NULL when absent)
+    Equation *eqs; // ST_SOLVE
+};
+
+typedef struct Scheme {
+    Stmt *stmts; // in source order
+} Scheme;
+
+Node *ast_new_num(Arena *a, const char *text, Span span);
+Node *ast_new_name(Arena *a, const char *text, Span span);
+Node *ast_new_unary(Arena *a, NodeKind kind, Node *lhs, Span span);
+Node *ast_new_binary(Arena *a, NodeKind kind, Node *lhs, Node *rhs,
+                     Span span);
+/* args: a list built with ast_append */
+Node *ast_new_call(Arena *a, const char *name, Span name_span, Node *args,
+                   Span span);
+Node *ast_append(Node *list, Node *item);
+Name *ast_new_namelist(Arena *a, const char *text, Span span);
+Name *ast_append_name(Name *list, Name *item);
+Equation *ast_new_equation(Arena *a, Node *lhs, Node *rhs, Span span);
+Equation *ast_append_equation(Equation *list, Equation *item);
+Stmt *ast_new_stmt(Arena *a, StmtKind kind, Span span);
+
+const char *ast_node_kind_name(NodeKind k);
+const char *ast_stmt_kind_name(StmtKind k);
+/* deterministic S-expression dump (--dump-ast, golden tests) */
+void ast_dump(FILE *out, const Scheme *s);
+
+#endif

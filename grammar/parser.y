@@ -1,0 +1,169 @@
+/*
+ * parser.y - the pure, located bison grammar of .pcs schemes.
+ *
+ * One statement per line; `error NEWLINE` resynchronises at the end of a
+ * bad line so every syntax error of a file is reported.  Actions only call
+ * ast_new_* builders (house style 12); names, kinds, arity and weight sums are
+ * checked in compiler/sema.c.
+ */
+%define api.pure full
+%define api.prefix {pc_yy}
+%define api.location.type {Span}
+%define parse.error detailed
+%locations
+%param {yyscan_t scanner}
+%parse-param {Parser *p}
+%expect 0
+%define api.value.type union
+
+%code requires {
+#include "compiler/arena.h"
+#include "compiler/diag.h"
+#include "compiler/source.h"
+#include "grammar/ast.h"
+
+#ifndef YY_TYPEDEF_YY_SCANNER_T
+#define YY_TYPEDEF_YY_SCANNER_T
+typedef void *yyscan_t;
+#endif
+
+/* scanner state (yyextra) */
+typedef struct LexState {
+    Arena *arena;  // where identifier and number texts are copied
+    Diag *diag;    // lexical errors
+    int offset;    // byte offset of the next token
+    int eof_nl;    // the synthetic final NEWLINE was returned
+} LexState;
+
+/* parser state */
+typedef struct Parser {
+    Arena *arena;
+    Diag *diag;
+    Scheme *scheme;
+    Stmt *tail; // last statement, for appending
+} Parser;
+
+/* a span from the first to the last right-hand-side symbol (jq's rule) */
+#define YYLLOC_DEFAULT(Cur, Rhs, N)                                            \
+    do {                                                                       \
+        if (N) {                                                               \
+            (Cur).start = YYRHSLOC(Rhs, 1).start;                              \
+            (Cur).end = YYRHSLOC(Rhs, N).end;                                  \
+        } else {                                                               \
+            (Cur).start = (Cur).end = YYRHSLOC(Rhs, 0).end;                    \
+        }                                                                      \
+    } while (0)
+}
+
+%code provides {
+#define YYSTYPE PC_YYSTYPE
+#define YYLTYPE PC_YYLTYPE
+#define YY_DECL int pc_yylex(PC_YYSTYPE *yylval_param, PC_YYLTYPE *yylloc_param, yyscan_t yyscanner)
+YY_DECL;
+}
+
+%code {
+static void pc_yyerror(Span *loc, yyscan_t scanner, Parser *p, const char *msg)
+{
+    (void)scanner;
+    diag_error(p->diag, *loc, "%s", msg);
+}
+
+static void add_stmt(Parser *p, Stmt *s)
+{
+    if (!s)
+        return;
+    if (p->tail)
+        p->tail->next = s;
+    else
+        p->scheme->stmts = s;
+    p->tail = s;
+}
+
+static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
+{
+    Stmt *s = ast_new_stmt(p->arena, k, span);
+    s->names = names;
+    return s;
+}
+}
+
+%token <const char *> IDENT "identifier"
+%token <const char *> NUMBER "number"
+%token NEWLINE "end of line"
+%token SCHEME "'scheme'" POINT "'point'" PARAM "'param'" CONST "'const'"
+%token UNKNOWN "'unknown'" SOLVE "'solve'" FOR "'for'" OUTPUT "'output'"
+%token IN "'in'"
+
+%left '+' '-'
+%left '*' '/'
+%precedence UMINUS
+%right '^'
+
+%type <Node *> expr args
+%type <Name *> names
+%type <Stmt *> stmt
+%type <Equation *> equations
+
+%%
+
+/* scheme = line* */
+scheme:
+  %empty
+| scheme line
+;
+
+/* line = NEWLINE | stmt NEWLINE | error NEWLINE */
+line:
+  NEWLINE
+| stmt NEWLINE      { add_stmt(p, $1); }
+| error NEWLINE     { yyerrok; }
+;
+
+stmt:
+  SCHEME IDENT      { $$ = ast_new_stmt(p->arena, ST_SCHEME, @$);
+                      $$->name = ast_new_namelist(p->arena, $2, @2); }
+| POINT names       { $$ = stmt_names(p, ST_POINT, $2, @$); }
+| PARAM names       { $$ = stmt_names(p, ST_PARAM, $2, @$); }
+| PARAM names IN '[' expr ',' expr ']'
+                    { $$ = stmt_names(p, ST_PARAM, $2, @$); $$->lo = $5; $$->hi = $7; }
+| CONST names       { $$ = stmt_names(p, ST_CONST, $2, @$); }
+| UNKNOWN names     { $$ = stmt_names(p, ST_UNKNOWN, $2, @$); }
+| OUTPUT names      { $$ = stmt_names(p, ST_OUTPUT, $2, @$); }
+| IDENT '=' expr    { $$ = ast_new_stmt(p->arena, ST_DEF, @$);
+                      $$->name = ast_new_namelist(p->arena, $1, @1); $$->expr = $3; }
+| SOLVE equations FOR names
+                    { $$ = stmt_names(p, ST_SOLVE, $4, @$); $$->eqs = $2; }
+;
+
+names:
+  IDENT             { $$ = ast_new_namelist(p->arena, $1, @1); }
+| names ',' IDENT   { $$ = ast_append_name($1, ast_new_namelist(p->arena, $3, @3)); }
+;
+
+equations:
+  expr '=' expr     { $$ = ast_new_equation(p->arena, $1, $3, @$); }
+| equations ',' expr '=' expr
+                    { $$ = ast_append_equation($1, ast_new_equation(p->arena, $3, $5, @$)); }
+;
+
+expr:
+  NUMBER            { $$ = ast_new_num(p->arena, $1, @$); }
+| IDENT             { $$ = ast_new_name(p->arena, $1, @$); }
+| IDENT '(' args ')' { $$ = ast_new_call(p->arena, $1, @1, $3, @$); }
+| '(' expr ')'      { $$ = $2; $$->span = @$; }
+| '-' expr %prec UMINUS { $$ = ast_new_unary(p->arena, ND_NEG, $2, @$); }
+| '+' expr %prec UMINUS { $$ = $2; }
+| expr '+' expr     { $$ = ast_new_binary(p->arena, ND_ADD, $1, $3, @$); }
+| expr '-' expr     { $$ = ast_new_binary(p->arena, ND_SUB, $1, $3, @$); }
+| expr '*' expr     { $$ = ast_new_binary(p->arena, ND_MUL, $1, $3, @$); }
+| expr '/' expr     { $$ = ast_new_binary(p->arena, ND_DIV, $1, $3, @$); }
+| expr '^' expr     { $$ = ast_new_binary(p->arena, ND_POW, $1, $3, @$); }
+;
+
+args:
+  expr              { $$ = $1; }
+| args ',' expr     { $$ = ast_append($1, $3); }
+;
+
+%%

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Command-line contract tests (contract section 4): exit codes, nothing on
+# stdout when a scheme has an error, the JSON shape, the error format.
+set -u
+PC=${1:-build/pointcalc}
+pass=0
+fail=0
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+check() { # NAME CONDITION-COMMAND...
+    local name=$1
+    shift
+    if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; fi
+}
+
+# a good scheme: exit 0, output on stdout, nothing on stderr
+"$PC" derive examples/desargues_arc.pcs >"$tmp/out" 2>"$tmp/err"
+check "derive exits 0" test $? -eq 0
+check "derive prints M" grep -q '^M = ' "$tmp/out"
+check "derive is quiet on stderr" test ! -s "$tmp/err"
+
+# JSON is valid and has the contract's keys
+"$PC" derive examples/desargues_arc.pcs --format json >"$tmp/json"
+check "json exit 0" test $? -eq 0
+check "json parses" python3 -c "
+import json,sys
+d=json.load(open('$tmp/json'))
+assert d['scheme']=='desargues_arc', d
+assert d['points']==['A','B','C','D'] and d['params']==['t'] and d['consts']==[]
+o=d['outputs'][0]
+assert o['name']=='M' and o['kind']=='point'
+assert sorted(o['terms'])==['A','B','C','D']
+"
+
+# latex and --origin
+"$PC" derive examples/desargues_arc.pcs --format latex >"$tmp/tex"
+check "latex has frac" grep -q 'frac' "$tmp/tex"
+"$PC" derive examples/desargues_arc.pcs --origin D >"$tmp/orig"
+check "origin form" grep -q '(A - D)' "$tmp/orig"
+
+# a scheme error: exit 1, nothing on stdout, FILE:LINE:COL: error:
+printf 'point A, B\nparam t\nM = along(A, X, t)\n' >"$tmp/bad.pcs"
+"$PC" derive "$tmp/bad.pcs" >"$tmp/out" 2>"$tmp/err"
+check "scheme error exits 1" test $? -eq 1
+check "scheme error prints nothing on stdout" test ! -s "$tmp/out"
+check "error format" grep -q "^$tmp/bad.pcs:3:14: error: undefined name 'X'" "$tmp/err"
+check "caret line" grep -qx '             ^' "$tmp/err"
+
+# usage errors: exit 2
+"$PC" >/dev/null 2>&1
+check "no args exits 2" test $? -eq 2
+"$PC" derive >/dev/null 2>&1
+check "derive without file exits 2" test $? -eq 2
+"$PC" derive examples/desargues_arc.pcs --format yaml >"$tmp/out" 2>/dev/null
+check "bad format exits 2" test $? -eq 2
+check "bad format prints nothing" test ! -s "$tmp/out"
+"$PC" derive examples/desargues_arc.pcs --origin Z >/dev/null 2>&1
+check "bad origin exits 2" test $? -eq 2
+"$PC" frobnicate >/dev/null 2>&1
+check "unknown command exits 2" test $? -eq 2
+"$PC" derive "$tmp/missing.pcs" >/dev/null 2>&1
+check "missing file exits 1" test $? -eq 1
+"$PC" --version | grep -q '^pointcalc '
+check "version" test $? -eq 0
+
+# every example derives in every format
+for f in examples/*.pcs; do
+    for fmt in text latex json; do
+        "$PC" derive "$f" --format "$fmt" >/dev/null 2>"$tmp/err"
+        check "$f $fmt" test $? -eq 0 -a ! -s "$tmp/err"
+    done
+done
+
+echo "cli: $pass passed, $fail failed"
+test "$fail" -eq 0

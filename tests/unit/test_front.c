@@ -1,0 +1,191 @@
+/*
+ * test_front.c - scanner, parser, sema and diagnostics: exact texts.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/flint.h>
+
+#include "compiler/arena.h"
+#include "compiler/derive.h"
+#include "compiler/diag.h"
+#include "compiler/sema.h"
+#include "grammar/parse.h"
+
+/* parses text and returns the AST dump (or the diagnostics); caller frees */
+static char *dump(const char *text, int *nerrors)
+{
+    Arena a;
+    Source src;
+    Diag d;
+    char *out = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&out, &len);
+    arena_init(&a);
+    source_init(&src, "x.pcs", text, strlen(text));
+    diag_init(&d, &src, mem);
+    Scheme *s = parse_scheme(&src, &a, &d);
+    if (d.nerrors == 0)
+        ast_dump(mem, s);
+    fclose(mem);
+    *nerrors = d.nerrors;
+    source_clear(&src);
+    arena_reset(&a);
+    return out;
+}
+
+/* derives text and returns stderr's would-be content */
+static char *errors_of(const char *text)
+{
+    char *out = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&out, &len);
+    Derived *d = derive_source("x.pcs", text, strlen(text), mem, NULL);
+    fclose(mem);
+    derived_free(d);
+    return out;
+}
+
+static void test_parse_precedence_and_associativity(void **state)
+{
+    (void)state;
+    int n;
+    char *s = dump("M = -t^2*A + B/2 - C\nx = 2^3^2\n", &n);
+    assert_int_equal(n, 0);
+    assert_string_equal(s, "(def M (- (+ (* (neg (^ t 2)) A) (/ B 2)) C))\n"
+                           "(def x (^ 2 (^ 3 2)))\n");
+    free(s);
+}
+
+static void test_parse_statements(void **state)
+{
+    (void)state;
+    int n;
+    char *s = dump("# c\nscheme s1\npoint A, B # trailing\n"
+                   "param t in [0, 1]\nconst k, pD\n\n"
+                   "M = meet(line(A, B), plane(A, B, A))\noutput M",
+                   &n);
+    assert_int_equal(n, 0);
+    assert_string_equal(s, "(scheme s1)\n(point A B)\n(param t (in 0 1))\n"
+                           "(const k pD)\n"
+                           "(def M (meet (line A B) (plane A B A)))\n"
+                           "(output M)\n");
+    free(s);
+}
+
+static void test_diag_format_has_line_and_caret(void **state)
+{
+    (void)state;
+    char *s = errors_of("point A, B\nparam t\nM = along(A, Q, t)\n");
+    assert_string_equal(
+        s, "x.pcs:3:14: error: undefined name 'Q'; expected a declared "
+           "point, parameter, constant or an earlier definition\n"
+           "M = along(A, Q, t)\n"
+           "             ^\n");
+    free(s);
+}
+
+static void test_diag_caret_spans_expression(void **state)
+{
+    (void)state;
+    char *s = errors_of("point A, B\nparam t\nM = A*t + B\n");
+    assert_string_equal(s, "x.pcs:3:5: error: weights of M sum to t+1, not "
+                           "0 (a vector) or 1 (a point)\n"
+                           "M = A*t + B\n"
+                           "    ^~~~~~~\n");
+    free(s);
+}
+
+static void test_diag_redefinition_has_note(void **state)
+{
+    (void)state;
+    char *s = errors_of("point A, B\nparam A\nM = B\n");
+    assert_string_equal(s, "x.pcs:2:7: error: redefinition of 'A'\n"
+                           "param A\n"
+                           "      ^\n"
+                           "x.pcs:1:7: note: 'A' was first declared here as "
+                           "a base point\n"
+                           "point A, B\n"
+                           "      ^\n");
+    free(s);
+}
+
+static void test_syntax_errors_all_reported(void **state)
+{
+    (void)state;
+    int n;
+    char *s = dump("M = (\nN = )\nP = 1\n", &n);
+    assert_int_equal(n, 2);
+    assert_non_null(strstr(s, "x.pcs:1:6: error: syntax error, unexpected "
+                              "end of line"));
+    assert_non_null(strstr(s, "x.pcs:2:5: error: syntax error, unexpected "
+                              "')'"));
+    free(s);
+}
+
+static void test_last_line_without_newline(void **state)
+{
+    (void)state;
+    int n;
+    char *s = dump("point A\nM = A", &n);
+    assert_int_equal(n, 0);
+    assert_string_equal(s, "(point A)\n(def M A)\n");
+    free(s);
+}
+
+static void test_scheme_name_defaults_to_file(void **state)
+{
+    (void)state;
+    Derived *d = derive_source("dir/arc.v2.pcs", "point A\nM = A\n", 14,
+                               NULL, NULL);
+    assert_non_null(d);
+    assert_string_equal(d->scheme, "arc.v2");
+    assert_int_equal(d->noutputs, 1);
+    assert_string_equal(d->outputs[0].name, "M");
+    derived_free(d);
+}
+
+static void test_decimals_are_exact(void **state)
+{
+    (void)state;
+    const char *text = "point A, B\nM = along(A, B, 0.1 + 0.2 - 3e-1 + "
+                       "1.5e1/150)\n";
+    Derived *d = derive_source("x.pcs", text, strlen(text), stderr, NULL);
+    assert_non_null(d);
+    /* 0.1 + 0.2 - 0.3 is exactly 0; 15/150 = 1/10 */
+    RatFun w;
+    ratfun_init(w, &d->ring);
+    pteq_get_weight(w, d->outputs[0].eq, 1, &d->ring);
+    RatFun want;
+    ratfun_init(want, &d->ring);
+    assert_int_equal(ratfun_set_str(want, "1/10", &d->ring), 0);
+    assert_true(ratfun_equal(w, want, &d->ring));
+    ratfun_clear(want, &d->ring);
+    ratfun_clear(w, &d->ring);
+    derived_free(d);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_parse_precedence_and_associativity),
+        cmocka_unit_test(test_parse_statements),
+        cmocka_unit_test(test_diag_format_has_line_and_caret),
+        cmocka_unit_test(test_diag_caret_spans_expression),
+        cmocka_unit_test(test_diag_redefinition_has_note),
+        cmocka_unit_test(test_syntax_errors_all_reported),
+        cmocka_unit_test(test_last_line_without_newline),
+        cmocka_unit_test(test_scheme_name_defaults_to_file),
+        cmocka_unit_test(test_decimals_are_exact),
+    };
+    int rc = cmocka_run_group_tests_name("front", tests, NULL, NULL);
+    flint_cleanup_master();
+    return rc;
+}

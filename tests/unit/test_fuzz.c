@@ -1,0 +1,186 @@
+/*
+ * test_fuzz.c - robustness: mutated and truncated versions of every scheme
+ * must produce either a derivation or a clean diagnostic, never a crash, a
+ * hang or a leak.  `make asan` runs this under AddressSanitizer + UBSan.
+ *
+ * The mutations are seeded and deterministic: a failure is reproducible.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/flint.h>
+
+#include "compiler/derive.h"
+
+static uint64_t rng_state;
+
+static uint32_t rnd(uint32_t n)
+{
+    /* xorshift64* */
+    rng_state ^= rng_state >> 12;
+    rng_state ^= rng_state << 25;
+    rng_state ^= rng_state >> 27;
+    return (uint32_t)((rng_state * 2685821657736338717ULL) >> 33) % n;
+}
+
+static const char *const tokens[] = {
+    "(", ")", "[", "]", ",", "=", "+", "-", "*", "/", "^", "#", "\n",
+    "0", "1", "2", "0.5", "1e3", ".", "t", "A", "B", "k", "M", "P",
+    "meet", "line(", "plane(", "along(", "divide(", "subst(", "diff(",
+    "bezier(", "point ", "param ", "const ", "output ", "scheme ", "in",
+    "sin(", "pi", "unknown ", "solve ", " for ", "\t", "\xff", "\0", "$",
+    "1/0", "t^-3", "A - A", "(t-t)",
+};
+
+/* checks one input: success XOR errors, nothing else */
+static int probe(const char *name, const char *buf, size_t len)
+{
+    int nerr = -1;
+    Derived *d = derive_source(name, buf, len, NULL, &nerr);
+    int ok = (d != NULL) == (nerr == 0);
+    derived_free(d);
+    if (!ok)
+        fprintf(stderr, "%s: inconsistent result (nerrors=%d)\n", name,
+                nerr);
+    return ok;
+}
+
+static char *mutate(const char *src, size_t len, size_t *outlen)
+{
+    size_t cap = len * 2 + 64;
+    char *b = malloc(cap);
+    memcpy(b, src, len);
+    size_t n = len;
+    int edits = 1 + (int)rnd(4);
+    for (int e = 0; e < edits; e++) {
+        size_t at = n ? rnd((uint32_t)n) : 0;
+        switch (rnd(4)) {
+        case 0: /* delete a short range */
+            if (n) {
+                size_t l = 1 + rnd(8);
+                if (at + l > n)
+                    l = n - at;
+                memmove(b + at, b + at + l, n - at - l);
+                n -= l;
+            }
+            break;
+        case 1: /* replace a byte */
+            if (n)
+                b[at] = (char)rnd(256);
+            break;
+        default: { /* insert a token */
+            const char *t = tokens[rnd(sizeof tokens / sizeof tokens[0])];
+            size_t l = t[0] ? strlen(t) : 1;
+            if (n + l >= cap)
+                break;
+            memmove(b + at + l, b + at, n - at);
+            memcpy(b + at, t, l);
+            n += l;
+            break;
+        }
+        }
+    }
+    *outlen = n;
+    return b;
+}
+
+static char *read_all(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char *buf = malloc((size_t)n + 1);
+    *len = fread(buf, 1, (size_t)n, f);
+    fclose(f);
+    return buf;
+}
+
+static int fuzz_dir(const char *dir, int mutations)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    int files = 0;
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        size_t l = strlen(e->d_name);
+        if (l < 5 || strcmp(e->d_name + l - 4, ".pcs") != 0)
+            continue;
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        size_t len = 0;
+        char *text = read_all(path, &len);
+        assert_non_null(text);
+        files++;
+        /* every truncation (stepping through long files) */
+        size_t step = len / 200 + 1;
+        for (size_t cut = 0; cut <= len; cut += step)
+            assert_true(probe(path, text, cut));
+        /* seeded random mutations */
+        rng_state = 0x9e3779b97f4a7c15ULL ^ (uint64_t)len;
+        for (int m = 0; m < mutations; m++) {
+            size_t ml;
+            char *mut = mutate(text, len, &ml);
+            assert_true(probe(path, mut, ml));
+            free(mut);
+        }
+        free(text);
+    }
+    closedir(d);
+    return files;
+}
+
+static void test_fuzz_examples_never_crash(void **state)
+{
+    (void)state;
+    const char *env = getenv("PC_FUZZ_MUTATIONS");
+    int m = env ? atoi(env) : 1500;
+    int files = fuzz_dir("examples", m) + fuzz_dir("tests/schemes", m) +
+                fuzz_dir("tests/errors", m);
+    assert_true(files > 0);
+}
+
+static void test_fuzz_garbage_never_crashes(void **state)
+{
+    (void)state;
+    rng_state = 42;
+    for (int i = 0; i < 2000; i++) {
+        char buf[64];
+        size_t n = rnd(sizeof buf);
+        for (size_t k = 0; k < n; k++)
+            buf[k] = (char)rnd(256);
+        assert_true(probe("garbage", buf, n));
+    }
+    /* pathological shapes */
+    static const char *const cases[] = {
+        "", "\n", "#", "point", "point A,", "M = ", "M = (", "M = )",
+        "point A\nM = A\nM = A", "param t in [", "param t in [0, A]",
+        "point A\nparam t\nM = A*t^1000000", "point A\nM = meet(A, A)",
+        "point A, B\nparam t\nM = diff(A, t, 99)", "scheme\n",
+        "output M\n", "point A\nM = A\noutput M, M\n",
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        assert_true(probe("case", cases[i], strlen(cases[i])));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fuzz_examples_never_crash),
+        cmocka_unit_test(test_fuzz_garbage_never_crashes),
+    };
+    int rc = cmocka_run_group_tests_name("fuzz", tests, NULL, NULL);
+    flint_cleanup_master();
+    return rc;
+}
