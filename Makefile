@@ -3,6 +3,7 @@
 #   make check    build and run every test (unit, schemes, codegen, fuzz-lite)
 #   make asan     the same tests built with AddressSanitizer + UBSan (build-asan/)
 #   make valgrind the same tests under valgrind's memcheck
+#   make fuzz     libFuzzer on derive_source for FUZZ_SECONDS (clang)
 #   make bench    in-process benchmarks (bench/)
 #   make format   clang-format the sources
 
@@ -84,6 +85,20 @@ valgrind: tests
 	  echo "== valgrind $$t"; PC_FUZZ_MUTATIONS=15 PC_VALGRIND=1 PC_BIN=$(B)/pointcalc \
 	    $(VALGRIND) $$t || fail=1; done; exit $$fail
 
+# coverage-guided fuzzing of derive_source (clang + libFuzzer + ASan/UBSan);
+# FUZZ_SECONDS bounds the run
+FUZZ_SECONDS ?= 120
+fuzz:
+	$(MAKE) B=build-fuzz CC=clang OPT=-O1 \
+	  SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" \
+	  build-fuzz/libpointcalc.a
+	clang -std=c11 -I. -Ibuild-fuzz -g -O1 -fsanitize=fuzzer,address,undefined \
+	  -o build-fuzz/fuzz_derive tests/fuzz/fuzz_derive.c build-fuzz/libpointcalc.a $(LDLIBS)
+	@mkdir -p build-fuzz/corpus
+	cp examples/*.pcs tests/schemes/*.pcs tests/errors/*.pcs build-fuzz/corpus/
+	build-fuzz/fuzz_derive -max_total_time=$(FUZZ_SECONDS) -max_len=4096 \
+	  -timeout=10 -rss_limit_mb=4096 build-fuzz/corpus
+
 bench: $(BENCHES) $(B)/pointcalc
 	@for b in $(BENCHES); do $$b || exit 1; done
 	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
@@ -92,7 +107,7 @@ format:
 	clang-format -i $(wildcard */*.c */*.h */*/*.c)
 
 clean:
-	rm -rf build build-asan
+	rm -rf build build-asan build-fuzz
 
-.PHONY: all tests check asan valgrind bench format clean
+.PHONY: all tests check asan valgrind fuzz bench format clean
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

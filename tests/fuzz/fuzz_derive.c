@@ -1,0 +1,24 @@
+/*
+ * fuzz_derive.c - libFuzzer target for the whole front half (parse, sema,
+ * exact derivation).  `make fuzz` builds it with clang and runs it on the
+ * example corpus; any crash, sanitizer report or inconsistent result (a
+ * NULL derivation without an error, or an error with a derivation) is a bug.
+ */
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "compiler/derive.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    int nerr = -1;
+    Derived *d = derive_source("fuzz.pcs", (const char *)data, size, NULL,
+                               &nerr);
+    if ((d != NULL) != (nerr == 0))
+        abort();
+    derived_free(d);
+    return 0;
+}
