@@ -56,7 +56,7 @@ void ratfun_gen(RatFun res, slong var, const Ring *r);
 
 int ratfun_is_zero(const RatFun x, const Ring *r);
 int ratfun_is_one(const RatFun x, const Ring *r);
-/* constant: no variable occurs; then *c (if c != NULL) receives the value */
+/* constant: no variable occurs (ratfun_get_fmpq returns the value) */
 int ratfun_is_constant(const RatFun x, const Ring *r);
 int ratfun_get_fmpq(fmpq_t c, const RatFun x, const Ring *r); // 1 if constant
 int ratfun_equal(const RatFun x, const RatFun y, const Ring *r);

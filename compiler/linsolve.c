@@ -1,0 +1,135 @@
+/*
+ * linsolve.c - Gaussian elimination over the field of rational functions.
+ *
+ * The augmented matrix [a | b] is copied and brought to row echelon form
+ * with full pivoting: at every step the pivot is the structurally simplest
+ * (fewest terms, ratfun_length) entry among the remaining rows and unused
+ * columns.  Over Q(x1..xk) every non-zero entry is a valid pivot, so the
+ * choice is free, and the simplest one keeps the intermediate expressions
+ * small: dividing a row by a constant or by a monomial costs next to
+ * nothing, while dividing by a long polynomial spreads it over the row.
+ * Pivot rows are normalised to a leading 1, so back substitution needs no
+ * divisions.  Rows are swapped through an array of row pointers; entries are
+ * never struct-copied.
+ */
+#include "compiler/linsolve.h"
+
+LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
+                        const RatFunStruct *b, slong m, slong n, const Ring *r)
+{
+    LinSolveResult res = LINSOLVE_UNIQUE;
+    slong w = n + 1; /* row width: n coefficients and the right-hand side */
+    slong rk = 0;
+    RatFunStruct *mat =
+        flint_malloc((size_t)FLINT_MAX(m * w, 1) * sizeof(RatFunStruct));
+    RatFunStruct **row =
+        flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(RatFunStruct *));
+    RatFunStruct *sol = flint_malloc((size_t)w * sizeof(RatFunStruct));
+    slong *pivcol = flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(slong));
+    char *used = flint_calloc((size_t)w, 1);
+    RatFun piv, t;
+
+    ratfun_init(piv, r);
+    ratfun_init(t, r);
+    for (slong i = 0; i < m; i++) {
+        row[i] = mat + i * w;
+        for (slong j = 0; j < n; j++) {
+            ratfun_init(row[i] + j, r);
+            ratfun_set(row[i] + j, a + i * n + j, r);
+        }
+        ratfun_init(row[i] + n, r);
+        ratfun_set(row[i] + n, b + i, r);
+    }
+    for (slong j = 0; j < w; j++)
+        ratfun_init(sol + j, r);
+
+    while (rk < m) {
+        slong bi = -1, bj = -1, blen = 0;
+
+        /* simplest non-zero pivot in rows rk.., unused columns */
+        for (slong i = rk; i < m; i++)
+            for (slong j = 0; j < n; j++) {
+                slong len;
+                if (used[j] || ratfun_is_zero(row[i] + j, r))
+                    continue;
+                len = ratfun_length(row[i] + j, r);
+                if (bi < 0 || len < blen) {
+                    bi = i;
+                    bj = j;
+                    blen = len;
+                }
+            }
+        if (bi < 0)
+            break;
+        if (bi != rk) {
+            RatFunStruct *tr = row[bi];
+            row[bi] = row[rk];
+            row[rk] = tr;
+        }
+        pivcol[rk] = bj;
+        used[bj] = 1;
+
+        /* normalise the pivot row: row /= pivot (the pivot itself -> 1) */
+        ratfun_set(piv, row[rk] + bj, r);
+        if (!ratfun_is_one(piv, r)) {
+            for (slong c = 0; c < w; c++)
+                if (c != bj && !ratfun_is_zero(row[rk] + c, r))
+                    ratfun_div(row[rk] + c, row[rk] + c, piv, r); /* piv != 0 */
+            ratfun_one(row[rk] + bj, r);
+        }
+
+        /* eliminate below: row_i -= row_i[bj] * row_rk */
+        for (slong i = rk + 1; i < m; i++) {
+            RatFunStruct *f = row[i] + bj;
+            if (ratfun_is_zero(f, r))
+                continue;
+            for (slong c = 0; c < w; c++) {
+                if (c == bj || ratfun_is_zero(row[rk] + c, r))
+                    continue;
+                ratfun_mul(t, f, row[rk] + c, r);
+                ratfun_sub(row[i] + c, row[i] + c, t, r);
+            }
+            ratfun_zero(f, r);
+        }
+        rk++;
+    }
+
+    /* rows rk.. have zero coefficients: consistent iff their rhs vanish */
+    for (slong i = rk; i < m; i++)
+        if (!ratfun_is_zero(row[i] + n, r)) {
+            res = LINSOLVE_INCONSISTENT;
+            goto cleanup;
+        }
+
+    /* back substitution; free unknowns stay 0 in sol */
+    for (slong k = rk - 1; k >= 0; k--) {
+        slong pc = pivcol[k];
+        ratfun_set(sol + pc, row[k] + n, r);
+        for (slong l = k + 1; l < rk; l++) {
+            slong qc = pivcol[l];
+            if (ratfun_is_zero(row[k] + qc, r) || ratfun_is_zero(sol + qc, r))
+                continue;
+            ratfun_mul(t, row[k] + qc, sol + qc, r);
+            ratfun_sub(sol + pc, sol + pc, t, r);
+        }
+    }
+    for (slong j = 0; j < n; j++)
+        ratfun_swap(x + j, sol + j, r);
+    res = rk == n ? LINSOLVE_UNIQUE : LINSOLVE_UNDERDETERMINED;
+
+cleanup:
+    if (rank != NULL)
+        *rank = rk;
+    for (slong j = w - 1; j >= 0; j--)
+        ratfun_clear(sol + j, r);
+    for (slong i = m * w - 1; i >= 0; i--)
+        ratfun_clear(mat + i, r);
+    ratfun_clear(t, r);
+    ratfun_clear(piv, r);
+    flint_free(used);
+    flint_free(pivcol);
+    flint_free(sol);
+    flint_free(row);
+    flint_free(mat);
+    return res;
+}
