@@ -1,0 +1,261 @@
+/*
+ * api.c - libpointcalc.h: the pipeline as a library.
+ *
+ * A pc_scheme wraps a Derived, a pc_plan a Plan.  Diagnostics are captured
+ * with open_memstream so nothing is printed; every returned string is a
+ * malloc'ed copy (FLINT's strings are copied out of flint_malloc memory).
+ */
+#include "libpointcalc.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/flint.h>
+
+#include "codegen/emit_c.h"
+#include "codegen/lower.h"
+#include "compiler/derive.h"
+#include "runtime/eval.h"
+
+struct pc_scheme {
+    Derived *d; // owned
+};
+
+struct pc_plan {
+    Plan *p; // owned
+};
+
+static char *copy_str(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *r = malloc(n);
+    if (r)
+        memcpy(r, s, n);
+    return r;
+}
+
+/* wraps d; the captured diagnostics go to *diagnostics on failure */
+static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
+{
+    if (diagnostics && !d) {
+        *diagnostics = msg;
+    } else {
+        if (diagnostics)
+            *diagnostics = NULL;
+        free(msg);
+    }
+    if (!d)
+        return NULL;
+    pc_scheme *s = malloc(sizeof *s);
+    if (!s) {
+        derived_free(d);
+        return NULL;
+    }
+    s->d = d;
+    return s;
+}
+
+pc_scheme *pc_scheme_parse(const char *name, const char *text, size_t len,
+                           char **diagnostics)
+{
+    char *msg = NULL;
+    size_t mlen = 0;
+    FILE *m = open_memstream(&msg, &mlen);
+    Derived *d = derive_source(name ? name : "<string>", text, len, m, NULL);
+    fclose(m);
+    return wrap(d, msg, diagnostics);
+}
+
+pc_scheme *pc_scheme_load(const char *path, char **diagnostics)
+{
+    char *msg = NULL;
+    size_t mlen = 0;
+    FILE *m = open_memstream(&msg, &mlen);
+    Derived *d = derive_file(path, m, NULL);
+    fclose(m);
+    return wrap(d, msg, diagnostics);
+}
+
+void pc_scheme_free(pc_scheme *s)
+{
+    if (!s)
+        return;
+    derived_free(s->d);
+    free(s);
+}
+
+const char *pc_scheme_name(const pc_scheme *s)
+{
+    return s->d->scheme;
+}
+
+int pc_npoints(const pc_scheme *s)
+{
+    return (int)s->d->npoints;
+}
+
+const char *pc_point_name(const pc_scheme *s, int i)
+{
+    return i >= 0 && i < s->d->npoints ? s->d->points[i] : NULL;
+}
+
+int pc_nparams(const pc_scheme *s)
+{
+    return (int)s->d->nparams;
+}
+
+const char *pc_param_name(const pc_scheme *s, int i)
+{
+    return i >= 0 && i < s->d->nparams ? s->d->params[i] : NULL;
+}
+
+int pc_nconsts(const pc_scheme *s)
+{
+    return (int)s->d->nconsts;
+}
+
+const char *pc_const_name(const pc_scheme *s, int i)
+{
+    return i >= 0 && i < s->d->nconsts ? s->d->consts[i] : NULL;
+}
+
+int pc_noutputs(const pc_scheme *s)
+{
+    return (int)s->d->noutputs;
+}
+
+const char *pc_output_name(const pc_scheme *s, int i)
+{
+    return i >= 0 && i < s->d->noutputs ? s->d->outputs[i].name : NULL;
+}
+
+pc_kind pc_output_kind(const pc_scheme *s, int i)
+{
+    switch (s->d->outputs[i].kind) {
+    case KIND_SCALAR:
+        return PC_SCALAR;
+    case KIND_POINT:
+        return PC_POINT;
+    default:
+        return PC_VECTOR;
+    }
+}
+
+int pc_output_line(const pc_scheme *s, int i)
+{
+    return s->d->outputs[i].line;
+}
+
+int pc_find_output(const pc_scheme *s, const char *name)
+{
+    return (int)derived_find_output(s->d, name);
+}
+
+int pc_find_point(const pc_scheme *s, const char *name)
+{
+    return (int)derived_find_point(s->d, name);
+}
+
+char *pc_weight_str(const pc_scheme *s, int output, int point)
+{
+    const Derived *d = s->d;
+    if (output < 0 || output >= d->noutputs)
+        return NULL;
+    const DerivedOutput *o = &d->outputs[output];
+    const RatFunStruct *w;
+    if (o->kind == KIND_SCALAR) {
+        if (point != -1)
+            return NULL;
+        w = o->scalar;
+    } else {
+        if (point < 0 || point >= d->npoints)
+            return NULL;
+        w = pteq_weight(o->eq, point);
+        if (!w)
+            return copy_str("0");
+    }
+    char *f = ratfun_get_str(w, &d->ring);
+    char *r = copy_str(f);
+    flint_free(f);
+    return r;
+}
+
+pc_plan *pc_compile(const pc_scheme *s)
+{
+    Plan *p = lower_derived(s->d, NULL);
+    if (!p)
+        return NULL;
+    pc_plan *r = malloc(sizeof *r);
+    if (!r) {
+        plan_free(p);
+        return NULL;
+    }
+    r->p = p;
+    return r;
+}
+
+void pc_plan_free(pc_plan *p)
+{
+    if (!p)
+        return;
+    plan_free(p->p);
+    free(p);
+}
+
+char *pc_plan_dump(const pc_plan *p)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    plan_dump(m, p->p);
+    fclose(m);
+    return text;
+}
+
+int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
+            const double *consts, const double *const *points, int dim,
+            double *out, unsigned char *status, size_t *npoles)
+{
+    const Plan *pl = p->p;
+    if (output < 0 || output >= pl->noutputs || !out ||
+        (pl->nparams && n && !params) || (pl->nconsts && !consts))
+        return PC_EINVAL;
+    const PlanOutput *o = &pl->outputs[output];
+    if (o->kind != PLAN_SCALAR) {
+        if (dim < 1)
+            return PC_EINVAL;
+        for (int k = 0; k < o->nterms; k++)
+            if (!points || !points[o->point[k]])
+                return PC_EINVAL;
+    }
+    for (int i = 0; i < pl->nparams && n; i++)
+        if (!params[i])
+            return PC_EINVAL;
+    size_t np =
+        plan_eval(pl, output, n, params, consts, points, dim, out, status);
+    if (npoles)
+        *npoles = np;
+    return PC_OK;
+}
+
+char *pc_emit_c(const pc_scheme *s, const char *prefix)
+{
+    if (prefix && !emit_c_valid_prefix(prefix))
+        return NULL;
+    Plan *p = lower_derived(s->d, NULL);
+    if (!p)
+        return NULL;
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    emit_c(m, p, prefix, s->d->filename);
+    fclose(m);
+    plan_free(p);
+    return text;
+}
+
+void pc_cleanup(void)
+{
+    flint_cleanup_master();
+}

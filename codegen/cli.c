@@ -1,0 +1,597 @@
+/*
+ * cli.c - `pointcalc emit-c` and `pointcalc eval`: option parsing and the
+ * pipeline
+ *
+ *   derive_file -> lower_derived -> emit_c            (emit-c)
+ *   derive_file -> lower_derived -> plan_eval -> CSV  (eval)
+ *
+ * This is the glue that needs both compiler/ (derive) and runtime/ (the
+ * interpreter), so it lives in codegen/.  Checks happen in this order:
+ * option syntax (exit 2), the scheme (exit 1), names against the scheme
+ * (exit 2); only then is anything written to `out`.
+ */
+#include "codegen/cli.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "codegen/emit_c.h"
+#include "codegen/lower.h"
+#include "compiler/derive.h"
+#include "runtime/eval.h"
+#include "runtime/output.h"
+#include "runtime/sample.h"
+
+static const char emit_usage[] =
+    "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]"
+    " [--dump-plan]\n";
+static const char eval_usage[] =
+    "usage: pointcalc eval FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
+    "                      --param t=SPEC ... [--output NAME] "
+    "[--format csv|json]\n"
+    "       SPEC: a value 0.5, a list 0,0.25,1 or lo:hi:count\n";
+
+static int usage_error(FILE *err, const char *usage, const char *fmt, ...)
+{
+    va_list ap;
+    fputs("pointcalc: ", err);
+    va_start(ap, fmt);
+    vfprintf(err, fmt, ap);
+    va_end(ap);
+    fprintf(err, "\n%s", usage);
+    return 2;
+}
+
+/* writes text to path (or to out when path is NULL); 0 or 1 */
+static int write_text(const char *path, const char *text, size_t len, FILE *out,
+                      FILE *err)
+{
+    if (!path) {
+        fwrite(text, 1, len, out);
+        return 0;
+    }
+    FILE *f = fopen(path, "w");
+    if (!f || fwrite(text, 1, len, f) != len) {
+        fprintf(err, "pointcalc: cannot write '%s'\n", path);
+        if (f)
+            fclose(f);
+        return 1;
+    }
+    if (fclose(f) != 0) {
+        fprintf(err, "pointcalc: cannot write '%s'\n", path);
+        return 1;
+    }
+    return 0;
+}
+
+/* ---- emit-c -------------------------------------------------------------- */
+
+int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
+{
+    const char *file = NULL, *cpath = NULL, *hpath = NULL, *prefix = NULL;
+    int dump = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int has = i + 1 < argc;
+        if (strcmp(a, "-o") == 0 && has)
+            cpath = argv[++i];
+        else if (strcmp(a, "--header") == 0 && has)
+            hpath = argv[++i];
+        else if (strcmp(a, "--prefix") == 0 && has)
+            prefix = argv[++i];
+        else if (strcmp(a, "--dump-plan") == 0)
+            dump = 1;
+        else if (a[0] == '-' && a[1] != '\0')
+            return usage_error(err, emit_usage,
+                               "unknown or incomplete option '%s'", a);
+        else if (!file)
+            file = a;
+        else
+            return usage_error(err, emit_usage,
+                               "emit-c takes one FILE, found '%s'", a);
+    }
+    if (!file)
+        return usage_error(err, emit_usage, "emit-c needs a scheme FILE");
+    if (prefix && !emit_c_valid_prefix(prefix))
+        return usage_error(err, emit_usage,
+                           "--prefix '%s' is not a usable C identifier",
+                           prefix);
+    Derived *d = derive_file(file, err, NULL);
+    if (!d)
+        return 1;
+    Plan *p = lower_derived(d, err);
+    derived_free(d);
+    if (!p)
+        return 1;
+    char *ctext = NULL, *htext = NULL;
+    size_t clen = 0, hlen = 0;
+    FILE *m = open_memstream(&ctext, &clen);
+    if (dump)
+        plan_dump(m, p);
+    else
+        emit_c(m, p, prefix, file);
+    fclose(m);
+    if (hpath) {
+        m = open_memstream(&htext, &hlen);
+        emit_c_header(m, p, prefix, file);
+        fclose(m);
+    }
+    plan_free(p);
+    int rc = write_text(cpath, ctext, clen, out, err);
+    if (rc == 0 && hpath)
+        rc = write_text(hpath, htext, hlen, out, err);
+    free(ctext);
+    free(htext);
+    return rc;
+}
+
+/* ---- eval ---------------------------------------------------------------- */
+
+enum { CHUNK = 4096, MAX_POLE_MESSAGES = 10 };
+
+typedef struct Assign {
+    const char *name; // borrowed from argv (up to '=', copied)
+    char *name_buf;   // owned copy of the name
+    const char *text; // the value text after '='
+} Assign;
+
+typedef struct EvalArgs {
+    const char *file;
+    const char *output;
+    OutputFormat format;
+    int nat, nset, nparam;
+    Assign *at, *set, *param; // owned arrays
+} EvalArgs;
+
+static void eval_args_clear(EvalArgs *a)
+{
+    for (int i = 0; i < a->nat; i++)
+        free(a->at[i].name_buf);
+    for (int i = 0; i < a->nset; i++)
+        free(a->set[i].name_buf);
+    for (int i = 0; i < a->nparam; i++)
+        free(a->param[i].name_buf);
+    free(a->at);
+    free(a->set);
+    free(a->param);
+}
+
+/* NAME=TEXT into list; -1 when there is no '=' or no name */
+static int push_assign(Assign **list, int *n, const char *arg)
+{
+    const char *eq = strchr(arg, '=');
+    if (!eq || eq == arg)
+        return -1;
+    *list = realloc(*list, sizeof **list * (size_t)(*n + 1));
+    if (!*list)
+        abort();
+    Assign *x = &(*list)[(*n)++];
+    size_t len = (size_t)(eq - arg);
+    x->name_buf = malloc(len + 1);
+    if (!x->name_buf)
+        abort();
+    memcpy(x->name_buf, arg, len);
+    x->name_buf[len] = '\0';
+    x->name = x->name_buf;
+    x->text = eq + 1;
+    return 0;
+}
+
+static int parse_eval_args(EvalArgs *a, int argc, char **argv, FILE *err)
+{
+    memset(a, 0, sizeof *a);
+    a->format = OUTPUT_CSV;
+    for (int i = 1; i < argc; i++) {
+        const char *o = argv[i];
+        int has = i + 1 < argc;
+        if ((strcmp(o, "--at") == 0 || strcmp(o, "--set") == 0 ||
+             strcmp(o, "--param") == 0) &&
+            has) {
+            const char *v = argv[++i];
+            Assign **list = o[2] == 'a'   ? &a->at
+                            : o[2] == 's' ? &a->set
+                                          : &a->param;
+            int *n = o[2] == 'a'   ? &a->nat
+                     : o[2] == 's' ? &a->nset
+                                   : &a->nparam;
+            if (push_assign(list, n, v) != 0)
+                return usage_error(err, eval_usage,
+                                   "%s expects NAME=VALUE, found '%s'", o, v);
+        } else if (strcmp(o, "--output") == 0 && has) {
+            a->output = argv[++i];
+        } else if (strcmp(o, "--format") == 0 && has) {
+            const char *f = argv[++i];
+            if (strcmp(f, "csv") == 0)
+                a->format = OUTPUT_CSV;
+            else if (strcmp(f, "json") == 0)
+                a->format = OUTPUT_JSON;
+            else
+                return usage_error(err, eval_usage,
+                                   "unknown format '%s'; expected csv or json",
+                                   f);
+        } else if (o[0] == '-' && o[1] != '\0') {
+            return usage_error(err, eval_usage,
+                               "unknown or incomplete option '%s'", o);
+        } else if (!a->file) {
+            a->file = o;
+        } else {
+            return usage_error(err, eval_usage,
+                               "eval takes one FILE, found '%s'", o);
+        }
+    }
+    if (!a->file)
+        return usage_error(err, eval_usage, "eval needs a scheme FILE");
+    return 0;
+}
+
+/* "A, B, C" into buf */
+static const char *name_list(char *const *names, int n, char *buf, size_t size)
+{
+    size_t k = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < n && k + 1 < size; i++)
+        k += (size_t)snprintf(buf + k, size - k, "%s%s", i ? ", " : "",
+                              names[i]);
+    if (n == 0)
+        snprintf(buf, size, "none");
+    return buf;
+}
+
+static int find_name(char *const *names, int n, const char *s)
+{
+    for (int i = 0; i < n; i++)
+        if (strcmp(names[i], s) == 0)
+            return i;
+    return -1;
+}
+
+typedef struct EvalSetup {
+    int nsel, *sel; // selected outputs
+    int dim;        // coordinates per point (0: no point given)
+    double **pt;    // per base point: coordinates or NULL (owned)
+    double *consts; // per const
+    Spec *specs;    // per param
+} EvalSetup;
+
+static void setup_clear(EvalSetup *s, const Plan *p)
+{
+    if (s->pt)
+        for (int i = 0; i < p->npoints; i++)
+            free(s->pt[i]);
+    free(s->pt);
+    free(s->sel);
+    free(s->consts);
+    if (s->specs)
+        for (int i = 0; i < p->nparams; i++)
+            sample_clear(&s->specs[i]);
+    free(s->specs);
+}
+
+/* Checks the names and values of the command line against the scheme. */
+static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
+{
+    char list[512];
+    memset(s, 0, sizeof *s);
+    s->sel = calloc((size_t)p->noutputs + 1, sizeof *s->sel);
+    s->pt = calloc((size_t)p->npoints + 1, sizeof *s->pt);
+    s->consts = calloc((size_t)p->nconsts + 1, sizeof *s->consts);
+    s->specs = calloc((size_t)p->nparams + 1, sizeof *s->specs);
+    if (!s->sel || !s->pt || !s->consts || !s->specs)
+        abort();
+    if (a->output) {
+        int o = plan_find_output(p, a->output);
+        if (o < 0) {
+            char **names = malloc(sizeof *names * (size_t)(p->noutputs + 1));
+            if (!names)
+                abort();
+            for (int i = 0; i < p->noutputs; i++)
+                names[i] = p->outputs[i].name;
+            name_list(names, p->noutputs, list, sizeof list);
+            free(names);
+            return usage_error(err, eval_usage,
+                               "--output '%s' is not an output of the scheme "
+                               "(outputs: %s)",
+                               a->output, list);
+        }
+        s->sel[s->nsel++] = o;
+    } else {
+        for (int o = 0; o < p->noutputs; o++)
+            s->sel[s->nsel++] = o;
+    }
+    /* points */
+    for (int i = 0; i < a->nat; i++) {
+        int k = find_name(p->points, p->npoints, a->at[i].name);
+        if (k < 0)
+            return usage_error(
+                err, eval_usage,
+                "--at %s: '%s' is not a base point of the scheme (points: %s)",
+                a->at[i].name, a->at[i].name,
+                name_list(p->points, p->npoints, list, sizeof list));
+        if (s->pt[k])
+            return usage_error(err, eval_usage, "--at %s given twice",
+                               a->at[i].name);
+        long n = sample_numbers(a->at[i].text, &s->pt[k]);
+        if (n < 0)
+            return usage_error(err, eval_usage,
+                               "--at %s=%s: malformed coordinates; expected "
+                               "numbers separated by commas",
+                               a->at[i].name, a->at[i].text);
+        if (s->dim && n != s->dim)
+            return usage_error(err, eval_usage,
+                               "--at %s has %ld coordinates but the points "
+                               "before it have %d: every point must have the "
+                               "same dimension",
+                               a->at[i].name, n, s->dim);
+        s->dim = (int)n;
+    }
+    for (int j = 0; j < s->nsel; j++) {
+        const PlanOutput *o = &p->outputs[s->sel[j]];
+        for (int k = 0; k < o->nterms; k++)
+            if (o->point[k] >= 0 && !s->pt[o->point[k]])
+                return usage_error(err, eval_usage,
+                                   "missing --at %s=x,y,...: output %s "
+                                   "depends on base point %s",
+                                   p->points[o->point[k]], o->name,
+                                   p->points[o->point[k]]);
+    }
+    /* consts */
+    int *seen = calloc((size_t)(p->nconsts + p->nparams) + 1, sizeof *seen);
+    if (!seen)
+        abort();
+    int rc = 0;
+    for (int i = 0; i < a->nset && !rc; i++) {
+        int k = find_name(p->consts, p->nconsts, a->set[i].name);
+        if (k < 0) {
+            int isp = find_name(p->params, p->nparams, a->set[i].name) >= 0;
+            rc = usage_error(
+                err, eval_usage,
+                isp ? "--set %s: '%s' is a param; give it with "
+                      "--param %s=SPEC"
+                    : "--set %s: '%s' is not a const of the "
+                      "scheme (consts: %s)",
+                a->set[i].name, a->set[i].name,
+                isp ? a->set[i].name
+                    : name_list(p->consts, p->nconsts, list, sizeof list));
+        } else if (seen[k]++) {
+            rc = usage_error(err, eval_usage, "--set %s given twice",
+                             a->set[i].name);
+        } else if (sample_number(a->set[i].text, &s->consts[k]) != 0) {
+            rc = usage_error(err, eval_usage, "--set %s=%s: malformed number",
+                             a->set[i].name, a->set[i].text);
+        }
+    }
+    for (int k = 0; k < p->nconsts && !rc; k++)
+        if (!seen[k])
+            rc = usage_error(err, eval_usage, "missing --set %s=VALUE",
+                             p->consts[k]);
+    /* params */
+    int *pseen = seen + p->nconsts;
+    for (int i = 0; i < a->nparam && !rc; i++) {
+        int k = find_name(p->params, p->nparams, a->param[i].name);
+        char msg[300];
+        if (k < 0) {
+            int isc = find_name(p->consts, p->nconsts, a->param[i].name) >= 0;
+            rc = usage_error(
+                err, eval_usage,
+                isc ? "--param %s: '%s' is a const; give it "
+                      "with --set %s=VALUE"
+                    : "--param %s: '%s' is not a param of the "
+                      "scheme (params: %s)",
+                a->param[i].name, a->param[i].name,
+                isc ? a->param[i].name
+                    : name_list(p->params, p->nparams, list, sizeof list));
+        } else if (pseen[k]++) {
+            rc = usage_error(err, eval_usage, "--param %s given twice",
+                             a->param[i].name);
+        } else if (sample_parse(&s->specs[k], a->param[i].text, msg,
+                                sizeof msg) != 0) {
+            rc = usage_error(err, eval_usage, "--param %s=%s: %s",
+                             a->param[i].name, a->param[i].text, msg);
+        }
+    }
+    for (int k = 0; k < p->nparams && !rc; k++)
+        if (!pseen[k])
+            rc = usage_error(err, eval_usage, "missing --param %s=SPEC",
+                             p->params[k]);
+    free(seen);
+    if (!rc && sample_grid_rows(s->specs, p->nparams) == (size_t)-1)
+        rc = usage_error(err, eval_usage, "the parameter grid is too large");
+    return rc;
+}
+
+static int columns(const Plan *p, const PlanOutput *o, int dim)
+{
+    (void)p;
+    return o->kind == PLAN_SCALAR ? 1 : dim;
+}
+
+static void csv_header(FILE *out, const Plan *p, const EvalSetup *s)
+{
+    int first = 1;
+    for (int i = 0; i < p->nparams; i++, first = 0)
+        fprintf(out, "%s%s", first ? "" : ",", p->params[i]);
+    for (int j = 0; j < s->nsel; j++) {
+        const PlanOutput *o = &p->outputs[s->sel[j]];
+        if (o->kind == PLAN_SCALAR) {
+            fprintf(out, "%s%s", first ? "" : ",", o->name);
+            first = 0;
+            continue;
+        }
+        for (int c = 1; c <= s->dim; c++, first = 0)
+            fprintf(out, "%s%s.%d", first ? "" : ",", o->name, c);
+    }
+    fputc('\n', out);
+}
+
+static void json_head(FILE *out, const Plan *p, const EvalSetup *s)
+{
+    fputs("{\"scheme\": ", out);
+    output_json_string(out, p->name);
+    fputs(", \"params\": [", out);
+    for (int i = 0; i < p->nparams; i++) {
+        fputs(i ? ", " : "", out);
+        output_json_string(out, p->params[i]);
+    }
+    fputs("], \"outputs\": [", out);
+    for (int j = 0; j < s->nsel; j++) {
+        const PlanOutput *o = &p->outputs[s->sel[j]];
+        fputs(j ? ", " : "", out);
+        fputs("{\"name\": ", out);
+        output_json_string(out, o->name);
+        fprintf(out, ", \"kind\": \"%s\", \"dim\": %d}",
+                o->kind == PLAN_SCALAR  ? "scalar"
+                : o->kind == PLAN_POINT ? "point"
+                                        : "vector",
+                o->kind == PLAN_SCALAR ? 1 : s->dim);
+    }
+    fputs("],\n \"samples\": [", out);
+}
+
+int eval_main(int argc, char **argv, FILE *out, FILE *err)
+{
+    EvalArgs a;
+    int rc = parse_eval_args(&a, argc, argv, err);
+    if (rc) {
+        eval_args_clear(&a);
+        return rc;
+    }
+    Derived *d = derive_file(a.file, err, NULL);
+    if (!d) {
+        eval_args_clear(&a);
+        return 1;
+    }
+    Plan *p = lower_derived(d, err);
+    derived_free(d);
+    if (!p) {
+        eval_args_clear(&a);
+        return 1;
+    }
+    EvalSetup s;
+    rc = eval_setup(&s, &a, p, err);
+    if (rc) {
+        setup_clear(&s, p);
+        plan_free(p);
+        eval_args_clear(&a);
+        return rc;
+    }
+
+    size_t rows = sample_grid_rows(s.specs, p->nparams);
+    int np = p->nparams;
+    double **pv = malloc(sizeof *pv * (size_t)(np + 1));
+    double **res = malloc(sizeof *res * (size_t)(s.nsel + 1));
+    unsigned char **st = malloc(sizeof *st * (size_t)(s.nsel + 1));
+    double *row = malloc(sizeof *row * (size_t)(np + 1));
+    if (!pv || !res || !st || !row)
+        abort();
+    for (int i = 0; i < np; i++)
+        if (!(pv[i] = malloc(sizeof **pv * CHUNK)))
+            abort();
+    for (int j = 0; j < s.nsel; j++) {
+        int nc = columns(p, &p->outputs[s.sel[j]], s.dim);
+        res[j] = malloc(sizeof **res * CHUNK * (size_t)(nc ? nc : 1));
+        st[j] = malloc(CHUNK);
+        if (!res[j] || !st[j])
+            abort();
+    }
+    size_t npoles = 0;
+    if (a.format == OUTPUT_CSV)
+        csv_header(out, p, &s);
+    else
+        json_head(out, p, &s);
+    for (size_t r0 = 0; r0 < rows; r0 += CHUNK) {
+        size_t m = rows - r0 < CHUNK ? rows - r0 : CHUNK;
+        for (size_t r = 0; r < m; r++) {
+            sample_grid_row(s.specs, np, r0 + r, row);
+            for (int i = 0; i < np; i++)
+                pv[i][r] = row[i];
+        }
+        for (int j = 0; j < s.nsel; j++)
+            plan_eval(p, s.sel[j], m, (const double *const *)pv, s.consts,
+                      (const double *const *)s.pt, s.dim, res[j], st[j]);
+        for (size_t r = 0; r < m; r++) {
+            /* poles first, on err */
+            for (int j = 0; j < s.nsel; j++) {
+                if (!st[j][r])
+                    continue;
+                if (npoles++ < MAX_POLE_MESSAGES) {
+                    fprintf(err, "pointcalc: eval: pole of %s at",
+                            p->outputs[s.sel[j]].name);
+                    for (int i = 0; i < np; i++)
+                        fprintf(err, "%s %s=%.17g", i ? "," : "", p->params[i],
+                                pv[i][r]);
+                    fputs(": a denominator of its equation vanishes; "
+                          "written as nan\n",
+                          err);
+                }
+            }
+            if (a.format == OUTPUT_JSON)
+                fputs(r0 + r ? ",\n  {" : "\n  {", out);
+            for (int i = 0; i < np; i++) {
+                if (a.format == OUTPUT_JSON) {
+                    fputs(i ? ", " : "", out);
+                    output_json_string(out, p->params[i]);
+                    fputs(": ", out);
+                } else if (i) {
+                    fputc(',', out);
+                }
+                output_number(out, pv[i][r], a.format);
+            }
+            for (int j = 0; j < s.nsel; j++) {
+                const PlanOutput *o = &p->outputs[s.sel[j]];
+                int nc = columns(p, o, s.dim);
+                int vec = o->kind != PLAN_SCALAR;
+                if (a.format == OUTPUT_JSON) {
+                    fputs(np || j ? ", " : "", out);
+                    output_json_string(out, o->name);
+                    fputs(vec ? ": [" : ": ", out);
+                }
+                for (int c = 0; c < nc; c++) {
+                    if (a.format == OUTPUT_JSON)
+                        fputs(c ? ", " : "", out);
+                    else if (np || j || c)
+                        fputc(',', out);
+                    output_number(out, res[j][r * (size_t)nc + (size_t)c],
+                                  a.format);
+                }
+                if (a.format == OUTPUT_JSON && vec)
+                    fputc(']', out);
+            }
+            if (a.format == OUTPUT_JSON) {
+                int first = 1;
+                for (int j = 0; j < s.nsel; j++) {
+                    if (!st[j][r])
+                        continue;
+                    fputs(first ? ", \"poles\": [" : ", ", out);
+                    output_json_string(out, p->outputs[s.sel[j]].name);
+                    first = 0;
+                }
+                fputs(first ? "}" : "]}", out);
+            } else {
+                fputc('\n', out);
+            }
+        }
+    }
+    if (a.format == OUTPUT_JSON)
+        fputs(rows ? "\n]}\n" : "]}\n", out);
+    if (npoles > MAX_POLE_MESSAGES)
+        fprintf(err, "pointcalc: eval: ... %zu poles in all\n", npoles);
+    if (npoles)
+        rc = 1;
+
+    for (int i = 0; i < np; i++)
+        free(pv[i]);
+    for (int j = 0; j < s.nsel; j++) {
+        free(res[j]);
+        free(st[j]);
+    }
+    free(pv);
+    free(res);
+    free(st);
+    free(row);
+    setup_clear(&s, p);
+    plan_free(p);
+    eval_args_clear(&a);
+    return rc;
+}

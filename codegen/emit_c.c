@@ -1,0 +1,756 @@
+/*
+ * emit_c.c - printing a Plan as C99.
+ *
+ * Every Plan register that an output needs becomes one `const double rN`
+ * with a comment naming the scheme line it comes from; constants and inputs
+ * are written inline.  The single-sample functions are straight-line code.
+ * The batch functions work in blocks of BLOCK samples:
+ *
+ *   uniform registers (consts only)            once per call
+ *   for each block:
+ *     params -> x0, x1 ... (tail padded)       fixed-length loop over the
+ *     varying registers -> weights w0[], w1[]  block: gcc -O2 vectorises it
+ *     out[i][c] = sum_k wk[i] * Pk[c]          specialised for dim 2 and 3
+ *
+ * The pole flag (sum of POLE checks of the output's denominators) turns the
+ * weights into NaN, so the coordinates of a pole sample are NaN whatever
+ * the points are; the _checked variants return/count it.
+ *
+ * User names become C names unchanged unless they clash with a C keyword,
+ * a <math.h> name or a name of the generated code; those get a trailing _.
+ */
+#include "codegen/emit_c.h"
+
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { BLOCK = 64 }; // samples per block in the generated batch code
+
+static const char *const reserved[] = {
+    /* C99 keywords */
+    "auto", "break", "case", "char", "const", "continue", "default", "do",
+    "double", "else", "enum", "extern", "float", "for", "goto", "if", "inline",
+    "int", "long", "register", "restrict", "return", "short", "signed",
+    "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned",
+    "void", "volatile", "while", "_Bool", "_Complex", "_Imaginary", "bool",
+    "true", "false",
+    /* <math.h>, <stddef.h> names a user could pick */
+    "NAN", "INFINITY", "HUGE_VAL", "NULL", "size_t", "ptrdiff_t", "offsetof",
+    "wchar_t", "j0", "j1", "jn", "y0", "y1", "yn", "exp", "log", "pow", "sqrt",
+    "sin", "cos", "tan", "fabs", "floor", "ceil", "round", "gamma", "erf",
+    "fma", "fmin", "fmax", "signbit", "isnan", "isinf", "math_errhandling",
+    /* names of the generated code */
+    "n", "dim", "out", "status", "i0", "m", "j", "c", "nbad", "bad", "o", "fb",
+    NULL};
+
+/* generated names follow these shapes: r12 w3 x0 p0 pad0 k0_2 */
+static int internal_shape(const char *s)
+{
+    static const char *const heads[] = {"r", "w", "x", "p", "pad", "k"};
+    for (size_t h = 0; h < sizeof heads / sizeof *heads; h++) {
+        size_t n = strlen(heads[h]);
+        if (strncmp(s, heads[h], n) != 0 || !isdigit((unsigned char)s[n]))
+            continue;
+        const char *q = s + n;
+        while (isdigit((unsigned char)*q))
+            q++;
+        if (*q == '_' && isdigit((unsigned char)q[1])) // k0_2
+            for (q++; isdigit((unsigned char)*q);)
+                q++;
+        if (*q == '\0')
+            return 1;
+    }
+    return 0;
+}
+
+static int is_reserved(const char *s)
+{
+    for (int i = 0; reserved[i]; i++)
+        if (strcmp(reserved[i], s) == 0)
+            return 1;
+    return internal_shape(s);
+}
+
+int emit_c_valid_prefix(const char *s)
+{
+    if (!s || !(isalpha((unsigned char)s[0]) || s[0] == '_'))
+        return 0;
+    for (const char *q = s; *q; q++)
+        if (!(isalnum((unsigned char)*q) || *q == '_'))
+            return 0;
+    return !is_reserved(s) || internal_shape(s);
+}
+
+/* a C identifier from any text: other characters become _, a leading
+ * digit gets a leading _ */
+static char *identifier(const char *s)
+{
+    size_t n = strlen(s);
+    char *r = malloc(n + 2);
+    if (!r)
+        abort();
+    size_t k = 0;
+    if (!(isalpha((unsigned char)s[0]) || s[0] == '_'))
+        r[k++] = '_';
+    for (size_t i = 0; i < n; i++)
+        r[k++] = isalnum((unsigned char)s[i]) ? s[i] : '_';
+    r[k] = '\0';
+    return r;
+}
+
+typedef struct Names {
+    char *prefix; // owned
+    char **in;    // C names of params then consts (owned)
+    char **pt;    // C names of points (owned)
+    int nin, npt;
+} Names;
+
+static int taken(const Names *N, int nin, int npt, const char *s)
+{
+    for (int i = 0; i < nin; i++)
+        if (strcmp(N->in[i], s) == 0)
+            return 1;
+    for (int i = 0; i < npt; i++)
+        if (strcmp(N->pt[i], s) == 0)
+            return 1;
+    return 0;
+}
+
+static char *c_name(const Names *N, int nin, int npt, const char *user)
+{
+    char *s = identifier(user);
+    while (is_reserved(s) || taken(N, nin, npt, s)) {
+        size_t n = strlen(s);
+        s = realloc(s, n + 2);
+        if (!s)
+            abort();
+        s[n] = '_';
+        s[n + 1] = '\0';
+    }
+    return s;
+}
+
+static void names_init(Names *N, const Plan *p, const char *prefix)
+{
+    N->prefix = identifier(prefix ? prefix : p->name);
+    N->nin = p->nparams + p->nconsts;
+    N->npt = p->npoints;
+    N->in = calloc((size_t)N->nin + 1, sizeof *N->in);
+    N->pt = calloc((size_t)N->npt + 1, sizeof *N->pt);
+    if (!N->in || !N->pt)
+        abort();
+    for (int i = 0; i < N->nin; i++)
+        N->in[i] = c_name(
+            N, i, 0, i < p->nparams ? p->params[i] : p->consts[i - p->nparams]);
+    for (int i = 0; i < N->npt; i++)
+        N->pt[i] = c_name(N, N->nin, i, p->points[i]);
+}
+
+static void names_clear(Names *N)
+{
+    for (int i = 0; i < N->nin; i++)
+        free(N->in[i]);
+    for (int i = 0; i < N->npt; i++)
+        free(N->pt[i]);
+    free(N->in);
+    free(N->pt);
+    free(N->prefix);
+}
+
+/* ---- printing helpers -------------------------------------------------- */
+
+/* a double literal that reads back exactly: 2.0, 0.5, (-3.0), 1e+20 */
+static void print_double(FILE *out, double v)
+{
+    char buf[40];
+    snprintf(buf, sizeof buf, "%.17g", v);
+    /* the shortest of %.15g/%.16g/%.17g that round-trips */
+    for (int prec = 15; prec < 17; prec++) {
+        char t[40];
+        snprintf(t, sizeof t, "%.*g", prec, v);
+        if (strtod(t, NULL) == v) {
+            memcpy(buf, t, sizeof t);
+            break;
+        }
+    }
+    int plain = strspn(buf, "-0123456789") == strlen(buf);
+    fprintf(out, v < 0 ? "(%s%s)" : "%s%s", buf, plain ? ".0" : "");
+}
+
+/* Argument lists wrap at 80 columns, continuation aligned after '('. */
+typedef struct Line {
+    FILE *out;
+    int col, indent;
+} Line;
+
+static void line_start(Line *L, FILE *out, const char *head)
+{
+    L->out = out;
+    fputs(head, out);
+    L->col = (int)strlen(head);
+    L->indent = L->col;
+}
+
+static void line_arg(Line *L, const char *text, int last)
+{
+    int len = (int)strlen(text) + (last ? 1 : 2);
+    if (L->col > L->indent && L->col + 1 + len > 79) {
+        fprintf(L->out, "\n%*s", L->indent, "");
+        L->col = L->indent;
+    } else if (L->col > L->indent) {
+        fputc(' ', L->out);
+        L->col++;
+    }
+    fprintf(L->out, "%s%s", text, last ? ")" : ",");
+    L->col += len;
+}
+
+typedef enum Variant { ONE, ONE_CHECKED, BATCH, BATCH_CHECKED } Variant;
+
+static void signature(FILE *out, const Plan *p, const Names *N,
+                      const PlanOutput *o, Variant v)
+{
+    static const char *const ret[] = {"void ", "int ", "void ", "size_t "};
+    static const char *const suffix[] = {"", "_checked", "_batch",
+                                         "_batch_checked"};
+    char head[512], arg[300];
+    char *oname = identifier(o->name);
+    snprintf(head, sizeof head, "%s%s_%s%s(", ret[v], N->prefix, oname,
+             suffix[v]);
+    free(oname);
+    Line L;
+    line_start(&L, out, head);
+    int batch = v == BATCH || v == BATCH_CHECKED;
+    if (batch)
+        line_arg(&L, "size_t n", 0);
+    for (int i = 0; i < N->nin; i++) {
+        snprintf(arg, sizeof arg, "%s%s",
+                 batch && i < p->nparams ? "const double *" : "double ",
+                 N->in[i]);
+        line_arg(&L, arg, 0);
+    }
+    for (int i = 0; i < N->npt; i++) {
+        snprintf(arg, sizeof arg, "const double *%s", N->pt[i]);
+        line_arg(&L, arg, 0);
+    }
+    line_arg(&L, "int dim", 0);
+    line_arg(&L, "double *out", v != BATCH_CHECKED);
+    if (v == BATCH_CHECKED)
+        line_arg(&L, "unsigned char *status", 1);
+}
+
+/* ---- one output -------------------------------------------------------- */
+
+typedef struct Ctx {
+    FILE *out;
+    const Plan *p;
+    const Names *N;
+    const PlanOutput *o;
+    unsigned char *live; // registers this output needs
+    int batch;           // inputs are x0.. (loop copies) instead of names
+    const char **role;   // per register: what it is, or NULL
+} Ctx;
+
+static void operand(const Ctx *C, int r)
+{
+    const PlanIns *x = &C->p->ins[r];
+    if (x->op == PLAN_CONST)
+        print_double(C->out, C->p->k[x->a]);
+    else if (x->op == PLAN_INPUT && C->batch && x->a < C->p->nparams)
+        fprintf(C->out, "x%d", x->a);
+    else if (x->op == PLAN_INPUT)
+        fputs(C->N->in[x->a], C->out);
+    else
+        fprintf(C->out, "r%d", r);
+}
+
+/* const double rN = EXPR;  line comment */
+static void instruction(const Ctx *C, int r, const char *indent)
+{
+    const PlanIns *x = &C->p->ins[r];
+    FILE *out = C->out;
+    fprintf(out, "%sconst double r%d = ", indent, r);
+    switch ((PlanOp)x->op) {
+    case PLAN_NEG:
+        fputc('-', out);
+        operand(C, x->a);
+        break;
+    case PLAN_ADD:
+    case PLAN_SUB:
+    case PLAN_MUL:
+    case PLAN_DIV:
+        operand(C, x->a);
+        fprintf(out, " %s ",
+                x->op == PLAN_ADD   ? "+"
+                : x->op == PLAN_SUB ? "-"
+                : x->op == PLAN_MUL ? "*"
+                                    : "/");
+        operand(C, x->b);
+        break;
+    case PLAN_POWI:
+        fprintf(out, "%s_powi(", C->N->prefix);
+        operand(C, x->a);
+        fprintf(out, ", %d)", x->b);
+        break;
+    case PLAN_POLE: /* not ?: - gcc does not if-convert that under the
+                       default -ftrapping-math, and the loop would stay
+                       scalar */
+        fputs("(double)(", out);
+        operand(C, x->a);
+        fputs(" == 0.0)", out);
+        break;
+    default:
+        break;
+    }
+    fprintf(out, "; /* line %d", x->line);
+    if (C->role[r])
+        fprintf(out, ": %s", C->role[r]);
+    fputs(" */\n", out);
+}
+
+/* every needed computing instruction whose uniformity is `uniform` (or
+ * all of them when uniform < 0) */
+static void instructions(const Ctx *C, int uniform, const char *indent)
+{
+    for (int r = 0; r < C->p->nins; r++) {
+        const PlanIns *x = &C->p->ins[r];
+        if (!C->live[r] || x->op == PLAN_CONST || x->op == PLAN_INPUT)
+            continue;
+        if (uniform >= 0 && x->uniform != uniform)
+            continue;
+        instruction(C, r, indent);
+    }
+}
+
+static int uses_point(const PlanOutput *o, int point)
+{
+    for (int k = 0; k < o->nterms; k++)
+        if (o->point[k] == point)
+            return 1;
+    return 0;
+}
+
+/* (void)X; for every argument this output does not read */
+static void unused_args(const Ctx *C)
+{
+    const Plan *p = C->p;
+    for (int i = 0; i < C->N->nin; i++) {
+        int used = 0;
+        for (int r = 0; r < p->nins && !used; r++)
+            used = C->live[r] && p->ins[r].op == PLAN_INPUT && p->ins[r].a == i;
+        if (!used)
+            fprintf(C->out, "    (void)%s;\n", C->N->in[i]);
+    }
+    for (int i = 0; i < C->N->npt; i++)
+        if (C->o->kind == PLAN_SCALAR || !uses_point(C->o, i))
+            fprintf(C->out, "    (void)%s;\n", C->N->pt[i]);
+    if (C->o->kind == PLAN_SCALAR)
+        fputs("    (void)dim;\n", C->out);
+}
+
+/* the weight expression of slot k: its register or an inline operand */
+static void weight(const Ctx *C, int k)
+{
+    operand(C, C->o->reg[k]);
+}
+
+/* int NAME_M_checked(...): straight-line weights, then the coordinates */
+static void emit_one(const Ctx *C)
+{
+    FILE *out = C->out;
+    const PlanOutput *o = C->o;
+    signature(out, C->p, C->N, o, ONE_CHECKED);
+    fputs("\n{\n", out);
+    unused_args(C);
+    if (o->kind != PLAN_SCALAR)
+        fputs("    int c;\n", out);
+    instructions(C, -1, "    ");
+    if (o->bad >= 0) {
+        fputs("    if (", out);
+        operand(C, o->bad);
+        fputs(" != 0.0) { /* pole: a denominator vanishes */\n", out);
+        if (o->kind == PLAN_SCALAR)
+            fputs("        out[0] = NAN;\n", out);
+        else
+            fputs("        for (c = 0; c < dim; c++)\n"
+                  "            out[c] = NAN;\n",
+                  out);
+        fputs("        return 1;\n    }\n", out);
+    }
+    if (o->kind == PLAN_SCALAR) {
+        fputs("    out[0] = ", out);
+        weight(C, 0);
+        fputs(";\n", out);
+    } else {
+        fputs("    for (c = 0; c < dim; c++)\n        out[c] = ", out);
+        if (o->nterms == 0)
+            fputs("0.0", out);
+        for (int k = 0; k < o->nterms; k++) {
+            if (k)
+                fputs("\n                 + ", out);
+            weight(C, k);
+            fprintf(out, " * %s[c]", C->N->pt[o->point[k]]);
+        }
+        fputs(";\n", out);
+    }
+    fputs("    return 0;\n}\n\n", out);
+}
+
+/* the coordinate loop for a known dim (2, 3) or any dim (0) */
+static void emit_apply(const Ctx *C, int dim, const char *ind)
+{
+    FILE *out = C->out;
+    const PlanOutput *o = C->o;
+    if (dim > 0) {
+        for (int k = 0; k < o->nterms; k++) {
+            const char *P = C->N->pt[o->point[k]];
+            fprintf(out, "%sconst double ", ind);
+            for (int c = 0; c < dim; c++)
+                fprintf(out, "%sk%d_%d = %s[%d]", c ? ", " : "", k, c, P, c);
+            fputs(";\n", out);
+        }
+        /* a full block gets a fixed trip count: gcc -O2 then vectorises
+         * the interleaved stores, which it does not for a variable one */
+        for (int full = 1; full >= 0; full--) {
+            fprintf(out, full ? "%sif (m == %d) {\n" : "%s} else {\n", ind,
+                    BLOCK);
+            if (full)
+                fprintf(out, "%s    for (j = 0; j < %d; j++) {\n", ind, BLOCK);
+            else
+                fprintf(out, "%s    for (j = 0; j < m; j++) {\n", ind);
+            fprintf(out, "%s        double *o = out + (i0 + j) * %d;\n", ind,
+                    dim);
+            for (int c = 0; c < dim; c++) {
+                fprintf(out, "%s        o[%d] = ", ind, c);
+                if (o->nterms == 0)
+                    fputs("0.0", out);
+                for (int k = 0; k < o->nterms; k++)
+                    fprintf(out, "%sw%d[j] * k%d_%d", k ? " + " : "", k, k, c);
+                fputs(";\n", out);
+            }
+            fprintf(out, "%s    }\n", ind);
+        }
+        fprintf(out, "%s}\n", ind);
+        return;
+    }
+    fprintf(out, "%sfor (j = 0; j < m; j++) {\n", ind);
+    fprintf(out, "%s    double *o = out + (i0 + j) * (size_t)dim;\n", ind);
+    fprintf(out, "%s    for (c = 0; c < dim; c++)\n", ind);
+    fprintf(out, "%s        o[c] = ", ind);
+    if (o->nterms == 0)
+        fputs("0.0", out);
+    for (int k = 0; k < o->nterms; k++)
+        fprintf(out, "%sw%d[j] * %s[c]", k ? " + " : "", k,
+                C->N->pt[o->point[k]]);
+    fputs(";\n", out);
+    fprintf(out, "%s}\n", ind);
+}
+
+static int param_used(const Ctx *C, int i)
+{
+    for (int r = 0; r < C->p->nins; r++)
+        if (C->live[r] && C->p->ins[r].op == PLAN_INPUT && C->p->ins[r].a == i)
+            return 1;
+    return 0;
+}
+
+/* size_t NAME_M_batch_checked(...): blocks of BLOCK samples */
+static void emit_batch(Ctx *C)
+{
+    FILE *out = C->out;
+    const PlanOutput *o = C->o;
+    const Plan *p = C->p;
+    int scalar = o->kind == PLAN_SCALAR;
+    int nslots = scalar ? 1 : o->nterms;
+    signature(out, p, C->N, o, BATCH_CHECKED);
+    fputs("\n{\n", out);
+    unused_args(C);
+    for (int i = 0; i < p->nparams; i++)
+        if (param_used(C, i))
+            fprintf(out, "    double pad%d[%d]; /* %s, tail block padded */\n",
+                    i, BLOCK, C->N->in[i]);
+    for (int k = 0; k < nslots; k++)
+        fprintf(out, "    double w%d[%d]; /* %s */\n", k, BLOCK,
+                scalar               ? "value"
+                : C->role[o->reg[k]] ? C->role[o->reg[k]]
+                                     : "weight");
+    if (o->bad >= 0)
+        fprintf(out, "    double fb[%d]; /* pole flags */\n", BLOCK);
+    fputs("    size_t i0, j, nbad = 0;\n", out);
+    if (!scalar)
+        fputs("    int c;\n", out);
+    C->batch = 0;
+    instructions(C, 1, "    ");
+    fprintf(out, "    for (i0 = 0; i0 < n; i0 += %d) {\n", BLOCK);
+    fprintf(out, "        const size_t m = n - i0 < %d ? n - i0 : %d;\n", BLOCK,
+            BLOCK);
+    if (o->bad >= 0)
+        fputs("        double nb = 0.0; /* poles in the block */\n", out);
+    for (int i = 0; i < p->nparams; i++) {
+        if (!param_used(C, i))
+            continue;
+        fprintf(out, "        const double *p%d = %s + i0;\n", i, C->N->in[i]);
+    }
+    int any = 0;
+    for (int i = 0; i < p->nparams; i++)
+        any |= param_used(C, i);
+    if (any) {
+        fprintf(out, "        if (m < %d) {\n", BLOCK);
+        for (int i = 0; i < p->nparams; i++) {
+            if (!param_used(C, i))
+                continue;
+            fprintf(out,
+                    "            for (j = 0; j < %d; j++)\n"
+                    "                pad%d[j] = j < m ? p%d[j] : 0.0;\n"
+                    "            p%d = pad%d;\n",
+                    BLOCK, i, i, i, i);
+        }
+        fputs("        }\n", out);
+    }
+    fprintf(out, "        for (j = 0; j < %d; j++) {\n", BLOCK);
+    for (int i = 0; i < p->nparams; i++)
+        if (param_used(C, i))
+            fprintf(out, "            const double x%d = p%d[j];\n", i, i);
+    C->batch = 1;
+    instructions(C, 0, "            ");
+    if (o->bad >= 0) {
+        fputs("            fb[j] = ", out);
+        operand(C, o->bad);
+        fputs(";\n            nb += fb[j];\n", out);
+    }
+    for (int k = 0; k < nslots; k++) {
+        fprintf(out, "            w%d[j] = ", k);
+        weight(C, k);
+        fputs(";\n", out);
+    }
+    C->batch = 0;
+    fputs("        }\n", out);
+    if (scalar) {
+        fputs("        for (j = 0; j < m; j++)\n"
+              "            out[i0 + j] = w0[j];\n",
+              out);
+    } else {
+        fputs("        if (dim == 3) {\n", out);
+        emit_apply(C, 3, "            ");
+        fputs("        } else if (dim == 2) {\n", out);
+        emit_apply(C, 2, "            ");
+        fputs("        } else {\n", out);
+        emit_apply(C, 0, "            ");
+        fputs("        }\n", out);
+    }
+    if (o->bad >= 0) {
+        fputs("        if (nb != 0.0) /* poles in this block: NaN rows */\n"
+              "            for (j = 0; j < m; j++) {\n"
+              "                if (fb[j] == 0.0)\n"
+              "                    continue;\n"
+              "                nbad++;\n",
+              out);
+        if (scalar)
+            fputs("                out[i0 + j] = NAN;\n", out);
+        else
+            fputs("                for (c = 0; c < dim; c++)\n"
+                  "                    out[(i0 + j) * (size_t)dim + (size_t)c]"
+                  " = NAN;\n",
+                  out);
+        fputs(
+            "            }\n"
+            "        if (status != NULL)\n"
+            "            for (j = 0; j < m; j++)\n"
+            "                status[i0 + j] = (unsigned char)(fb[j] != 0.0);\n",
+            out);
+    } else
+        fputs("        if (status != NULL)\n"
+              "            for (j = 0; j < m; j++)\n"
+              "                status[i0 + j] = 0;\n",
+              out);
+    fputs("    }\n    return nbad;\n}\n\n", out);
+}
+
+/* the call of `callee` with the arguments of the variant being defined */
+static void emit_forward(const Ctx *C, Variant v)
+{
+    FILE *out = C->out;
+    char *oname = identifier(C->o->name);
+    int batch = v == BATCH;
+    char head[512];
+    signature(out, C->p, C->N, C->o, v);
+    snprintf(head, sizeof head, "    (void)%s_%s%s(", C->N->prefix, oname,
+             batch ? "_batch_checked" : "_checked");
+    free(oname);
+    fputs("\n{\n", out);
+    Line L;
+    line_start(&L, out, head);
+    if (batch)
+        line_arg(&L, "n", 0);
+    for (int i = 0; i < C->N->nin; i++)
+        line_arg(&L, C->N->in[i], 0);
+    for (int i = 0; i < C->N->npt; i++)
+        line_arg(&L, C->N->pt[i], 0);
+    line_arg(&L, "dim", 0);
+    line_arg(&L, "out", !batch);
+    if (batch)
+        line_arg(&L, "NULL", 1);
+    fputs(";\n}\n\n", out);
+}
+
+static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
+                      char **owned)
+{
+    for (int k = 0; k < o->nterms; k++) {
+        char buf[300];
+        int r = o->reg[k];
+        if (p->ins[r].op == PLAN_CONST || p->ins[r].op == PLAN_INPUT)
+            continue;
+        if (o->point[k] < 0)
+            snprintf(buf, sizeof buf, "value of %s", o->name);
+        else
+            snprintf(buf, sizeof buf, "weight of %s in %s",
+                     p->points[o->point[k]], o->name);
+        free(owned[r]);
+        owned[r] = malloc(strlen(buf) + 1);
+        if (!owned[r])
+            abort();
+        strcpy(owned[r], buf);
+        role[r] = owned[r];
+    }
+    if (o->bad >= 0 && p->ins[o->bad].op != PLAN_CONST) {
+        role[o->bad] = "pole flag";
+        const PlanIns *x = &p->ins[o->bad];
+        if (x->op == PLAN_POLE && p->ins[x->a].op != PLAN_INPUT &&
+            p->ins[x->a].op != PLAN_CONST)
+            role[x->a] = "denominator";
+    }
+    for (int r = 0; r < p->nins; r++) {
+        const PlanIns *x = &p->ins[r];
+        if (!role[r] && x->op == PLAN_DIV && p->ins[x->a].op == PLAN_CONST &&
+            p->k[p->ins[x->a].a] == 1)
+            role[r] = "1/denominator";
+    }
+}
+
+static const char *kind_word(PlanKind k)
+{
+    return k == PLAN_SCALAR ? "scalar" : k == PLAN_POINT ? "point" : "vector";
+}
+
+static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
+                   const char *what)
+{
+    fprintf(out, "/*\n * %s generated by pointcalc emit-c", what);
+    if (source)
+        fprintf(out, " from %s", source);
+    fprintf(out, " (scheme %s).\n * Do not edit; regenerate instead.\n *\n",
+            p->name);
+    for (int i = 0; i < p->noutputs; i++) {
+        const PlanOutput *o = &p->outputs[i];
+        fprintf(out, " * %s (%s, line %d)", o->name, kind_word(o->kind),
+                o->line);
+        if (o->kind != PLAN_SCALAR) {
+            fputs(" = ", out);
+            for (int k = 0; k < o->nterms; k++)
+                fprintf(out, "%s%s*w%d", k ? " + " : "", p->points[o->point[k]],
+                        k);
+            if (o->nterms == 0)
+                fputs("0", out);
+        }
+        fputs("\n", out);
+    }
+    fprintf(out,
+            " *\n"
+            " * %s_M(...) evaluates output M for one parameter value,\n"
+            " * %s_M_batch(n, ...) for n values (params as arrays), both\n"
+            " * writing dim coordinates per value (one number for a scalar).\n"
+            " * Poles: where a denominator of the reduced equation is 0 the\n"
+            " * coordinates are NaN; %s_M_checked returns 1 there (else 0)\n"
+            " * and %s_M_batch_checked returns how many samples are poles\n"
+            " * (status[i] = 1 for each, when status is not NULL).\n"
+            " */\n",
+            N->prefix, N->prefix, N->prefix, N->prefix);
+}
+
+static void prototypes(FILE *out, const Plan *p, const Names *N)
+{
+    for (int i = 0; i < p->noutputs; i++) {
+        const PlanOutput *o = &p->outputs[i];
+        for (int v = ONE; v <= BATCH_CHECKED; v++) {
+            signature(out, p, N, o, (Variant)v);
+            fputs(";\n", out);
+        }
+    }
+}
+
+static int uses_powi(const Plan *p)
+{
+    for (int r = 0; r < p->nins; r++)
+        if (p->ins[r].op == PLAN_POWI)
+            return 1;
+    return 0;
+}
+
+void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
+{
+    Names N;
+    names_init(&N, p, prefix);
+    banner(out, p, &N, source, "C99");
+    fputs("#include <math.h>\n#include <stddef.h>\n\n", out);
+    prototypes(out, p, &N);
+    fputs("\n", out);
+    if (uses_powi(p))
+        fprintf(out,
+                "/* x^e for an integer e >= 2, by squaring */\n"
+                "static double %s_powi(double x, int e)\n"
+                "{\n"
+                "    double r = 1.0;\n"
+                "    for (; e > 0; e >>= 1, x *= x)\n"
+                "        if (e & 1)\n"
+                "            r *= x;\n"
+                "    return r;\n"
+                "}\n\n",
+                N.prefix);
+    unsigned char *live = malloc((size_t)p->nins + 1);
+    const char **role = calloc((size_t)p->nins + 1, sizeof *role);
+    char **owned = calloc((size_t)p->nins + 1, sizeof *owned);
+    if (!live || !role || !owned)
+        abort();
+    for (int i = 0; i < p->noutputs; i++) {
+        Ctx C = {out, p, &N, &p->outputs[i], live, 0, role};
+        plan_live(p, i, live);
+        memset(role, 0, sizeof *role * (size_t)p->nins);
+        set_roles(p, C.o, role, owned);
+        fprintf(out, "/* ---- %s (line %d) ---- */\n\n", C.o->name, C.o->line);
+        emit_one(&C);
+        emit_forward(&C, ONE);
+        emit_batch(&C);
+        emit_forward(&C, BATCH);
+    }
+    for (int r = 0; r < p->nins; r++)
+        free(owned[r]);
+    free(owned);
+    free(role);
+    free(live);
+    names_clear(&N);
+}
+
+void emit_c_header(FILE *out, const Plan *p, const char *prefix,
+                   const char *source)
+{
+    Names N;
+    names_init(&N, p, prefix);
+    banner(out, p, &N, source, "Header");
+    char *guard = malloc(strlen(N.prefix) + 16);
+    if (!guard)
+        abort();
+    size_t k = 0;
+    for (const char *s = N.prefix; *s; s++)
+        guard[k++] = (char)toupper((unsigned char)*s);
+    strcpy(guard + k, "_POINTCALC_H");
+    fprintf(out, "#ifndef %s\n#define %s\n\n#include <stddef.h>\n\n", guard,
+            guard);
+    fputs("#ifdef __cplusplus\nextern \"C\" {\n#endif\n\n", out);
+    prototypes(out, p, &N);
+    fputs("\n#ifdef __cplusplus\n}\n#endif\n\n", out);
+    fprintf(out, "#endif /* %s */\n", guard);
+    free(guard);
+    names_clear(&N);
+}

@@ -1,0 +1,34 @@
+/*
+ * emit_c.h - Plan -> C99 (contract section 5).
+ *
+ * For every output M of scheme NAME (NAME = --prefix when given):
+ *
+ *   void   NAME_M(params, consts, points, int dim, double *out);
+ *   void   NAME_M_batch(size_t n, param arrays, consts, points, int dim,
+ *                       double *out);
+ *   int    NAME_M_checked(... as NAME_M ...);            0 ok, 1 pole
+ *   size_t NAME_M_batch_checked(... as NAME_M_batch ...,
+ *                               unsigned char *status);  number of poles
+ *
+ * At a pole (a denominator of the reduced equation is 0) every coordinate
+ * is NaN; the _checked variants also report it (docs/codegen.md).  The code
+ * needs only <math.h> and <stddef.h>.
+ */
+#ifndef PC_EMIT_C_H
+#define PC_EMIT_C_H
+
+#include <stdio.h>
+
+#include "runtime/plan.h"
+
+/* prefix: names' prefix (NULL: the scheme name, made a C identifier);
+ * source: the scheme file named in the banner (may be NULL). */
+void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source);
+/* The matching header: include guard and the prototypes. */
+void emit_c_header(FILE *out, const Plan *p, const char *prefix,
+                   const char *source);
+
+/* 1 if s is usable as a --prefix (a C identifier, not a keyword). */
+int emit_c_valid_prefix(const char *s);
+
+#endif

@@ -1,0 +1,104 @@
+/*
+ * libpointcalc.h - pointcalc as a C library (docs/api.md).
+ *
+ *   pc_scheme_parse / pc_scheme_load   text -> exact reduced equations
+ *   pc_weight_str                      a weight as text
+ *   pc_compile                         equations -> numeric plan
+ *   pc_eval                            plan -> coordinates, n samples
+ *   pc_emit_c                          equations -> C source (as emit-c)
+ *
+ * Link with build/libpointcalc.a -lflint -lgmp -lm.  Nothing is ever
+ * printed: diagnostics come back as text.  Strings returned by the library
+ * are malloc'ed; release them with free().  Objects are independent of each
+ * other (a plan outlives its scheme); none is thread-safe to share while
+ * being freed, but distinct objects may be used from distinct threads.
+ */
+#ifndef LIBPOINTCALC_H
+#define LIBPOINTCALC_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pc_scheme pc_scheme; // a derived scheme (exact)
+typedef struct pc_plan pc_plan;     // its numeric program
+
+typedef enum pc_kind {
+    PC_SCALAR, // a rational function of params and consts
+    PC_POINT,  // weights sum to 1
+    PC_VECTOR, // weights sum to 0
+} pc_kind;
+
+enum {
+    PC_OK = 0,
+    PC_EINVAL = -1, // a bad argument (index out of range, missing point...)
+};
+
+/* Derives a scheme from text (len bytes; `name` is the file name used in
+ * diagnostics and as the default scheme name).  On error returns NULL and,
+ * when diagnostics is not NULL, *diagnostics receives the messages in the
+ * FILE:LINE:COL: error: format (free() it; set to NULL on success). */
+pc_scheme *pc_scheme_parse(const char *name, const char *text, size_t len,
+                           char **diagnostics);
+/* Same, reading the file at path. */
+pc_scheme *pc_scheme_load(const char *path, char **diagnostics);
+void pc_scheme_free(pc_scheme *s);
+
+/* Names, in declaration order; indices are 0-based. */
+const char *pc_scheme_name(const pc_scheme *s);
+int pc_npoints(const pc_scheme *s);
+const char *pc_point_name(const pc_scheme *s, int i);
+int pc_nparams(const pc_scheme *s);
+const char *pc_param_name(const pc_scheme *s, int i);
+int pc_nconsts(const pc_scheme *s);
+const char *pc_const_name(const pc_scheme *s, int i);
+int pc_noutputs(const pc_scheme *s);
+const char *pc_output_name(const pc_scheme *s, int i);
+pc_kind pc_output_kind(const pc_scheme *s, int i);
+int pc_output_line(const pc_scheme *s, int i); // definition line
+/* index of the output / point called name, or -1 */
+int pc_find_output(const pc_scheme *s, const char *name);
+int pc_find_point(const pc_scheme *s, const char *name);
+
+/* The weight of base point `point` in output `output` as reduced text
+ * ("-(t-1)^3/(2*t^2-2*t+1)" or an expanded equivalent; "0" when the point
+ * does not occur); for a scalar output pass point = -1 for its value.
+ * NULL on a bad index.  free() the result. */
+char *pc_weight_str(const pc_scheme *s, int output, int point);
+
+/* Lowers every output to one numeric plan.  NULL if the scheme uses
+ * something that cannot be evaluated numerically yet. */
+pc_plan *pc_compile(const pc_scheme *s);
+void pc_plan_free(pc_plan *p);
+/* The plan's text dump (as `emit-c --dump-plan`).  free() it. */
+char *pc_plan_dump(const pc_plan *p);
+
+/* Evaluates output `output` at n samples:
+ *   params[i]  n values of param i (pc_nparams arrays)
+ *   consts[i]  the value of const i (may be NULL when there are none)
+ *   points[i]  dim coordinates of base point i (NULL allowed for points the
+ *              output does not use)
+ *   out        n*dim doubles, row-major (n for a scalar output)
+ *   status     NULL, or n flags: 1 where the sample is a pole
+ * At a pole (a denominator of the reduced equation is 0) the sample's
+ * coordinates are NaN.  Returns PC_OK or PC_EINVAL; *npoles (if not NULL)
+ * receives the number of pole samples. */
+int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
+            const double *consts, const double *const *points, int dim,
+            double *out, unsigned char *status, size_t *npoles);
+
+/* C99 source as `pointcalc emit-c` writes it (prefix NULL: scheme name).
+ * NULL on failure (bad prefix, atoms).  free() it. */
+char *pc_emit_c(const pc_scheme *s, const char *prefix);
+
+/* Releases FLINT's global caches; call once before exit for a clean
+ * valgrind report. */
+void pc_cleanup(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,38 @@
+/*
+ * eval.h - the Plan interpreter: numeric values of a scheme's outputs
+ * without a C compiler at run time.
+ *
+ * Samples are processed in blocks of PLAN_BLOCK: every instruction runs over
+ * a whole block (a fixed-length loop the compiler vectorises), uniform
+ * instructions (no param dependence) run once per call, and the weights are
+ * then applied to the coordinates column by column.
+ *
+ * Pole convention (docs/codegen.md): a sample where a denominator of the
+ * output's reduced equation evaluates to 0 gets NaN in every coordinate,
+ * status[i] = 1, and is counted in the return value.
+ */
+#ifndef PC_EVAL_H
+#define PC_EVAL_H
+
+#include <stddef.h>
+
+#include "runtime/plan.h"
+
+enum { PLAN_BLOCK = 128 }; // samples per block (a multiple of 8)
+
+/* Evaluates output o of p at n samples.
+ *   params[i]  the n values of param i (declaration order)
+ *   consts[i]  the value of const i
+ *   points[i]  dim coordinates of base point i; may be NULL for points the
+ *              output does not use (plan_output_uses_point)
+ *   out        n*dim doubles, row-major (n doubles for a scalar output)
+ *   status     n flags (1 = pole) or NULL
+ * Returns the number of pole samples. */
+size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
+                 const double *consts, const double *const *points, int dim,
+                 double *out, unsigned char *status);
+
+/* 1 if output o has a non-zero weight on base point `point`. */
+int plan_output_uses_point(const Plan *p, int o, int point);
+
+#endif

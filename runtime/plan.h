@@ -1,0 +1,128 @@
+/*
+ * plan.h - the Plan: a flat, register-based numeric program that computes
+ * the weights of a scheme's reduced point equations.  It is the one IR that
+ * both back ends read: codegen/emit_c.c prints it as C, runtime/eval.c
+ * interprets it.  runtime/ is FLINT-free; codegen/lower.c is the only bridge
+ * that turns exact polynomials into a Plan.
+ *
+ *   register i  =  the value of instruction i  (SSA: each written once)
+ *
+ * Instructions are appended in dependency order, so the list is already a
+ * schedule.  The builder (plan_node) hash-conses: asking twice for the same
+ * (op, a, b) returns the same register, and operations on constants are
+ * folded.  A register is *uniform* when it depends on no param (only on
+ * numeric constants and the scheme's consts): back ends compute uniform
+ * registers once per call, the others once per sample.
+ *
+ * An output M = sum_k w_k * P_k lists its weight slots (point index,
+ * register) and a `bad` register: the sum of POLE flags over the
+ * denominators of its equation, non-zero exactly where a denominator
+ * evaluates to 0.  There the back ends write NaN coordinates and report the
+ * sample (docs/codegen.md).  A scalar output has one slot with point -1.
+ */
+#ifndef PC_PLAN_H
+#define PC_PLAN_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+/* X(name, number of register operands, C operator or NULL): one comment of
+ * semantics per opcode, d = the instruction's own register. */
+#define PLAN_OPS(X)                                                            \
+    X(CONST, 0, NULL) /* d = consts[a]   (a literal from the constant pool) */ \
+    X(INPUT, 0, NULL) /* d = input a: param a, or const a - nparams        */  \
+    X(NEG, 1, "-")    /* d = -r[a]                                          */ \
+    X(ADD, 2, "+")    /* d = r[a] + r[b]                                    */ \
+    X(SUB, 2, "-")    /* d = r[a] - r[b]                                    */ \
+    X(MUL, 2, "*")    /* d = r[a] * r[b]                                    */ \
+    X(DIV, 2, "/")    /* d = r[a] / r[b]   (b is checked by a POLE first)   */ \
+    X(POWI, 1, NULL)  /* d = r[a]^b, integer b >= 2 (square and multiply)  */  \
+    X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */
+
+typedef enum PlanOp {
+#define PLAN_ENUM(name, nargs, cop) PLAN_##name,
+    PLAN_OPS(PLAN_ENUM)
+#undef PLAN_ENUM
+        PLAN_NOPS
+} PlanOp;
+
+typedef struct PlanIns {
+    uint8_t op;      // PlanOp
+    uint8_t uniform; // 1: depends on no param (computed once per call)
+    int32_t a, b;    // operands: registers, or pool/input index, exponent
+    int32_t line;    // scheme line of the output that first needed it
+} PlanIns;
+
+typedef enum PlanKind {
+    PLAN_SCALAR, // one value: slot 0 with point -1
+    PLAN_POINT,  // weights sum to 1
+    PLAN_VECTOR, // weights sum to 0
+} PlanKind;
+
+typedef struct PlanOutput {
+    char *name; // owned
+    PlanKind kind;
+    int line;   // definition line in the scheme
+    int nterms; // weight slots
+    int *point; // owned: base point index of slot k (-1 for a scalar)
+    int *reg;   // owned: register holding weight k
+    int bad;    // register of the pole flag sum, or -1 when none can vanish
+} PlanOutput;
+
+typedef struct Plan {
+    char *name; // scheme name (owned): prefix of generated C names
+    int nparams, nconsts, npoints;
+    char **params, **consts, **points; // owned names, declaration order
+    int nins, ains;
+    PlanIns *ins; // the program
+    int nk, ak;
+    double *k; // constant pool
+    int noutputs;
+    PlanOutput *outputs;
+    /* builder state */
+    int32_t *hash; // open addressing table of instruction indices, or NULL
+    int hcap;
+    int line; // line stamped on new instructions
+} Plan;
+
+/* Plan with the given names (copied); no instructions, no outputs. */
+Plan *plan_new(const char *name, int nparams, const char *const *params,
+               int nconsts, const char *const *consts, int npoints,
+               const char *const *points);
+void plan_free(Plan *p);
+
+/* Builder.  Each returns a register; equal requests give equal registers,
+ * constant operands are folded, trivial identities (x*1, x+0, --x) are
+ * simplified. */
+int plan_const(Plan *p, double v);
+int plan_input(Plan *p, int index); // params then consts
+int plan_node(Plan *p, PlanOp op, int a, int b);
+int plan_neg(Plan *p, int a);
+int plan_add(Plan *p, int a, int b);
+int plan_sub(Plan *p, int a, int b);
+int plan_mul(Plan *p, int a, int b);
+int plan_div(Plan *p, int a, int b);
+int plan_pow(Plan *p, int a, long e); // e >= 0; shares the powers it builds
+int plan_pole(Plan *p, int den);
+/* Appends an output; consumes nothing (arrays are copied). */
+void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
+                     int nterms, const int *point, const int *reg, int bad);
+
+/* Removes instructions no output needs and renumbers (keeps the order). */
+void plan_prune(Plan *p);
+
+/* live[i] = 1 for every instruction output `o` needs (all outputs: o < 0). */
+void plan_live(const Plan *p, int o, unsigned char *live);
+
+/* Deterministic text dump: one instruction per line, then the outputs. */
+void plan_dump(FILE *out, const Plan *p);
+
+/* Name of an opcode ("mul"); its number of register operands. */
+const char *plan_op_name(PlanOp op);
+int plan_op_nargs(PlanOp op);
+
+/* Index of the output called name, or -1. */
+int plan_find_output(const Plan *p, const char *name);
+
+#endif

@@ -1,0 +1,553 @@
+/*
+ * test_emit_c.c - differential tests of the two back ends (house style 26c).
+ *
+ * For every scheme in examples/ (and a few inline edge cases) the
+ * reduced equations are lowered to a Plan, printed as C with a header, and
+ * compiled with `cc -std=c99 -Wall -Wextra -Werror -O2` into a shared
+ * object together with a small wrapper that calls the generated functions
+ * with fixed-arity arguments.  At sample parameter values (dyadic, so exact
+ * in binary) every output is then computed four ways and compared:
+ *
+ *   exact      ratfun_evaluate_fmpq of every weight, coordinates in Q
+ *   NAME_M / NAME_M_checked            (generated, one sample)
+ *   NAME_M_batch / NAME_M_batch_checked (generated, n samples, > 1 block)
+ *   plan_eval                           (the runtime interpreter)
+ *
+ * in dimensions 1, 2, 3, 7 and npoints (with the unit points e_k, whose
+ * coordinates are the weights themselves): |got - exact| <= 1e-12 times
+ * max(|exact|, sum |w_i P_i|).  A sample where an exact weight has a pole
+ * must come out NaN with status 1 everywhere.
+ */
+/* cmocka.h needs these first, in this order */
+// clang-format off
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+// clang-format on
+
+#include <dirent.h>
+#include <dlfcn.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <flint/flint.h>
+#include <flint/fmpq.h>
+
+#include "codegen/emit_c.h"
+#include "codegen/lower.h"
+#include "compiler/derive.h"
+#include "runtime/eval.h"
+
+#define REL_TOL 1e-12
+#define NBATCH 300 // > 2 blocks of the generated code (64) and runtime (128)
+
+typedef int (*one_fn)(const double *prm, const double *cst,
+                      const double *const *pts, int dim, double *out,
+                      int checked);
+typedef size_t (*batch_fn)(size_t n, const double *const *prm,
+                           const double *cst, const double *const *pts, int dim,
+                           double *out, unsigned char *status, int checked);
+
+/* dyadic sample values: exact as doubles */
+static const double param_vals[] = {-0.75, 0.0, 0.25, 0.5, 0.8125, 1.0, 1.5};
+static const double const_vals[] = {0.75, 0.625, 1.25, -0.5, 2.0, 0.375};
+#define NPV (int)(sizeof param_vals / sizeof *param_vals)
+#define NCV (int)(sizeof const_vals / sizeof *const_vals)
+
+static int total_checks;
+
+/* ---- compiling generated code ------------------------------------------ */
+
+typedef struct Compiled {
+    char dir[64];
+    void *so;
+} Compiled;
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static char *emit_to_string(const Plan *p, int header)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    if (header)
+        emit_c_header(m, p, "pcx", "test.pcs");
+    else
+        emit_c(m, p, "pcx", "test.pcs");
+    fclose(m);
+    return text;
+}
+
+/* wrapper: w1_O and wb_O with fixed arity call the generated pcx_NAME_* */
+static char *wrapper(const Plan *p)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    fputs("#include <stddef.h>\n#include \"gen.h\"\n", m);
+    for (int o = 0; o < p->noutputs; o++) {
+        const char *nm = p->outputs[o].name;
+        fprintf(
+            m,
+            "int w1_%d(const double *prm, const double *cst, "
+            "const double *const *pts, int dim, double *out, int checked);\n"
+            "int w1_%d(const double *prm, const double *cst, "
+            "const double *const *pts, int dim, double *out, int checked)\n"
+            "{\n    (void)prm; (void)cst; (void)pts;\n"
+            "    if (!checked) {\n        pcx_%s(",
+            o, o, nm);
+        for (int pass = 0; pass < 2; pass++) {
+            for (int i = 0; i < p->nparams; i++)
+                fprintf(m, "prm[%d], ", i);
+            for (int i = 0; i < p->nconsts; i++)
+                fprintf(m, "cst[%d], ", i);
+            for (int i = 0; i < p->npoints; i++)
+                fprintf(m, "pts[%d], ", i);
+            fputs("dim, out);\n", m);
+            if (pass == 0)
+                fprintf(m,
+                        "        return -1;\n    }\n    return pcx_%s_checked(",
+                        nm);
+        }
+        fputs("}\n", m);
+        fprintf(m,
+                "size_t wb_%d(size_t n, const double *const *prm, "
+                "const double *cst, const double *const *pts, int dim, "
+                "double *out, unsigned char *status, int checked);\n"
+                "size_t wb_%d(size_t n, const double *const *prm, "
+                "const double *cst, const double *const *pts, int dim, "
+                "double *out, unsigned char *status, int checked)\n"
+                "{\n    (void)prm; (void)cst; (void)pts;\n"
+                "    if (!checked) {\n        pcx_%s_batch(n, ",
+                o, o, nm);
+        for (int pass = 0; pass < 2; pass++) {
+            for (int i = 0; i < p->nparams; i++)
+                fprintf(m, "prm[%d], ", i);
+            for (int i = 0; i < p->nconsts; i++)
+                fprintf(m, "cst[%d], ", i);
+            for (int i = 0; i < p->npoints; i++)
+                fprintf(m, "pts[%d], ", i);
+            fputs(pass == 0 ? "dim, out);\n" : "dim, out, status);\n", m);
+            if (pass == 0)
+                fprintf(m,
+                        "        return (size_t)-1;\n    }\n"
+                        "    return pcx_%s_batch_checked(n, ",
+                        nm);
+        }
+        fputs("}\n", m);
+    }
+    fclose(m);
+    return text;
+}
+
+static void compile_plan(Compiled *c, const Plan *p)
+{
+    char path[128], cmd[512];
+    strcpy(c->dir, "/tmp/pc_emit_XXXXXX");
+    assert_non_null(mkdtemp(c->dir));
+    char *src = emit_to_string(p, 0), *hdr = emit_to_string(p, 1);
+    char *wrap = wrapper(p);
+    snprintf(path, sizeof path, "%s/gen.c", c->dir);
+    write_file(path, src);
+    snprintf(path, sizeof path, "%s/gen.h", c->dir);
+    write_file(path, hdr);
+    snprintf(path, sizeof path, "%s/wrap.c", c->dir);
+    write_file(path, wrap);
+    free(src);
+    free(hdr);
+    free(wrap);
+    /* the contract's flags, warnings are errors; the wrapper includes the
+     * header, so prototypes and definitions must agree */
+    snprintf(cmd, sizeof cmd,
+             "cd %s && cc -std=c99 -Wall -Wextra -Werror -pedantic -O2 "
+             "-fPIC -shared -o gen.so gen.c wrap.c",
+             c->dir);
+    int rc = system(cmd);
+    if (rc != 0)
+        fprintf(stderr, "compile failed, sources kept in %s\n", c->dir);
+    assert_int_equal(rc, 0);
+    snprintf(path, sizeof path, "%s/gen.so", c->dir);
+    c->so = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    assert_non_null(c->so);
+}
+
+static void compiled_clear(Compiled *c)
+{
+    static const char *const files[] = {"gen.c", "gen.h", "wrap.c", "gen.so"};
+    char path[128];
+    dlclose(c->so);
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        snprintf(path, sizeof path, "%s/%s", c->dir, files[i]);
+        unlink(path);
+    }
+    rmdir(c->dir);
+}
+
+/* ---- exact values ------------------------------------------------------- */
+
+/* exact weights of output o at vals: w[k] per plan slot k; returns 1 when
+ * some weight has a pole there */
+static int exact_weights(const Derived *d, int o, const fmpq *vals, fmpq *w,
+                         int nterms)
+{
+    const DerivedOutput *out = &d->outputs[o];
+    int pole = 0;
+    for (int k = 0; k < nterms; k++) {
+        const RatFunStruct *x =
+            out->kind == KIND_SCALAR ? out->scalar : &out->eq->terms[k].w;
+        if (ratfun_evaluate_fmpq(w + k, x, vals, &d->ring) == RATFUN_EPOLE)
+            pole = 1;
+    }
+    return pole;
+}
+
+/* r = x exactly, for x a multiple of 2^-10 */
+static void dyadic(fmpq_t r, double x)
+{
+    assert_true(x * 1024 == (double)(slong)(x * 1024));
+    fmpq_set_si(r, (slong)(x * 1024), 1024);
+}
+
+static void check_close(double got, double exact, double scale,
+                        const char *what, const char *scheme,
+                        const char *output, int sample, int coord)
+{
+    double tol = REL_TOL * fmax(fabs(exact), scale);
+    total_checks++;
+    if (!(fabs(got - exact) <= tol)) {
+        fprintf(stderr,
+                "%s: %s output %s sample %d coord %d: got %.17g, exact "
+                "%.17g (tol %g)\n",
+                scheme, what, output, sample, coord, got, exact, tol);
+        fail();
+    }
+}
+
+/* Checks every output of d/p at the samples in every dimension. */
+static void check_derived(const Derived *d, const Plan *p, const Compiled *c)
+{
+    int nv = d->ring.nvars > 0 ? (int)d->ring.nvars : 1;
+    int np = p->nparams, nc = p->nconsts, npt = p->npoints;
+    flint_rand_t rs;
+    flint_randinit(rs);
+    fmpq *vals = _fmpq_vec_init(nv);
+    double *cst = calloc((size_t)nc + 1, sizeof *cst);
+    for (int i = 0; i < nc; i++) {
+        cst[i] = const_vals[i % NCV];
+        dyadic(vals + np + i, cst[i]);
+    }
+    /* samples: param i of sample s is param_vals[(s + 2i) % NPV] */
+    int nsamples = NPV;
+    for (int o = 0; o < p->noutputs; o++) {
+        const PlanOutput *po = &p->outputs[o];
+        int scalar = po->kind == PLAN_SCALAR;
+        int nterms = po->nterms;
+        char name[64];
+        snprintf(name, sizeof name, "w1_%d", o);
+        one_fn one = (one_fn)(uintptr_t)dlsym(c->so, name);
+        snprintf(name, sizeof name, "wb_%d", o);
+        batch_fn batch = (batch_fn)(uintptr_t)dlsym(c->so, name);
+        assert_non_null(one);
+        assert_non_null(batch);
+        fmpq *w = _fmpq_vec_init(nterms ? nterms : 1);
+        static const int dims_fixed[] = {1, 2, 3, 7};
+        for (int di = 0; di < 5; di++) {
+            int dim = di < 4 ? dims_fixed[di] : npt; // last: unit points
+            if (dim < 1)
+                continue;
+            if (scalar && di > 0)
+                break;
+            /* points: dyadic coordinates in [-8, 8], or e_k */
+            double **pts = calloc((size_t)npt + 1, sizeof *pts);
+            for (int k = 0; k < npt; k++) {
+                pts[k] = malloc(sizeof **pts * (size_t)dim);
+                for (int cc = 0; cc < dim; cc++)
+                    pts[k][cc] =
+                        di < 4 ? (double)((slong)n_randint(rs, 257) - 128) / 16
+                               : (double)(k == cc);
+            }
+            int ncol = scalar ? 1 : dim;
+            double *exact = malloc(sizeof *exact * (size_t)(NBATCH * ncol));
+            double *scale = malloc(sizeof *scale * (size_t)(NBATCH * ncol));
+            int *pole = malloc(sizeof *pole * NBATCH);
+            double **prm = calloc((size_t)np + 1, sizeof *prm);
+            for (int i = 0; i < np; i++)
+                prm[i] = malloc(sizeof **prm * NBATCH);
+            /* the batch repeats the samples; exact values per sample */
+            for (int s = 0; s < NBATCH; s++) {
+                int s0 = s % nsamples;
+                for (int i = 0; i < np; i++) {
+                    prm[i][s] = param_vals[(s0 + 2 * i) % NPV];
+                    dyadic(vals + i, prm[i][s]);
+                }
+                pole[s] = exact_weights(d, o, vals, w, nterms);
+                for (int cc = 0; cc < ncol; cc++) {
+                    fmpq_t sum, t;
+                    fmpq_init(sum);
+                    fmpq_init(t);
+                    double sc = 0;
+                    for (int k = 0; k < nterms && !pole[s]; k++) {
+                        double coord = scalar ? 1.0 : pts[po->point[k]][cc];
+                        dyadic(t, coord);
+                        fmpq_mul(t, t, w + k);
+                        fmpq_add(sum, sum, t);
+                        sc += fabs(fmpq_get_d(w + k) * coord);
+                    }
+                    exact[s * ncol + cc] = fmpq_get_d(sum);
+                    scale[s * ncol + cc] = sc;
+                    fmpq_clear(t);
+                    fmpq_clear(sum);
+                }
+            }
+            /* one sample at a time, both entry points */
+            double *got = malloc(sizeof *got * (size_t)(NBATCH * ncol));
+            unsigned char *st = malloc(NBATCH);
+            for (int s = 0; s < nsamples; s++) {
+                double row[16];
+                double prow[8];
+                for (int i = 0; i < np; i++)
+                    prow[i] = prm[i][s];
+                for (int checked = 0; checked < 2; checked++) {
+                    int rc = one(prow, cst, (const double *const *)pts, dim,
+                                 row, checked);
+                    if (checked)
+                        assert_int_equal(rc, pole[s]);
+                    for (int cc = 0; cc < ncol; cc++) {
+                        if (pole[s])
+                            assert_true(isnan(row[cc]));
+                        else
+                            check_close(row[cc], exact[s * ncol + cc],
+                                        scale[s * ncol + cc], "generated",
+                                        p->name, po->name, s, cc);
+                    }
+                }
+            }
+            /* batches, generated and interpreted */
+            for (int way = 0; way < 3; way++) {
+                size_t nb;
+                memset(st, 7, NBATCH);
+                if (way < 2)
+                    nb = batch(NBATCH, (const double *const *)prm, cst,
+                               (const double *const *)pts, dim, got,
+                               way ? st : NULL, way);
+                else
+                    nb =
+                        plan_eval(p, o, NBATCH, (const double *const *)prm, cst,
+                                  (const double *const *)pts, dim, got, st);
+                size_t expect_nb = 0;
+                for (int s = 0; s < NBATCH; s++)
+                    expect_nb += (size_t)pole[s];
+                if (way > 0)
+                    assert_int_equal(nb, expect_nb);
+                for (int s = 0; s < NBATCH; s++) {
+                    if (way > 0)
+                        assert_int_equal(st[s], pole[s]);
+                    for (int cc = 0; cc < ncol; cc++) {
+                        double g = got[s * ncol + cc];
+                        if (pole[s])
+                            assert_true(isnan(g));
+                        else
+                            check_close(g, exact[s * ncol + cc],
+                                        scale[s * ncol + cc],
+                                        way < 2 ? "generated batch" : "runtime",
+                                        p->name, po->name, s, cc);
+                    }
+                }
+            }
+            free(st);
+            free(got);
+            for (int i = 0; i < np; i++)
+                free(prm[i]);
+            free(prm);
+            free(pole);
+            free(scale);
+            free(exact);
+            for (int k = 0; k < npt; k++)
+                free(pts[k]);
+            free(pts);
+        }
+        _fmpq_vec_clear(w, nterms ? nterms : 1);
+    }
+    free(cst);
+    _fmpq_vec_clear(vals, nv);
+    flint_randclear(rs);
+}
+
+static void check_scheme_text(const char *name, const char *text)
+{
+    int nerr = 0;
+    Derived *d = text ? derive_source(name, text, strlen(text), stderr, &nerr)
+                      : derive_file(name, stderr, &nerr);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    assert_non_null(p);
+    Compiled c;
+    compile_plan(&c, p);
+    check_derived(d, p, &c);
+    compiled_clear(&c);
+    plan_free(p);
+    derived_free(d);
+}
+
+/* ---- tests --------------------------------------------------------------- */
+
+static void test_emit_c_examples_match_exact_and_runtime(void **state)
+{
+    (void)state;
+    DIR *dir = opendir("examples");
+    assert_non_null(dir);
+    struct dirent *e;
+    char *names[256];
+    int n = 0;
+    while ((e = readdir(dir)) && n < 256) {
+        size_t len = strlen(e->d_name);
+        if (len > 4 && strcmp(e->d_name + len - 4, ".pcs") == 0) {
+            names[n] = malloc(len + 10);
+            snprintf(names[n], len + 10, "examples/%s", e->d_name);
+            n++;
+        }
+    }
+    closedir(dir);
+    assert_true(n >= 1);
+    for (int i = 0; i < n; i++) {
+        check_scheme_text(names[i], NULL);
+        free(names[i]);
+    }
+}
+
+/* the contract's Desargues scheme, inline: at t = 1/2 the centroid */
+static const char desargues[] = "scheme desargues_arc\n"
+                                "point A, B, C, D\n"
+                                "param t in [0, 1]\n"
+                                "P = along(A, C, t)\n"
+                                "Q = along(C, B, t)\n"
+                                "K = along(B, D, t)\n"
+                                "N = along(P, Q, t)\n"
+                                "J = along(Q, K, t)\n"
+                                "T = meet(line(P, Q), line(A, B))\n"
+                                "S = meet(line(Q, K), line(C, D))\n"
+                                "M = meet(line(S, N), line(T, J))\n"
+                                "output M\n";
+
+static void test_emit_c_desargues_centroid_at_half(void **state)
+{
+    (void)state;
+    Derived *d =
+        derive_source("d.pcs", desargues, strlen(desargues), stderr, NULL);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    Compiled c;
+    compile_plan(&c, p);
+    one_fn one = (one_fn)(uintptr_t)dlsym(c.so, "w1_0");
+    batch_fn batch = (batch_fn)(uintptr_t)dlsym(c.so, "wb_0");
+    double A[3] = {1, 2, 3}, B[3] = {-4, 5, 0.5}, C[3] = {7, -1, 2},
+           D[3] = {0, 0, 8};
+    const double *pts[4] = {A, B, C, D};
+    double half = 0.5, out[3], bout[3 * 5];
+    assert_int_equal(one(&half, NULL, pts, 3, out, 1), 0);
+    for (int k = 0; k < 3; k++)
+        assert_true(fabs(out[k] - (A[k] + B[k] + C[k] + D[k]) / 4) < 1e-15);
+    /* the whole arc: no pole anywhere (2t^2 - 2t + 1 >= 1/2) */
+    double ts[5] = {0, 0.25, 0.5, 0.75, 1};
+    const double *prm[1] = {ts};
+    unsigned char st[5];
+    assert_int_equal(batch(5, prm, NULL, pts, 3, bout, st, 1), 0);
+    for (int k = 0; k < 3; k++) {
+        assert_true(bout[k] == A[k]);       // t = 0: A
+        assert_true(bout[12 + k] == D[k]);  // t = 1: D
+        assert_true(bout[6 + k] == out[k]); // t = 1/2 as above
+    }
+    /* the plan shares one denominator and one division */
+    int ndiv = 0, npole = 0;
+    for (int i = 0; i < p->nins; i++) {
+        ndiv += p->ins[i].op == PLAN_DIV;
+        npole += p->ins[i].op == PLAN_POLE;
+    }
+    assert_int_equal(ndiv, 1);
+    assert_int_equal(npole, 1);
+    compiled_clear(&c);
+    plan_free(p);
+    derived_free(d);
+}
+
+/* names that clash with C and with the generated code; a scalar output;
+ * a const; a power above the multiplication chains (POWI); a pole */
+static const char clashes[] = "scheme clash\n"
+                              "point n, out, int, r1\n"
+                              "param dim, j\n"
+                              "const w0\n"
+                              "k = 1/(dim - w0)\n"
+                              "M = along(n, out, dim^12/(1 + dim^2))\n"
+                              "V = int - r1\n"
+                              "Z = divide(n, int, j*w0)\n"
+                              "output k, M, V, Z\n";
+
+static void test_emit_c_edge_cases_match(void **state)
+{
+    (void)state;
+    check_scheme_text("clash.pcs", clashes);
+}
+
+/* dim = w0 = 0.75 is never a sample of dim; j*w0 = -1 happens at
+ * j = -4/3 - not dyadic either; so poles are tested here */
+static const char poles[] = "scheme poles\n"
+                            "point A, B\n"
+                            "param t\n"
+                            "M = A + (B - A)/t\n"
+                            "h = 1/(t^2 - t)\n"
+                            "output M, h\n";
+
+static void test_emit_c_poles_are_nan_and_reported(void **state)
+{
+    (void)state;
+    check_scheme_text("poles.pcs", poles);
+}
+
+static void test_emit_c_is_deterministic(void **state)
+{
+    (void)state;
+    Derived *d =
+        derive_source("d.pcs", desargues, strlen(desargues), stderr, NULL);
+    Plan *p1 = lower_derived(d, stderr), *p2 = lower_derived(d, stderr);
+    char *a = emit_to_string(p1, 0), *b = emit_to_string(p2, 0);
+    assert_string_equal(a, b);
+    /* every temporary names its scheme line */
+    assert_non_null(strstr(a, "/* line 11"));
+    free(a);
+    free(b);
+    plan_free(p1);
+    plan_free(p2);
+    derived_free(d);
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    flint_cleanup_master();
+    return 0;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_emit_c_desargues_centroid_at_half),
+        cmocka_unit_test(test_emit_c_is_deterministic),
+        cmocka_unit_test(test_emit_c_edge_cases_match),
+        cmocka_unit_test(test_emit_c_poles_are_nan_and_reported),
+        cmocka_unit_test(test_emit_c_examples_match_exact_and_runtime),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, teardown);
+    fprintf(stderr, "test_emit_c: %d value comparisons\n", total_checks);
+    return rc;
+}
