@@ -29,11 +29,12 @@ BENCHES = $(patsubst bench/%.c,$(B)/bench/%,$(wildcard bench/bench_*.c))
 
 all: $(B)/pointcalc $(B)/libpointcalc.a
 
-$(B)/grammar/parser.c $(B)/grammar/parser.h: grammar/parser.y
+# grouped targets (&:): one bison run makes both files, also under -j
+$(B)/grammar/parser.c $(B)/grammar/parser.h &: grammar/parser.y
 	@mkdir -p $(@D)
 	$(BISON) -Wall -Werror --defines=$(B)/grammar/parser.h -o $(B)/grammar/parser.c $<
 
-$(B)/grammar/lexer.c $(B)/grammar/lexer.h: grammar/lexer.l $(B)/grammar/parser.h
+$(B)/grammar/lexer.c $(B)/grammar/lexer.h &: grammar/lexer.l $(B)/grammar/parser.h
 	@mkdir -p $(@D)
 	$(FLEX) --header-file=$(B)/grammar/lexer.h -o $(B)/grammar/lexer.c $<
 
@@ -64,13 +65,23 @@ $(B)/bench/%: bench/%.c $(B)/libpointcalc.a
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libpointcalc.a $(LDLIBS)
 
-tests: $(TESTS) $(B)/pointcalc
+# the library example of docs/api.md, built and run by `make check`
+$(B)/examples/api_example: examples/api_example.c $(B)/libpointcalc.a
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libpointcalc.a $(LDLIBS)
+
+tests: $(TESTS) $(B)/pointcalc $(B)/examples/api_example
 
 # Tests run from the repo root; each binary is a cmocka group.
 check: tests
 	@fail=0; for t in $(TESTS); do \
 	  echo "== $$t"; PC_BIN=$(B)/pointcalc $$t || fail=1; done; \
 	  tests/cli_test.sh $(B)/pointcalc || fail=1; \
+	  echo "== $(B)/examples/api_example"; \
+	  $(B)/examples/api_example > $(B)/examples/api_example.out && \
+	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.out && \
+	    grep -qx 'poles: 0' $(B)/examples/api_example.out \
+	    && echo "api_example: ok" || { echo "FAIL: api_example"; fail=1; }; \
 	  exit $$fail
 
 asan:
@@ -99,8 +110,15 @@ fuzz:
 	build-fuzz/fuzz_derive -max_total_time=$(FUZZ_SECONDS) -max_len=4096 \
 	  -timeout=10 -rss_limit_mb=4096 build-fuzz/corpus
 
+# PYTHON: the interpreter for bench/lambdify.py; by default the first python3
+# on PATH that has sympy and numpy (else the first with sympy)
 bench: $(BENCHES) $(B)/pointcalc
-	@for b in $(BENCHES); do $$b || exit 1; done
+	@py=$${PYTHON:-}; \
+	if [ -z "$$py" ]; then for m in 'sympy, numpy' sympy; do \
+	  for p in python3 /usr/bin/python3; do \
+	    if $$p -c "import $$m" 2>/dev/null; then py=$$p; break 2; fi; \
+	  done; done; fi; \
+	for b in $(BENCHES); do PYTHON=$$py $$b || exit 1; done
 	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
 
 format:

@@ -5,11 +5,18 @@
 set -u
 B=${1:-build}
 if ! command -v maxima >/dev/null 2>&1; then
-    echo "maxima: not installed (apt-get install maxima); side-by-side skipped"
+    echo "maxima: not installed (apt-get install maxima maxima-share); side-by-side skipped"
     exit 0
 fi
 pc=$("$B/bench/bench_derive" bench/schemes) || exit 1
-mx=$(maxima --very-quiet --batch-string='batchload("bench/maxima/bench_core.mac")$' 2>&1 | grep '^maxima ')
+mx=$(maxima --very-quiet --batch-string='batchload("bench/maxima/bench_core.mac")$' 2>&1)
+if ! echo "$mx" | grep -q '^maxima '; then
+    # printf lives in Maxima's share library (Debian: maxima-share)
+    echo "maxima: the bench script failed (is maxima-share installed?):"
+    echo "$mx" | tail -3
+    exit 0
+fi
+mx=$(echo "$mx" | grep '^maxima ')
 echo
 echo "side by side (ms per derivation; Maxima: first call (10 ms clock) and mean of repeated calls)"
 printf "%-22s %12s %12s %12s %12s %10s\n" scheme "pointcalc" "maxima 1st" "maxima mean" "ratio mean" "ratio 1st"
