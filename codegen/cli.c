@@ -102,6 +102,25 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
     if (!d)
         return 1;
     Plan *p = lower_derived(d, err);
+    int o1, o2;
+    char *clash = NULL;
+    if (p && !dump && emit_c_clash(p, prefix, &o1, &o2, &clash)) {
+        if (o1 == o2)
+            derived_error(d, err, d->outputs[o1].span,
+                          "the C function %s that emit-c would write for %s "
+                          "is a name C reserves; rename the output or give "
+                          "another --prefix",
+                          clash, d->outputs[o1].name);
+        else
+            derived_error(d, err, d->outputs[o2].span,
+                          "emit-c would write the C function %s for both %s "
+                          "(line %d) and %s; rename one of them",
+                          clash, d->outputs[o1].name, d->outputs[o1].line,
+                          d->outputs[o2].name);
+        free(clash);
+        plan_free(p);
+        p = NULL;
+    }
     derived_free(d);
     if (!p)
         return 1;
@@ -336,6 +355,15 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
                                    p->points[o->point[k]], o->name,
                                    p->points[o->point[k]]);
     }
+    for (int j = 0; j < s->nsel && s->dim == 0; j++) {
+        const PlanOutput *o = &p->outputs[s->sel[j]];
+        if (o->kind != PLAN_SCALAR)
+            return usage_error(err, eval_usage,
+                               "output %s is the zero vector (it depends on "
+                               "no base point): give at least one --at to "
+                               "set the dimension",
+                               o->name);
+    }
     /* consts */
     int *seen = calloc((size_t)(p->nconsts + p->nparams) + 1, sizeof *seen);
     if (!seen)
@@ -449,6 +477,21 @@ static void json_head(FILE *out, const Plan *p, const EvalSetup *s)
     fputs("],\n \"samples\": [", out);
 }
 
+/* " at t=0.5, u=1" for row r (nothing without params) */
+static void where(FILE *err, const Plan *p, double *const *pv, size_t r)
+{
+    for (int i = 0; i < p->nparams; i++)
+        fprintf(err, "%s %s=%.17g", i ? "," : " at", p->params[i], pv[i][r]);
+}
+
+static int finite_row(const double *v, int n)
+{
+    for (int c = 0; c < n; c++)
+        if (!isfinite(v[c]))
+            return 0;
+    return 1;
+}
+
 int eval_main(int argc, char **argv, FILE *out, FILE *err)
 {
     EvalArgs a;
@@ -495,7 +538,7 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
         if (!res[j] || !st[j])
             abort();
     }
-    size_t npoles = 0;
+    size_t npoles = 0, noverflows = 0;
     if (a.format == OUTPUT_CSV)
         csv_header(out, p, &s);
     else
@@ -515,14 +558,26 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
             for (int j = 0; j < s.nsel; j++) {
                 if (!st[j][r])
                     continue;
-                if (npoles++ < MAX_POLE_MESSAGES) {
-                    fprintf(err, "pointcalc: eval: pole of %s at",
+                if (npoles++ + noverflows < MAX_POLE_MESSAGES) {
+                    fprintf(err, "pointcalc: eval: pole of %s",
                             p->outputs[s.sel[j]].name);
-                    for (int i = 0; i < np; i++)
-                        fprintf(err, "%s %s=%.17g", i ? "," : "", p->params[i],
-                                pv[i][r]);
+                    where(err, p, pv, r);
                     fputs(": a denominator of its equation vanishes; "
                           "written as nan\n",
+                          err);
+                }
+            }
+            /* then numbers that double precision cannot hold */
+            for (int j = 0; j < s.nsel; j++) {
+                int nc = columns(p, &p->outputs[s.sel[j]], s.dim);
+                if (st[j][r] || finite_row(res[j] + r * (size_t)nc, nc))
+                    continue;
+                if (npoles + noverflows++ < MAX_POLE_MESSAGES) {
+                    fprintf(err, "pointcalc: eval: %s",
+                            p->outputs[s.sel[j]].name);
+                    where(err, p, pv, r);
+                    fputs(" is not finite in double precision (overflow "
+                          "in its equation's terms)\n",
                           err);
                 }
             }
@@ -575,9 +630,12 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
     }
     if (a.format == OUTPUT_JSON)
         fputs(rows ? "\n]}\n" : "]}\n", out);
-    if (npoles > MAX_POLE_MESSAGES)
-        fprintf(err, "pointcalc: eval: ... %zu poles in all\n", npoles);
-    if (npoles)
+    if (npoles + noverflows > MAX_POLE_MESSAGES)
+        fprintf(err,
+                "pointcalc: eval: ... %zu poles and %zu non-finite "
+                "samples in all\n",
+                npoles, noverflows);
+    if (npoles || noverflows)
         rc = 1;
 
     for (int i = 0; i < np; i++)

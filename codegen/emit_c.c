@@ -22,10 +22,14 @@
 #include "codegen/emit_c.h"
 
 #include <ctype.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-enum { BLOCK = 64 }; // samples per block in the generated batch code
+enum {
+    BLOCK = 64,   // samples per block in the generated batch code
+    PEEL_MAX = 8, // uniform factors moved from a weight to the coordinates
+};
 
 static const char *const reserved[] = {
     /* C99 keywords */
@@ -35,19 +39,25 @@ static const char *const reserved[] = {
     "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned",
     "void", "volatile", "while", "_Bool", "_Complex", "_Imaginary", "bool",
     "true", "false",
-    /* <math.h>, <stddef.h> names a user could pick */
-    "NAN", "INFINITY", "HUGE_VAL", "NULL", "size_t", "ptrdiff_t", "offsetof",
-    "wchar_t", "j0", "j1", "jn", "y0", "y1", "yn", "exp", "log", "pow", "sqrt",
-    "sin", "cos", "tan", "fabs", "floor", "ceil", "round", "gamma", "erf",
-    "fma", "fmin", "fmax", "signbit", "isnan", "isinf", "math_errhandling",
+    /* <math.h>, <stddef.h> names a user could pick (macros first) */
+    "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "NULL",
+    "math_errhandling", "fpclassify", "isfinite", "isnormal", "isgreater",
+    "isgreaterequal", "isless", "islessequal", "islessgreater", "isunordered",
+    "signbit", "isnan", "isinf", "offsetof", "size_t", "ptrdiff_t", "wchar_t",
+    "max_align_t", "float_t", "double_t", "errno", "j0", "j1", "jn", "y0",
+    "y1", "yn", "exp", "log", "pow", "sqrt", "sin", "cos", "tan", "fabs",
+    "floor", "ceil", "round", "gamma", "erf", "fma", "fmin", "fmax",
+    /* predefined outside strict ISO mode (gcc -std=gnu99) */
+    "unix", "linux", "i386",
     /* names of the generated code */
-    "n", "dim", "out", "status", "i0", "m", "j", "c", "nbad", "bad", "o", "fb",
-    NULL};
+    "n", "dim", "out", "status", "i0", "m", "j", "c", "nbad", "nb", "bad", "o",
+    "fb", NULL};
 
-/* generated names follow these shapes: r12 w3 x0 p0 pad0 k0_2 */
+/* generated names follow these shapes: r12 w3 x0 p0 pad0 s1 q1 k0_2 */
 static int internal_shape(const char *s)
 {
-    static const char *const heads[] = {"r", "w", "x", "p", "pad", "k"};
+    static const char *const heads[] = {"r", "w", "x", "p", "pad",
+                                        "s", "q", "k"};
     for (size_t h = 0; h < sizeof heads / sizeof *heads; h++) {
         size_t n = strlen(heads[h]);
         if (strncmp(s, heads[h], n) != 0 || !isdigit((unsigned char)s[n]))
@@ -64,12 +74,26 @@ static int internal_shape(const char *s)
     return 0;
 }
 
-static int is_reserved(const char *s)
+static int in_list(const char *s)
 {
     for (int i = 0; reserved[i]; i++)
         if (strcmp(reserved[i], s) == 0)
             return 1;
-    return internal_shape(s);
+    return 0;
+}
+
+/* names of macros families of <math.h> (FP_NAN, MATH_ERRNO, GNU's M_PI)
+ * and the identifiers C reserves (__x, _X) */
+static int reserved_family(const char *s)
+{
+    return strncmp(s, "FP_", 3) == 0 || strncmp(s, "MATH_", 5) == 0 ||
+           strncmp(s, "M_", 2) == 0 || strncmp(s, "__", 2) == 0 ||
+           (s[0] == '_' && isupper((unsigned char)s[1]));
+}
+
+static int is_reserved(const char *s)
+{
+    return in_list(s) || internal_shape(s) || reserved_family(s);
 }
 
 int emit_c_valid_prefix(const char *s)
@@ -79,7 +103,38 @@ int emit_c_valid_prefix(const char *s)
     for (const char *q = s; *q; q++)
         if (!(isalnum((unsigned char)*q) || *q == '_'))
             return 0;
-    return !is_reserved(s) || internal_shape(s);
+    return !in_list(s) || internal_shape(s);
+}
+
+static char *xstrdup(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *r = malloc(n);
+    if (!r)
+        abort();
+    return memcpy(r, s, n);
+}
+
+/* printf into a new string (malloc'ed) */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+static char *
+xasprintf(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        abort();
+    char *r = malloc((size_t)n + 1);
+    if (!r)
+        abort();
+    va_start(ap, fmt);
+    vsnprintf(r, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    return r;
 }
 
 /* a C identifier from any text: other characters become _, a leading
@@ -99,15 +154,25 @@ static char *identifier(const char *s)
     return r;
 }
 
+typedef enum Variant { ONE, ONE_CHECKED, BATCH, BATCH_CHECKED } Variant;
+enum { NVARIANTS = 4 };
+
+static const char *const variant_suffix[] = {"", "_checked", "_batch",
+                                             "_batch_checked"};
+
 typedef struct Names {
     char *prefix; // owned
+    char **fn;    // owned: function name of output i, variant v at 4*i + v
     char **in;    // C names of params then consts (owned)
     char **pt;    // C names of points (owned)
-    int nin, npt;
+    int nfn, nin, npt;
 } Names;
 
 static int taken(const Names *N, int nin, int npt, const char *s)
 {
+    for (int i = 0; i < N->nfn; i++)
+        if (strcmp(N->fn[i], s) == 0)
+            return 1;
     for (int i = 0; i < nin; i++)
         if (strcmp(N->in[i], s) == 0)
             return 1;
@@ -117,9 +182,17 @@ static int taken(const Names *N, int nin, int npt, const char *s)
     return 0;
 }
 
+/* the argument name of a user name: unchanged unless reserved or taken
+ * (by a function or an earlier argument), then with _ appended until free;
+ * a name of a reserved family (M_PI, __x) first gets the prefix a_ */
 static char *c_name(const Names *N, int nin, int npt, const char *user)
 {
     char *s = identifier(user);
+    if (reserved_family(s)) {
+        char *t = xasprintf("a_%s", s);
+        free(s);
+        s = t;
+    }
     while (is_reserved(s) || taken(N, nin, npt, s)) {
         size_t n = strlen(s);
         s = realloc(s, n + 2);
@@ -134,12 +207,21 @@ static char *c_name(const Names *N, int nin, int npt, const char *user)
 static void names_init(Names *N, const Plan *p, const char *prefix)
 {
     N->prefix = identifier(prefix ? prefix : p->name);
+    N->nfn = p->noutputs * NVARIANTS;
+    N->fn = calloc((size_t)N->nfn + 1, sizeof *N->fn);
     N->nin = p->nparams + p->nconsts;
     N->npt = p->npoints;
     N->in = calloc((size_t)N->nin + 1, sizeof *N->in);
     N->pt = calloc((size_t)N->npt + 1, sizeof *N->pt);
-    if (!N->in || !N->pt)
+    if (!N->fn || !N->in || !N->pt)
         abort();
+    for (int i = 0; i < p->noutputs; i++) {
+        char *oname = identifier(p->outputs[i].name);
+        for (int v = 0; v < NVARIANTS; v++)
+            N->fn[NVARIANTS * i + v] =
+                xasprintf("%s_%s%s", N->prefix, oname, variant_suffix[v]);
+        free(oname);
+    }
     for (int i = 0; i < N->nin; i++)
         N->in[i] = c_name(
             N, i, 0, i < p->nparams ? p->params[i] : p->consts[i - p->nparams]);
@@ -149,13 +231,40 @@ static void names_init(Names *N, const Plan *p, const char *prefix)
 
 static void names_clear(Names *N)
 {
+    for (int i = 0; i < N->nfn; i++)
+        free(N->fn[i]);
     for (int i = 0; i < N->nin; i++)
         free(N->in[i]);
     for (int i = 0; i < N->npt; i++)
         free(N->pt[i]);
+    free(N->fn);
     free(N->in);
     free(N->pt);
     free(N->prefix);
+}
+
+int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
+                 char **name)
+{
+    Names N;
+    int found = 0;
+    names_init(&N, p, prefix);
+    for (int a = 0; a < N.nfn && !found; a++) {
+        if (is_reserved(N.fn[a])) {
+            *o1 = *o2 = a / NVARIANTS;
+            found = 1;
+            *name = xstrdup(N.fn[a]);
+        }
+        for (int b = a + 1; b < N.nfn && !found; b++)
+            if (strcmp(N.fn[a], N.fn[b]) == 0) {
+                *o1 = a / NVARIANTS;
+                *o2 = b / NVARIANTS;
+                found = 1;
+                *name = xstrdup(N.fn[a]);
+            }
+    }
+    names_clear(&N);
+    return found;
 }
 
 /* ---- printing helpers -------------------------------------------------- */
@@ -206,33 +315,28 @@ static void line_arg(Line *L, const char *text, int last)
     L->col += len;
 }
 
-typedef enum Variant { ONE, ONE_CHECKED, BATCH, BATCH_CHECKED } Variant;
-
-static void signature(FILE *out, const Plan *p, const Names *N,
-                      const PlanOutput *o, Variant v)
+static void signature(FILE *out, const Plan *p, const Names *N, int oi,
+                      Variant v)
 {
     static const char *const ret[] = {"void ", "int ", "void ", "size_t "};
-    static const char *const suffix[] = {"", "_checked", "_batch",
-                                         "_batch_checked"};
-    char head[512], arg[300];
-    char *oname = identifier(o->name);
-    snprintf(head, sizeof head, "%s%s_%s%s(", ret[v], N->prefix, oname,
-             suffix[v]);
-    free(oname);
+    char *head = xasprintf("%s%s(", ret[v], N->fn[NVARIANTS * oi + v]);
     Line L;
     line_start(&L, out, head);
+    free(head);
     int batch = v == BATCH || v == BATCH_CHECKED;
     if (batch)
         line_arg(&L, "size_t n", 0);
     for (int i = 0; i < N->nin; i++) {
-        snprintf(arg, sizeof arg, "%s%s",
-                 batch && i < p->nparams ? "const double *" : "double ",
-                 N->in[i]);
+        char *arg = xasprintf(
+            "%s%s", batch && i < p->nparams ? "const double *" : "double ",
+            N->in[i]);
         line_arg(&L, arg, 0);
+        free(arg);
     }
     for (int i = 0; i < N->npt; i++) {
-        snprintf(arg, sizeof arg, "const double *%s", N->pt[i]);
+        char *arg = xasprintf("const double *%s", N->pt[i]);
         line_arg(&L, arg, 0);
+        free(arg);
     }
     line_arg(&L, "int dim", 0);
     line_arg(&L, "double *out", v != BATCH_CHECKED);
@@ -246,6 +350,7 @@ typedef struct Ctx {
     FILE *out;
     const Plan *p;
     const Names *N;
+    int oi; // the output's index
     const PlanOutput *o;
     unsigned char *live; // registers this output needs
     int batch;           // inputs are x0.. (loop copies) instead of names
@@ -289,9 +394,9 @@ static void instruction(const Ctx *C, int r, const char *indent)
         operand(C, x->b);
         break;
     case PLAN_POWI:
-        fprintf(out, "%s_powi(", C->N->prefix);
+        fputs("pow(", out);
         operand(C, x->a);
-        fprintf(out, ", %d)", x->b);
+        fprintf(out, ", %d.0)", x->b);
         break;
     case PLAN_POLE: /* not ?: - gcc does not if-convert that under the
                        default -ftrapping-math, and the loop would stay
@@ -360,7 +465,7 @@ static void emit_one(const Ctx *C)
 {
     FILE *out = C->out;
     const PlanOutput *o = C->o;
-    signature(out, C->p, C->N, o, ONE_CHECKED);
+    signature(out, C->p, C->N, C->oi, ONE_CHECKED);
     fputs("\n{\n", out);
     unused_args(C);
     if (o->kind != PLAN_SCALAR)
@@ -371,10 +476,10 @@ static void emit_one(const Ctx *C)
         operand(C, o->bad);
         fputs(" != 0.0) { /* pole: a denominator vanishes */\n", out);
         if (o->kind == PLAN_SCALAR)
-            fputs("        out[0] = NAN;\n", out);
+            fputs("        out[0] = (double)NAN;\n", out);
         else
             fputs("        for (c = 0; c < dim; c++)\n"
-                  "            out[c] = NAN;\n",
+                  "            out[c] = (double)NAN;\n",
                   out);
         fputs("        return 1;\n    }\n", out);
     }
@@ -397,8 +502,22 @@ static void emit_one(const Ctx *C)
     fputs("    return 0;\n}\n\n", out);
 }
 
+/* A weight slot of the batch code: w = sign * u[0] * ... * root (plan_peel);
+ * the block loop computes root, the points' coordinates are multiplied by
+ * the rest once per call (the scale sK). */
+typedef struct Slot {
+    int root, sign, nu;
+    int u[PEEL_MAX];
+} Slot;
+
+static int scaled(const Slot *s)
+{
+    return s->sign != 1 || s->nu > 0;
+}
+
 /* the coordinate loop for a known dim (2, 3) or any dim (0) */
-static void emit_apply(const Ctx *C, int dim, const char *ind)
+static void emit_apply(const Ctx *C, const Slot *slot, int dim,
+                       const char *ind)
 {
     FILE *out = C->out;
     const PlanOutput *o = C->o;
@@ -406,8 +525,12 @@ static void emit_apply(const Ctx *C, int dim, const char *ind)
         for (int k = 0; k < o->nterms; k++) {
             const char *P = C->N->pt[o->point[k]];
             fprintf(out, "%sconst double ", ind);
-            for (int c = 0; c < dim; c++)
-                fprintf(out, "%sk%d_%d = %s[%d]", c ? ", " : "", k, c, P, c);
+            for (int c = 0; c < dim; c++) {
+                fprintf(out, "%sk%d_%d = ", c ? ", " : "", k, c);
+                if (scaled(&slot[k]))
+                    fprintf(out, "s%d * ", k);
+                fprintf(out, "%s[%d]", P, c);
+            }
             fputs(";\n", out);
         }
         /* a full block gets a fixed trip count: gcc -O2 then vectorises
@@ -434,15 +557,22 @@ static void emit_apply(const Ctx *C, int dim, const char *ind)
         fprintf(out, "%s}\n", ind);
         return;
     }
-    fprintf(out, "%sfor (j = 0; j < m; j++) {\n", ind);
-    fprintf(out, "%s    double *o = out + (i0 + j) * (size_t)dim;\n", ind);
-    fprintf(out, "%s    for (c = 0; c < dim; c++)\n", ind);
-    fprintf(out, "%s        o[c] = ", ind);
+    /* any dim: coordinate by coordinate, the scaled coordinates hoisted */
+    fprintf(out, "%sfor (c = 0; c < dim; c++) {\n", ind);
+    for (int k = 0; k < o->nterms; k++) {
+        fprintf(out, "%s    const double q%d = ", ind, k);
+        if (scaled(&slot[k]))
+            fprintf(out, "s%d * ", k);
+        fprintf(out, "%s[c];\n", C->N->pt[o->point[k]]);
+    }
+    fprintf(out, "%s    double *o = out + i0 * (size_t)dim + (size_t)c;\n",
+            ind);
+    fprintf(out, "%s    for (j = 0; j < m; j++)\n", ind);
+    fprintf(out, "%s        o[j * (size_t)dim] = ", ind);
     if (o->nterms == 0)
         fputs("0.0", out);
     for (int k = 0; k < o->nterms; k++)
-        fprintf(out, "%sw%d[j] * %s[c]", k ? " + " : "", k,
-                C->N->pt[o->point[k]]);
+        fprintf(out, "%sw%d[j] * q%d", k ? " + " : "", k, k);
     fputs(";\n", out);
     fprintf(out, "%s}\n", ind);
 }
@@ -463,18 +593,49 @@ static void emit_batch(Ctx *C)
     const Plan *p = C->p;
     int scalar = o->kind == PLAN_SCALAR;
     int nslots = scalar ? 1 : o->nterms;
-    signature(out, p, C->N, o, BATCH_CHECKED);
+    Slot *slot = calloc((size_t)nslots + 1, sizeof *slot);
+    char **owned = calloc((size_t)nslots + 1, sizeof *owned);
+    if (!slot || !owned)
+        abort();
+    /* what the batch code computes: the roots of the peeled weights, their
+     * uniform factors, the pole flag (a scalar is written as it is) */
+    memset(C->live, 0, (size_t)p->nins);
+    for (int k = 0; k < nslots; k++) {
+        Slot *s = &slot[k];
+        if (scalar) {
+            s->root = o->reg[k];
+            s->sign = 1;
+        } else {
+            s->root =
+                plan_peel(p, o->reg[k], &s->sign, s->u, PEEL_MAX, &s->nu);
+        }
+        C->live[s->root] = 1;
+        for (int f = 0; f < s->nu; f++)
+            C->live[s->u[f]] = 1;
+        if (scaled(s) && !C->role[s->root]) {
+            owned[k] = xasprintf("%s, up to its factor s%d",
+                                 C->role[o->reg[k]] ? C->role[o->reg[k]]
+                                                    : "weight",
+                                 k);
+            C->role[s->root] = owned[k];
+        }
+    }
+    if (o->bad >= 0)
+        C->live[o->bad] = 1;
+    plan_live_close(p, C->live);
+
+    signature(out, p, C->N, C->oi, BATCH_CHECKED);
     fputs("\n{\n", out);
     unused_args(C);
     for (int i = 0; i < p->nparams; i++)
         if (param_used(C, i))
             fprintf(out, "    double pad%d[%d]; /* %s, tail block padded */\n",
                     i, BLOCK, C->N->in[i]);
-    for (int k = 0; k < nslots; k++)
+    for (int k = 0; k < nslots; k++) {
+        const char *r = C->role[slot[k].root];
         fprintf(out, "    double w%d[%d]; /* %s */\n", k, BLOCK,
-                scalar               ? "value"
-                : C->role[o->reg[k]] ? C->role[o->reg[k]]
-                                     : "weight");
+                scalar ? "value" : r ? r : "weight");
+    }
     if (o->bad >= 0)
         fprintf(out, "    double fb[%d]; /* pole flags */\n", BLOCK);
     fputs("    size_t i0, j, nbad = 0;\n", out);
@@ -482,11 +643,26 @@ static void emit_batch(Ctx *C)
         fputs("    int c;\n", out);
     C->batch = 0;
     instructions(C, 1, "    ");
+    for (int k = 0; k < nslots; k++) {
+        const Slot *s = &slot[k];
+        if (!scaled(s))
+            continue;
+        fprintf(out, "    const double s%d = %s", k, s->sign < 0 ? "-" : "");
+        if (s->nu == 0)
+            fputs("1.0", out);
+        for (int f = 0; f < s->nu; f++) {
+            if (f)
+                fputs(" * ", out);
+            operand(C, s->u[f]);
+        }
+        fprintf(out, "; /* factor of the weight of %s in %s */\n",
+                p->points[o->point[k]], o->name);
+    }
     fprintf(out, "    for (i0 = 0; i0 < n; i0 += %d) {\n", BLOCK);
     fprintf(out, "        const size_t m = n - i0 < %d ? n - i0 : %d;\n", BLOCK,
             BLOCK);
     if (o->bad >= 0)
-        fputs("        double nb = 0.0; /* poles in the block */\n", out);
+        fputs("        int nb = 0; /* poles in the block */\n", out);
     for (int i = 0; i < p->nparams; i++) {
         if (!param_used(C, i))
             continue;
@@ -517,11 +693,12 @@ static void emit_batch(Ctx *C)
     if (o->bad >= 0) {
         fputs("            fb[j] = ", out);
         operand(C, o->bad);
-        fputs(";\n            nb += fb[j];\n", out);
+        /* an int count: clang vectorises an int sum, not a double one */
+        fputs(";\n            nb += fb[j] != 0.0;\n", out);
     }
     for (int k = 0; k < nslots; k++) {
         fprintf(out, "            w%d[j] = ", k);
-        weight(C, k);
+        operand(C, slot[k].root);
         fputs(";\n", out);
     }
     C->batch = 0;
@@ -532,26 +709,26 @@ static void emit_batch(Ctx *C)
               out);
     } else {
         fputs("        if (dim == 3) {\n", out);
-        emit_apply(C, 3, "            ");
+        emit_apply(C, slot, 3, "            ");
         fputs("        } else if (dim == 2) {\n", out);
-        emit_apply(C, 2, "            ");
+        emit_apply(C, slot, 2, "            ");
         fputs("        } else {\n", out);
-        emit_apply(C, 0, "            ");
+        emit_apply(C, slot, 0, "            ");
         fputs("        }\n", out);
     }
     if (o->bad >= 0) {
-        fputs("        if (nb != 0.0) /* poles in this block: NaN rows */\n"
+        fputs("        if (nb != 0) /* poles in this block: NaN rows */\n"
               "            for (j = 0; j < m; j++) {\n"
               "                if (fb[j] == 0.0)\n"
               "                    continue;\n"
               "                nbad++;\n",
               out);
         if (scalar)
-            fputs("                out[i0 + j] = NAN;\n", out);
+            fputs("                out[i0 + j] = (double)NAN;\n", out);
         else
             fputs("                for (c = 0; c < dim; c++)\n"
                   "                    out[(i0 + j) * (size_t)dim + (size_t)c]"
-                  " = NAN;\n",
+                  " = (double)NAN;\n",
                   out);
         fputs(
             "            }\n"
@@ -565,22 +742,29 @@ static void emit_batch(Ctx *C)
               "                status[i0 + j] = 0;\n",
               out);
     fputs("    }\n    return nbad;\n}\n\n", out);
+    for (int k = 0; k < nslots; k++) {
+        if (owned[k])
+            C->role[slot[k].root] = NULL;
+        free(owned[k]);
+    }
+    free(owned);
+    free(slot);
 }
 
-/* the call of `callee` with the arguments of the variant being defined */
+/* the call of the _checked variant with the arguments of the variant v
+ * (ONE or BATCH) being defined */
 static void emit_forward(const Ctx *C, Variant v)
 {
     FILE *out = C->out;
-    char *oname = identifier(C->o->name);
     int batch = v == BATCH;
-    char head[512];
-    signature(out, C->p, C->N, C->o, v);
-    snprintf(head, sizeof head, "    (void)%s_%s%s(", C->N->prefix, oname,
-             batch ? "_batch_checked" : "_checked");
-    free(oname);
+    signature(out, C->p, C->N, C->oi, v);
+    char *head = xasprintf(
+        "    (void)%s(",
+        C->N->fn[NVARIANTS * C->oi + (batch ? BATCH_CHECKED : ONE_CHECKED)]);
     fputs("\n{\n", out);
     Line L;
     line_start(&L, out, head);
+    free(head);
     if (batch)
         line_arg(&L, "n", 0);
     for (int i = 0; i < C->N->nin; i++)
@@ -598,20 +782,15 @@ static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
                       char **owned)
 {
     for (int k = 0; k < o->nterms; k++) {
-        char buf[300];
         int r = o->reg[k];
         if (p->ins[r].op == PLAN_CONST || p->ins[r].op == PLAN_INPUT)
             continue;
-        if (o->point[k] < 0)
-            snprintf(buf, sizeof buf, "value of %s", o->name);
-        else
-            snprintf(buf, sizeof buf, "weight of %s in %s",
-                     p->points[o->point[k]], o->name);
         free(owned[r]);
-        owned[r] = malloc(strlen(buf) + 1);
-        if (!owned[r])
-            abort();
-        strcpy(owned[r], buf);
+        if (o->point[k] < 0)
+            owned[r] = xasprintf("value of %s", o->name);
+        else
+            owned[r] = xasprintf("weight of %s in %s", p->points[o->point[k]],
+                                 o->name);
         role[r] = owned[r];
     }
     if (o->bad >= 0 && p->ins[o->bad].op != PLAN_CONST) {
@@ -626,6 +805,9 @@ static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
         if (!role[r] && x->op == PLAN_DIV && p->ins[x->a].op == PLAN_CONST &&
             p->k[p->ins[x->a].a] == 1)
             role[r] = "1/denominator";
+        if (x->op == PLAN_POLE && !role[x->a] &&
+            p->ins[x->a].op != PLAN_INPUT && p->ins[x->a].op != PLAN_CONST)
+            role[x->a] = "denominator factor";
     }
 }
 
@@ -671,21 +853,11 @@ static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
 
 static void prototypes(FILE *out, const Plan *p, const Names *N)
 {
-    for (int i = 0; i < p->noutputs; i++) {
-        const PlanOutput *o = &p->outputs[i];
+    for (int i = 0; i < p->noutputs; i++)
         for (int v = ONE; v <= BATCH_CHECKED; v++) {
-            signature(out, p, N, o, (Variant)v);
+            signature(out, p, N, i, (Variant)v);
             fputs(";\n", out);
         }
-    }
-}
-
-static int uses_powi(const Plan *p)
-{
-    for (int r = 0; r < p->nins; r++)
-        if (p->ins[r].op == PLAN_POWI)
-            return 1;
-    return 0;
 }
 
 void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
@@ -696,25 +868,13 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
     fputs("#include <math.h>\n#include <stddef.h>\n\n", out);
     prototypes(out, p, &N);
     fputs("\n", out);
-    if (uses_powi(p))
-        fprintf(out,
-                "/* x^e for an integer e >= 2, by squaring */\n"
-                "static double %s_powi(double x, int e)\n"
-                "{\n"
-                "    double r = 1.0;\n"
-                "    for (; e > 0; e >>= 1, x *= x)\n"
-                "        if (e & 1)\n"
-                "            r *= x;\n"
-                "    return r;\n"
-                "}\n\n",
-                N.prefix);
     unsigned char *live = malloc((size_t)p->nins + 1);
     const char **role = calloc((size_t)p->nins + 1, sizeof *role);
     char **owned = calloc((size_t)p->nins + 1, sizeof *owned);
     if (!live || !role || !owned)
         abort();
     for (int i = 0; i < p->noutputs; i++) {
-        Ctx C = {out, p, &N, &p->outputs[i], live, 0, role};
+        Ctx C = {out, p, &N, i, &p->outputs[i], live, 0, role};
         plan_live(p, i, live);
         memset(role, 0, sizeof *role * (size_t)p->nins);
         set_roles(p, C.o, role, owned);

@@ -28,6 +28,13 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source);
 void emit_c_header(FILE *out, const Plan *p, const char *prefix,
                    const char *source);
 
+/* 1 when two outputs would generate the same C function name (*o1 < *o2,
+ * e.g. outputs M and M_batch: NAME_M_batch), or a name C reserves (*o1 ==
+ * *o2); *name receives it (free() it).  0 when every name is usable.
+ * emit_c's output compiles only when this is 0. */
+int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
+                 char **name);
+
 /* 1 if s is usable as a --prefix (a C identifier, not a keyword). */
 int emit_c_valid_prefix(const char *s);
 

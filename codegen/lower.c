@@ -19,18 +19,26 @@
  */
 #include "codegen/lower.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <flint/fmpq.h>
 #include <flint/fmpz_mpoly_factor.h>
 
-enum { FACTOR_MAX_TERMS = 400 }; // bigger polynomials are not factored
+enum {
+    FACTOR_MAX_TERMS = 400,   // bigger polynomials are not factored ...
+    FACTOR_MAX_DEGREE = 400,  // ... nor those of higher degree
+    DEGREE_MAX = 1 << 24,     // beyond this degree no plan is made
+};
 
 typedef struct Lower {
     Plan *p;
     const Ring *r;
     slong nparams, nconsts;
+    LowerError error; // first unrepresentable coefficient ...
+    slong error_exp10; // ... and its decimal exponent (about)
+    int flush;         // 1: coefficients below the double range become 0
 } Lower;
 
 typedef struct Factor {
@@ -92,17 +100,91 @@ static int cmp_factor(const void *x, const void *y)
     return (a->reg > b->reg) - (a->reg < b->reg);
 }
 
-/* the product of the factors (not the constant), in register order so that
- * equal products give equal registers */
-static int factored_product(Lower *L, Factored *F)
+/* the product of the factors (not the constant) that are uniform (1) or
+ * vary with the params (0), in register order so that equal products give
+ * equal registers.  Weights are built as varying * uniform * constant, so
+ * the uniform part is computed once per call and the back ends can move
+ * it, with the constant, onto the points' coordinates (plan_peel). */
+static int factored_product(Lower *L, Factored *F, int uniform)
 {
     int acc = plan_const(L->p, 1);
     if (F->n > 1)
         qsort(F->f, (size_t)F->n, sizeof *F->f, cmp_factor);
     for (slong i = 0; i < F->n; i++)
-        if (F->f[i].exp > 0)
+        if (F->f[i].exp > 0 && L->p->ins[F->f[i].reg].uniform == uniform)
             acc = plan_mul(L->p, acc, plan_pow(L->p, F->f[i].reg, F->f[i].exp));
     return acc;
+}
+
+LowerError lower_q_to_double(double *res, const fmpq_t q)
+{
+    if (fmpq_is_zero(q)) {
+        *res = 0;
+        return LOWER_OK;
+    }
+    fmpz_t n, d, quo, rem;
+    fmpz_init(n);
+    fmpz_init(d);
+    fmpz_init(quo);
+    fmpz_init(rem);
+    /* m = |q| 2^-e rounded, with 2^52 <= |q| 2^-e < 2^53 (or e = -1074,
+     * the subnormal grid) */
+    slong e = (slong)fmpz_bits(fmpq_numref(q)) -
+              (slong)fmpz_bits(fmpq_denref(q)) - 53;
+    LowerError st = LOWER_OK;
+    if (e > 1100) {
+        st = LOWER_OVERFLOW;
+        goto done;
+    }
+    for (;;) {
+        if (e < -1074)
+            e = -1074;
+        fmpz_abs(n, fmpq_numref(q));
+        fmpz_set(d, fmpq_denref(q));
+        if (e >= 0)
+            fmpz_mul_2exp(d, d, (ulong)e);
+        else
+            fmpz_mul_2exp(n, n, (ulong)-e);
+        fmpz_fdiv_qr(quo, rem, n, d);
+        if (fmpz_bits(quo) <= 53)
+            break;
+        e++;
+    }
+    fmpz_mul_2exp(rem, rem, 1);
+    int c = fmpz_cmp(rem, d);
+    if (c > 0 || (c == 0 && fmpz_is_odd(quo)))
+        fmpz_add_ui(quo, quo, 1);
+    double v = ldexp(fmpz_get_d(quo), (int)e); // quo <= 2^53: exact
+    if (isinf(v))
+        st = LOWER_OVERFLOW;
+    else if (v == 0)
+        st = LOWER_UNDERFLOW;
+    *res = fmpz_sgn(fmpq_numref(q)) < 0 ? -v : v;
+done:
+    fmpz_clear(rem);
+    fmpz_clear(quo);
+    fmpz_clear(d);
+    fmpz_clear(n);
+    return st;
+}
+
+/* the register of the constant q; an unrepresentable q is recorded */
+static int const_fmpq(Lower *L, const fmpq_t q)
+{
+    double v = 0;
+    LowerError st = lower_q_to_double(&v, q);
+    if (st == LOWER_UNDERFLOW && L->flush)
+        st = LOWER_OK; // v = 0: below the precision of its polynomial
+    if (st != LOWER_OK) {
+        if (L->error == LOWER_OK) {
+            L->error = st;
+            L->error_exp10 =
+                (slong)fmpz_sizeinbase(fmpq_numref(q), 10) -
+                (slong)fmpz_sizeinbase(fmpq_denref(q), 10);
+        }
+        v = st == LOWER_OVERFLOW ? 1 : 0; // keeps building; never emitted
+    }
+    return plan_const(L->p, v);
 }
 
 /* x * c for an exact constant c */
@@ -110,7 +192,7 @@ static int mul_fmpq(Lower *L, int x, const fmpq_t c)
 {
     if (fmpq_is_one(c))
         return x;
-    return plan_mul(L->p, x, plan_const(L->p, fmpq_get_d(c)));
+    return plan_mul(L->p, x, const_fmpq(L, c));
 }
 
 /* ---- Horner form -------------------------------------------------------- */
@@ -145,7 +227,7 @@ static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
         fmpq_init(q);
         fmpz_mpoly_get_fmpz(c, P, ctx);
         fmpq_mul_fmpz(q, scale, c);
-        int reg = plan_const(L->p, fmpq_get_d(q));
+        int reg = const_fmpq(L, q);
         fmpq_clear(q);
         fmpz_clear(c);
         return reg;
@@ -198,6 +280,7 @@ static void factor_poly(Lower *L, Factored *F, const fmpz_mpoly_t P)
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, ctx);
     if (fmpz_mpoly_length(P, ctx) <= FACTOR_MAX_TERMS &&
+        fmpz_mpoly_total_degree_si(P, ctx) <= FACTOR_MAX_DEGREE &&
         fmpz_mpoly_factor(f, P, ctx)) {
         fmpq_t k;
         fmpq_init(k);
@@ -249,18 +332,31 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
                 factored_mul(&lcm, den[i].f[j].reg, den[i].f[j].exp - e);
         }
     }
+    /* the pole flag: one check per distinct irreducible factor of the
+     * denominators (their product could underflow to 0 where no factor
+     * is 0); the flags are shared with every output of the same factors */
     *bad = -1;
+    if (lcm.n > 1)
+        qsort(lcm.f, (size_t)lcm.n, sizeof *lcm.f, cmp_factor);
+    for (slong j = 0; j < lcm.n; j++) {
+        int flag = plan_pole(L->p, lcm.f[j].reg);
+        *bad = *bad < 0 ? flag : plan_add(L->p, *bad, flag);
+    }
     if (lcm.n == 0) {
         for (slong i = 0; i < n; i++)
-            reg[i] = mul_fmpq(L, factored_product(L, &num[i]), num[i].c);
+            reg[i] = mul_fmpq(L,
+                              plan_mul(L->p, factored_product(L, &num[i], 0),
+                                       factored_product(L, &num[i], 1)),
+                              num[i].c);
     } else if (n == 1) {
-        int d = factored_product(L, &den[0]);
-        *bad = plan_pole(L->p, d);
-        reg[0] = mul_fmpq(L, plan_div(L->p, factored_product(L, &num[0]), d),
-                          num[0].c);
+        int d = plan_mul(L->p, factored_product(L, &den[0], 0),
+                         factored_product(L, &den[0], 1));
+        int w = plan_div(L->p, factored_product(L, &num[0], 0), d);
+        w = plan_mul(L->p, w, factored_product(L, &num[0], 1));
+        reg[0] = mul_fmpq(L, w, num[0].c);
     } else {
-        int d = factored_product(L, &lcm);
-        *bad = plan_pole(L->p, d);
+        int d = plan_mul(L->p, factored_product(L, &lcm, 0),
+                         factored_product(L, &lcm, 1));
         int inv = plan_div(L->p, plan_const(L->p, 1), d);
         for (slong i = 0; i < n; i++) {
             /* num_i * L/d_i */
@@ -269,7 +365,8 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
                 if (e > 0)
                     factored_mul(&num[i], lcm.f[j].reg, e);
             }
-            int w = plan_mul(L->p, factored_product(L, &num[i]), inv);
+            int w = plan_mul(L->p, factored_product(L, &num[i], 0), inv);
+            w = plan_mul(L->p, w, factored_product(L, &num[i], 1));
             reg[i] = mul_fmpq(L, w, num[i].c);
         }
     }
@@ -280,6 +377,92 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
     factored_clear(&lcm);
     free(num);
     free(den);
+}
+
+/* the highest degree of x's numerator or denominator in any variable, or
+ * -1 when it does not even fit a slong */
+static slong max_degree(const Lower *L, const RatFunStruct *x)
+{
+    const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
+    slong nv = ctx->minfo->nvars, best = 0;
+    if (nv == 0)
+        return 0;
+    slong *degs = flint_malloc(sizeof *degs * (size_t)nv);
+    for (int k = 0; k < 2; k++) {
+        const fmpz_mpoly_struct *P = k ? x->den : x->num;
+        if (!fmpz_mpoly_degrees_fit_si(P, ctx)) {
+            best = -1;
+            break;
+        }
+        fmpz_mpoly_degrees_si(degs, P, ctx);
+        for (slong v = 0; v < nv; v++)
+            if (degs[v] > best)
+                best = degs[v];
+    }
+    flint_free(degs);
+    return best;
+}
+
+/* the middle of the bit sizes of P's coefficients: P 2^-mid has its
+ * largest and smallest coefficient equally far from 1 */
+static slong mid_bits(const fmpz_mpoly_t P)
+{
+    slong lo = WORD_MAX, hi = 0;
+    for (slong i = 0; i < P->length; i++) {
+        slong b = (slong)fmpz_bits(P->coeffs + i);
+        lo = b < lo ? b : lo;
+        hi = b > hi ? b : hi;
+    }
+    return P->length ? (lo + hi) / 2 : 0;
+}
+
+/* The fallback when lower_weights meets a coefficient outside the double
+ * range (10^400 t + 1, say): every numerator and denominator is lowered
+ * unfactored, in Horner form, scaled by the power of two 2^-mid that
+ * centres its coefficients' sizes on 1 (so a polynomial whose coefficients
+ * span less than ~2^2000 fits), and the two scales meet in one constant
+ * 2^(mid_n - mid_d) per weight, which must fit a double too (else the
+ * weight itself is out of range: an error) - except that in a point
+ * (weights summing to 1) a weight whose constant is below the double range
+ * while another's is not is 0 to double precision. */
+static void lower_weights_scaled(Lower *L, const RatFunStruct *const *ws,
+                                 slong n, int point, int *reg, int *bad)
+{
+    slong top = WORD_MIN; // the largest mid_n - mid_d of the weights
+    for (slong i = 0; i < n; i++) {
+        slong k = mid_bits(ws[i]->num) - mid_bits(ws[i]->den);
+        top = k > top ? k : top;
+    }
+    fmpq_t sn, sd, c;
+    fmpq_init(sn);
+    fmpq_init(sd);
+    fmpq_init(c);
+    *bad = -1;
+    for (slong i = 0; i < n; i++) {
+        slong kn = mid_bits(ws[i]->num), kd = mid_bits(ws[i]->den);
+        fmpq_one(sn);
+        fmpq_div_2exp(sn, sn, (ulong)kn);
+        fmpq_one(sd);
+        fmpq_div_2exp(sd, sd, (ulong)kd);
+        int num = horner(L, ws[i]->num, sn);
+        int den = horner(L, ws[i]->den, sd);
+        int flag = plan_pole(L->p, den);
+        *bad = *bad < 0 ? flag : plan_add(L->p, *bad, flag);
+        fmpq_one(c);
+        if (kn >= kd)
+            fmpq_mul_2exp(c, c, (ulong)(kn - kd));
+        else
+            fmpq_div_2exp(c, c, (ulong)(kd - kn));
+        L->flush = point && top > -1000 && kn - kd < -1100;
+        reg[i] = mul_fmpq(L, plan_div(L->p, num, den), c);
+        L->flush = 0;
+    }
+    if (*bad >= 0 && L->p->ins[*bad].op == PLAN_CONST &&
+        L->p->k[L->p->ins[*bad].a] == 0)
+        *bad = -1; // constant denominators only
+    fmpq_clear(c);
+    fmpq_clear(sd);
+    fmpq_clear(sn);
 }
 
 /* does x use a ring variable that is neither a param nor a const? */
@@ -307,6 +490,9 @@ Plan *lower_derived(const Derived *d, FILE *err)
     L.r = &d->ring;
     L.nparams = d->nparams;
     L.nconsts = d->nconsts;
+    L.error = LOWER_OK;
+    L.error_exp10 = 0;
+    L.flush = 0;
     L.p = plan_new(d->scheme, (int)d->nparams, (const char *const *)d->params,
                    (int)d->nconsts, (const char *const *)d->consts,
                    (int)d->npoints, (const char *const *)d->points);
@@ -328,23 +514,51 @@ Plan *lower_derived(const Derived *d, FILE *err)
             }
         }
         int atoms = 0;
-        for (slong i = 0; i < n; i++)
+        slong degree = 0;
+        for (slong i = 0; i < n; i++) {
+            slong dg = max_degree(&L, ws[i]);
             atoms |= uses_atoms(&L, ws[i]);
-        if (atoms) {
-            if (err)
-                fprintf(err,
-                        "pointcalc: output %s uses symbolic atoms that "
-                        "emit-c and eval cannot evaluate yet\n",
-                        out->name);
+            degree = dg < 0 || degree < 0 ? -1 : dg > degree ? dg : degree;
+        }
+        int bad = -1;
+        if (atoms)
+            derived_error(d, err, out->span,
+                          "%s uses symbolic atoms that emit-c and eval "
+                          "cannot evaluate yet",
+                          out->name);
+        else if (degree < 0 || degree > DEGREE_MAX)
+            derived_error(d, err, out->span,
+                          "%s cannot be evaluated numerically: its equation "
+                          "has degree %s%ld, beyond the limit of %d",
+                          out->name, degree < 0 ? "over " : "",
+                          degree < 0 ? (long)WORD_MAX : (long)degree,
+                          (int)DEGREE_MAX);
+        else {
+            L.p->line = out->line;
+            lower_weights(&L, ws, n, reg, &bad);
+            if (L.error != LOWER_OK) {
+                L.error = LOWER_OK;
+                lower_weights_scaled(&L, ws, n, out->kind == KIND_POINT,
+                                     reg, &bad);
+            }
+            if (L.error != LOWER_OK)
+                derived_error(
+                    d, err, out->span,
+                    "%s cannot be evaluated in double precision: a "
+                    "coefficient of its equation (about 10^%ld) %s",
+                    out->name, (long)L.error_exp10,
+                    L.error == LOWER_OVERFLOW
+                        ? "is beyond the largest double"
+                        : "is below the smallest double and would be 0");
+        }
+        if (atoms || degree < 0 || degree > DEGREE_MAX ||
+            L.error != LOWER_OK) {
             free(ws);
             free(point);
             free(reg);
             plan_free(L.p);
             return NULL;
         }
-        int bad = -1;
-        L.p->line = out->line;
-        lower_weights(&L, ws, n, reg, &bad);
         PlanKind kind = out->kind == KIND_SCALAR  ? PLAN_SCALAR
                         : out->kind == KIND_POINT ? PLAN_POINT
                                                   : PLAN_VECTOR;

@@ -18,12 +18,28 @@
 
 #include <stdio.h>
 
+#include <flint/fmpq.h>
+
 #include "compiler/derive.h"
 #include "runtime/plan.h"
 
-/* Lowers every output of d.  Returns NULL (with a message on err, which may
- * be NULL) when the equations use something the numeric back ends cannot
- * evaluate yet (symbolic atoms beyond params and consts). */
+/* Lowers every output of d.  Returns NULL, with an error in the contract's
+ * format (FILE:LINE:COL at the output's definition) on err (NULL: none),
+ * when an output cannot be evaluated in double precision: symbolic atoms
+ * beyond params and consts, a degree above 2^24, or a coefficient that no
+ * double holds (beyond ~1.8e308, or non-zero below ~4.9e-324). */
 Plan *lower_derived(const Derived *d, FILE *err);
+
+/* Why a coefficient cannot become a double. */
+typedef enum LowerError {
+    LOWER_OK,
+    LOWER_OVERFLOW,  // beyond the largest double
+    LOWER_UNDERFLOW, // non-zero, but it rounds to 0
+} LowerError;
+
+/* *res = q rounded to the nearest double, ties to even, subnormals
+ * included (FLINT 2.9's fmpq_get_d truncates); LOWER_OK when the result is
+ * finite and, for q != 0, non-zero. */
+LowerError lower_q_to_double(double *res, const fmpq_t q);
 
 #endif

@@ -9,6 +9,7 @@
  */
 #include "compiler/derive.h"
 
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -566,6 +567,12 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
 
     d = calloc(1, sizeof(Derived));
     d->filename = xstrdup(filename);
+    d->text = malloc(len ? len : 1);
+    if (!d->text)
+        abort();
+    if (len)
+        memcpy(d->text, text, len);
+    d->len = len;
     d->scheme = info->scheme_name ? xstrdup(info->scheme_name)
                                   : base_name(filename);
     d->npoints = info->npoints;
@@ -606,6 +613,7 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
             o->name = xstrdup(s->name);
             source_locate(&src, s->span.start, &line, &col);
             o->line = line;
+            o->span = s->span;
             pteq_init(o->eq, r);
             ratfun_init(o->scalar, r);
             if (v->is_point) {
@@ -694,7 +702,22 @@ void derived_free(Derived *d)
     free(d->consts);
     free(d->scheme);
     free(d->filename);
+    free(d->text);
     free(d);
+}
+
+void derived_error(const Derived *d, FILE *err, Span span, const char *fmt,
+                   ...)
+{
+    Source src;
+    Diag diag;
+    va_list ap;
+    source_init(&src, d->filename, d->text, d->len);
+    diag_init(&diag, &src, err);
+    va_start(ap, fmt);
+    diag_verror(&diag, span, fmt, ap);
+    va_end(ap);
+    source_clear(&src);
 }
 
 static slong find(char *const *names, slong n, const char *name)

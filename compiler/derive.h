@@ -15,6 +15,7 @@
 #include "compiler/pteq.h"
 #include "compiler/ratfun.h"
 #include "compiler/ring.h"
+#include "compiler/source.h"
 
 typedef enum Kind {
     KIND_SCALAR, // a rational function of params and consts
@@ -28,11 +29,14 @@ typedef struct DerivedOutput {
     PointEq eq;    // KIND_POINT / KIND_VECTOR: the reduced equation
     RatFun scalar; // KIND_SCALAR: the reduced value
     int line;      // 1-based line of its definition in the scheme
+    Span span;     // the defined name in its definition (for diagnostics)
 } DerivedOutput;
 
 typedef struct Derived {
     char *scheme;   // scheme name (`scheme NAME` or the file's base name)
     char *filename; // as given
+    char *text;     // owned copy of the scheme text (len bytes), so that back
+    size_t len;     // ends can report errors with the source line and caret
     slong npoints;  // base points, declaration order
     char **points;
     slong nparams; // params, declaration order: ring variables 0..nparams-1
@@ -52,6 +56,15 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
 /* Same, reading the file; an unreadable file is one error. */
 Derived *derive_file(const char *filename, FILE *err, int *nerrors);
 void derived_free(Derived *d);
+
+/* Reports an error found after derivation (a back end's: e.g. a coefficient
+ * that no double can hold) at `span` of d's text, in the contract's format
+ * (FILE:LINE:COL: error: ..., source line, caret), to err (NULL: nowhere). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+void derived_error(const Derived *d, FILE *err, Span span, const char *fmt,
+                   ...);
 
 /* Index of the output / point / param / const called name, or -1. */
 slong derived_find_output(const Derived *d, const char *name);

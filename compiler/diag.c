@@ -50,6 +50,12 @@ void diag_error(Diag *d, Span span, const char *fmt, ...)
     d->nerrors++;
 }
 
+void diag_verror(Diag *d, Span span, const char *fmt, va_list ap)
+{
+    report(d, span, "error", fmt, ap);
+    d->nerrors++;
+}
+
 void diag_note(Diag *d, Span span, const char *fmt, ...)
 {
     va_list ap;

@@ -11,6 +11,7 @@
 #ifndef PC_DIAG_H
 #define PC_DIAG_H
 
+#include <stdarg.h>
 #include <stdio.h>
 
 #include "compiler/source.h"
@@ -26,6 +27,8 @@ void diag_init(Diag *d, const Source *src, FILE *out);
 __attribute__((format(printf, 3, 4)))
 #endif
 void diag_error(Diag *d, Span span, const char *fmt, ...);
+/* diag_error with a va_list */
+void diag_verror(Diag *d, Span span, const char *fmt, va_list ap);
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif

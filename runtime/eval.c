@@ -23,7 +23,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { BL = PLAN_BLOCK };
+enum {
+    BL = PLAN_BLOCK,
+    PEEL_MAX = 8, // uniform factors moved from a weight to the coordinates
+};
 
 static void *xmalloc(size_t n)
 {
@@ -77,19 +80,10 @@ static void k_pole(double *restrict d, const double *restrict a)
         d[j] = (double)(a[j] == 0); // not ?: (see emit_c.c)
 }
 
-static double powi(double x, long e)
-{
-    double r = 1;
-    for (; e > 0; e >>= 1, x *= x)
-        if (e & 1)
-            r *= x;
-    return r;
-}
-
 static void k_powi(double *restrict d, const double *restrict a, int e)
 {
     for (int j = 0; j < BL; j++)
-        d[j] = powi(a[j], e);
+        d[j] = pow(a[j], (double)e);
 }
 
 /* acc = w * c  /  acc += w * c  /  sum of a block (pole flags) */
@@ -159,7 +153,7 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
     case PLAN_DIV:
         return val[x->a] / val[x->b];
     case PLAN_POWI:
-        return powi(val[x->a], x->b);
+        return pow(val[x->a], (double)x->b);
     case PLAN_POLE:
         return val[x->a] == 0 ? 1.0 : 0.0;
     default:
@@ -176,31 +170,32 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
     unsigned char *live = xmalloc((size_t)n);
     int *last = xmalloc(sizeof *last * (size_t)n);
     double *uval = xmalloc(sizeof *uval * (size_t)n);
-    /* peephole: a weight -x or c*x (c a constant) is read as x, and the
-     * sign or constant multiplies the point's coordinates once per call
+    /* every uniform register, once (they are few: constants, consts and
+     * what depends on them only) */
+    for (int i = 0; i < n; i++) {
+        const PlanIns *x = &p->ins[i];
+        if (!x->uniform)
+            continue;
+        if (x->op == PLAN_CONST)
+            uval[i] = p->k[x->a];
+        else if (x->op == PLAN_INPUT)
+            uval[i] = consts[x->a - p->nparams];
+        else
+            uval[i] = scalar_op(p, x, uval);
+    }
+    /* peephole (plan_peel): a weight s*u*x with s a sign and u uniform is
+     * read as x, and s*u multiplies the point's coordinates once per call
      * instead of every sample; liveness then starts from those roots */
     const PlanOutput *po = &p->outputs[o];
     g->root = xmalloc(sizeof *g->root * (size_t)(po->nterms + 1));
     g->coef = xmalloc(sizeof *g->coef * (size_t)(po->nterms + 1));
     memset(live, 0, (size_t)n);
     for (int k = 0; k < po->nterms; k++) {
-        int r = po->reg[k];
-        double c = 1;
-        for (;;) {
-            const PlanIns *x = &p->ins[r];
-            if (x->op == PLAN_NEG) {
-                c = -c;
-                r = x->a;
-            } else if (x->op == PLAN_MUL && p->ins[x->b].op == PLAN_CONST) {
-                c *= p->k[p->ins[x->b].a];
-                r = x->a;
-            } else if (x->op == PLAN_MUL && p->ins[x->a].op == PLAN_CONST) {
-                c *= p->k[p->ins[x->a].a];
-                r = x->b;
-            } else {
-                break;
-            }
-        }
+        int u[PEEL_MAX], nu, sign;
+        int r = plan_peel(p, po->reg[k], &sign, u, PEEL_MAX, &nu);
+        double c = sign;
+        for (int f = 0; f < nu; f++)
+            c *= uval[u[f]];
         g->root[k] = r;
         g->coef[k] = c;
         live[r] = 1;
@@ -219,22 +214,13 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
     g->v = xmalloc(sizeof *g->v * (size_t)n);
     g->slot = xmalloc(sizeof *g->slot * (size_t)n);
     g->nv = 0;
-    /* uniform values as scalars; last use of every varying register */
+    /* last use of every varying register */
     for (int i = 0; i < n; i++) {
         const PlanIns *x = &p->ins[i];
         g->slot[i] = -1;
         last[i] = -1;
-        if (!live[i])
+        if (!live[i] || x->uniform)
             continue;
-        if (x->uniform) {
-            if (x->op == PLAN_CONST)
-                uval[i] = p->k[x->a];
-            else if (x->op == PLAN_INPUT)
-                uval[i] = consts[x->a - p->nparams];
-            else
-                uval[i] = scalar_op(p, x, uval);
-            continue;
-        }
         int nargs = plan_op_nargs((PlanOp)x->op);
         if (nargs >= 1)
             last[x->a] = g->nv;

@@ -243,15 +243,6 @@ static int is_value(const Plan *p, int r, double v)
     return is_const(p, r, &c) && c == v;
 }
 
-static double powi(double x, long e)
-{
-    double r = 1;
-    for (; e > 0; e >>= 1, x *= x)
-        if (e & 1)
-            r *= x;
-    return r;
-}
-
 int plan_node(Plan *p, PlanOp op, int a, int b)
 {
     double x = 0, y = 0;
@@ -275,7 +266,7 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
                 return plan_const(p, x / y);
             break;
         case PLAN_POWI:
-            return plan_const(p, powi(x, b));
+            return plan_const(p, pow(x, (double)b));
         case PLAN_POLE:
             return plan_const(p, x == 0 ? 1 : 0);
         default:
@@ -344,7 +335,7 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
             return a;
         break;
     case PLAN_POWI:
-        assert(b >= 2);
+        assert(b > PLAN_POW_CHAIN);
         break;
     case PLAN_POLE:
         if (p->ins[a].op == PLAN_NEG)
@@ -388,11 +379,11 @@ int plan_pole(Plan *p, int den)
 }
 
 /* x^e by a shared multiplication chain for small e (x^3 = x^2*x and
- * x^4 = x^2*x^2 reuse x^2), one POWI above; negative powers are the
- * lowering's business (they never reach here). */
+ * x^4 = x^2*x^2 reuse x^2), one POWI above PLAN_POW_CHAIN; negative powers
+ * are the lowering's business (they never reach here). */
 int plan_pow(Plan *p, int a, long e)
 {
-    assert(e >= 0);
+    assert(e >= 0 && e <= INT32_MAX);
     if (e == 0)
         return plan_const(p, 1);
     if (e == 1)
@@ -401,13 +392,35 @@ int plan_pow(Plan *p, int a, long e)
         int r = plan_pow(p, p->ins[a].a, e);
         return e % 2 ? plan_neg(p, r) : r;
     }
-    if (e > 8)
+    if (e > PLAN_POW_CHAIN)
         return plan_node(p, PLAN_POWI, a, (int)e);
     if (e % 2 == 0) {
         int h = plan_pow(p, a, e / 2);
         return plan_mul(p, h, h);
     }
     return plan_mul(p, plan_pow(p, a, e - 1), a);
+}
+
+int plan_peel(const Plan *p, int w, int *sign, int *u, int max, int *nu)
+{
+    *sign = 1;
+    *nu = 0;
+    if (p->ins[w].uniform)
+        return w;
+    for (;;) {
+        const PlanIns *x = &p->ins[w];
+        if (x->op == PLAN_NEG) {
+            *sign = -*sign;
+            w = x->a;
+        } else if (x->op == PLAN_MUL && *nu < max &&
+                   p->ins[x->a].uniform != p->ins[x->b].uniform) {
+            int uni = p->ins[x->a].uniform ? x->a : x->b;
+            u[(*nu)++] = uni;
+            w = uni == x->a ? x->b : x->a;
+        } else {
+            return w;
+        }
+    }
 }
 
 void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
@@ -447,6 +460,11 @@ void plan_live(const Plan *p, int o, unsigned char *live)
         if (out->bad >= 0)
             live[out->bad] = 1;
     }
+    plan_live_close(p, live);
+}
+
+void plan_live_close(const Plan *p, unsigned char *live)
+{
     /* operands precede their users: one backward sweep suffices */
     for (int i = p->nins - 1; i >= 0; i--) {
         if (!live[i])

@@ -37,8 +37,12 @@
     X(SUB, 2, "-")    /* d = r[a] - r[b]                                    */ \
     X(MUL, 2, "*")    /* d = r[a] * r[b]                                    */ \
     X(DIV, 2, "/")    /* d = r[a] / r[b]   (b is checked by a POLE first)   */ \
-    X(POWI, 1, NULL)  /* d = r[a]^b, integer b >= 2 (square and multiply)  */  \
+    X(POWI, 1, NULL)  /* d = pow(r[a], b), integer b > PLAN_POW_CHAIN       */  \
     X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */
+
+/* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
+ * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
+enum { PLAN_POW_CHAIN = 32 };
 
 typedef enum PlanOp {
 #define PLAN_ENUM(name, nargs, cop) PLAN_##name,
@@ -109,11 +113,21 @@ int plan_pole(Plan *p, int den);
 void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
                      int nterms, const int *point, const int *reg, int bad);
 
+/* Splits a weight register w into  w = sign * u_0 * ... * u_{nu-1} * root,
+ * peeling negations and multiplications by uniform registers (constants,
+ * consts) off a varying w, so that a back end can multiply the points'
+ * coordinates by the uniform part once per call instead of every sample.
+ * Returns root (w itself when w is uniform or nothing peels); at most max
+ * factors go to u[], *nu receives their number, *sign is +1 or -1. */
+int plan_peel(const Plan *p, int w, int *sign, int *u, int max, int *nu);
+
 /* Removes instructions no output needs and renumbers (keeps the order). */
 void plan_prune(Plan *p);
 
 /* live[i] = 1 for every instruction output `o` needs (all outputs: o < 0). */
 void plan_live(const Plan *p, int o, unsigned char *live);
+/* Marks the operands of every marked instruction, transitively. */
+void plan_live_close(const Plan *p, unsigned char *live);
 
 /* Deterministic text dump: one instruction per line, then the outputs. */
 void plan_dump(FILE *out, const Plan *p);

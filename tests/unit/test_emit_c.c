@@ -171,7 +171,7 @@ static void compile_plan(Compiled *c, const Plan *p)
      * header, so prototypes and definitions must agree */
     snprintf(cmd, sizeof cmd,
              "cd %s && cc -std=c99 -Wall -Wextra -Werror -pedantic -O2 "
-             "-fPIC -shared -o gen.so gen.c wrap.c",
+             "-fPIC -shared -o gen.so gen.c wrap.c -lm",
              c->dir);
     int rc = system(cmd);
     if (rc != 0)
@@ -481,17 +481,21 @@ static void test_emit_c_desargues_centroid_at_half(void **state)
     derived_free(d);
 }
 
-/* names that clash with C and with the generated code; a scalar output;
- * a const; a power above the multiplication chains (POWI); a pole */
+/* names that clash with C, <math.h> macros, the generated code's locals
+ * and its function names; a scalar output; consts; a power above the
+ * multiplication chains (POWI, i.e. pow()); a pole */
 static const char clashes[] = "scheme clash\n"
-                              "point n, out, int, r1\n"
+                              "point n, out, int, r1, FP_NAN, clash_V_batch\n"
+                              "point unix, q0, s1, M_PI\n"
                               "param dim, j\n"
-                              "const w0\n"
+                              "const w0, nb\n"
                               "k = 1/(dim - w0)\n"
-                              "M = along(n, out, dim^12/(1 + dim^2))\n"
+                              "M = along(n, out, dim^40/(1 + dim^2))\n"
                               "V = int - r1\n"
-                              "Z = divide(n, int, j*w0)\n"
-                              "output k, M, V, Z\n";
+                              "Z = divide(n, int, j*w0*nb)\n"
+                              "Y = along(FP_NAN, clash_V_batch, nb*dim)\n"
+                              "X = (unix + q0 + s1 + M_PI)/4\n"
+                              "output k, M, V, Z, Y, X\n";
 
 static void test_emit_c_edge_cases_match(void **state)
 {
@@ -531,6 +535,169 @@ static void test_emit_c_is_deterministic(void **state)
     derived_free(d);
 }
 
+/* two outputs whose C function names coincide, and a name C reserves */
+static void test_emit_c_clash_detects_function_names(void **state)
+{
+    (void)state;
+    static const char src[] = "scheme f\npoint A, B\nparam t\n"
+                              "M = along(A, B, t)\nM_batch = along(B, A, t)\n"
+                              "output M, M_batch\n";
+    Derived *d = derive_source("f.pcs", src, strlen(src), stderr, NULL);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    int o1 = -1, o2 = -1;
+    char *name = NULL;
+    assert_int_equal(emit_c_clash(p, NULL, &o1, &o2, &name), 1);
+    assert_int_equal(o1, 0);
+    assert_int_equal(o2, 1);
+    assert_string_equal(name, "f_M_batch");
+    free(name);
+    /* a prefix changes the names, not the clash */
+    assert_int_equal(emit_c_clash(p, "g", &o1, &o2, &name), 1);
+    assert_string_equal(name, "g_M_batch");
+    free(name);
+    plan_free(p);
+    derived_free(d);
+    /* the Desargues arc has none */
+    d = derive_source("d.pcs", desargues, strlen(desargues), stderr, NULL);
+    p = lower_derived(d, stderr);
+    assert_int_equal(emit_c_clash(p, NULL, &o1, &o2, &name), 0);
+    plan_free(p);
+    derived_free(d);
+}
+
+/* exact value of a double as a rational */
+static void fmpq_set_double(fmpq_t r, double v)
+{
+    int e;
+    double m = frexp(v, &e); // v = m 2^e, m in [0.5, 1)
+    fmpz_t num;
+    fmpz_init(num);
+    fmpz_set_d(num, ldexp(m, 53)); // exact: an integer below 2^53
+    fmpq_set_fmpz_frac(r, num, (fmpz[]){1});
+    if (e - 53 >= 0)
+        fmpq_mul_2exp(r, r, (ulong)(e - 53));
+    else
+        fmpq_div_2exp(r, r, (ulong)(53 - e));
+    fmpz_clear(num);
+}
+
+/* lower_q_to_double is the nearest double, ties to even: |q - d| is at
+ * most the distance to either neighbour, and on a tie d's last bit is 0 */
+static void test_lower_q_to_double_rounds_to_nearest(void **state)
+{
+    (void)state;
+    flint_rand_t rs;
+    flint_randinit(rs);
+    fmpq_t q, x, dist, other;
+    fmpq_init(q);
+    fmpq_init(x);
+    fmpq_init(dist);
+    fmpq_init(other);
+    int wrong_if_truncated = 0;
+    for (int i = 0; i < 3000; i++) {
+        fmpq_randtest_not_zero(q, rs, 120 + (flint_bitcnt_t)(i % 7) * 40);
+        double d;
+        assert_int_equal(lower_q_to_double(&d, q), LOWER_OK);
+        fmpq_set_double(x, d);
+        fmpq_sub(dist, q, x);
+        fmpq_abs(dist, dist);
+        for (int s = -1; s <= 1; s += 2) {
+            double nb = nextafter(d, s * INFINITY);
+            fmpq_set_double(x, nb);
+            fmpq_sub(other, q, x);
+            fmpq_abs(other, other);
+            int c = fmpq_cmp(dist, other);
+            assert_true(c <= 0);
+            if (c == 0) { // a tie: d even
+                int e;
+                double m = frexp(d, &e);
+                assert_true(fmod(ldexp(m, 53), 2.0) == 0.0);
+            }
+        }
+        wrong_if_truncated += fmpq_get_d(q) != d;
+    }
+    /* the case FLINT 2.9's fmpq_get_d gets wrong: 2^54 + 3 */
+    fmpq_set_si(q, 18014398509481987, 1);
+    double d;
+    assert_int_equal(lower_q_to_double(&d, q), LOWER_OK);
+    assert_true(d == 18014398509481988.0);
+    assert_true(wrong_if_truncated > 0); // the test can tell the two apart
+    /* subnormals, the edges, zero */
+    fmpq_set_si(q, 1, 1);
+    fmpq_div_2exp(q, q, 1074);
+    assert_int_equal(lower_q_to_double(&d, q), LOWER_OK);
+    assert_true(d == 0x1p-1074);
+    fmpq_div_2exp(q, q, 2); // 2^-1076 rounds to 0
+    assert_int_equal(lower_q_to_double(&d, q), LOWER_UNDERFLOW);
+    fmpq_set_si(q, 3, 1);
+    fmpq_mul_2exp(q, q, 1023); // 1.5 * 2^1024
+    assert_int_equal(lower_q_to_double(&d, q), LOWER_OVERFLOW);
+    fmpq_set_si(q, -7, 3);
+    assert_int_equal(lower_q_to_double(&d, q), LOWER_OK);
+    assert_true(d == -7.0 / 3.0);
+    fmpq_zero(q);
+    assert_int_equal(lower_q_to_double(&d, q), LOWER_OK);
+    assert_true(d == 0);
+    fmpq_clear(other);
+    fmpq_clear(dist);
+    fmpq_clear(x);
+    fmpq_clear(q);
+    flint_randclear(rs);
+}
+
+/* the first line of what lower_derived reports for scheme src */
+static char *lower_error(const char *src)
+{
+    Derived *d = derive_source("x.pcs", src, strlen(src), stderr, NULL);
+    assert_non_null(d);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    Plan *p = lower_derived(d, m);
+    fclose(m);
+    assert_null(p);
+    derived_free(d);
+    char *nl = strchr(text, '\n');
+    if (nl)
+        *nl = '\0';
+    return text;
+}
+
+static void test_lower_reports_unrepresentable_equations(void **state)
+{
+    (void)state;
+    /* weights that no double holds, whatever their scaling */
+    char *e = lower_error("point A, B\nparam t\nM = A + (B - A)*10^400*t\n");
+    assert_string_equal(e, "x.pcs:3:1: error: M cannot be evaluated in double "
+                           "precision: a coefficient of its equation (about "
+                           "10^400) is beyond the largest double");
+    free(e);
+    e = lower_error("point A, B\nparam t\nV = (B - A)*t/10^400\n");
+    assert_string_equal(e, "x.pcs:3:1: error: V cannot be evaluated in double "
+                           "precision: a coefficient of its equation (about "
+                           "10^-400) is below the smallest double and would "
+                           "be 0");
+    free(e);
+    e = lower_error("param t\nb = (((t^1000)^1000)^1000)^3\n");
+    assert_string_equal(e, "x.pcs:2:1: error: b cannot be evaluated "
+                           "numerically: its equation has degree 3000000000, "
+                           "beyond the limit of 16777216");
+    free(e);
+}
+
+/* coefficients outside the double range whose polynomial is not: the
+ * scaled fallback evaluates them (t^2 + 10^-400 is t^2 in double) */
+static void test_lower_scales_out_of_range_coefficients(void **state)
+{
+    (void)state;
+    check_scheme_text("scaled.pcs", "scheme scaled\npoint A, B\nparam t\n"
+                                    "v = t^2 + 10^(-400)\n"
+                                    "M = divide(A, B, 10^350*t^2 + 10^340)\n"
+                                    "N = divide(A, B, 10^400*t)\n"
+                                    "output v, M, N\n");
+}
+
 static int teardown(void **state)
 {
     (void)state;
@@ -545,6 +712,10 @@ int main(void)
         cmocka_unit_test(test_emit_c_is_deterministic),
         cmocka_unit_test(test_emit_c_edge_cases_match),
         cmocka_unit_test(test_emit_c_poles_are_nan_and_reported),
+        cmocka_unit_test(test_emit_c_clash_detects_function_names),
+        cmocka_unit_test(test_lower_q_to_double_rounds_to_nearest),
+        cmocka_unit_test(test_lower_reports_unrepresentable_equations),
+        cmocka_unit_test(test_lower_scales_out_of_range_coefficients),
         cmocka_unit_test(test_emit_c_examples_match_exact_and_runtime),
     };
     int rc = cmocka_run_group_tests(tests, NULL, teardown);

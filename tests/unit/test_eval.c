@@ -165,6 +165,32 @@ static void test_eval_pole_prints_nan_and_exits_1(void **state)
     run_free(&r);
 }
 
+/* a value too large for double precision in the terms of a finite curve
+ * point (t^3 overflows at t = 1e103): every row printed, the sample
+ * reported, exit 1 - exit 0 means every number is finite */
+static void test_eval_overflow_is_reported(void **state)
+{
+    (void)state;
+    Run r = run("eval " DA PTS "--param t=0.5,1e103");
+    assert_int_equal(r.rc, 1);
+    assert_string_equal(r.out, "t,M.1,M.2,M.3\n0.5,0.25,0.25,0.25\n"
+                               "1e+103,nan,nan,nan\n");
+    assert_non_null(strstr(r.err, "pointcalc: eval: M at t=1e+103 is not "
+                                  "finite in double precision"));
+    assert_null(strstr(r.err, "pole"));
+    run_free(&r);
+    /* a scheme without params: no " at" */
+    write_scheme("nopar.pcs", "point A, B\nM = A + (B - A)*10^300\n");
+    char args[512];
+    snprintf(args, sizeof args, "eval %s/nopar.pcs --at A=0 --at B=1e10",
+             tmpdir);
+    r = run(args);
+    assert_int_equal(r.rc, 1);
+    assert_string_equal(r.out, "M.1\ninf\n");
+    assert_non_null(strstr(r.err, "pointcalc: eval: M is not finite"));
+    run_free(&r);
+}
+
 /* usage errors: exit 2, stderr says what, stdout stays empty */
 static void usage_error(const char *args, const char *expect)
 {
@@ -231,6 +257,24 @@ static void test_eval_usage_errors(void **state)
 static void test_eval_scheme_errors_exit_1(void **state)
 {
     (void)state;
+    /* the zero vector has no dimension of its own */
+    write_scheme("zero.pcs", "point A\nparam t\nZ = A - A\n");
+    char zargs[512];
+    snprintf(zargs, sizeof zargs, "eval %s/zero.pcs --param t=1", tmpdir);
+    usage_error(zargs, "output Z is the zero vector");
+    /* emit-c: two outputs that would make the same C function */
+    write_scheme("fnclash.pcs", "scheme f\npoint A, B\nparam t\n"
+                                "M = along(A, B, t)\n"
+                                "M_batch = along(B, A, t)\noutput M, M_batch\n");
+    snprintf(zargs, sizeof zargs, "emit-c %s/fnclash.pcs", tmpdir);
+    Run z = run(zargs);
+    assert_int_equal(z.rc, 1);
+    assert_string_equal(z.out, "");
+    assert_non_null(strstr(z.err, "fnclash.pcs:5:1: error: emit-c would write "
+                                  "the C function f_M_batch for both M (line "
+                                  "4) and M_batch; rename one of them\n"
+                                  "M_batch = along(B, A, t)\n^~~~~~~\n"));
+    run_free(&z);
     write_scheme("bad.pcs", "point A, B\nparam t\nM = along(A, X, t)\n");
     char args[512];
     snprintf(args, sizeof args, "eval %s/bad.pcs --at A=0 --param t=0", tmpdir);
@@ -362,6 +406,7 @@ int main(void)
         cmocka_unit_test(test_eval_all_outputs_and_json),
         cmocka_unit_test(test_eval_grid_last_param_fastest),
         cmocka_unit_test(test_eval_pole_prints_nan_and_exits_1),
+        cmocka_unit_test(test_eval_overflow_is_reported),
         cmocka_unit_test(test_eval_usage_errors),
         cmocka_unit_test(test_eval_scheme_errors_exit_1),
         cmocka_unit_test(test_emit_c_options),

@@ -81,9 +81,15 @@ static void test_plan_pow_shares_chains(void **state)
     assert_int_equal(p->ins[t4].b, t2);
     int t3 = plan_pow(p, t, 3);
     assert_true(p->ins[t3].a == t2 || p->ins[t3].b == t2);
+    /* up to PLAN_POW_CHAIN a chain: t^20 = (t^10)^2, t^10 = (t^5)^2 */
     int t20 = plan_pow(p, t, 20);
-    assert_int_equal(p->ins[t20].op, PLAN_POWI);
-    assert_int_equal(p->ins[t20].b, 20);
+    int t10 = plan_pow(p, t, 10);
+    assert_int_equal(p->ins[t20].op, PLAN_MUL);
+    assert_int_equal(p->ins[t20].a, t10);
+    assert_int_equal(p->ins[t20].b, t10);
+    int big = plan_pow(p, t, PLAN_POW_CHAIN + 1);
+    assert_int_equal(p->ins[big].op, PLAN_POWI);
+    assert_int_equal(p->ins[big].b, PLAN_POW_CHAIN + 1);
     assert_int_equal(plan_pow(p, t, 1), t);
     plan_free(p);
 }
