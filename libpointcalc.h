@@ -26,7 +26,8 @@ typedef struct pc_scheme pc_scheme; // a derived scheme (exact)
 typedef struct pc_plan pc_plan;     // its numeric program
 
 typedef enum pc_kind {
-    PC_SCALAR, // a rational function of params and consts
+    PC_NOKIND = -1, // pc_output_kind of a bad index
+    PC_SCALAR,      // a rational function of params and consts
     PC_POINT,  // weights sum to 1
     PC_VECTOR, // weights sum to 0
 } pc_kind;
@@ -56,8 +57,8 @@ int pc_nconsts(const pc_scheme *s);
 const char *pc_const_name(const pc_scheme *s, int i);
 int pc_noutputs(const pc_scheme *s);
 const char *pc_output_name(const pc_scheme *s, int i);
-pc_kind pc_output_kind(const pc_scheme *s, int i);
-int pc_output_line(const pc_scheme *s, int i); // definition line
+pc_kind pc_output_kind(const pc_scheme *s, int i); // PC_NOKIND: bad index
+int pc_output_line(const pc_scheme *s, int i); // definition line, -1: bad i
 /* index of the output / point called name, or -1 */
 int pc_find_output(const pc_scheme *s, const char *name);
 int pc_find_point(const pc_scheme *s, const char *name);
@@ -68,9 +69,12 @@ int pc_find_point(const pc_scheme *s, const char *name);
  * NULL on a bad index.  free() the result. */
 char *pc_weight_str(const pc_scheme *s, int output, int point);
 
-/* Lowers every output to one numeric plan.  NULL if the scheme uses
- * something that cannot be evaluated numerically yet. */
-pc_plan *pc_compile(const pc_scheme *s);
+/* Lowers every output to one numeric plan.  NULL when an output cannot be
+ * evaluated in double precision (a coefficient beyond the double range, a
+ * degree above 2^24, symbolic atoms); then, when diagnostics is not NULL,
+ * *diagnostics receives the error (FILE:LINE:COL: error: ...; free() it;
+ * set to NULL on success). */
+pc_plan *pc_compile(const pc_scheme *s, char **diagnostics);
 void pc_plan_free(pc_plan *p);
 /* The plan's text dump (as `emit-c --dump-plan`).  free() it. */
 char *pc_plan_dump(const pc_plan *p);
@@ -80,7 +84,8 @@ char *pc_plan_dump(const pc_plan *p);
  *   consts[i]  the value of const i (may be NULL when there are none)
  *   points[i]  dim coordinates of base point i (NULL allowed for points the
  *              output does not use)
- *   out        n*dim doubles, row-major (n for a scalar output)
+ *   out        n*dim doubles, row-major (n for a scalar output); it must
+ *              not overlap the params or the points
  *   status     NULL, or n flags: 1 where the sample is a pole
  * At a pole (a denominator of the reduced equation is 0) the sample's
  * coordinates are NaN.  Returns PC_OK or PC_EINVAL; *npoles (if not NULL)
@@ -90,8 +95,9 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
             double *out, unsigned char *status, size_t *npoles);
 
 /* C99 source as `pointcalc emit-c` writes it (prefix NULL: scheme name).
- * NULL on failure (bad prefix, atoms).  free() it. */
-char *pc_emit_c(const pc_scheme *s, const char *prefix);
+ * NULL on failure (a bad prefix, two outputs that make the same C function
+ * name, or as pc_compile), with *diagnostics as for pc_compile.  free() it. */
+char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics);
 
 /* Releases FLINT's global caches; call once before exit for a clean
  * valgrind report. */

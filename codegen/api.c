@@ -132,6 +132,8 @@ const char *pc_output_name(const pc_scheme *s, int i)
 
 pc_kind pc_output_kind(const pc_scheme *s, int i)
 {
+    if (i < 0 || i >= s->d->noutputs)
+        return PC_NOKIND;
     switch (s->d->outputs[i].kind) {
     case KIND_SCALAR:
         return PC_SCALAR;
@@ -144,6 +146,8 @@ pc_kind pc_output_kind(const pc_scheme *s, int i)
 
 int pc_output_line(const pc_scheme *s, int i)
 {
+    if (i < 0 || i >= s->d->noutputs)
+        return -1;
     return s->d->outputs[i].line;
 }
 
@@ -181,9 +185,27 @@ char *pc_weight_str(const pc_scheme *s, int output, int point)
     return r;
 }
 
-pc_plan *pc_compile(const pc_scheme *s)
+/* *diagnostics = what was written to m (closed here: only then is *msg
+ * final), or NULL when ok */
+static void hand_over(FILE *m, char **msg, int ok, char **diagnostics)
 {
-    Plan *p = lower_derived(s->d, NULL);
+    fclose(m);
+    if (diagnostics && !ok) {
+        *diagnostics = *msg;
+        return;
+    }
+    if (diagnostics)
+        *diagnostics = NULL;
+    free(*msg);
+}
+
+pc_plan *pc_compile(const pc_scheme *s, char **diagnostics)
+{
+    char *msg = NULL;
+    size_t mlen = 0;
+    FILE *m = open_memstream(&msg, &mlen);
+    Plan *p = lower_derived(s->d, m);
+    hand_over(m, &msg, p != NULL, diagnostics);
     if (!p)
         return NULL;
     pc_plan *r = malloc(sizeof *r);
@@ -239,18 +261,36 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
     return PC_OK;
 }
 
-char *pc_emit_c(const pc_scheme *s, const char *prefix)
+char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
 {
+    char *msg = NULL;
+    size_t mlen = 0;
+    FILE *m = open_memstream(&msg, &mlen);
+    Plan *p = NULL;
+    int o1, o2;
+    char *clash = NULL;
     if (prefix && !emit_c_valid_prefix(prefix))
-        return NULL;
-    Plan *p = lower_derived(s->d, NULL);
+        fprintf(m, "pointcalc: prefix '%s' is not a usable C identifier\n",
+                prefix);
+    else
+        p = lower_derived(s->d, m);
+    if (p && emit_c_clash(p, prefix, &o1, &o2, &clash)) {
+        derived_error(s->d, m, s->d->outputs[o2].span,
+                      "the C function %s would be written twice (outputs %s "
+                      "and %s) or is reserved in C",
+                      clash, s->d->outputs[o1].name, s->d->outputs[o2].name);
+        free(clash);
+        plan_free(p);
+        p = NULL;
+    }
+    hand_over(m, &msg, p != NULL, diagnostics);
     if (!p)
         return NULL;
     char *text = NULL;
     size_t len = 0;
-    FILE *m = open_memstream(&text, &len);
-    emit_c(m, p, prefix, s->d->filename);
-    fclose(m);
+    FILE *c = open_memstream(&text, &len);
+    emit_c(c, p, prefix, s->d->filename);
+    fclose(c);
     plan_free(p);
     return text;
 }

@@ -12,12 +12,19 @@
  *     varying registers -> weights w0[], w1[]  block: gcc -O2 vectorises it
  *     out[i][c] = sum_k wk[i] * Pk[c]          specialised for dim 2 and 3
  *
- * The pole flag (sum of POLE checks of the output's denominators) turns the
- * weights into NaN, so the coordinates of a pole sample are NaN whatever
- * the points are; the _checked variants return/count it.
+ * In the batch code each weight is peeled (plan_peel): its sign and uniform
+ * factors multiply the points' coordinates once per call (s0, s1 ...), the
+ * block loop computes only the varying rest.
  *
- * User names become C names unchanged unless they clash with a C keyword,
- * a <math.h> name or a name of the generated code; those get a trailing _.
+ * The pole flag (sum of POLE checks of the output's denominator factors)
+ * marks the samples whose coordinates are overwritten with NaN, whatever
+ * the points are; the _checked variants return/count them.
+ *
+ * User names become C argument names unchanged unless they clash with a C
+ * keyword, a <math.h>/<stddef.h> name, a generated function or a local of
+ * the generated code; those get a trailing _ (names of a reserved family,
+ * M_PI or __x, first get the prefix a_).  Function names are the prefix
+ * and the output's name; emit_c_clash reports when two coincide.
  */
 #include "codegen/emit_c.h"
 

@@ -42,7 +42,12 @@ int main(void)
         free(w);
     }
 
-    pc_plan *p = pc_compile(s);
+    pc_plan *p = pc_compile(s, &diag);
+    if (!p) { // an equation no double can hold, e.g. a coefficient 10^400
+        fputs(diag, stderr);
+        free(diag);
+        return 1;
+    }
     double t[5] = {0, 0.25, 0.5, 0.75, 1};
     double A[3] = {0, 0, 0}, B[3] = {1, 0, 0}, C[3] = {0, 1, 0},
            D[3] = {0, 0, 1};

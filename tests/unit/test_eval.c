@@ -352,8 +352,11 @@ static void test_api_roundtrip(void **state)
     char *w = pc_weight_str(s, o, 3);
     assert_non_null(strstr(w, "t^3"));
     free(w);
-    pc_plan *p = pc_compile(s);
+    assert_int_equal(pc_output_kind(s, 7), PC_NOKIND);
+    assert_int_equal(pc_output_line(s, -1), -1);
+    pc_plan *p = pc_compile(s, &diag);
     assert_non_null(p);
+    assert_null(diag);
     double ts[3] = {0, 0.5, 1}, out[9];
     double A[3] = {0, 0, 0}, B[3] = {4, 0, 0}, C[3] = {0, 4, 0},
            D[3] = {0, 0, 4};
@@ -371,11 +374,34 @@ static void test_api_roundtrip(void **state)
     char *dump = pc_plan_dump(p);
     assert_non_null(strstr(dump, "output M point"));
     free(dump);
-    char *src = pc_emit_c(s, "arc");
+    char *src = pc_emit_c(s, "arc", &diag);
     assert_non_null(strstr(src, "void arc_M_batch("));
+    assert_null(diag);
     free(src);
-    assert_null(pc_emit_c(s, "1x"));
+    assert_null(pc_emit_c(s, "1x", &diag));
+    assert_non_null(strstr(diag, "prefix '1x'"));
+    free(diag);
     pc_plan_free(p);
+    pc_scheme_free(s);
+    /* what cannot become a double comes back as a diagnostic */
+    static const char big[] = "point A, B\nparam t\nM = A + (B - A)*10^400*t\n";
+    s = pc_scheme_parse("big.pcs", big, strlen(big), &diag);
+    assert_non_null(s);
+    assert_null(pc_compile(s, &diag));
+    assert_non_null(strstr(diag, "big.pcs:3:1: error: M cannot be evaluated "
+                                 "in double precision"));
+    free(diag);
+    assert_null(pc_emit_c(s, NULL, NULL)); // diagnostics are optional
+    pc_scheme_free(s);
+    /* two outputs that make one C function name */
+    static const char two[] = "scheme f\npoint A, B\nparam t\n"
+                              "M = along(A, B, t)\nM_batch = along(B, A, t)\n"
+                              "output M, M_batch\n";
+    s = pc_scheme_parse("two.pcs", two, strlen(two), NULL);
+    assert_null(pc_emit_c(s, NULL, &diag));
+    assert_non_null(strstr(diag, "two.pcs:5:1: error: the C function "
+                                 "f_M_batch would be written twice"));
+    free(diag);
     pc_scheme_free(s);
 }
 
