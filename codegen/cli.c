@@ -126,6 +126,7 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
         return 1;
     char *ctext = NULL, *htext = NULL;
     size_t clen = 0, hlen = 0;
+    /* the header is written first: when it fails, stdout stays empty */
     FILE *m = open_memstream(&ctext, &clen);
     if (dump)
         plan_dump(m, p);
@@ -138,9 +139,9 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
         fclose(m);
     }
     plan_free(p);
-    int rc = write_text(cpath, ctext, clen, out, err);
-    if (rc == 0 && hpath)
-        rc = write_text(hpath, htext, hlen, out, err);
+    int rc = hpath ? write_text(hpath, htext, hlen, out, err) : 0;
+    if (rc == 0)
+        rc = write_text(cpath, ctext, clen, out, err);
     free(ctext);
     free(htext);
     return rc;
@@ -148,7 +149,9 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
 
 /* ---- eval ---------------------------------------------------------------- */
 
-enum { CHUNK = 4096, MAX_POLE_MESSAGES = 10 };
+/* rows per chunk: up to CHUNK, fewer for high dimensions (about 8 MB of
+ * coordinates per output at most) */
+enum { CHUNK = 4096, CHUNK_VALUES = 1 << 20, MAX_POLE_MESSAGES = 10 };
 
 typedef struct Assign {
     const char *name; // borrowed from argv (up to '=', copied)
@@ -521,6 +524,11 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
     }
 
     size_t rows = sample_grid_rows(s.specs, p->nparams);
+    size_t chunk = s.dim > 0 && CHUNK_VALUES / (size_t)s.dim < CHUNK
+                       ? CHUNK_VALUES / (size_t)s.dim
+                       : CHUNK;
+    if (chunk == 0)
+        chunk = 1;
     int np = p->nparams;
     double **pv = malloc(sizeof *pv * (size_t)(np + 1));
     double **res = malloc(sizeof *res * (size_t)(s.nsel + 1));
@@ -529,12 +537,12 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
     if (!pv || !res || !st || !row)
         abort();
     for (int i = 0; i < np; i++)
-        if (!(pv[i] = malloc(sizeof **pv * CHUNK)))
+        if (!(pv[i] = malloc(sizeof **pv * chunk)))
             abort();
     for (int j = 0; j < s.nsel; j++) {
         int nc = columns(p, &p->outputs[s.sel[j]], s.dim);
-        res[j] = malloc(sizeof **res * CHUNK * (size_t)(nc ? nc : 1));
-        st[j] = malloc(CHUNK);
+        res[j] = malloc(sizeof **res * chunk * (size_t)(nc ? nc : 1));
+        st[j] = malloc(chunk);
         if (!res[j] || !st[j])
             abort();
     }
@@ -543,8 +551,8 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
         csv_header(out, p, &s);
     else
         json_head(out, p, &s);
-    for (size_t r0 = 0; r0 < rows; r0 += CHUNK) {
-        size_t m = rows - r0 < CHUNK ? rows - r0 : CHUNK;
+    for (size_t r0 = 0; r0 < rows; r0 += chunk) {
+        size_t m = rows - r0 < chunk ? rows - r0 : chunk;
         for (size_t r = 0; r < m; r++) {
             sample_grid_row(s.specs, np, r0 + r, row);
             for (int i = 0; i < np; i++)

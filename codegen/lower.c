@@ -27,8 +27,6 @@
 #include <flint/fmpz_mpoly_factor.h>
 
 enum {
-    FACTOR_MAX_TERMS = 400,   // bigger polynomials are not factored ...
-    FACTOR_MAX_DEGREE = 400,  // ... nor those of higher degree
     DEGREE_MAX = 1 << 24,     // beyond this degree no plan is made
 };
 
@@ -279,9 +277,7 @@ static void factor_poly(Lower *L, Factored *F, const fmpz_mpoly_t P)
     }
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, ctx);
-    if (fmpz_mpoly_length(P, ctx) <= FACTOR_MAX_TERMS &&
-        fmpz_mpoly_total_degree_si(P, ctx) <= FACTOR_MAX_DEGREE &&
-        fmpz_mpoly_factor(f, P, ctx)) {
+    if (ring_factor_affordable(P, L->r) && fmpz_mpoly_factor(f, P, ctx)) {
         fmpq_t k;
         fmpq_init(k);
         fmpq_set_fmpz_frac(k, f->constant, f->constant_den);

@@ -9,6 +9,7 @@
  */
 #include "compiler/derive.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -103,6 +104,60 @@ static int number_to_fmpq(fmpq_t q, const char *text)
 
 static int eval(Deriver *D, Value *res, const Node *n);
 
+/* ---- size guards (ratfun.h) --------------------------------------------- */
+
+/* the largest estimate over the weights of p times s */
+static double scalar_bits(const PointEq p, const RatFun s, const Ring *r)
+{
+    double m = 0;
+    for (slong i = 0; i < p->len; i++) {
+        double b = ratfun_log2_bits_product(&p->terms[i].w, s, r);
+        m = b > m ? b : m;
+    }
+    return m;
+}
+
+/* the largest estimate over the weights p and q share a point in */
+static double pair_bits(const PointEq p, const PointEq q, const Ring *r)
+{
+    double m = 0;
+    for (slong i = 0, j = 0; i < p->len && j < q->len;) {
+        if (p->terms[i].point < q->terms[j].point) {
+            i++;
+        } else if (p->terms[i].point > q->terms[j].point) {
+            j++;
+        } else {
+            double b = ratfun_log2_bits_product(&p->terms[i].w,
+                                                &q->terms[j].w, r);
+            m = b > m ? b : m;
+            i++;
+            j++;
+        }
+    }
+    return m;
+}
+
+/* 0, or -1 after reporting at n that a result could exceed the limit */
+static int too_big(Deriver *D, double log2_bits, const Node *n)
+{
+    if (log2_bits <= RATFUN_MAX_LOG2_BITS)
+        return 0;
+    double mb = exp2(log2_bits - 23);
+    if (mb < 1e6)
+        diag_error(D->diag, n->span,
+                   "expression too large to compute exactly: its result "
+                   "could need about %.0f MB of coefficients (the limit is "
+                   "%.0f MB)",
+                   mb, exp2(RATFUN_MAX_LOG2_BITS - 23));
+    else
+        diag_error(D->diag, n->span,
+                   "expression too large to compute exactly: its result "
+                   "could need about 2^%.0f bytes of coefficients (the "
+                   "limit is %.0f MB)",
+                   log2_bits - 3, exp2(RATFUN_MAX_LOG2_BITS - 23));
+    return -1;
+}
+
 /* evaluates a combination-valued argument */
 static int eval_point(Deriver *D, PointEq res, const Node *n)
 {
@@ -158,6 +213,39 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
     for (const Node *a = fb->args; a; a = a->next)
         if (eval_point(D, pb[i++], a) < 0)
             st = -1;
+    /* every argument of a flat is a point (sum 1) or a direction (sum 0),
+     * and each flat has at least one point */
+    for (int f = 0; f < 2 && st == 0; f++) {
+        const Node *flat = f ? fb : fa;
+        PointEq *args = f ? pb : pa;
+        const char *what = flat->nargs == 2 ? "line" : "plane";
+        RatFun sum;
+        ratfun_init(sum, r);
+        int points = 0, k = 0;
+        for (const Node *a = flat->args; a && st == 0; a = a->next, k++) {
+            pteq_weight_sum(sum, args[k], r);
+            if (ratfun_is_one(sum, r)) {
+                points++;
+            } else if (!ratfun_is_zero(sum, r)) {
+                char *txt = show(sum, r);
+                diag_error(D->diag, a->span,
+                           "an argument of %s() must be a point (weights "
+                           "summing to 1) or a direction (summing to 0); "
+                           "its weights sum to %s",
+                           what, txt);
+                flint_free(txt);
+                st = -1;
+            }
+        }
+        if (st == 0 && points == 0) {
+            diag_error(D->diag, flat->span,
+                       "every argument of %s() is a vector; expected at "
+                       "least one point",
+                       what);
+            st = -1;
+        }
+        ratfun_clear(sum, r);
+    }
     if (st == 0) {
         MeetStatus ms =
             construct_meet(res->p, pa, fa->nargs, pb, fb->nargs, r);
@@ -200,11 +288,9 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
                              : "lines in meet() are skew (not coplanar): "
                                "they do not meet");
             break;
-        case MEET_NO_POINT:
+        case MEET_NO_POINT: /* checked above */
             diag_error(D->diag, n->span,
-                       "every argument of %s() is a vector; expected at "
-                       "least one point",
-                       fa->nargs == 2 ? "line" : "plane");
+                       "internal error: a flat of meet() without a point");
             break;
         }
     }
@@ -229,6 +315,29 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
         goto done;
     }
     res->is_point = ve.is_point;
+    if (x->sym->kind == SYM_POINT && ve.is_point) {
+        const RatFunStruct *wx = pteq_weight(ve.p, x->sym->index);
+        if (wx && too_big(D, scalar_bits(vb.p, wx, r), n) < 0) {
+            st = -1;
+            goto done;
+        }
+    } else if (x->sym->kind != SYM_POINT) {
+        slong var = x->sym->index +
+                    (x->sym->kind == SYM_CONST ? D->info->nparams : 0);
+        double bits = 0;
+        if (ve.is_point)
+            for (slong i = 0; i < ve.p->len; i++) {
+                double b = ratfun_log2_bits_compose(&ve.p->terms[i].w, var,
+                                                    vb.s, r);
+                bits = b > bits ? b : bits;
+            }
+        else
+            bits = ratfun_log2_bits_compose(ve.s, var, vb.s, r);
+        if (too_big(D, bits, n) < 0) {
+            st = -1;
+            goto done;
+        }
+    }
     if (x->sym->kind == SYM_POINT) {
         RatFun sum;
         ratfun_init(sum, r);
@@ -283,7 +392,9 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
         ratfun_init(s, r);
         if (eval_point(D, p, nth(n, 0)) < 0 ||
             eval_point(D, q, nth(n, 1)) < 0 ||
-            eval_scalar(D, s, nth(n, 2)) < 0) {
+            eval_scalar(D, s, nth(n, 2)) < 0 ||
+            too_big(D, scalar_bits(p, s, r), n) < 0 ||
+            too_big(D, scalar_bits(q, s, r), n) < 0) {
             st = -1;
         } else if (n->builtin == BI_ALONG) {
             construct_along(res->p, p, q, s, r);
@@ -376,6 +487,9 @@ static int eval_pow(Deriver *D, Value *res, const Node *n)
                    "to 1000");
         goto done;
     }
+    if (too_big(D, ratfun_log2_bits_pow(res->s, fmpz_get_si(fmpq_numref(q)), r),
+                n) < 0)
+        goto done;
     if (ratfun_pow_si(res->s, res->s, fmpz_get_si(fmpq_numref(q)), r) != 0) {
         diag_error(D->diag, n->span,
                    "division by zero: a negative power of an expression "
@@ -449,6 +563,15 @@ static int eval(Deriver *D, Value *res, const Node *n)
         int st = 0;
         value_init(&b, r);
         if (eval(D, res, n->lhs) < 0 || eval(D, &b, n->rhs) < 0) {
+            value_clear(&b, r);
+            return -1;
+        }
+        double bits = !res->is_point && !b.is_point
+                          ? ratfun_log2_bits_product(res->s, b.s, r)
+                      : res->is_point && b.is_point ? pair_bits(res->p, b.p, r)
+                      : res->is_point ? scalar_bits(res->p, b.s, r)
+                                      : scalar_bits(b.p, res->s, r);
+        if (too_big(D, bits, n) < 0) {
             value_clear(&b, r);
             return -1;
         }
@@ -557,6 +680,7 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
     arena_init(&arena);
     source_init(&src, filename, text, len);
     diag_init(&diag, &src, err);
+    diag_hold(&diag);
 
     Scheme *scheme = parse_scheme(&src, &arena, &diag);
     SemaInfo *info = NULL;
@@ -638,6 +762,7 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
         d = NULL;
     }
 done:
+    diag_flush(&diag);
     if (nerrors)
         *nerrors = diag.nerrors;
     source_clear(&src);

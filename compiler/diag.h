@@ -16,13 +16,28 @@
 
 #include "compiler/source.h"
 
+/* a held message (diag_hold) */
+typedef struct DiagMsg {
+    int start, seq; // sort key: its position, then the order of reports
+    char *text;     // owned, complete with source line and caret
+} DiagMsg;
+
 typedef struct Diag {
     const Source *src; // borrowed
     FILE *out;         // borrowed; NULL = count only
     int nerrors;
+    int hold;          // 1: messages wait in msgs until diag_flush
+    DiagMsg *msgs;     // owned
+    int nmsgs, amsgs;
 } Diag;
 
 void diag_init(Diag *d, const Source *src, FILE *out);
+/* From now on messages are held and diag_flush writes them in source order
+ * (errors of several passes - sema, then derive - read top to bottom; a
+ * note stays after its error). */
+void diag_hold(Diag *d);
+/* Writes the held messages in order and releases them. */
+void diag_flush(Diag *d);
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif

@@ -168,6 +168,7 @@ typedef struct Factor {
     fmpz_mpoly_struct *poly; // borrowed from the factorisation
     ulong exp;
     slong len;
+    int flipped; // negated to make its constant term positive
 } Factor;
 
 static int factor_cmp(const void *x, const void *y)
@@ -181,17 +182,39 @@ static int factor_cmp(const void *x, const void *y)
 /* Writes |p| as  [c] f1^e1 f2^e2 ... (the sign is NOT written: *negative
  * receives it).  Factors are normalised so their constant term is positive
  * (1 - t rather than t - 1), the book's habit; monomial factors come first.
+ * With `positive` (a denominator), a factor of odd power is left as it was
+ * when that is what keeps the whole positive: /(t - 1), not /(-(1 - t)).
  * Returns the number of items written (a constant counts as one), so that
  * callers can decide on parentheses. */
 static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
-                           FormatStyle st, int *negative, int bare)
+                           FormatStyle st, int *negative, int bare,
+                           int positive)
 {
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
-    if (fmpz_mpoly_is_zero(p, r->ctx) || !fmpz_mpoly_factor(f, p, r->ctx)) {
+    if (fmpz_mpoly_is_zero(p, r->ctx) || !ring_factor_affordable(p, r) ||
+        !fmpz_mpoly_factor(f, p, r->ctx)) {
+        /* unfactored (too costly to factor): one item, "(1 - t^400)" */
         fmpz_mpoly_factor_clear(f, r->ctx);
         *negative = 0;
+        if (fmpz_mpoly_length(p, r->ctx) == 1) {
+            fmpz_mpoly_t q;
+            fmpz_mpoly_init(q, r->ctx);
+            *negative = fmpz_sgn(p->coeffs) < 0;
+            if (*negative)
+                fmpz_mpoly_neg(q, p, r->ctx);
+            else
+                fmpz_mpoly_set(q, p, r->ctx);
+            put_poly(b, q, r, st);
+            fmpz_mpoly_clear(q, r->ctx);
+            return 1;
+        }
+        int paren = !bare && fmpz_mpoly_length(p, r->ctx) > 1;
+        if (paren)
+            buf_puts(b, st == FMT_LATEX ? "\\left(" : "(");
         put_poly(b, p, r, st);
+        if (paren)
+            buf_puts(b, st == FMT_LATEX ? "\\right)" : ")");
         return 1;
     }
     int neg = fmpz_sgn(f->constant) < 0;
@@ -203,8 +226,10 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
         fmpz_mpoly_struct *q = f->poly + i;
         ulong e = fmpz_get_ui(f->exp + i);
         fmpz_mpoly_get_coeff_fmpz_ui(c, q, zero, r->ctx);
+        fs[i].flipped = 0;
         if (fmpz_sgn(c) < 0) {
             fmpz_mpoly_neg(q, q, r->ctx);
+            fs[i].flipped = 1;
             if (e & 1)
                 neg = !neg;
         }
@@ -212,6 +237,11 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
         fs[i].exp = e;
         fs[i].len = fmpz_mpoly_length(q, r->ctx);
     }
+    for (slong i = 0; i < f->num && positive && neg; i++)
+        if (fs[i].flipped && (fs[i].exp & 1)) {
+            fmpz_mpoly_neg(fs[i].poly, fs[i].poly, r->ctx);
+            neg = 0;
+        }
     qsort(fs, (size_t)f->num, sizeof(Factor), factor_cmp);
     int items = 0;
     fmpz_abs(c, f->constant);
@@ -256,7 +286,7 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
 static int put_factored(Buf *b, const fmpz_mpoly_t p, const Ring *r,
                         FormatStyle st, int *negative)
 {
-    return put_factored_ex(b, p, r, st, negative, 0);
+    return put_factored_ex(b, p, r, st, negative, 0, 0);
 }
 
 /* writes a denominator after the fraction bar (text/json): "/2", "/t",
@@ -266,7 +296,7 @@ static void put_den(Buf *b, const fmpz_mpoly_t den, const Ring *r,
 {
     Buf d = {0};
     int neg;
-    int items = put_factored(&d, den, r, st, &neg);
+    int items = put_factored_ex(&d, den, r, st, &neg, 0, 1);
     char *ds = buf_take(&d);
     int wrap = items > 1 || neg; /* "/(...)^2" and "/t^2" need no more */
     buf_puts(b, "/");
@@ -326,7 +356,7 @@ static void put_term(Buf *b, const char *point, const fmpz_mpoly_t num,
         buf_puts(b, "}{");
         int dneg;
         Buf d = {0};
-        put_factored_ex(&d, den, r, st, &dneg, 1);
+        put_factored_ex(&d, den, r, st, &dneg, 1, 1);
         if (dneg)
             buf_puts(b, "-");
         buf_puts(b, d.s);
@@ -411,7 +441,7 @@ static void put_equation(Buf *b, const Derived *d, const DerivedOutput *o,
             buf_puts(b, "}{");
             int dneg;
             Buf dd = {0};
-            put_factored_ex(&dd, (*eq)->terms[0].w.den, r, st, &dneg, 1);
+            put_factored_ex(&dd, (*eq)->terms[0].w.den, r, st, &dneg, 1, 1);
             if (dneg)
                 buf_puts(b, "-");
             buf_puts(b, dd.s);
@@ -457,7 +487,7 @@ static void put_scalar(Buf *b, const RatFun x, const Ring *r, FormatStyle st)
     if (st == FMT_LATEX && !fmpz_mpoly_is_one(x->den, r->ctx)) {
         Buf dd = {0};
         int dneg;
-        put_factored_ex(&dd, x->den, r, st, &dneg, 1);
+        put_factored_ex(&dd, x->den, r, st, &dneg, 1, 1);
         buf_puts(b, neg != dneg ? "-\\frac{" : "\\frac{");
         buf_puts(b, n.s);
         buf_puts(b, "}{");
@@ -472,6 +502,23 @@ static void put_scalar(Buf *b, const RatFun x, const Ring *r, FormatStyle st)
             put_den(b, x->den, r, st);
     }
     free(n.s);
+}
+
+/* a JSON string: the scheme's name comes from a file name and may hold
+ * anything ("a\"b.pcs"); identifiers and weights need no escapes */
+static void json_string(FILE *out, const char *s)
+{
+    fputc('"', out);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(out, "\\%c", c);
+        else if (c < 0x20 || c == 0x7f)
+            fprintf(out, "\\u%04x", c);
+        else
+            fputc(c, out);
+    }
+    fputc('"', out);
 }
 
 static void json_names(FILE *out, const char *key, char *const *names,
@@ -492,7 +539,9 @@ void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)
 {
     const Ring *r = &d->ring;
     if (st == FMT_JSON) {
-        fprintf(out, "{\"scheme\": \"%s\", ", d->scheme);
+        fputs("{\"scheme\": ", out);
+        json_string(out, d->scheme);
+        fputs(", ", out);
         json_names(out, "points", d->points, d->npoints);
         fputs(", ", out);
         json_names(out, "params", d->params, d->nparams);

@@ -8,6 +8,7 @@
  * Exit status: 0 success, 1 an error in the scheme, 2 a usage error.
  * Nothing reaches stdout when the scheme has an error.
  */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -99,15 +100,17 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *cmd = argv[1];
-    if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0) {
-        fputs(usage, stdout);
-        return 0;
+    int help = strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0;
+    if ((help || strcmp(cmd, "--version") == 0) && argc > 2) {
+        fprintf(stderr, "pointcalc: %s takes no arguments, found '%s'\n", cmd,
+                argv[2]);
+        return 2;
     }
-    if (strcmp(cmd, "--version") == 0) {
-        printf("pointcalc %s\n", PC_VERSION);
-        return 0;
-    }
-    if (strcmp(cmd, "derive") == 0)
+    if (help)
+        rc = fputs(usage, stdout) < 0;
+    else if (strcmp(cmd, "--version") == 0)
+        rc = printf("pointcalc %s\n", PC_VERSION) < 0;
+    else if (strcmp(cmd, "derive") == 0)
         rc = derive_main(argc - 1, argv + 1);
     else if (strcmp(cmd, "emit-c") == 0)
         rc = emit_c_main(argc - 1, argv + 1, stdout, stderr);
@@ -118,5 +121,13 @@ int main(int argc, char **argv)
         rc = 2;
     }
     flint_cleanup_master();
+    /* output that did not reach its file (a full disk, a closed pipe) is
+     * an error too, never a silent exit 0 */
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "pointcalc: cannot write the output: %s\n",
+                strerror(errno));
+        if (rc == 0)
+            rc = 1;
+    }
     return rc;
 }

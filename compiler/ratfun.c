@@ -21,6 +21,7 @@
 
 #include <flint/fmpz_poly.h>
 #include <flint/fmpz_vec.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -1099,4 +1100,115 @@ char *ratfun_get_str(const RatFun x, const Ring *r)
     flint_free(ds);
     flint_free(ns);
     return out;
+}
+
+/* ---- size guards --------------------------------------------------------- */
+
+/* A polynomial's shape for the estimates: log2 of its length, its largest
+ * coefficient's bits, its degree in every variable (degs: nvars slots). */
+typedef struct Shape {
+    double llen;  // log2(length); -1 for the zero polynomial
+    double bits;  // largest coefficient, bits
+    slong *degs;  // borrowed buffer
+    int huge;     // degrees beyond a slong
+} Shape;
+
+static void shape_of(Shape *s, const fmpz_mpoly_t p, slong *degs,
+                     const Ring *r)
+{
+    slong len = fmpz_mpoly_length(p, r->ctx);
+    s->degs = degs;
+    s->llen = len ? log2((double)len) : -1;
+    s->bits = (double)FLINT_ABS(fmpz_mpoly_max_bits(p));
+    s->huge = !fmpz_mpoly_degrees_fit_si(p, r->ctx);
+    if (!s->huge)
+        fmpz_mpoly_degrees_si(degs, p, r->ctx);
+}
+
+/* log2 of the bits of a*b at most */
+static double prod_bits(const Shape *a, const Shape *b, slong nv)
+{
+    if (a->llen < 0 || b->llen < 0)
+        return 0;
+    if (a->huge || b->huge)
+        return INFINITY;
+    double lterms = 0;
+    for (slong v = 0; v < nv; v++)
+        lterms += log2((double)a->degs[v] + (double)b->degs[v] + 1);
+    if (a->llen + b->llen < lterms)
+        lterms = a->llen + b->llen;
+    double shorter = a->llen < b->llen ? a->llen : b->llen;
+    return lterms + log2(a->bits + b->bits + shorter + 1);
+}
+
+/* log2 of the bits of a^e at most (e >= 0) */
+static double pow_bits(const Shape *a, double e, slong nv)
+{
+    if (a->llen < 0 || e == 0)
+        return 0;
+    if (a->huge)
+        return INFINITY;
+    double lterms = 0;
+    for (slong v = 0; v < nv; v++)
+        lterms += log2(e * (double)a->degs[v] + 1);
+    if (e * a->llen < lterms)
+        lterms = e * a->llen;
+    return lterms + log2(e * (a->bits + a->llen + 1) + 1);
+}
+
+static double max2(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+double ratfun_log2_bits_product(const RatFun x, const RatFun y, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    slong *d = flint_malloc(4 * (size_t)nv * sizeof(slong));
+    Shape xn, xd, yn, yd;
+    shape_of(&xn, x->num, d, r);
+    shape_of(&xd, x->den, d + nv, r);
+    shape_of(&yn, y->num, d + 2 * nv, r);
+    shape_of(&yd, y->den, d + 3 * nv, r);
+    double m = max2(max2(prod_bits(&xn, &yn, nv), prod_bits(&xd, &yd, nv)),
+                    max2(prod_bits(&xn, &yd, nv), prod_bits(&xd, &yn, nv)));
+    flint_free(d);
+    return m;
+}
+
+double ratfun_log2_bits_pow(const RatFun x, slong e, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    slong *d = flint_malloc(2 * (size_t)nv * sizeof(slong));
+    Shape xn, xd;
+    shape_of(&xn, x->num, d, r);
+    shape_of(&xd, x->den, d + nv, r);
+    double ae = fabs((double)e);
+    double m = max2(pow_bits(&xn, ae, nv), pow_bits(&xd, ae, nv));
+    flint_free(d);
+    return m;
+}
+
+double ratfun_log2_bits_compose(const RatFun x, slong var, const RatFun s,
+                                const Ring *r)
+{
+    /* x(var = s) has about the size of x times s^deg_var(x) */
+    slong nv = r->ctx->minfo->nvars;
+    slong *d = flint_malloc(4 * (size_t)nv * sizeof(slong));
+    Shape xn, xd, sn, sd;
+    shape_of(&xn, x->num, d, r);
+    shape_of(&xd, x->den, d + nv, r);
+    shape_of(&sn, s->num, d + 2 * nv, r);
+    shape_of(&sd, s->den, d + 3 * nv, r);
+    double m = INFINITY;
+    if (!xn.huge && !xd.huge) {
+        double e = (double)(xn.degs[var] > xd.degs[var] ? xn.degs[var]
+                                                        : xd.degs[var]);
+        double ps = max2(pow_bits(&sn, e, nv), pow_bits(&sd, e, nv));
+        double px = max2(log2(pow(2, xn.llen) * xn.bits + 1),
+                         log2(pow(2, xd.llen) * xd.bits + 1));
+        m = ps + px; // (terms x bits of x) x (terms x bits of s^e), loosely
+    }
+    flint_free(d);
+    return m;
 }

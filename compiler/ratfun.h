@@ -95,6 +95,22 @@ int ratfun_compose_var(RatFun res, const RatFun x, slong var, const RatFun s,
 int ratfun_evaluate_fmpq(fmpq_t res, const RatFun x, const fmpq *vals,
                          const Ring *r);
 
+/* Size guards.  Exact arithmetic has no bound of its own: a three-line
+ * scheme (x = 1e1000^1000, y = x^1000) asks GMP for 10^9 digits and dies.
+ * These estimate, before an operation and in microseconds, log2 of the
+ * bits its result could need at most (terms x coefficient bits, bounded by
+ * the term count and by the degrees), for the products that x*y, x/y,
+ * x +- y form, for x^e, and for x with variable var replaced by s.  Callers
+ * refuse an operation whose estimate exceeds RATFUN_MAX_LOG2_BITS (2^26
+ * bits: 8 MB of coefficients for one polynomial, far beyond what a scheme
+ * of the monograph needs - its largest results are a few hundred bytes). */
+#define RATFUN_MAX_LOG2_BITS 26.0
+double ratfun_log2_bits_product(const RatFun x, const RatFun y,
+                                const Ring *r);
+double ratfun_log2_bits_pow(const RatFun x, slong e, const Ring *r);
+double ratfun_log2_bits_compose(const RatFun x, slong var, const RatFun s,
+                                const Ring *r);
+
 /* Parse text with the ring's variable names, integers, decimals (exact:
  * "0.3" is 3/10), + - * / ^ (integer exponent, possibly negative or
  * parenthesised: x^-2, x^(-2)), unary minus, parentheses.  Used by tests and

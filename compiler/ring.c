@@ -33,6 +33,28 @@ void ring_clear(Ring *r)
     fmpz_mpoly_ctx_clear(r->ctx);
 }
 
+int ring_factor_affordable(const fmpz_mpoly_t p, const Ring *r)
+{
+    enum { MAX_TERMS = 400, MAX_VARS = 8, MAX_DEG1 = 200, MAX_DEG = 32 };
+    slong nv = r->ctx->minfo->nvars;
+    if (fmpz_mpoly_length(p, r->ctx) > MAX_TERMS ||
+        !fmpz_mpoly_degrees_fit_si(p, r->ctx))
+        return 0;
+    slong *degs = flint_malloc((size_t)nv * sizeof(slong));
+    fmpz_mpoly_degrees_si(degs, p, r->ctx);
+    slong used = 0, top = 0;
+    for (slong v = 0; v < nv; v++) {
+        used += degs[v] > 0;
+        top = degs[v] > top ? degs[v] : top;
+    }
+    flint_free(degs);
+    if (used > MAX_VARS)
+        return 0;
+    if (used <= 1)
+        return top <= MAX_DEG1;
+    return fmpz_mpoly_total_degree_si(p, r->ctx) <= MAX_DEG;
+}
+
 slong ring_var_index(const Ring *r, const char *name)
 {
     for (slong i = 0; i < r->nvars; i++)

@@ -28,4 +28,12 @@ void ring_clear(Ring *r);
 /* Index of the variable called name, or -1. */
 slong ring_var_index(const Ring *r, const char *name);
 
+/* 1 when fmpz_mpoly_factor(p) is affordable: FLINT 2.9's factoring has no
+ * time bound, and some short polynomials take minutes (1 - (t^60 +
+ * u^60)(t^30 - u^17): 80 s; t^720 - 1: 27 s; a 600-variable linear form:
+ * minutes).  Measured limits: at most 400 terms and 8 variables, degree at
+ * most 200 in one variable, total degree at most 32 in several.  Callers
+ * treat a polynomial beyond them as one factor. */
+int ring_factor_affordable(const fmpz_mpoly_t p, const Ring *r);
+
 #endif

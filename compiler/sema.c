@@ -379,6 +379,16 @@ static int check_call(Sema *S, Node *n)
 static int check_expr(Sema *S, Node *n)
 {
     int k = -1;
+    /* every later pass recurses over the tree: bound its height here, at
+     * the root, before any recursion (a sum of 20000 terms is a left-deep
+     * tree of that height) */
+    if (n->depth > SEMA_MAX_DEPTH) {
+        diag_error(S->diag, n->span,
+                   "expression nested too deeply (%d levels; at most %d): "
+                   "split it into several definitions",
+                   n->depth, SEMA_MAX_DEPTH);
+        return -1;
+    }
     switch (n->kind) {
     case ND_NUM:
         k = 0;
@@ -590,5 +600,7 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
                    "the scheme defines nothing; expected a definition "
                    "'NAME = EXPR' to output");
     }
-    return diag->nerrors == errors0 ? I : NULL;
+    /* with errors too: derive then reduces the definitions that are fine
+     * (s->bad marks the others) and reports their errors as well */
+    return I;
 }

@@ -9,6 +9,9 @@
 #ifndef PC_SEMA_H
 #define PC_SEMA_H
 
+/* the deepest expression tree sema accepts (every pass recurses over it) */
+#define SEMA_MAX_DEPTH 2000
+
 #include "compiler/arena.h"
 #include "compiler/diag.h"
 #include "grammar/ast.h"
@@ -81,7 +84,9 @@ typedef struct SemaInfo {
     int noutputs;
 } SemaInfo;
 
-/* Checks s; returns NULL if errors were reported (diag->nerrors grew). */
+/* Checks s and returns what it found, also when it reported errors
+ * (diag->nerrors grew): definitions with an error (or using one) are
+ * marked bad, so that the others can still be derived and checked. */
 SemaInfo *sema_check(Scheme *s, Arena *a, Diag *diag);
 
 const char *sema_builtin_name(int b);

@@ -8,6 +8,7 @@ Node *ast_new_num(Arena *a, const char *text, Span span)
     n->kind = ND_NUM;
     n->text = text;
     n->span = span;
+    n->depth = 1;
     return n;
 }
 
@@ -18,6 +19,7 @@ Node *ast_new_name(Arena *a, const char *text, Span span)
     n->text = text;
     n->span = span;
     n->name_span = span;
+    n->depth = 1;
     return n;
 }
 
@@ -27,6 +29,7 @@ Node *ast_new_unary(Arena *a, NodeKind kind, Node *lhs, Span span)
     n->kind = kind;
     n->lhs = lhs;
     n->span = span;
+    n->depth = lhs->depth + 1;
     return n;
 }
 
@@ -37,6 +40,7 @@ Node *ast_new_binary(Arena *a, NodeKind kind, Node *lhs, Node *rhs, Span span)
     n->lhs = lhs;
     n->rhs = rhs;
     n->span = span;
+    n->depth = (lhs->depth > rhs->depth ? lhs->depth : rhs->depth) + 1;
     return n;
 }
 
@@ -48,8 +52,12 @@ Node *ast_new_call(Arena *a, const char *name, Span name_span, Node *args,
     n->text = name;
     n->name_span = name_span;
     n->args = args;
-    for (Node *x = args; x; x = x->next)
+    n->depth = 1;
+    for (Node *x = args; x; x = x->next) {
         n->nargs++;
+        if (x->depth + 1 > n->depth)
+            n->depth = x->depth + 1;
+    }
     n->span = span;
     return n;
 }

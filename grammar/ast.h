@@ -39,6 +39,7 @@ struct Node {
     NodeKind kind;
     Span span; // the whole expression, blamed in diagnostics
     Node *next; // next argument in a call's list
+    int depth;  // height of the tree below (a leaf: 1); bounds recursion
 
     // ND_NEG, ND_ADD .. ND_POW
     Node *lhs;

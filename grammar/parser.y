@@ -63,10 +63,21 @@ YY_DECL;
 }
 
 %code {
+#include <string.h>
+
+#define PARSER_MAX_DEPTH 10000 /* bison's default YYMAXDEPTH, made explicit */
+#define YYMAXDEPTH PARSER_MAX_DEPTH
+
 static void pc_yyerror(Span *loc, yyscan_t scanner, Parser *p, const char *msg)
 {
     (void)scanner;
-    diag_error(p->diag, *loc, "%s", msg);
+    if (strcmp(msg, "memory exhausted") == 0) /* the parser's stack limit */
+        diag_error(p->diag, *loc,
+                   "expression nested too deeply for the parser (%d levels "
+                   "of parentheses or operators at most)",
+                   PARSER_MAX_DEPTH);
+    else
+        diag_error(p->diag, *loc, "%s", msg);
 }
 
 static void add_stmt(Parser *p, Stmt *s)

@@ -20,7 +20,9 @@ int sample_number(const char *text, double *v)
         return -1;
     errno = 0;
     double x = strtod(text, &end);
-    if (*end != '\0' || !isfinite(x) || errno == ERANGE)
+    /* ERANGE on underflow too: a subnormal result (1e-310) is a double, a
+     * result flushed to 0 (1e-400) is not what was written */
+    if (*end != '\0' || !isfinite(x) || (errno == ERANGE && x == 0))
         return -1;
     *v = x;
     return 0;
@@ -95,11 +97,14 @@ int sample_parse(Spec *s, const char *text, char *msg, size_t msglen)
                  text);
         return -1;
     }
-    if (!*cnt || *end || errno || *cnt == '-' || *cnt == '+' || n == 0 ||
-        n > (unsigned long long)SIZE_MAX / 2) {
+    if (!*cnt || *end || *cnt < '0' || *cnt > '9' || n == 0) {
         snprintf(msg, msglen,
                  "malformed range '%s': count must be a positive integer",
                  text);
+        return -1;
+    }
+    if (errno || n > (unsigned long long)SIZE_MAX / 2) {
+        snprintf(msg, msglen, "range '%s': count %s is too large", text, cnt);
         return -1;
     }
     if (n == 1 && s->lo != s->hi) {
@@ -127,7 +132,10 @@ double sample_value(const Spec *s, size_t k)
         return s->lo;
     if (k == s->n - 1)
         return s->hi;
-    return s->lo + (s->hi - s->lo) * ((double)k / (double)(s->n - 1));
+    double f = (double)k / (double)(s->n - 1);
+    if (isfinite(s->hi - s->lo))
+        return s->lo + (s->hi - s->lo) * f;
+    return s->lo * (1 - f) + s->hi * f; // -1e308:1e308: hi - lo overflows
 }
 
 size_t sample_grid_rows(const Spec *specs, int n)

@@ -64,6 +64,35 @@ check "missing file exits 1" test $? -eq 1
 "$PC" --version | grep -q '^pointcalc '
 check "version" test $? -eq 0
 
+"$PC" --version extra >/dev/null 2>&1
+check "version with an argument exits 2" test $? -eq 2
+
+# output that cannot be written is an error (exit 1, a message), not exit 0
+if [ -w /dev/full ]; then
+    "$PC" derive examples/desargues_arc.pcs >/dev/full 2>"$tmp/err"
+    check "derive to a full disk exits 1" test $? -eq 1
+    check "derive to a full disk says so" grep -q 'cannot write the output' "$tmp/err"
+    "$PC" emit-c examples/desargues_arc.pcs >/dev/full 2>/dev/null
+    check "emit-c to a full disk exits 1" test $? -eq 1
+    "$PC" eval examples/desargues_arc.pcs --output M --at A=0 --at B=1 \
+        --at C=2 --at D=3 --param t=0:1:5 >/dev/full 2>/dev/null
+    check "eval to a full disk exits 1" test $? -eq 1
+fi
+
+# an unwritable --header: nothing on stdout
+"$PC" emit-c examples/desargues_arc.pcs --header /nonexistent/x.h >"$tmp/out" 2>/dev/null
+check "bad --header exits 1" test $? -eq 1
+check "bad --header prints nothing" test ! -s "$tmp/out"
+
+# JSON of a scheme whose file name needs escapes
+cp examples/desargues_arc.pcs "$tmp/a\"b.pcs"
+sed -i '/^scheme /d' "$tmp/a\"b.pcs"
+"$PC" derive "$tmp/a\"b.pcs" --format json >"$tmp/json"
+check "json escapes the scheme name" python3 -c "
+import json
+assert json.load(open('$tmp/json'))['scheme'] == 'a\"b'
+"
+
 # every example derives in every format
 for f in examples/*.pcs; do
     for fmt in text latex json; do

@@ -1,6 +1,6 @@
 /*
- * fuzz_derive.c - libFuzzer target for the whole front half (parse, sema,
- * exact derivation).  `make fuzz` builds it with clang and runs it on the
+ * fuzz_derive.c - libFuzzer target for the whole pipeline (parse, sema,
+ * exact derivation, then every back end: tests/fuzz/exercise.h).  `make fuzz` builds it with clang and runs it on the
  * example corpus; any crash, sanitizer report or inconsistent result (a
  * NULL derivation without an error, or an error with a derivation) is a bug.
  */
@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "compiler/derive.h"
+#include "tests/fuzz/exercise.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
@@ -19,6 +20,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                &nerr);
     if ((d != NULL) != (nerr == 0))
         abort();
+    if (d)
+        exercise_backends(d);
     derived_free(d);
     return 0;
 }

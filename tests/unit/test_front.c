@@ -172,6 +172,47 @@ static void test_decimals_are_exact(void **state)
     derived_free(d);
 }
 
+/* long operator chains and deep parentheses: a diagnostic, never a stack
+ * overflow (every pass recurses over the tree) */
+static void test_deep_expressions_are_refused(void **state)
+{
+    (void)state;
+    enum { N = 20000 };
+    char *text = malloc(4 * N + 64);
+    strcpy(text, "param t\ns = t");
+    size_t k = strlen(text);
+    for (int i = 1; i < N; i++) {
+        memcpy(text + k, "+t", 2);
+        k += 2;
+    }
+    strcpy(text + k, "\n");
+    char *e = errors_of(text);
+    assert_non_null(strstr(e, "x.pcs:2:5: error: expression nested too deeply "
+                              "(20000 levels; at most 2000): split it into "
+                              "several definitions\n"));
+    free(e);
+    /* at the limit it derives: 1999 terms, depth 1999 */
+    strcpy(text + 8 + 5 + 2 * 1998, "\n");
+    e = errors_of(text);
+    assert_string_equal(e, "");
+    free(e);
+    /* 20000 parentheses: the parser's own limit */
+    k = 0;
+    k += (size_t)sprintf(text, "param t\ns = ");
+    for (int i = 0; i < N; i++)
+        text[k++] = '(';
+    text[k++] = 't';
+    for (int i = 0; i < N; i++)
+        text[k++] = ')';
+    strcpy(text + k, "\n");
+    e = errors_of(text);
+    assert_non_null(strstr(e, "error: expression nested too deeply for the "
+                              "parser (10000 levels of parentheses or "
+                              "operators at most)"));
+    free(e);
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -184,6 +225,7 @@ int main(void)
         cmocka_unit_test(test_last_line_without_newline),
         cmocka_unit_test(test_scheme_name_defaults_to_file),
         cmocka_unit_test(test_decimals_are_exact),
+        cmocka_unit_test(test_deep_expressions_are_refused),
     };
     int rc = cmocka_run_group_tests_name("front", tests, NULL, NULL);
     flint_cleanup_master();

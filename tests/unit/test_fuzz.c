@@ -1,7 +1,9 @@
 /*
  * test_fuzz.c - robustness: mutated and truncated versions of every scheme
  * must produce either a derivation or a clean diagnostic, never a crash, a
- * hang or a leak.  `make asan` runs this under AddressSanitizer + UBSan.
+ * hang or a leak; what derives then goes through every back end (format,
+ * lower, emit-c, eval: tests/fuzz/exercise.h).  `make asan` runs this under
+ * AddressSanitizer + UBSan, `make valgrind` under memcheck.
  *
  * The mutations are seeded and deterministic: a failure is reproducible.
  */
@@ -19,6 +21,7 @@
 #include <flint/flint.h>
 
 #include "compiler/derive.h"
+#include "tests/fuzz/exercise.h"
 
 static uint64_t rng_state;
 
@@ -46,6 +49,8 @@ static int probe(const char *name, const char *buf, size_t len)
     int nerr = -1;
     Derived *d = derive_source(name, buf, len, NULL, &nerr);
     int ok = (d != NULL) == (nerr == 0);
+    if (d)
+        exercise_backends(d);
     derived_free(d);
     if (!ok)
         fprintf(stderr, "%s: inconsistent result (nerrors=%d)\n", name,

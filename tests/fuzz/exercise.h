@@ -1,0 +1,68 @@
+/*
+ * exercise.h - what the robustness tests do with a scheme that derived:
+ * every back end, so that mutated schemes reach them too (test_fuzz.c,
+ * fuzz_derive.c).  Output goes to a memory stream and is thrown away; only
+ * a crash, a sanitizer report or a leak can fail.
+ */
+#ifndef PC_TESTS_EXERCISE_H
+#define PC_TESTS_EXERCISE_H
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "codegen/emit_c.h"
+#include "codegen/lower.h"
+#include "compiler/derive.h"
+#include "compiler/format.h"
+#include "runtime/eval.h"
+
+/* formats d three ways (and relative to its first point), lowers it, emits
+ * C and a header, and evaluates every output at a few samples in 2D */
+static inline void exercise_backends(const Derived *d)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    format_derived(m, d, FMT_TEXT, -1);
+    format_derived(m, d, FMT_LATEX, -1);
+    format_derived(m, d, FMT_JSON, -1);
+    if (d->npoints > 0)
+        format_derived(m, d, FMT_TEXT, 0);
+    Plan *p = lower_derived(d, m);
+    if (p) {
+        int o1, o2;
+        char *clash = NULL;
+        if (emit_c_clash(p, NULL, &o1, &o2, &clash))
+            free(clash);
+        emit_c(m, p, NULL, d->filename);
+        emit_c_header(m, p, "x", d->filename);
+        plan_dump(m, p);
+        enum { N = 5, DIM = 2 };
+        double t[N] = {-1, 0, 0.5, 1, 3}, out[N * DIM];
+        unsigned char st[N];
+        const double **prm = calloc((size_t)p->nparams + 1, sizeof *prm);
+        const double **pts = calloc((size_t)p->npoints + 1, sizeof *pts);
+        double *cst = calloc((size_t)p->nconsts + 1, sizeof *cst);
+        double *coords = calloc(DIM * (size_t)p->npoints + 1, sizeof *coords);
+        for (int i = 0; i < p->nparams; i++)
+            prm[i] = t;
+        for (int i = 0; i < p->nconsts; i++)
+            cst[i] = 0.25 + i;
+        for (int i = 0; i < p->npoints; i++) {
+            coords[DIM * i] = i;
+            coords[DIM * i + 1] = i * i - 1;
+            pts[i] = coords + DIM * i;
+        }
+        for (int o = 0; o < p->noutputs; o++)
+            (void)plan_eval(p, o, N, prm, cst, pts, DIM, out, st);
+        free(coords);
+        free(cst);
+        free(pts);
+        free(prm);
+        plan_free(p);
+    }
+    fclose(m);
+    free(text);
+}
+
+#endif
