@@ -9,6 +9,7 @@
  */
 #include "compiler/derive.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -775,7 +776,8 @@ Derived *derive_file(const char *filename, FILE *err, int *nerrors)
     FILE *f = fopen(filename, "rb");
     if (!f) {
         if (err)
-            fprintf(err, "%s: error: cannot open the file\n", filename);
+            fprintf(err, "%s: error: cannot open the file: %s\n", filename,
+                    strerror(errno));
         if (nerrors)
             *nerrors = 1;
         return NULL;
@@ -795,7 +797,8 @@ Derived *derive_file(const char *filename, FILE *err, int *nerrors)
     if (bad) {
         free(buf);
         if (err)
-            fprintf(err, "%s: error: cannot read the file\n", filename);
+            fprintf(err, "%s: error: cannot read the file: %s\n", filename,
+                    strerror(errno));
         if (nerrors)
             *nerrors = 1;
         return NULL;

@@ -93,7 +93,10 @@ static void emit(Diag *d, Span span, const char *what, const char *fmt,
     fputc('\n', d->out);
     int len;
     const char *text = source_line(s, line, &len);
-    fprintf(d->out, "%.*s\n", len, text);
+    /* the line as it is, but a NUL (which would end it early) as a space */
+    for (int i = 0; i < len; i++)
+        fputc(text[i] ? text[i] : ' ', d->out);
+    fputc('\n', d->out);
     /* caret line: keep tabs so the caret lines up under tabbed text */
     for (int i = 0; i < col - 1 && i < len; i++)
         fputc(text[i] == '\t' ? '\t' : ' ', d->out);
