@@ -103,7 +103,8 @@ fuzz:
 	$(MAKE) B=build-fuzz CC=clang OPT=-O1 \
 	  SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" \
 	  build-fuzz/libpointcalc.a
-	clang -std=c11 -I. -Ibuild-fuzz -g -O1 -fsanitize=fuzzer,address,undefined \
+	clang -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror \
+	  -I. -Ibuild-fuzz -g -O1 -fsanitize=fuzzer,address,undefined \
 	  -o build-fuzz/fuzz_derive tests/fuzz/fuzz_derive.c build-fuzz/libpointcalc.a $(LDLIBS)
 	@mkdir -p build-fuzz/corpus
 	cp examples/*.pcs tests/schemes/*.pcs tests/errors/*.pcs build-fuzz/corpus/
