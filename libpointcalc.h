@@ -86,10 +86,11 @@ char *pc_plan_dump(const pc_plan *p);
  *              output does not use)
  *   out        n*dim doubles, row-major (n for a scalar output); it must
  *              not overlap the params or the points
- *   status     NULL, or n flags: 1 where the sample is a pole
- * At a pole (a denominator of the reduced equation is 0) the sample's
- * coordinates are NaN.  Returns PC_OK or PC_EINVAL; *npoles (if not NULL)
- * receives the number of pole samples. */
+ *   status     NULL, or n codes: 0 ok, 1 a pole (a denominator of the
+ *              reduced equation is 0), 2 an overflow (a denominator is
+ *              not finite in double precision)
+ * At a pole or an overflow the sample's coordinates are NaN.  Returns PC_OK
+ * or PC_EINVAL; *npoles (if not NULL) receives the number of such samples. */
 int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
             const double *consts, const double *const *points, int dim,
             double *out, unsigned char *status, size_t *npoles);

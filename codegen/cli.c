@@ -562,32 +562,36 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
             plan_eval(p, s.sel[j], m, (const double *const *)pv, s.consts,
                       (const double *const *)s.pt, s.dim, res[j], st[j]);
         for (size_t r = 0; r < m; r++) {
-            /* poles first, on err */
-            for (int j = 0; j < s.nsel; j++) {
-                if (!st[j][r])
-                    continue;
-                if (npoles++ + noverflows < MAX_POLE_MESSAGES) {
-                    fprintf(err, "pointcalc: eval: pole of %s",
-                            p->outputs[s.sel[j]].name);
-                    where(err, p, pv, r);
-                    fputs(": a denominator of its equation vanishes; "
-                          "written as nan\n",
-                          err);
-                }
-            }
-            /* then numbers that double precision cannot hold */
+            /* poles and numbers that double precision cannot hold, on
+             * err; st[j][r] becomes 3 for a non-finite value without a
+             * reported status (the terms overflowed) */
             for (int j = 0; j < s.nsel; j++) {
                 int nc = columns(p, &p->outputs[s.sel[j]], s.dim);
-                if (st[j][r] || finite_row(res[j] + r * (size_t)nc, nc))
+                if (st[j][r] == PLAN_STATUS_OK &&
+                    !finite_row(res[j] + r * (size_t)nc, nc))
+                    st[j][r] = 3;
+                if (st[j][r] == PLAN_STATUS_OK)
                     continue;
-                if (npoles + noverflows++ < MAX_POLE_MESSAGES) {
-                    fprintf(err, "pointcalc: eval: %s",
-                            p->outputs[s.sel[j]].name);
-                    where(err, p, pv, r);
-                    fputs(" is not finite in double precision (overflow "
-                          "in its equation's terms)\n",
-                          err);
-                }
+                int pole = st[j][r] == PLAN_STATUS_POLE;
+                size_t k = npoles + noverflows;
+                if (pole)
+                    npoles++;
+                else
+                    noverflows++;
+                if (k >= MAX_POLE_MESSAGES)
+                    continue;
+                fprintf(err, "pointcalc: eval: %s%s", pole ? "pole of " : "",
+                        p->outputs[s.sel[j]].name);
+                where(err, p, pv, r);
+                fputs(pole ? ": a denominator of its equation vanishes; "
+                             "written as nan\n"
+                      : st[j][r] == PLAN_STATUS_OVERFLOW
+                          ? " is not finite in double precision (a "
+                            "denominator of its equation overflows); "
+                            "written as nan\n"
+                          : " is not finite in double precision (overflow "
+                            "in its equation's terms)\n",
+                      err);
             }
             if (a.format == OUTPUT_JSON)
                 fputs(r0 + r ? ",\n  {" : "\n  {", out);
@@ -622,15 +626,23 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
                     fputc(']', out);
             }
             if (a.format == OUTPUT_JSON) {
-                int first = 1;
-                for (int j = 0; j < s.nsel; j++) {
-                    if (!st[j][r])
-                        continue;
-                    fputs(first ? ", \"poles\": [" : ", ", out);
-                    output_json_string(out, p->outputs[s.sel[j]].name);
-                    first = 0;
+                for (int kind = 0; kind < 2; kind++) {
+                    int first = 1;
+                    for (int j = 0; j < s.nsel; j++) {
+                        int pole = st[j][r] == PLAN_STATUS_POLE;
+                        if (st[j][r] == PLAN_STATUS_OK || pole != !kind)
+                            continue;
+                        fputs(!first       ? ", "
+                              : kind == 0 ? ", \"poles\": ["
+                                          : ", \"nonfinite\": [",
+                              out);
+                        output_json_string(out, p->outputs[s.sel[j]].name);
+                        first = 0;
+                    }
+                    if (!first)
+                        fputc(']', out);
                 }
-                fputs(first ? "}" : "]}", out);
+                fputc('}', out);
             } else {
                 fputc('\n', out);
             }

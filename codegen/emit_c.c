@@ -12,9 +12,8 @@
  *     varying registers -> weights w0[], w1[]  block: gcc -O2 vectorises it
  *     out[i][c] = sum_k wk[i] * Pk[c]          specialised for dim 2 and 3
  *
- * In the batch code each weight is peeled (plan_peel): its sign and uniform
- * factors multiply the points' coordinates once per call (s0, s1 ...), the
- * block loop computes only the varying rest.
+ * In the batch code each weight is peeled (plan_peel): a weight -x is
+ * computed as x and the points' coordinates are negated once per call.
  *
  * The pole flag (sum of POLE checks of the output's denominator factors)
  * marks the samples whose coordinates are overwritten with NaN, whatever
@@ -33,10 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum {
-    BLOCK = 64,   // samples per block in the generated batch code
-    PEEL_MAX = 8, // uniform factors moved from a weight to the coordinates
-};
+enum { BLOCK = 64 }; // samples per block in the generated batch code
 
 static const char *const reserved[] = {
     /* C99 keywords */
@@ -46,6 +42,23 @@ static const char *const reserved[] = {
     "sizeof", "static", "struct", "switch", "typedef", "union", "unsigned",
     "void", "volatile", "while", "_Bool", "_Complex", "_Imaginary", "bool",
     "true", "false",
+    /* C++ keywords: the header may be included from C++ */
+    "alignas", "alignof", "and", "and_eq", "asm", "bitand", "bitor", "catch",
+    "char16_t", "char32_t", "char8_t", "class", "co_await", "co_return",
+    "co_yield", "compl", "concept", "const_cast", "consteval", "constexpr",
+    "constinit", "decltype", "delete", "dynamic_cast", "explicit", "export",
+    "friend", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
+    "nullptr", "operator", "or", "or_eq", "private", "protected", "public",
+    "reinterpret_cast", "requires", "static_assert", "static_cast",
+    "template", "this", "thread_local", "throw", "try", "typeid", "typename",
+    "using", "virtual", "wchar_t", "xor", "xor_eq",
+    /* macros of common standard headers a user's file may include first */
+    "EDOM", "ERANGE", "EILSEQ", "EOF", "BUFSIZ", "CHAR_BIT", "CHAR_MAX",
+    "CHAR_MIN", "SCHAR_MAX", "SCHAR_MIN", "UCHAR_MAX", "SHRT_MAX", "SHRT_MIN",
+    "USHRT_MAX", "INT_MAX", "INT_MIN", "UINT_MAX", "LONG_MAX", "LONG_MIN",
+    "ULONG_MAX", "LLONG_MAX", "LLONG_MIN", "ULLONG_MAX", "SIZE_MAX",
+    "RAND_MAX", "EXIT_SUCCESS", "EXIT_FAILURE", "SEEK_SET", "SEEK_CUR",
+    "SEEK_END", "assert", "stdin", "stdout", "stderr", "complex", "I",
     /* <math.h>, <stddef.h> names a user could pick (macros first) */
     "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "NULL",
     "math_errhandling", "fpclassify", "isfinite", "isnormal", "isgreater",
@@ -60,11 +73,10 @@ static const char *const reserved[] = {
     "n", "dim", "out", "status", "i0", "m", "j", "c", "nbad", "nb", "bad", "o",
     "fb", NULL};
 
-/* generated names follow these shapes: r12 w3 x0 p0 pad0 s1 q1 k0_2 */
+/* generated names follow these shapes: r12 w3 x0 p0 pad0 q1 k0_2 */
 static int internal_shape(const char *s)
 {
-    static const char *const heads[] = {"r", "w", "x", "p", "pad",
-                                        "s", "q", "k"};
+    static const char *const heads[] = {"r", "w", "x", "p", "pad", "q", "k"};
     for (size_t h = 0; h < sizeof heads / sizeof *heads; h++) {
         size_t n = strlen(heads[h]);
         if (strncmp(s, heads[h], n) != 0 || !isdigit((unsigned char)s[n]))
@@ -89,13 +101,20 @@ static int in_list(const char *s)
     return 0;
 }
 
-/* names of macros families of <math.h> (FP_NAN, MATH_ERRNO, GNU's M_PI)
- * and the identifiers C reserves (__x, _X) */
+/* names of macro families of <math.h> (FP_NAN, MATH_ERRNO, GNU's M_PI),
+ * <float.h> and <stdint.h> (FLT_MAX, DBL_EPSILON, INT8_MAX), and the
+ * identifiers C reserves (__x, _X) */
 static int reserved_family(const char *s)
 {
-    return strncmp(s, "FP_", 3) == 0 || strncmp(s, "MATH_", 5) == 0 ||
-           strncmp(s, "M_", 2) == 0 || strncmp(s, "__", 2) == 0 ||
-           (s[0] == '_' && isupper((unsigned char)s[1]));
+    static const char *const heads[] = {
+        "FP_",   "MATH_", "M_",     "__",     "FLT_",    "DBL_",
+        "LDBL_", "INT8_", "INT16_", "INT32_", "INT64_",  "UINT8_",
+        "UINT16_", "UINT32_", "UINT64_", "INTMAX_", "UINTMAX_", "INTPTR_",
+        "UINTPTR_", "PTRDIFF_", "SIG_", "WCHAR_", "WINT_"};
+    for (size_t h = 0; h < sizeof heads / sizeof *heads; h++)
+        if (strncmp(s, heads[h], strlen(heads[h])) == 0)
+            return 1;
+    return s[0] == '_' && isupper((unsigned char)s[1]);
 }
 
 static int is_reserved(const char *s)
@@ -103,14 +122,25 @@ static int is_reserved(const char *s)
     return in_list(s) || internal_shape(s) || reserved_family(s);
 }
 
+/* the keywords of C and C++ (the first entries of reserved[]) */
+static int is_keyword(const char *s)
+{
+    for (int i = 0; reserved[i] && strcmp(reserved[i], "EDOM") != 0; i++)
+        if (strcmp(reserved[i], s) == 0)
+            return 1;
+    return 0;
+}
+
 int emit_c_valid_prefix(const char *s)
 {
-    if (!s || !(isalpha((unsigned char)s[0]) || s[0] == '_'))
+    /* function names are PREFIX_OUTPUT: only a keyword itself, or a name
+     * C reserves at file scope (_x, __x), cannot serve */
+    if (!s || !isalpha((unsigned char)s[0]))
         return 0;
     for (const char *q = s; *q; q++)
         if (!(isalnum((unsigned char)*q) || *q == '_'))
             return 0;
-    return !in_list(s) || internal_shape(s);
+    return !is_keyword(s);
 }
 
 static char *xstrdup(const char *s)
@@ -144,17 +174,20 @@ xasprintf(const char *fmt, ...)
     return r;
 }
 
-/* a C identifier from any text: other characters become _, a leading
- * digit gets a leading _ */
+/* a C identifier from any text: other characters become _; one that would
+ * not start with a letter gets the prefix pc_ ("3d-curve" -> pc_3d_curve:
+ * a leading _ would make a name C reserves at file scope) */
 static char *identifier(const char *s)
 {
     size_t n = strlen(s);
-    char *r = malloc(n + 2);
+    char *r = malloc(n + 4);
     if (!r)
         abort();
     size_t k = 0;
-    if (!(isalpha((unsigned char)s[0]) || s[0] == '_'))
-        r[k++] = '_';
+    if (!isalpha((unsigned char)s[0])) {
+        memcpy(r, s[0] == '_' ? "pc" : "pc_", s[0] == '_' ? 2 : 3);
+        k = s[0] == '_' ? 2 : 3;
+    }
     for (size_t i = 0; i < n; i++)
         r[k++] = isalnum((unsigned char)s[i]) ? s[i] : '_';
     r[k] = '\0';
@@ -257,7 +290,8 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
     int found = 0;
     names_init(&N, p, prefix);
     for (int a = 0; a < N.nfn && !found; a++) {
-        if (is_reserved(N.fn[a])) {
+        /* a file-scope name: a keyword or known macro, or _x */
+        if (in_list(N.fn[a]) || N.fn[a][0] == '_') {
             *o1 = *o2 = a / NVARIANTS;
             found = 1;
             *name = xstrdup(N.fn[a]);
@@ -412,6 +446,14 @@ static void instruction(const Ctx *C, int r, const char *indent)
         operand(C, x->a);
         fputs(" == 0.0)", out);
         break;
+    case PLAN_NONFINITE: /* inf - inf and NaN - NaN are NaN; finite x - x
+                            is 0 (no isinf(): it need not vectorise) */
+        fputs("(double)(", out);
+        operand(C, x->a);
+        fputs(" - ", out);
+        operand(C, x->a);
+        fputs(" != 0.0)", out);
+        break;
     default:
         break;
     }
@@ -481,14 +523,16 @@ static void emit_one(const Ctx *C)
     if (o->bad >= 0) {
         fputs("    if (", out);
         operand(C, o->bad);
-        fputs(" != 0.0) { /* pole: a denominator vanishes */\n", out);
+        fputs(" != 0.0) { /* a denominator vanishes or overflows */\n", out);
         if (o->kind == PLAN_SCALAR)
             fputs("        out[0] = (double)NAN;\n", out);
         else
             fputs("        for (c = 0; c < dim; c++)\n"
                   "            out[c] = (double)NAN;\n",
                   out);
-        fputs("        return 1;\n    }\n", out);
+        fputs("        return ", out);
+        operand(C, o->bad);
+        fputs(" >= 1.0 ? 1 : 2; /* 1 pole, 2 overflow */\n    }\n", out);
     }
     if (o->kind == PLAN_SCALAR) {
         fputs("    out[0] = ", out);
@@ -509,17 +553,16 @@ static void emit_one(const Ctx *C)
     fputs("    return 0;\n}\n\n", out);
 }
 
-/* A weight slot of the batch code: w = sign * u[0] * ... * root (plan_peel);
- * the block loop computes root, the points' coordinates are multiplied by
- * the rest once per call (the scale sK). */
+/* A weight slot of the batch code: w = sign * root (plan_peel); the block
+ * loop computes root, the points' coordinates are negated once per call
+ * (the locals kK_C, qK) where the sign is -1. */
 typedef struct Slot {
-    int root, sign, nu;
-    int u[PEEL_MAX];
+    int root, sign;
 } Slot;
 
 static int scaled(const Slot *s)
 {
-    return s->sign != 1 || s->nu > 0;
+    return s->sign != 1;
 }
 
 /* the coordinate loop for a known dim (2, 3) or any dim (0) */
@@ -534,9 +577,7 @@ static void emit_apply(const Ctx *C, const Slot *slot, int dim,
             fprintf(out, "%sconst double ", ind);
             for (int c = 0; c < dim; c++) {
                 fprintf(out, "%sk%d_%d = ", c ? ", " : "", k, c);
-                if (scaled(&slot[k]))
-                    fprintf(out, "s%d * ", k);
-                fprintf(out, "%s[%d]", P, c);
+                fprintf(out, "%s%s[%d]", scaled(&slot[k]) ? "-" : "", P, c);
             }
             fputs(";\n", out);
         }
@@ -567,10 +608,8 @@ static void emit_apply(const Ctx *C, const Slot *slot, int dim,
     /* any dim: coordinate by coordinate, the scaled coordinates hoisted */
     fprintf(out, "%sfor (c = 0; c < dim; c++) {\n", ind);
     for (int k = 0; k < o->nterms; k++) {
-        fprintf(out, "%s    const double q%d = ", ind, k);
-        if (scaled(&slot[k]))
-            fprintf(out, "s%d * ", k);
-        fprintf(out, "%s[c];\n", C->N->pt[o->point[k]]);
+        fprintf(out, "%s    const double q%d = %s%s[c];\n", ind, k,
+                scaled(&slot[k]) ? "-" : "", C->N->pt[o->point[k]]);
     }
     fprintf(out, "%s    double *o = out + i0 * (size_t)dim + (size_t)c;\n",
             ind);
@@ -613,17 +652,13 @@ static void emit_batch(Ctx *C)
             s->root = o->reg[k];
             s->sign = 1;
         } else {
-            s->root =
-                plan_peel(p, o->reg[k], &s->sign, s->u, PEEL_MAX, &s->nu);
+            s->root = plan_peel(p, o->reg[k], &s->sign);
         }
         C->live[s->root] = 1;
-        for (int f = 0; f < s->nu; f++)
-            C->live[s->u[f]] = 1;
         if (scaled(s) && !C->role[s->root]) {
-            owned[k] = xasprintf("%s, up to its factor s%d",
+            owned[k] = xasprintf("%s, negated",
                                  C->role[o->reg[k]] ? C->role[o->reg[k]]
-                                                    : "weight",
-                                 k);
+                                                    : "weight");
             C->role[s->root] = owned[k];
         }
     }
@@ -644,27 +679,13 @@ static void emit_batch(Ctx *C)
                 scalar ? "value" : r ? r : "weight");
     }
     if (o->bad >= 0)
-        fprintf(out, "    double fb[%d]; /* pole flags */\n", BLOCK);
+        fprintf(out, "    double fb[%d]; /* pole flags, +0.5: overflow */\n",
+                BLOCK);
     fputs("    size_t i0, j, nbad = 0;\n", out);
     if (!scalar)
         fputs("    int c;\n", out);
     C->batch = 0;
     instructions(C, 1, "    ");
-    for (int k = 0; k < nslots; k++) {
-        const Slot *s = &slot[k];
-        if (!scaled(s))
-            continue;
-        fprintf(out, "    const double s%d = %s", k, s->sign < 0 ? "-" : "");
-        if (s->nu == 0)
-            fputs("1.0", out);
-        for (int f = 0; f < s->nu; f++) {
-            if (f)
-                fputs(" * ", out);
-            operand(C, s->u[f]);
-        }
-        fprintf(out, "; /* factor of the weight of %s in %s */\n",
-                p->points[o->point[k]], o->name);
-    }
     fprintf(out, "    for (i0 = 0; i0 < n; i0 += %d) {\n", BLOCK);
     fprintf(out, "        const size_t m = n - i0 < %d ? n - i0 : %d;\n", BLOCK,
             BLOCK);
@@ -724,7 +745,8 @@ static void emit_batch(Ctx *C)
         fputs("        }\n", out);
     }
     if (o->bad >= 0) {
-        fputs("        if (nb != 0) /* poles in this block: NaN rows */\n"
+        fputs("        if (nb != 0) /* poles or overflows in this block: NaN "
+              "rows */\n"
               "            for (j = 0; j < m; j++) {\n"
               "                if (fb[j] == 0.0)\n"
               "                    continue;\n"
@@ -741,7 +763,8 @@ static void emit_batch(Ctx *C)
             "            }\n"
             "        if (status != NULL)\n"
             "            for (j = 0; j < m; j++)\n"
-            "                status[i0 + j] = (unsigned char)(fb[j] != 0.0);\n",
+            "                status[i0 + j] = (unsigned char)(fb[j] >= 1.0 ? 1 "
+            ": fb[j] != 0.0 ? 2 : 0);\n",
             out);
     } else
         fputs("        if (status != NULL)\n"

@@ -36,7 +36,6 @@ typedef struct Lower {
     slong nparams, nconsts;
     LowerError error; // first unrepresentable coefficient ...
     slong error_exp10; // ... and its decimal exponent (about)
-    int flush;         // 1: coefficients below the double range become 0
 } Lower;
 
 typedef struct Factor {
@@ -171,8 +170,6 @@ static int const_fmpq(Lower *L, const fmpq_t q)
 {
     double v = 0;
     LowerError st = lower_q_to_double(&v, q);
-    if (st == LOWER_UNDERFLOW && L->flush)
-        st = LOWER_OK; // v = 0: below the precision of its polynomial
     if (st != LOWER_OK) {
         if (L->error == LOWER_OK) {
             L->error = st;
@@ -277,7 +274,7 @@ static void factor_poly(Lower *L, Factored *F, const fmpz_mpoly_t P)
     }
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, ctx);
-    if (ring_factor_affordable(P, L->r) && fmpz_mpoly_factor(f, P, ctx)) {
+    if (ring_factor(f, P, L->r)) {
         fmpq_t k;
         fmpq_init(k);
         fmpq_set_fmpz_frac(k, f->constant, f->constant_den);
@@ -304,6 +301,14 @@ static void factor_poly(Lower *L, Factored *F, const fmpz_mpoly_t P)
 }
 
 /* ---- outputs ------------------------------------------------------------ */
+
+/* bad + 0.5 * (den is not finite): where the denominator overflowed, 1/den
+ * is 0 and every weight would come out finite and wrong */
+static int add_overflow_flag(Lower *L, int bad, int den)
+{
+    int flag = plan_mul(L->p, plan_nonfinite(L->p, den), plan_const(L->p, 0.5));
+    return bad < 0 ? flag : plan_add(L->p, bad, flag);
+}
 
 /* Lowers the weights ws[0..n-1] of one output: reg[i] and *bad. */
 static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
@@ -339,6 +344,7 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
         *bad = *bad < 0 ? flag : plan_add(L->p, *bad, flag);
     }
     if (lcm.n == 0) {
+        *bad = -1; // no denominator can vanish or overflow
         for (slong i = 0; i < n; i++)
             reg[i] = mul_fmpq(L,
                               plan_mul(L->p, factored_product(L, &num[i], 0),
@@ -347,12 +353,14 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
     } else if (n == 1) {
         int d = plan_mul(L->p, factored_product(L, &den[0], 0),
                          factored_product(L, &den[0], 1));
+        *bad = add_overflow_flag(L, *bad, d);
         int w = plan_div(L->p, factored_product(L, &num[0], 0), d);
         w = plan_mul(L->p, w, factored_product(L, &num[0], 1));
         reg[0] = mul_fmpq(L, w, num[0].c);
     } else {
         int d = plan_mul(L->p, factored_product(L, &lcm, 0),
                          factored_product(L, &lcm, 1));
+        *bad = add_overflow_flag(L, *bad, d);
         int inv = plan_div(L->p, plan_const(L->p, 1), d);
         for (slong i = 0; i < n; i++) {
             /* num_i * L/d_i */
@@ -399,68 +407,6 @@ static slong max_degree(const Lower *L, const RatFunStruct *x)
     return best;
 }
 
-/* the middle of the bit sizes of P's coefficients: P 2^-mid has its
- * largest and smallest coefficient equally far from 1 */
-static slong mid_bits(const fmpz_mpoly_t P)
-{
-    slong lo = WORD_MAX, hi = 0;
-    for (slong i = 0; i < P->length; i++) {
-        slong b = (slong)fmpz_bits(P->coeffs + i);
-        lo = b < lo ? b : lo;
-        hi = b > hi ? b : hi;
-    }
-    return P->length ? (lo + hi) / 2 : 0;
-}
-
-/* The fallback when lower_weights meets a coefficient outside the double
- * range (10^400 t + 1, say): every numerator and denominator is lowered
- * unfactored, in Horner form, scaled by the power of two 2^-mid that
- * centres its coefficients' sizes on 1 (so a polynomial whose coefficients
- * span less than ~2^2000 fits), and the two scales meet in one constant
- * 2^(mid_n - mid_d) per weight, which must fit a double too (else the
- * weight itself is out of range: an error) - except that in a point
- * (weights summing to 1) a weight whose constant is below the double range
- * while another's is not is 0 to double precision. */
-static void lower_weights_scaled(Lower *L, const RatFunStruct *const *ws,
-                                 slong n, int point, int *reg, int *bad)
-{
-    slong top = WORD_MIN; // the largest mid_n - mid_d of the weights
-    for (slong i = 0; i < n; i++) {
-        slong k = mid_bits(ws[i]->num) - mid_bits(ws[i]->den);
-        top = k > top ? k : top;
-    }
-    fmpq_t sn, sd, c;
-    fmpq_init(sn);
-    fmpq_init(sd);
-    fmpq_init(c);
-    *bad = -1;
-    for (slong i = 0; i < n; i++) {
-        slong kn = mid_bits(ws[i]->num), kd = mid_bits(ws[i]->den);
-        fmpq_one(sn);
-        fmpq_div_2exp(sn, sn, (ulong)kn);
-        fmpq_one(sd);
-        fmpq_div_2exp(sd, sd, (ulong)kd);
-        int num = horner(L, ws[i]->num, sn);
-        int den = horner(L, ws[i]->den, sd);
-        int flag = plan_pole(L->p, den);
-        *bad = *bad < 0 ? flag : plan_add(L->p, *bad, flag);
-        fmpq_one(c);
-        if (kn >= kd)
-            fmpq_mul_2exp(c, c, (ulong)(kn - kd));
-        else
-            fmpq_div_2exp(c, c, (ulong)(kd - kn));
-        L->flush = point && top > -1000 && kn - kd < -1100;
-        reg[i] = mul_fmpq(L, plan_div(L->p, num, den), c);
-        L->flush = 0;
-    }
-    if (*bad >= 0 && L->p->ins[*bad].op == PLAN_CONST &&
-        L->p->k[L->p->ins[*bad].a] == 0)
-        *bad = -1; // constant denominators only
-    fmpq_clear(c);
-    fmpq_clear(sd);
-    fmpq_clear(sn);
-}
-
 /* does x use a ring variable that is neither a param nor a const? */
 static int uses_atoms(const Lower *L, const RatFunStruct *x)
 {
@@ -488,7 +434,6 @@ Plan *lower_derived(const Derived *d, FILE *err)
     L.nconsts = d->nconsts;
     L.error = LOWER_OK;
     L.error_exp10 = 0;
-    L.flush = 0;
     L.p = plan_new(d->scheme, (int)d->nparams, (const char *const *)d->params,
                    (int)d->nconsts, (const char *const *)d->consts,
                    (int)d->npoints, (const char *const *)d->points);
@@ -532,11 +477,6 @@ Plan *lower_derived(const Derived *d, FILE *err)
         else {
             L.p->line = out->line;
             lower_weights(&L, ws, n, reg, &bad);
-            if (L.error != LOWER_OK) {
-                L.error = LOWER_OK;
-                lower_weights_scaled(&L, ws, n, out->kind == KIND_POINT,
-                                     reg, &bad);
-            }
             if (L.error != LOWER_OK)
                 derived_error(
                     d, err, out->span,

@@ -422,12 +422,22 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
                     (x->sym->kind == SYM_CONST ? D->info->nparams : 0);
         if (eval(D, res, nth(n, 0)) < 0)
             return -1;
-        for (long i = 0; i < k; i++) {
-            if (res->is_point)
-                pteq_derivative(res->p, res->p, var, r);
-            else
-                ratfun_derivative(res->s, res->s, var, r);
-        }
+        /* the k-th derivative of n/d is N/d^(k+1): about the size of
+         * x^(k+1) at most */
+        double bits = 0;
+        if (res->is_point)
+            for (slong j = 0; j < res->p->len; j++) {
+                double b = ratfun_log2_bits_pow(&res->p->terms[j].w, k + 1, r);
+                bits = b > bits ? b : bits;
+            }
+        else
+            bits = ratfun_log2_bits_pow(res->s, k + 1, r);
+        if (too_big(D, bits, n) < 0)
+            return -1;
+        if (res->is_point)
+            pteq_derivative_n(res->p, res->p, var, (ulong)k, r);
+        else
+            ratfun_derivative_n(res->s, res->s, var, (ulong)k, r);
         return 0;
     }
     case BI_BEZIER: {

@@ -192,8 +192,7 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
 {
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
-    if (fmpz_mpoly_is_zero(p, r->ctx) || !ring_factor_affordable(p, r) ||
-        !fmpz_mpoly_factor(f, p, r->ctx)) {
+    if (fmpz_mpoly_is_zero(p, r->ctx) || !ring_factor(f, p, r)) {
         /* unfactored (too costly to factor): one item, "(1 - t^400)" */
         fmpz_mpoly_factor_clear(f, r->ctx);
         *negative = 0;

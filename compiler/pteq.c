@@ -446,8 +446,14 @@ cleanup:
 
 void pteq_derivative(PointEq res, const PointEq x, slong var, const Ring *r)
 {
+    pteq_derivative_n(res, x, var, 1, r);
+}
+
+void pteq_derivative_n(PointEq res, const PointEq x, slong var, ulong k,
+                       const Ring *r)
+{
     pteq_set(res, x, r);
     for (slong i = 0; i < res->len; i++)
-        ratfun_derivative(&res->terms[i].w, &res->terms[i].w, var, r);
+        ratfun_derivative_n(&res->terms[i].w, &res->terms[i].w, var, k, r);
     compact(res, r);
 }

@@ -73,5 +73,8 @@ int pteq_compose_var(PointEq res, const PointEq x, slong var, const RatFun s,
                      const Ring *r);
 /* weight-wise partial derivative */
 void pteq_derivative(PointEq res, const PointEq x, slong var, const Ring *r);
+/* the k-th derivative of every weight (ratfun_derivative_n) */
+void pteq_derivative_n(PointEq res, const PointEq x, slong var, ulong k,
+                       const Ring *r);
 
 #endif

@@ -86,6 +86,9 @@ int ratfun_canonicalise(RatFun x, const Ring *r);
 
 /* partial derivative d x / d var */
 void ratfun_derivative(RatFun res, const RatFun x, slong var, const Ring *r);
+/* the k-th partial derivative (k >= 0), reduced once at the end */
+void ratfun_derivative_n(RatFun res, const RatFun x, slong var, ulong k,
+                         const Ring *r);
 /* res = x with variable var replaced by s (s may depend on var itself and on
  * any other variable).  RATFUN_EPOLE when the denominator of x becomes
  * identically zero under the substitution (res is then untouched). */

@@ -55,6 +55,16 @@ int ring_factor_affordable(const fmpz_mpoly_t p, const Ring *r)
     return fmpz_mpoly_total_degree_si(p, r->ctx) <= MAX_DEG;
 }
 
+int ring_factor(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, const Ring *r)
+{
+    enum { SQUAREFREE_MAX_TERMS = 4096 };
+    if (ring_factor_affordable(p, r))
+        return fmpz_mpoly_factor(f, p, r->ctx);
+    if (fmpz_mpoly_length(p, r->ctx) <= SQUAREFREE_MAX_TERMS)
+        return fmpz_mpoly_factor_squarefree(f, p, r->ctx);
+    return 0;
+}
+
 slong ring_var_index(const Ring *r, const char *name)
 {
     for (slong i = 0; i < r->nvars; i++)

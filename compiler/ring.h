@@ -12,6 +12,7 @@
 #define PC_RING_H
 
 #include <flint/fmpz_mpoly.h>
+#include <flint/fmpz_mpoly_factor.h>
 
 typedef struct Ring {
     fmpz_mpoly_ctx_t ctx; // FLINT context, ORD_DEGREVLEX
@@ -32,8 +33,14 @@ slong ring_var_index(const Ring *r, const char *name);
  * time bound, and some short polynomials take minutes (1 - (t^60 +
  * u^60)(t^30 - u^17): 80 s; t^720 - 1: 27 s; a 600-variable linear form:
  * minutes).  Measured limits: at most 400 terms and 8 variables, degree at
- * most 200 in one variable, total degree at most 32 in several.  Callers
- * treat a polynomial beyond them as one factor. */
+ * most 200 in one variable, total degree at most 32 in several. */
 int ring_factor_affordable(const fmpz_mpoly_t p, const Ring *r);
+
+/* f = the factorisation of p into irreducibles where that is affordable,
+ * else its square-free factorisation (gcd-based, fast: (4t - 3)^201 is
+ * still found as a power of 4t - 3, which matters for accurate numerics
+ * and pole checks), else nothing: returns 0 and callers treat p as one
+ * factor.  f must be initialised. */
+int ring_factor(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, const Ring *r);
 
 #endif

@@ -23,10 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum {
-    BL = PLAN_BLOCK,
-    PEEL_MAX = 8, // uniform factors moved from a weight to the coordinates
-};
+enum { BL = PLAN_BLOCK };
 
 static void *xmalloc(size_t n)
 {
@@ -78,6 +75,12 @@ static void k_pole(double *restrict d, const double *restrict a)
 {
     for (int j = 0; j < BL; j++)
         d[j] = (double)(a[j] == 0); // not ?: (see emit_c.c)
+}
+
+static void k_nonfinite(double *restrict d, const double *restrict a)
+{
+    for (int j = 0; j < BL; j++)
+        d[j] = (double)(a[j] - a[j] != 0); // inf - inf and NaN are NaN
 }
 
 static void k_powi(double *restrict d, const double *restrict a, int e)
@@ -156,6 +159,8 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
         return pow(val[x->a], (double)x->b);
     case PLAN_POLE:
         return val[x->a] == 0 ? 1.0 : 0.0;
+    case PLAN_NONFINITE:
+        return isfinite(val[x->a]) ? 0.0 : 1.0;
     default:
         (void)p;
         assert(0 && "not a computing op");
@@ -183,21 +188,18 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
         else
             uval[i] = scalar_op(p, x, uval);
     }
-    /* peephole (plan_peel): a weight s*u*x with s a sign and u uniform is
-     * read as x, and s*u multiplies the point's coordinates once per call
-     * instead of every sample; liveness then starts from those roots */
+    /* peephole (plan_peel): a weight -x is read as x, and the sign goes to
+     * the point's coordinates once per call instead of every sample;
+     * liveness then starts from those roots */
     const PlanOutput *po = &p->outputs[o];
     g->root = xmalloc(sizeof *g->root * (size_t)(po->nterms + 1));
     g->coef = xmalloc(sizeof *g->coef * (size_t)(po->nterms + 1));
     memset(live, 0, (size_t)n);
     for (int k = 0; k < po->nterms; k++) {
-        int u[PEEL_MAX], nu, sign;
-        int r = plan_peel(p, po->reg[k], &sign, u, PEEL_MAX, &nu);
-        double c = sign;
-        for (int f = 0; f < nu; f++)
-            c *= uval[u[f]];
+        int sign;
+        int r = plan_peel(p, po->reg[k], &sign);
         g->root[k] = r;
-        g->coef[k] = c;
+        g->coef[k] = sign;
         live[r] = 1;
     }
     if (po->bad >= 0)
@@ -333,6 +335,9 @@ static void run_block(const Prog *g, const Plan *p, const double *const *params,
         case PLAN_POLE:
             k_pole(d, reg(g, x->a));
             break;
+        case PLAN_NONFINITE:
+            k_nonfinite(d, reg(g, x->a));
+            break;
         default:
             assert(0 && "uniform op in the varying list");
         }
@@ -401,7 +406,7 @@ size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
         }
         if (status)
             for (size_t j = 0; j < m; j++)
-                status[i0 + j] = bad && bad[j] != 0;
+                status[i0 + j] = (unsigned char)(bad ? plan_status(bad[j]) : 0);
     }
     prog_clear(&g);
     return nbad;

@@ -8,8 +8,9 @@
  * then applied to the coordinates column by column.
  *
  * Pole convention (docs/codegen.md): a sample where a denominator of the
- * output's reduced equation evaluates to 0 gets NaN in every coordinate,
- * status[i] = 1, and is counted in the return value.
+ * output's reduced equation evaluates to 0 (a pole) or to a non-finite
+ * value (an overflow) gets NaN in every coordinate, status[i] = 1 or 2
+ * (PlanStatus), and is counted in the return value.
  */
 #ifndef PC_EVAL_H
 #define PC_EVAL_H
@@ -26,8 +27,8 @@ enum { PLAN_BLOCK = 128 }; // samples per block (a multiple of 8)
  *   points[i]  dim coordinates of base point i; may be NULL for points the
  *              output does not use (plan_output_uses_point)
  *   out        n*dim doubles, row-major (n doubles for a scalar output)
- *   status     n flags (1 = pole) or NULL
- * Returns the number of pole samples. */
+ *   status     n PlanStatus codes (0 ok, 1 pole, 2 overflow) or NULL
+ * Returns the number of pole and overflow samples. */
 size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
                  const double *consts, const double *const *points, int dim,
                  double *out, unsigned char *status);

@@ -68,7 +68,7 @@ static const struct {
 
 const char *plan_op_name(PlanOp op)
 {
-    static char lower[PLAN_NOPS][8];
+    static char lower[PLAN_NOPS][16];
     assert(op < PLAN_NOPS);
     if (!lower[op][0]) {
         const char *s = op_info[op].name;
@@ -269,6 +269,8 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
             return plan_const(p, pow(x, (double)b));
         case PLAN_POLE:
             return plan_const(p, x == 0 ? 1 : 0);
+        case PLAN_NONFINITE:
+            return plan_const(p, isfinite(x) ? 0 : 1);
         default:
             break;
         }
@@ -338,6 +340,7 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
         assert(b > PLAN_POW_CHAIN);
         break;
     case PLAN_POLE:
+    case PLAN_NONFINITE:
         if (p->ins[a].op == PLAN_NEG)
             a = p->ins[a].a;
         b = 0;
@@ -378,6 +381,11 @@ int plan_pole(Plan *p, int den)
     return plan_node(p, PLAN_POLE, den, 0);
 }
 
+int plan_nonfinite(Plan *p, int den)
+{
+    return plan_node(p, PLAN_NONFINITE, den, 0);
+}
+
 /* x^e by a shared multiplication chain for small e (x^3 = x^2*x and
  * x^4 = x^2*x^2 reuse x^2), one POWI above PLAN_POW_CHAIN; negative powers
  * are the lowering's business (they never reach here). */
@@ -401,26 +409,16 @@ int plan_pow(Plan *p, int a, long e)
     return plan_mul(p, plan_pow(p, a, e - 1), a);
 }
 
-int plan_peel(const Plan *p, int w, int *sign, int *u, int max, int *nu)
+int plan_peel(const Plan *p, int w, int *sign)
 {
     *sign = 1;
-    *nu = 0;
     if (p->ins[w].uniform)
         return w;
-    for (;;) {
-        const PlanIns *x = &p->ins[w];
-        if (x->op == PLAN_NEG) {
-            *sign = -*sign;
-            w = x->a;
-        } else if (x->op == PLAN_MUL && *nu < max &&
-                   p->ins[x->a].uniform != p->ins[x->b].uniform) {
-            int uni = p->ins[x->a].uniform ? x->a : x->b;
-            u[(*nu)++] = uni;
-            w = uni == x->a ? x->b : x->a;
-        } else {
-            return w;
-        }
+    while (p->ins[w].op == PLAN_NEG) {
+        *sign = -*sign;
+        w = p->ins[w].a;
     }
+    return w;
 }
 
 void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,

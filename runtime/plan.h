@@ -15,10 +15,12 @@
  * registers once per call, the others once per sample.
  *
  * An output M = sum_k w_k * P_k lists its weight slots (point index,
- * register) and a `bad` register: the sum of POLE flags over the
- * denominators of its equation, non-zero exactly where a denominator
- * evaluates to 0.  There the back ends write NaN coordinates and report the
- * sample (docs/codegen.md).  A scalar output has one slot with point -1.
+ * register) and a `bad` register: the sum of POLE flags over the factors
+ * of its denominators (an integer >= 1 where one evaluates to 0) plus 0.5
+ * where their product is not finite (it overflowed: 1/L would be 0 and the
+ * weights silently wrong).  Where bad != 0 the back ends write NaN
+ * coordinates and report the sample as a pole (bad >= 1) or an overflow
+ * (bad = 0.5) (docs/codegen.md).  A scalar output has one slot, point -1.
  */
 #ifndef PC_PLAN_H
 #define PC_PLAN_H
@@ -38,7 +40,8 @@
     X(MUL, 2, "*")    /* d = r[a] * r[b]                                    */ \
     X(DIV, 2, "/")    /* d = r[a] / r[b]   (b is checked by a POLE first)   */ \
     X(POWI, 1, NULL)  /* d = pow(r[a], b), integer b > PLAN_POW_CHAIN       */  \
-    X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */
+    X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */ \
+    X(NONFINITE, 1, NULL) /* d = r[a] is inf or NaN ? 1 : 0 (den overflow)  */
 
 /* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
  * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
@@ -71,7 +74,7 @@ typedef struct PlanOutput {
     int nterms; // weight slots
     int *point; // owned: base point index of slot k (-1 for a scalar)
     int *reg;   // owned: register holding weight k
-    int bad;    // register of the pole flag sum, or -1 when none can vanish
+    int bad;    // register of pole flags + 0.5 overflow flag, or -1 (no den)
 } PlanOutput;
 
 typedef struct Plan {
@@ -96,6 +99,20 @@ Plan *plan_new(const char *name, int nparams, const char *const *params,
                const char *const *points);
 void plan_free(Plan *p);
 
+/* What the bad register says of a sample. */
+typedef enum PlanStatus {
+    PLAN_STATUS_OK = 0,
+    PLAN_STATUS_POLE = 1,     // a denominator factor is 0
+    PLAN_STATUS_OVERFLOW = 2, // a denominator is not finite
+} PlanStatus;
+
+static inline PlanStatus plan_status(double bad)
+{
+    return bad >= 1 ? PLAN_STATUS_POLE
+           : bad != 0 ? PLAN_STATUS_OVERFLOW
+                      : PLAN_STATUS_OK;
+}
+
 /* Builder.  Each returns a register; equal requests give equal registers,
  * constant operands are folded, trivial identities (x*1, x+0, --x) are
  * simplified. */
@@ -109,17 +126,17 @@ int plan_mul(Plan *p, int a, int b);
 int plan_div(Plan *p, int a, int b);
 int plan_pow(Plan *p, int a, long e); // e >= 0; shares the powers it builds
 int plan_pole(Plan *p, int den);
+int plan_nonfinite(Plan *p, int den);
 /* Appends an output; consumes nothing (arrays are copied). */
 void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
                      int nterms, const int *point, const int *reg, int bad);
 
-/* Splits a weight register w into  w = sign * u_0 * ... * u_{nu-1} * root,
- * peeling negations and multiplications by uniform registers (constants,
- * consts) off a varying w, so that a back end can multiply the points'
- * coordinates by the uniform part once per call instead of every sample.
- * Returns root (w itself when w is uniform or nothing peels); at most max
- * factors go to u[], *nu receives their number, *sign is +1 or -1. */
-int plan_peel(const Plan *p, int w, int *sign, int *u, int max, int *nu);
+/* Splits a weight register w into  w = sign * root  (negations peeled), so
+ * that a back end can negate the points' coordinates once per call instead
+ * of the weight every sample.  Only the sign: it is exact, whereas moving
+ * a constant or const factor k onto the coordinates could overflow where
+ * w itself does not (k = 1e300, B = 1e10).  Returns root; *sign is +-1. */
+int plan_peel(const Plan *p, int w, int *sign);
 
 /* Removes instructions no output needs and renumbers (keeps the order). */
 void plan_prune(Plan *p);

@@ -84,6 +84,20 @@ fi
 check "bad --header exits 1" test $? -eq 1
 check "bad --header prints nothing" test ! -s "$tmp/out"
 
+# the header of names that are C++ keywords or macros of other headers
+# compiles after those headers, in C++ too
+printf 'point A, new, EDOM, INT_MAX\nparam this\nM = (A + new + EDOM + INT_MAX)/4 + (A - new)*this\n' >"$tmp/cpp.pcs"
+"$PC" emit-c "$tmp/cpp.pcs" -o "$tmp/cpp.c" --header "$tmp/cpp.h"
+check "emit-c names" test $? -eq 0
+printf '#include <errno.h>\n#include <limits.h>\n#include "cpp.h"\nint main(void) { return 0; }\n' >"$tmp/use.c"
+cc -std=c99 -Wall -Wextra -Werror -c "$tmp/use.c" -o "$tmp/use.o"
+check "header after errno.h/limits.h (C)" test $? -eq 0
+if command -v g++ >/dev/null; then
+    cp "$tmp/use.c" "$tmp/use.cc"
+    g++ -Wall -Wextra -Werror -c "$tmp/use.cc" -o "$tmp/use2.o"
+    check "header in C++" test $? -eq 0
+fi
+
 # JSON of a scheme whose file name needs escapes
 cp examples/desargues_arc.pcs "$tmp/a\"b.pcs"
 sed -i '/^scheme /d' "$tmp/a\"b.pcs"

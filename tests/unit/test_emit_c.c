@@ -486,7 +486,7 @@ static void test_emit_c_desargues_centroid_at_half(void **state)
  * multiplication chains (POWI, i.e. pow()); a pole */
 static const char clashes[] = "scheme clash\n"
                               "point n, out, int, r1, FP_NAN, clash_V_batch\n"
-                              "point unix, q0, s1, M_PI\n"
+                              "point unix, q0, s1, M_PI, new, EDOM, FLT_MAX\n"
                               "param dim, j\n"
                               "const w0, nb\n"
                               "k = 1/(dim - w0)\n"
@@ -494,7 +494,8 @@ static const char clashes[] = "scheme clash\n"
                               "V = int - r1\n"
                               "Z = divide(n, int, j*w0*nb)\n"
                               "Y = along(FP_NAN, clash_V_batch, nb*dim)\n"
-                              "X = (unix + q0 + s1 + M_PI)/4\n"
+                              "X = (unix + q0 + s1 + M_PI + new + EDOM + "
+                              "FLT_MAX)/7\n"
                               "output k, M, V, Z, Y, X\n";
 
 static void test_emit_c_edge_cases_match(void **state)
@@ -679,6 +680,13 @@ static void test_lower_reports_unrepresentable_equations(void **state)
                            "10^-400) is below the smallest double and would "
                            "be 0");
     free(e);
+    /* no rescaling: a coefficient beyond the double range is an error even
+     * where the value would be fine for some t (10^400 t + 1 at t = 0) */
+    e = lower_error("point A, B\nparam t\nN = divide(A, B, 10^400*t)\n");
+    assert_string_equal(e, "x.pcs:3:1: error: N cannot be evaluated in double "
+                           "precision: a coefficient of its equation (about "
+                           "10^400) is beyond the largest double");
+    free(e);
     e = lower_error("param t\nb = (((t^1000)^1000)^1000)^3\n");
     assert_string_equal(e, "x.pcs:2:1: error: b cannot be evaluated "
                            "numerically: its equation has degree 3000000000, "
@@ -686,16 +694,66 @@ static void test_lower_reports_unrepresentable_equations(void **state)
     free(e);
 }
 
-/* coefficients outside the double range whose polynomial is not: the
- * scaled fallback evaluates them (t^2 + 10^-400 is t^2 in double) */
-static void test_lower_scales_out_of_range_coefficients(void **state)
+/* high powers of one factor stay powers (square-free factorisation where
+ * full factoring is too costly): 1/(4t - 3)^201 expanded would lose every
+ * digit near t = 3/4, and its pole would be checked on the product */
+static void test_lower_keeps_powers_of_factors(void **state)
 {
     (void)state;
-    check_scheme_text("scaled.pcs", "scheme scaled\npoint A, B\nparam t\n"
-                                    "v = t^2 + 10^(-400)\n"
-                                    "M = divide(A, B, 10^350*t^2 + 10^340)\n"
-                                    "N = divide(A, B, 10^400*t)\n"
-                                    "output v, M, N\n");
+    check_scheme_text("powers.pcs",
+                      "scheme powers\nparam t, u\n"
+                      "s = 1/(t - 3/4)^201\n"
+                      "v = 1/((t - 3/4)^17*(u + 5/8)^17)\n"
+                      "output s, v\n");
+    static const char src[] = "param t\ns = 1/(t - 3/4)^201\n";
+    Derived *d = derive_source("p.pcs", src, strlen(src), stderr, NULL);
+    Plan *p = lower_derived(d, stderr);
+    double t = 0.75, out;
+    const double *prm[1] = {&t};
+    unsigned char st;
+    assert_int_equal(plan_eval(p, 0, 1, prm, NULL, NULL, 1, &out, &st), 1);
+    assert_int_equal(st, PLAN_STATUS_POLE);
+    assert_true(isnan(out));
+    plan_free(p);
+    derived_free(d);
+}
+
+/* a denominator that overflows (k t = 1e310) would make 1/L = 0 and the
+ * point silently A; it is NaN with status 2 in all four generated
+ * functions and in the runtime, a pole stays status 1 */
+static void test_emit_c_denominator_overflow_is_reported(void **state)
+{
+    (void)state;
+    static const char src[] = "scheme ov\npoint A, B\nparam t\nconst k\n"
+                              "M = divide(A, B, k*t)\n";
+    Derived *d = derive_source("ov.pcs", src, strlen(src), stderr, NULL);
+    Plan *p = lower_derived(d, stderr);
+    Compiled c;
+    compile_plan(&c, p);
+    one_fn one = (one_fn)(uintptr_t)dlsym(c.so, "w1_0");
+    batch_fn batch = (batch_fn)(uintptr_t)dlsym(c.so, "wb_0");
+    double A[2] = {0, 1}, B[2] = {1e10, 2};
+    const double *pts[2] = {A, B};
+    double k = 1e300, ts[3] = {1e10, 1, -1e-300}, out[2], bout[6], rout[6];
+    const double *prm[1] = {ts};
+    unsigned char st[3], rst[3];
+    static const int want[3] = {2, 0, 1};
+    for (int i = 0; i < 3; i++) {
+        assert_int_equal(one(&ts[i], &k, pts, 2, out, 1), want[i]);
+        assert_true(want[i] ? isnan(out[0]) && isnan(out[1])
+                            : fabs(out[0] - 1e10) <= 1e-5);
+    }
+    assert_int_equal(batch(3, prm, &k, pts, 2, bout, st, 1), 2);
+    assert_int_equal(plan_eval(p, 0, 3, prm, &k, pts, 2, rout, rst), 2);
+    for (int i = 0; i < 3; i++) {
+        assert_int_equal(st[i], want[i]);
+        assert_int_equal(rst[i], want[i]);
+        assert_true(want[i] ? isnan(bout[2 * i]) && isnan(rout[2 * i])
+                            : bout[2 * i] == rout[2 * i]);
+    }
+    compiled_clear(&c);
+    plan_free(p);
+    derived_free(d);
 }
 
 static int teardown(void **state)
@@ -715,7 +773,8 @@ int main(void)
         cmocka_unit_test(test_emit_c_clash_detects_function_names),
         cmocka_unit_test(test_lower_q_to_double_rounds_to_nearest),
         cmocka_unit_test(test_lower_reports_unrepresentable_equations),
-        cmocka_unit_test(test_lower_scales_out_of_range_coefficients),
+        cmocka_unit_test(test_lower_keeps_powers_of_factors),
+        cmocka_unit_test(test_emit_c_denominator_overflow_is_reported),
         cmocka_unit_test(test_emit_c_examples_match_exact_and_runtime),
     };
     int rc = cmocka_run_group_tests(tests, NULL, teardown);
