@@ -721,8 +721,7 @@ static void emit_batch(Ctx *C)
     if (o->bad >= 0) {
         fputs("            fb[j] = ", out);
         operand(C, o->bad);
-        /* an int count: clang vectorises an int sum, not a double one */
-        fputs(";\n            nb += fb[j] != 0.0;\n", out);
+        fputs(";\n", out);
     }
     for (int k = 0; k < nslots; k++) {
         fprintf(out, "            w%d[j] = ", k);
@@ -731,6 +730,14 @@ static void emit_batch(Ctx *C)
     }
     C->batch = 0;
     fputs("        }\n", out);
+    /* counted in a loop of its own, in an int: inside the weight loop the
+     * count (with two flags per sample) keeps gcc -O2 from vectorising it,
+     * and clang vectorises an int sum but not a double one */
+    if (o->bad >= 0)
+        fprintf(out,
+                "        for (j = 0; j < %d; j++)\n"
+                "            nb += fb[j] != 0.0;\n",
+                BLOCK);
     if (scalar) {
         fputs("        for (j = 0; j < m; j++)\n"
               "            out[i0 + j] = w0[j];\n",
