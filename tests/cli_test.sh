@@ -98,6 +98,16 @@ if command -v g++ >/dev/null; then
     check "header in C++" test $? -eq 0
 fi
 
+# the batch code's weight loop vectorises under gcc -O2 (docs/codegen.md):
+# the loop that reads x0 = p0[j] in desargues_arc_M_batch_checked
+if cc -v 2>&1 | grep -q '^gcc version'; then
+    "$PC" emit-c examples/desargues_arc.pcs -o "$tmp/da.c"
+    line=$(grep -n 'const double x0 = p0\[j\];' "$tmp/da.c" | head -1 | cut -d: -f1)
+    line=$((line - 1))
+    cc -std=c99 -O2 -fopt-info-vec-optimized -c "$tmp/da.c" -o "$tmp/da.o" 2>"$tmp/vec"
+    check "weight loop vectorised (line $line)" grep -q "da.c:$line:.*loop vectorized" "$tmp/vec"
+fi
+
 # JSON of a scheme whose file name needs escapes
 cp examples/desargues_arc.pcs "$tmp/a\"b.pcs"
 sed -i '/^scheme /d' "$tmp/a\"b.pcs"
