@@ -267,19 +267,12 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
     size_t mlen = 0;
     FILE *m = open_memstream(&msg, &mlen);
     Plan *p = NULL;
-    int o1, o2;
-    char *clash = NULL;
     if (prefix && !emit_c_valid_prefix(prefix))
         fprintf(m, "pointcalc: prefix '%s' is not a usable C identifier\n",
                 prefix);
     else
         p = lower_derived(s->d, m);
-    if (p && emit_c_clash(p, prefix, &o1, &o2, &clash)) {
-        derived_error(s->d, m, s->d->outputs[o2].span,
-                      "the C function %s would be written twice (outputs %s "
-                      "and %s) or is reserved in C",
-                      clash, s->d->outputs[o1].name, s->d->outputs[o2].name);
-        free(clash);
+    if (p && emit_c_check(p, s->d, prefix, m)) {
         plan_free(p);
         p = NULL;
     }

@@ -102,22 +102,7 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
     if (!d)
         return 1;
     Plan *p = lower_derived(d, err);
-    int o1, o2;
-    char *clash = NULL;
-    if (p && !dump && emit_c_clash(p, prefix, &o1, &o2, &clash)) {
-        if (o1 == o2)
-            derived_error(d, err, d->outputs[o1].span,
-                          "the C function %s that emit-c would write for %s "
-                          "is a name C reserves; rename the output or give "
-                          "another --prefix",
-                          clash, d->outputs[o1].name);
-        else
-            derived_error(d, err, d->outputs[o2].span,
-                          "emit-c would write the C function %s for both %s "
-                          "(line %d) and %s; rename one of them",
-                          clash, d->outputs[o1].name, d->outputs[o1].line,
-                          d->outputs[o2].name);
-        free(clash);
+    if (p && !dump && emit_c_check(p, d, prefix, err)) {
         plan_free(p);
         p = NULL;
     }
@@ -152,6 +137,10 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
 /* rows per chunk: up to CHUNK, fewer for high dimensions (about 8 MB of
  * coordinates per output at most) */
 enum { CHUNK = 4096, CHUNK_VALUES = 1 << 20, MAX_POLE_MESSAGES = 10 };
+
+/* eval's own status beyond PlanStatus: a non-finite value whose
+ * denominator was finite */
+enum { STATUS_TERMS = PLAN_STATUS_OVERFLOW + 1 };
 
 typedef struct Assign {
     const char *name; // borrowed from argv (up to '=', copied)
@@ -563,13 +552,13 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
                       (const double *const *)s.pt, s.dim, res[j], st[j]);
         for (size_t r = 0; r < m; r++) {
             /* poles and numbers that double precision cannot hold, on
-             * err; st[j][r] becomes 3 for a non-finite value without a
-             * reported status (the terms overflowed) */
+             * err; a non-finite value without a status (a numerator's
+             * terms overflowed) becomes STATUS_TERMS */
             for (int j = 0; j < s.nsel; j++) {
                 int nc = columns(p, &p->outputs[s.sel[j]], s.dim);
                 if (st[j][r] == PLAN_STATUS_OK &&
                     !finite_row(res[j] + r * (size_t)nc, nc))
-                    st[j][r] = 3;
+                    st[j][r] = STATUS_TERMS;
                 if (st[j][r] == PLAN_STATUS_OK)
                     continue;
                 int pole = st[j][r] == PLAN_STATUS_POLE;

@@ -133,9 +133,8 @@ static int is_keyword(const char *s)
 
 int emit_c_valid_prefix(const char *s)
 {
-    /* function names are PREFIX_OUTPUT: only a keyword itself, or a name
-     * C reserves at file scope (_x, __x), cannot serve */
-    if (!s || !isalpha((unsigned char)s[0]))
+    /* function names are PREFIX_OUTPUT: any identifier but a keyword */
+    if (!s || !(isalpha((unsigned char)s[0]) || s[0] == '_'))
         return 0;
     for (const char *q = s; *q; q++)
         if (!(isalnum((unsigned char)*q) || *q == '_'))
@@ -175,8 +174,9 @@ xasprintf(const char *fmt, ...)
 }
 
 /* a C identifier from any text: other characters become _; one that would
- * not start with a letter gets the prefix pc_ ("3d-curve" -> pc_3d_curve:
- * a leading _ would make a name C reserves at file scope) */
+ * start with neither a letter nor _ gets the prefix pc_ ("3d-curve.pcs" ->
+ * pc_3d_curve).  A scheme's own name (`scheme NAME`) is an identifier
+ * already and stays as it is: contract section 5 names NAME_M. */
 static char *identifier(const char *s)
 {
     size_t n = strlen(s);
@@ -184,9 +184,9 @@ static char *identifier(const char *s)
     if (!r)
         abort();
     size_t k = 0;
-    if (!isalpha((unsigned char)s[0])) {
-        memcpy(r, s[0] == '_' ? "pc" : "pc_", s[0] == '_' ? 2 : 3);
-        k = s[0] == '_' ? 2 : 3;
+    if (!(isalpha((unsigned char)s[0]) || s[0] == '_')) {
+        memcpy(r, "pc_", 3);
+        k = 3;
     }
     for (size_t i = 0; i < n; i++)
         r[k++] = isalnum((unsigned char)s[i]) ? s[i] : '_';
@@ -283,6 +283,29 @@ static void names_clear(Names *N)
     free(N->prefix);
 }
 
+int emit_c_check(const Plan *p, const Derived *d, const char *prefix,
+                 FILE *err)
+{
+    int o1, o2;
+    char *clash = NULL;
+    if (!emit_c_clash(p, prefix, &o1, &o2, &clash))
+        return 0;
+    if (o1 == o2)
+        derived_error(d, err, d->outputs[o1].span,
+                      "the C function %s that emit-c would write for %s is a "
+                      "C keyword or macro; rename the output or give another "
+                      "--prefix",
+                      clash, d->outputs[o1].name);
+    else
+        derived_error(d, err, d->outputs[o2].span,
+                      "emit-c would write the C function %s for both %s "
+                      "(line %d) and %s; rename one of them",
+                      clash, d->outputs[o1].name, d->outputs[o1].line,
+                      d->outputs[o2].name);
+    free(clash);
+    return 1;
+}
+
 int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
                  char **name)
 {
@@ -290,8 +313,8 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
     int found = 0;
     names_init(&N, p, prefix);
     for (int a = 0; a < N.nfn && !found; a++) {
-        /* a file-scope name: a keyword or known macro, or _x */
-        if (in_list(N.fn[a]) || N.fn[a][0] == '_') {
+        /* a keyword or a macro of the headers: it would not compile */
+        if (in_list(N.fn[a])) {
             *o1 = *o2 = a / NVARIANTS;
             found = 1;
             *name = xstrdup(N.fn[a]);

@@ -19,6 +19,7 @@
 
 #include <stdio.h>
 
+#include "compiler/derive.h"
 #include "runtime/plan.h"
 
 /* prefix: names' prefix (NULL: the scheme name, made a C identifier);
@@ -29,11 +30,16 @@ void emit_c_header(FILE *out, const Plan *p, const char *prefix,
                    const char *source);
 
 /* 1 when two outputs would generate the same C function name (*o1 < *o2,
- * e.g. outputs M and M_batch: NAME_M_batch), or a name C reserves (*o1 ==
- * *o2); *name receives it (free() it).  0 when every name is usable.
- * emit_c's output compiles only when this is 0. */
+ * e.g. outputs M and M_batch: NAME_M_batch), or a name that is a C keyword
+ * or macro (*o1 == *o2); *name receives it (free() it).  0 when every name
+ * is usable.  emit_c's output compiles only when this is 0. */
 int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
                  char **name);
+/* emit_c_clash for p lowered from d, reported at the output's definition
+ * (FILE:LINE:COL: error: ...) on err; 1 when it reported, else 0.  The one
+ * check emit-c and pc_emit_c make. */
+int emit_c_check(const Plan *p, const Derived *d, const char *prefix,
+                 FILE *err);
 
 /* 1 if s is usable as a --prefix (a C identifier, not a keyword). */
 int emit_c_valid_prefix(const char *s);

@@ -100,8 +100,8 @@ static int cmp_factor(const void *x, const void *y)
 /* the product of the factors (not the constant) that are uniform (1) or
  * vary with the params (0), in register order so that equal products give
  * equal registers.  Weights are built as varying * uniform * constant, so
- * the uniform part is computed once per call and the back ends can move
- * it, with the constant, onto the points' coordinates (plan_peel). */
+ * that the uniform part (consts only) is one product computed once per
+ * call, not factors multiplied into the per-sample chain. */
 static int factored_product(Lower *L, Factored *F, int uniform)
 {
     int acc = plan_const(L->p, 1);

@@ -1220,58 +1220,71 @@ static double max2(double a, double b)
     return a > b ? a : b;
 }
 
+/* the shapes of a RatFun's numerator and denominator (own degree buffer) */
+typedef struct Shapes {
+    Shape n, d;
+    slong *degs; // owned, 2 * nvars
+} Shapes;
+
+static void shapes_init(Shapes *s, const RatFun x, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    s->degs = flint_malloc(2 * (size_t)nv * sizeof(slong));
+    shape_of(&s->n, x->num, s->degs, r);
+    shape_of(&s->d, x->den, s->degs + nv, r);
+}
+
+static void shapes_clear(Shapes *s)
+{
+    flint_free(s->degs);
+}
+
 double ratfun_log2_bits_product(const RatFun x, const RatFun y, const Ring *r)
 {
     slong nv = r->ctx->minfo->nvars;
-    slong *d = flint_malloc(4 * (size_t)nv * sizeof(slong));
-    Shape xn, xd, yn, yd;
-    shape_of(&xn, x->num, d, r);
-    shape_of(&xd, x->den, d + nv, r);
-    shape_of(&yn, y->num, d + 2 * nv, r);
-    shape_of(&yd, y->den, d + 3 * nv, r);
-    double m = max2(max2(prod_bits(&xn, &yn, nv), prod_bits(&xd, &yd, nv)),
-                    max2(prod_bits(&xn, &yd, nv), prod_bits(&xd, &yn, nv)));
-    flint_free(d);
+    Shapes a, b;
+    shapes_init(&a, x, r);
+    shapes_init(&b, y, r);
+    double m = max2(max2(prod_bits(&a.n, &b.n, nv), prod_bits(&a.d, &b.d, nv)),
+                    max2(prod_bits(&a.n, &b.d, nv), prod_bits(&a.d, &b.n, nv)));
+    shapes_clear(&b);
+    shapes_clear(&a);
     return m;
 }
 
 double ratfun_log2_bits_pow(const RatFun x, slong e, const Ring *r)
 {
     slong nv = r->ctx->minfo->nvars;
-    slong *d = flint_malloc(2 * (size_t)nv * sizeof(slong));
-    Shape xn, xd;
-    shape_of(&xn, x->num, d, r);
-    shape_of(&xd, x->den, d + nv, r);
+    Shapes a;
+    shapes_init(&a, x, r);
     double ae = fabs((double)e);
-    double m = max2(pow_bits(&xn, ae, nv), pow_bits(&xd, ae, nv));
-    flint_free(d);
+    double m = max2(pow_bits(&a.n, ae, nv), pow_bits(&a.d, ae, nv));
+    shapes_clear(&a);
     return m;
 }
 
 double ratfun_log2_bits_compose(const RatFun x, slong var, const RatFun s,
                                 const Ring *r)
 {
-    /* x(var = s) has about the size of x times s^deg_var(x) */
     slong nv = r->ctx->minfo->nvars;
-    slong *d = flint_malloc(4 * (size_t)nv * sizeof(slong));
-    Shape xn, xd, sn, sd;
-    shape_of(&xn, x->num, d, r);
-    shape_of(&xd, x->den, d + nv, r);
-    shape_of(&sn, s->num, d + 2 * nv, r);
-    shape_of(&sd, s->den, d + 3 * nv, r);
+    Shapes a, b;
+    shapes_init(&a, x, r);
+    shapes_init(&b, s, r);
     double m = INFINITY;
-    if (!xn.huge && !xd.huge && !sn.huge && !sd.huge) {
+    if (!a.n.huge && !a.d.huge && !b.n.huge && !b.d.huge) {
         /* every term of x times a power of s of degree <= e, over the
          * common denominator: terms <= len(x) * terms(s^e), coefficient
          * bits <= bits(x) + e (bits(s) + log2 len(s)) + log2 len(x) */
-        double e = (double)(xn.degs[var] > xd.degs[var] ? xn.degs[var]
-                                                        : xd.degs[var]);
-        double lx = max2(xn.llen, xd.llen), bx = max2(xn.bits, xd.bits);
-        double ls = e > 0 ? max2(pow_lterms(&sn, e, nv), pow_lterms(&sd, e, nv))
-                          : 0;
-        double bs = e * (max2(sn.bits, sd.bits) + max2(sn.llen, sd.llen) + 1);
-        m = max2(lx, 0) + ls + log2(bx + bs + max2(lx, 0) + 1);
+        double e = (double)(a.n.degs[var] > a.d.degs[var] ? a.n.degs[var]
+                                                          : a.d.degs[var]);
+        double lx = max2(max2(a.n.llen, a.d.llen), 0);
+        double bx = max2(a.n.bits, a.d.bits);
+        double ls =
+            e > 0 ? max2(pow_lterms(&b.n, e, nv), pow_lterms(&b.d, e, nv)) : 0;
+        double bs = e * (max2(b.n.bits, b.d.bits) + max2(b.n.llen, b.d.llen) + 1);
+        m = lx + ls + log2(bx + bs + lx + 1);
     }
-    flint_free(d);
+    shapes_clear(&b);
+    shapes_clear(&a);
     return m;
 }

@@ -25,16 +25,6 @@
 
 enum { BL = PLAN_BLOCK };
 
-static void *xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (!p) {
-        fputs("pointcalc: out of memory\n", stderr);
-        abort();
-    }
-    return p;
-}
-
 /* ---- block kernels ----------------------------------------------------- */
 
 static void k_neg(double *restrict d, const double *restrict a)
@@ -139,7 +129,7 @@ typedef struct Prog {
     int nslots;   // slots of BL doubles
     double *rf;   // register file: nslots * BL, 64-byte aligned
     int *root;    // per weight slot: the register actually read
-    double *coef; // per weight slot: constant factor moved to the points
+    double *coef; // per weight slot: its sign (plan_peel), on the points
 } Prog;
 
 static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
@@ -172,28 +162,15 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
 static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
 {
     int n = p->nins;
-    unsigned char *live = xmalloc((size_t)n);
-    int *last = xmalloc(sizeof *last * (size_t)n);
-    double *uval = xmalloc(sizeof *uval * (size_t)n);
-    /* every uniform register, once (they are few: constants, consts and
-     * what depends on them only) */
-    for (int i = 0; i < n; i++) {
-        const PlanIns *x = &p->ins[i];
-        if (!x->uniform)
-            continue;
-        if (x->op == PLAN_CONST)
-            uval[i] = p->k[x->a];
-        else if (x->op == PLAN_INPUT)
-            uval[i] = consts[x->a - p->nparams];
-        else
-            uval[i] = scalar_op(p, x, uval);
-    }
+    unsigned char *live = plan_xmalloc((size_t)n);
+    int *last = plan_xmalloc(sizeof *last * (size_t)n);
+    double *uval = plan_xmalloc(sizeof *uval * (size_t)n);
     /* peephole (plan_peel): a weight -x is read as x, and the sign goes to
      * the point's coordinates once per call instead of every sample;
      * liveness then starts from those roots */
     const PlanOutput *po = &p->outputs[o];
-    g->root = xmalloc(sizeof *g->root * (size_t)(po->nterms + 1));
-    g->coef = xmalloc(sizeof *g->coef * (size_t)(po->nterms + 1));
+    g->root = plan_xmalloc(sizeof *g->root * (size_t)(po->nterms + 1));
+    g->coef = plan_xmalloc(sizeof *g->coef * (size_t)(po->nterms + 1));
     memset(live, 0, (size_t)n);
     for (int k = 0; k < po->nterms; k++) {
         int sign;
@@ -204,17 +181,21 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
     }
     if (po->bad >= 0)
         live[po->bad] = 1;
-    for (int i = n - 1; i >= 0; i--) {
-        if (!live[i])
+    plan_live_close(p, live);
+    /* the uniform registers this output needs, once per call */
+    for (int i = 0; i < n; i++) {
+        const PlanIns *x = &p->ins[i];
+        if (!live[i] || !x->uniform)
             continue;
-        int nargs = plan_op_nargs((PlanOp)p->ins[i].op);
-        if (nargs >= 1)
-            live[p->ins[i].a] = 1;
-        if (nargs >= 2)
-            live[p->ins[i].b] = 1;
+        if (x->op == PLAN_CONST)
+            uval[i] = p->k[x->a];
+        else if (x->op == PLAN_INPUT)
+            uval[i] = consts[x->a - p->nparams];
+        else
+            uval[i] = scalar_op(p, x, uval);
     }
-    g->v = xmalloc(sizeof *g->v * (size_t)n);
-    g->slot = xmalloc(sizeof *g->slot * (size_t)n);
+    g->v = plan_xmalloc(sizeof *g->v * (size_t)n);
+    g->slot = plan_xmalloc(sizeof *g->slot * (size_t)n);
     g->nv = 0;
     /* last use of every varying register */
     for (int i = 0; i < n; i++) {
@@ -236,13 +217,13 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
         last[po->bad] = INT32_MAX;
     /* slots: uniform registers that varying code reads (or that are
      * results) get a broadcast slot; varying ones share by linear scan */
-    int *free_slots = xmalloc(sizeof *free_slots * (size_t)(n + 1));
+    int *free_slots = plan_xmalloc(sizeof *free_slots * (size_t)(n + 1));
     int nfree = 0, nslots = 0;
     for (int i = 0; i < n; i++)
         if (live[i] && p->ins[i].uniform &&
             (last[i] >= 0 || last[i] == INT32_MAX))
             g->slot[i] = nslots++;
-    int *uniform_slots = xmalloc(sizeof *uniform_slots * (size_t)(n + 1));
+    int *uniform_slots = plan_xmalloc(sizeof *uniform_slots * (size_t)(n + 1));
     int nu = 0;
     for (int i = 0; i < n; i++)
         if (g->slot[i] >= 0)

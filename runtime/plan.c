@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static void *xmalloc(size_t n)
+void *plan_xmalloc(size_t n)
 {
     void *p = malloc(n ? n : 1);
     if (!p) {
@@ -39,12 +39,12 @@ static void *xrealloc(void *old, size_t n)
 static char *xstrdup(const char *s)
 {
     size_t n = strlen(s) + 1;
-    return memcpy(xmalloc(n), s, n);
+    return memcpy(plan_xmalloc(n), s, n);
 }
 
 static char **copy_names(int n, const char *const *names)
 {
-    char **v = xmalloc(sizeof *v * (size_t)n);
+    char **v = plan_xmalloc(sizeof *v * (size_t)n);
     for (int i = 0; i < n; i++)
         v[i] = xstrdup(names[i]);
     return v;
@@ -90,7 +90,7 @@ Plan *plan_new(const char *name, int nparams, const char *const *params,
                int nconsts, const char *const *consts, int npoints,
                const char *const *points)
 {
-    Plan *p = xmalloc(sizeof *p);
+    Plan *p = plan_xmalloc(sizeof *p);
     memset(p, 0, sizeof *p);
     p->name = xstrdup(name);
     p->nparams = nparams;
@@ -157,7 +157,7 @@ static void rehash(Plan *p, int cap)
 {
     free(p->hash);
     p->hcap = cap;
-    p->hash = xmalloc(sizeof *p->hash * (size_t)cap);
+    p->hash = plan_xmalloc(sizeof *p->hash * (size_t)cap);
     for (int i = 0; i < cap; i++)
         p->hash[i] = -1;
     for (int i = 0; i < p->nins; i++) {
@@ -431,8 +431,8 @@ void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
     o->kind = kind;
     o->line = line;
     o->nterms = nterms;
-    o->point = xmalloc(sizeof *o->point * (size_t)nterms);
-    o->reg = xmalloc(sizeof *o->reg * (size_t)nterms);
+    o->point = plan_xmalloc(sizeof *o->point * (size_t)nterms);
+    o->reg = plan_xmalloc(sizeof *o->reg * (size_t)nterms);
     memcpy(o->point, point, sizeof *o->point * (size_t)nterms);
     memcpy(o->reg, reg, sizeof *o->reg * (size_t)nterms);
     o->bad = bad;
@@ -477,8 +477,8 @@ void plan_live_close(const Plan *p, unsigned char *live)
 
 void plan_prune(Plan *p)
 {
-    unsigned char *live = xmalloc((size_t)p->nins);
-    int *map = xmalloc(sizeof *map * (size_t)p->nins);
+    unsigned char *live = plan_xmalloc((size_t)p->nins);
+    int *map = plan_xmalloc(sizeof *map * (size_t)p->nins);
     plan_live(p, -1, live);
     int n = 0;
     for (int i = 0; i < p->nins; i++) {

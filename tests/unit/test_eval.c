@@ -399,8 +399,9 @@ static void test_api_roundtrip(void **state)
                               "output M, M_batch\n";
     s = pc_scheme_parse("two.pcs", two, strlen(two), NULL);
     assert_null(pc_emit_c(s, NULL, &diag));
-    assert_non_null(strstr(diag, "two.pcs:5:1: error: the C function "
-                                 "f_M_batch would be written twice"));
+    assert_non_null(strstr(diag, "two.pcs:5:1: error: emit-c would write the "
+                                 "C function f_M_batch for both M (line 4) "
+                                 "and M_batch"));
     free(diag);
     pc_scheme_free(s);
 }
