@@ -59,8 +59,9 @@ check "bad format prints nothing" test ! -s "$tmp/out"
 check "bad origin exits 2" test $? -eq 2
 "$PC" frobnicate >/dev/null 2>&1
 check "unknown command exits 2" test $? -eq 2
-"$PC" derive "$tmp/missing.pcs" >/dev/null 2>&1
+"$PC" derive "$tmp/missing.pcs" >/dev/null 2>"$tmp/err"
 check "missing file exits 1" test $? -eq 1
+check "missing file says why" grep -q "missing.pcs: error: cannot open the file: ." "$tmp/err"
 "$PC" --version | grep -q '^pointcalc '
 check "version" test $? -eq 0
 
@@ -107,6 +108,21 @@ if cc -v 2>&1 | grep -q '^gcc version'; then
     cc -std=c99 -O2 -fopt-info-vec-optimized -c "$tmp/da.c" -o "$tmp/da.o" 2>"$tmp/vec"
     check "weight loop vectorised (line $line)" grep -q "da.c:$line:.*loop vectorized" "$tmp/vec"
 fi
+
+# contract section 5: functions are named SCHEME_OUTPUT, also for a scheme
+# name starting with _; a file name that is no identifier gets pc_
+printf 'scheme _arc\npoint A, B\nparam t\nM = along(A, B, t)\n' >"$tmp/u.pcs"
+"$PC" emit-c "$tmp/u.pcs" -o "$tmp/u.c"
+check "scheme _arc makes _arc_M" grep -q '^void _arc_M(double t' "$tmp/u.c"
+printf 'point A, B\nparam t\nM = along(A, B, t)\n' >"$tmp/3d-arc.pcs"
+"$PC" emit-c "$tmp/3d-arc.pcs" -o "$tmp/3d.c"
+check "3d-arc.pcs makes pc_3d_arc_M" grep -q '^void pc_3d_arc_M(double t' "$tmp/3d.c"
+
+# a denominator is printed positive: t^2/(t - 1), not t^2/(-(1 - t))
+printf 'param t\ns = t^2/(t - 1)\n' >"$tmp/den.pcs"
+check "positive denominator (text)" test "$("$PC" derive "$tmp/den.pcs")" = "s = t^2/(t - 1)"
+"$PC" derive "$tmp/den.pcs" --format json >"$tmp/den.json"
+check "positive denominator (json)" grep -q '"value": "t^2/(t-1)"' "$tmp/den.json"
 
 # JSON of a scheme whose file name needs escapes
 cp examples/desargues_arc.pcs "$tmp/a\"b.pcs"

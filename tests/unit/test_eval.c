@@ -105,6 +105,32 @@ static void test_eval_csv_desargues(void **state)
     run_free(&r);
 }
 
+static void usage_error(const char *args, const char *expect);
+
+/* numbers at the edges of double: -0 prints as 0, a subnormal param is a
+ * value, and a range over the whole double line has no inf in it */
+static void test_eval_number_edges(void **state)
+{
+    (void)state;
+    write_scheme("neg.pcs", "param t\ns = -t/2\n");
+    char args[512];
+    snprintf(args, sizeof args, "eval %s/neg.pcs --param t=0,1e-310", tmpdir);
+    Run r = run(args);
+    assert_int_equal(r.rc, 0);
+    assert_string_equal(r.out, "t,s\n0,0\n9.9999999999999694e-311,"
+                               "-5.0000000000002318e-311\n");
+    run_free(&r);
+    snprintf(args, sizeof args, "eval %s/neg.pcs --param t=-1e308:1e308:3",
+             tmpdir);
+    r = run(args);
+    assert_int_equal(r.rc, 0);
+    assert_string_equal(r.out, "t,s\n-1e+308,5.0000000000000001e+307\n0,0\n"
+                               "1e+308,-5.0000000000000001e+307\n");
+    run_free(&r);
+    snprintf(args, sizeof args, "eval %s/neg.pcs --param t=1e-400", tmpdir);
+    usage_error(args, "malformed value list");
+}
+
 static void test_eval_all_outputs_and_json(void **state)
 {
     (void)state;
@@ -178,6 +204,11 @@ static void test_eval_overflow_is_reported(void **state)
     assert_non_null(strstr(r.err, "pointcalc: eval: M at t=1e+103 is not "
                                   "finite in double precision"));
     assert_null(strstr(r.err, "pole"));
+    run_free(&r);
+    r = run("eval " DA PTS "--param t=1e103 --format json");
+    assert_int_equal(r.rc, 1);
+    assert_non_null(strstr(r.out, "\"M\": [null, null, null], "
+                                  "\"nonfinite\": [\"M\"]}"));
     run_free(&r);
     /* a scheme without params: no " at" */
     write_scheme("nopar.pcs", "point A, B\nM = A + (B - A)*10^300\n");
@@ -430,6 +461,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_eval_csv_desargues),
+        cmocka_unit_test(test_eval_number_edges),
         cmocka_unit_test(test_eval_all_outputs_and_json),
         cmocka_unit_test(test_eval_grid_last_param_fastest),
         cmocka_unit_test(test_eval_pole_prints_nan_and_exits_1),

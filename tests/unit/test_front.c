@@ -213,6 +213,49 @@ static void test_deep_expressions_are_refused(void **state)
     free(text);
 }
 
+/* a NUL inside a line: reported, and the line printed whole (the NUL as a
+ * space) so that the caret stands under it */
+static void test_diag_nul_in_line(void **state)
+{
+    (void)state;
+    static const char text[] = "point A, B\nM = A\0 + B\n";
+    char *out = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&out, &len);
+    Derived *d = derive_source("x.pcs", text, sizeof text - 1, mem, NULL);
+    fclose(mem);
+    assert_null(d);
+    assert_string_equal(out, "x.pcs:2:6: error: unexpected byte 0x00; "
+                             "expected a name, a number, an operator or '#'\n"
+                             "M = A  + B\n"
+                             "     ^\n");
+    free(out);
+}
+
+/* the size limits refuse what would be huge, not what is merely large:
+ * these derive (each result is at most a few tens of KB) */
+static void test_limits_allow_reasonable_results(void **state)
+{
+    (void)state;
+    static const char *const ok[] = {
+        /* a Bezier curve of order 20 with a substituted parameter */
+        "point P0, P1, P2, P3, P4, P5, P6, P7, P8, P9, P10, P11, P12, P13, "
+        "P14, P15, P16, P17, P18, P19, P20\nparam t, u\nconst k\n"
+        "B = bezier(t, P0, P1, P2, P3, P4, P5, P6, P7, P8, P9, P10, P11, P12, "
+        "P13, P14, P15, P16, P17, P18, P19, P20)\nM = subst(B, t, t*u + k)\n",
+        /* a power of a sum in several variables */
+        "point A, B\nparam t, u\nconst k\n"
+        "M = along(A, B, (t^2 + u^2 + k^2)^50)\n",
+        /* a high derivative of a sparse high-degree function */
+        "param t, u\nS = diff(1/(t^100*u^100 + t + u + 1), t, 30)\n",
+    };
+    for (size_t i = 0; i < sizeof ok / sizeof *ok; i++) {
+        char *e = errors_of(ok[i]);
+        assert_string_equal(e, "");
+        free(e);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -226,6 +269,8 @@ int main(void)
         cmocka_unit_test(test_scheme_name_defaults_to_file),
         cmocka_unit_test(test_decimals_are_exact),
         cmocka_unit_test(test_deep_expressions_are_refused),
+        cmocka_unit_test(test_diag_nul_in_line),
+        cmocka_unit_test(test_limits_allow_reasonable_results),
     };
     int rc = cmocka_run_group_tests_name("front", tests, NULL, NULL);
     flint_cleanup_master();
