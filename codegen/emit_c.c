@@ -34,8 +34,9 @@
 
 enum { BLOCK = 64 }; // samples per block in the generated batch code
 
-static const char *const reserved[] = {
-    /* C99 keywords */
+/* keywords: neither an argument nor a --prefix */
+static const char *const keywords[] = {
+    /* C99 */
     "auto", "break", "case", "char", "const", "continue", "default", "do",
     "double", "else", "enum", "extern", "float", "for", "goto", "if", "inline",
     "int", "long", "register", "restrict", "return", "short", "signed",
@@ -51,7 +52,10 @@ static const char *const reserved[] = {
     "nullptr", "operator", "or", "or_eq", "private", "protected", "public",
     "reinterpret_cast", "requires", "static_assert", "static_cast",
     "template", "this", "thread_local", "throw", "try", "typeid", "typename",
-    "using", "virtual", "wchar_t", "xor", "xor_eq",
+    "using", "virtual", "wchar_t", "xor", "xor_eq", NULL};
+
+/* other names an argument must not take (a function name neither) */
+static const char *const reserved[] = {
     /* macros of common standard headers a user's file may include first */
     "EDOM", "ERANGE", "EILSEQ", "EOF", "BUFSIZ", "CHAR_BIT", "CHAR_MAX",
     "CHAR_MIN", "SCHAR_MAX", "SCHAR_MIN", "UCHAR_MAX", "SHRT_MAX", "SHRT_MIN",
@@ -63,7 +67,7 @@ static const char *const reserved[] = {
     "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "NULL",
     "math_errhandling", "fpclassify", "isfinite", "isnormal", "isgreater",
     "isgreaterequal", "isless", "islessequal", "islessgreater", "isunordered",
-    "signbit", "isnan", "isinf", "offsetof", "size_t", "ptrdiff_t", "wchar_t",
+    "signbit", "isnan", "isinf", "offsetof", "size_t", "ptrdiff_t",
     "max_align_t", "float_t", "double_t", "errno", "j0", "j1", "jn", "y0",
     "y1", "yn", "exp", "log", "pow", "sqrt", "sin", "cos", "tan", "fabs",
     "floor", "ceil", "round", "gamma", "erf", "fma", "fmin", "fmax",
@@ -93,12 +97,17 @@ static int internal_shape(const char *s)
     return 0;
 }
 
-static int in_list(const char *s)
+static int in(const char *const *list, const char *s)
 {
-    for (int i = 0; reserved[i]; i++)
-        if (strcmp(reserved[i], s) == 0)
+    for (int i = 0; list[i]; i++)
+        if (strcmp(list[i], s) == 0)
             return 1;
     return 0;
+}
+
+static int in_list(const char *s)
+{
+    return in(keywords, s) || in(reserved, s);
 }
 
 /* names of macro families of <math.h> (FP_NAN, MATH_ERRNO, GNU's M_PI),
@@ -122,15 +131,6 @@ static int is_reserved(const char *s)
     return in_list(s) || internal_shape(s) || reserved_family(s);
 }
 
-/* the keywords of C and C++ (the first entries of reserved[]) */
-static int is_keyword(const char *s)
-{
-    for (int i = 0; reserved[i] && strcmp(reserved[i], "EDOM") != 0; i++)
-        if (strcmp(reserved[i], s) == 0)
-            return 1;
-    return 0;
-}
-
 int emit_c_valid_prefix(const char *s)
 {
     /* function names are PREFIX_OUTPUT: any identifier but a keyword */
@@ -139,7 +139,7 @@ int emit_c_valid_prefix(const char *s)
     for (const char *q = s; *q; q++)
         if (!(isalnum((unsigned char)*q) || *q == '_'))
             return 0;
-    return !is_keyword(s);
+    return !in(keywords, s);
 }
 
 static char *xstrdup(const char *s)
@@ -468,14 +468,6 @@ static void instruction(const Ctx *C, int r, const char *indent)
         fputs("(double)(", out);
         operand(C, x->a);
         fputs(" == 0.0)", out);
-        break;
-    case PLAN_NONFINITE: /* inf - inf and NaN - NaN are NaN; finite x - x
-                            is 0 (no isinf(): it need not vectorise) */
-        fputs("(double)(", out);
-        operand(C, x->a);
-        fputs(" - ", out);
-        operand(C, x->a);
-        fputs(" != 0.0)", out);
         break;
     default:
         break;

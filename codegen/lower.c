@@ -3,19 +3,18 @@
  *
  * The pipeline for one output (formula in lower.h):
  *
- *   factor every numerator and denominator (fmpz_mpoly_factor; a
- *     polynomial too big to factor cheaply stays one factor)
- *   lower every irreducible factor once, in Horner form   -> registers
+ *   factor every numerator and denominator (ring_factor: irreducible
+ *     where that is cheap, else square-free, else one factor)
+ *   lower every factor once, in Horner form                -> registers
  *   L = the lcm of the denominators, as {factor register: max exponent}
- *   bad = pole(L),  inv = 1/L
+ *   inv = 1/L,  bad = sum of pole(factor of L) + 0.5 pole(inv)
  *   w_i = c_i * prod(num factors) * prod(L / d_i) * inv
  *
  * Factors are identified by their register: the Plan builder hash-conses,
  * so the same polynomial lowered twice is the same register, and t - 1 in
- * the numerator of one weight is t - 1 in the next.  An output with a
- * single weight (a scalar) divides directly instead of multiplying by an
- * inverse.  Constant denominators never reach the Plan: they are folded
- * into the constant c_i (or into the Horner coefficients).
+ * the numerator of one weight is t - 1 in the next.  A scalar is an output
+ * of one weight and takes the same path.  Constant denominators never
+ * reach the Plan: they are folded into the constant c_i.
  */
 #include "codegen/lower.h"
 
@@ -302,14 +301,6 @@ static void factor_poly(Lower *L, Factored *F, const fmpz_mpoly_t P)
 
 /* ---- outputs ------------------------------------------------------------ */
 
-/* bad + 0.5 * (den is not finite): where the denominator overflowed, 1/den
- * is 0 and every weight would come out finite and wrong */
-static int add_overflow_flag(Lower *L, int bad, int den)
-{
-    int flag = plan_mul(L->p, plan_nonfinite(L->p, den), plan_const(L->p, 0.5));
-    return bad < 0 ? flag : plan_add(L->p, bad, flag);
-}
-
 /* Lowers the weights ws[0..n-1] of one output: reg[i] and *bad. */
 static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
                           int *reg, int *bad)
@@ -343,25 +334,20 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
         int flag = plan_pole(L->p, lcm.f[j].reg);
         *bad = *bad < 0 ? flag : plan_add(L->p, *bad, flag);
     }
-    if (lcm.n == 0) {
-        *bad = -1; // no denominator can vanish or overflow
+    if (lcm.n == 0) { // polynomial weights: nothing can vanish or overflow
         for (slong i = 0; i < n; i++)
             reg[i] = mul_fmpq(L,
                               plan_mul(L->p, factored_product(L, &num[i], 0),
                                        factored_product(L, &num[i], 1)),
                               num[i].c);
-    } else if (n == 1) {
-        int d = plan_mul(L->p, factored_product(L, &den[0], 0),
-                         factored_product(L, &den[0], 1));
-        *bad = add_overflow_flag(L, *bad, d);
-        int w = plan_div(L->p, factored_product(L, &num[0], 0), d);
-        w = plan_mul(L->p, w, factored_product(L, &num[0], 1));
-        reg[0] = mul_fmpq(L, w, num[0].c);
     } else {
         int d = plan_mul(L->p, factored_product(L, &lcm, 0),
                          factored_product(L, &lcm, 1));
-        *bad = add_overflow_flag(L, *bad, d);
         int inv = plan_div(L->p, plan_const(L->p, 1), d);
+        /* an overflow of L makes inv 0 and every weight finite and wrong:
+         * the same check as a pole, on inv, flagged as 0.5 (plan.h) */
+        int ovf = plan_mul(L->p, plan_pole(L->p, inv), plan_const(L->p, 0.5));
+        *bad = plan_add(L->p, *bad, ovf);
         for (slong i = 0; i < n; i++) {
             /* num_i * L/d_i */
             for (slong j = 0; j < lcm.n; j++) {

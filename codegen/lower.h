@@ -5,7 +5,8 @@
  * For every output the weights w_i = n_i/d_i are lowered as
  *
  *   w_i = c_i * (product of n_i's factors) * (L / d_i) * inv,
- *   inv = 1/L,  L = lcm of the d_i,  pole check on L,
+ *   inv = 1/L,  L = lcm of the d_i,  pole checks on L's factors, and an
+ *   overflow check on inv (0 where L is not finite),
  *
  * where every irreducible factor is written in Horner form (main variable:
  * a param, so coefficients in the consts are uniform and hoisted), powers

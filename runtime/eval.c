@@ -67,11 +67,6 @@ static void k_pole(double *restrict d, const double *restrict a)
         d[j] = (double)(a[j] == 0); // not ?: (see emit_c.c)
 }
 
-static void k_nonfinite(double *restrict d, const double *restrict a)
-{
-    for (int j = 0; j < BL; j++)
-        d[j] = (double)(a[j] - a[j] != 0); // inf - inf and NaN are NaN
-}
 
 static void k_powi(double *restrict d, const double *restrict a, int e)
 {
@@ -149,8 +144,6 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
         return pow(val[x->a], (double)x->b);
     case PLAN_POLE:
         return val[x->a] == 0 ? 1.0 : 0.0;
-    case PLAN_NONFINITE:
-        return isfinite(val[x->a]) ? 0.0 : 1.0;
     default:
         (void)p;
         assert(0 && "not a computing op");
@@ -315,9 +308,6 @@ static void run_block(const Prog *g, const Plan *p, const double *const *params,
             break;
         case PLAN_POLE:
             k_pole(d, reg(g, x->a));
-            break;
-        case PLAN_NONFINITE:
-            k_nonfinite(d, reg(g, x->a));
             break;
         default:
             assert(0 && "uniform op in the varying list");

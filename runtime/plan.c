@@ -269,8 +269,6 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
             return plan_const(p, pow(x, (double)b));
         case PLAN_POLE:
             return plan_const(p, x == 0 ? 1 : 0);
-        case PLAN_NONFINITE:
-            return plan_const(p, isfinite(x) ? 0 : 1);
         default:
             break;
         }
@@ -340,7 +338,6 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
         assert(b > PLAN_POW_CHAIN);
         break;
     case PLAN_POLE:
-    case PLAN_NONFINITE:
         if (p->ins[a].op == PLAN_NEG)
             a = p->ins[a].a;
         b = 0;
@@ -381,10 +378,6 @@ int plan_pole(Plan *p, int den)
     return plan_node(p, PLAN_POLE, den, 0);
 }
 
-int plan_nonfinite(Plan *p, int den)
-{
-    return plan_node(p, PLAN_NONFINITE, den, 0);
-}
 
 /* x^e by a shared multiplication chain for small e (x^3 = x^2*x and
  * x^4 = x^2*x^2 reuse x^2), one POWI above PLAN_POW_CHAIN; negative powers

@@ -17,8 +17,8 @@
  * An output M = sum_k w_k * P_k lists its weight slots (point index,
  * register) and a `bad` register: the sum of POLE flags over the factors
  * of its denominators (an integer >= 1 where one evaluates to 0) plus 0.5
- * where their product is not finite (it overflowed: 1/L would be 0 and the
- * weights silently wrong).  Where bad != 0 the back ends write NaN
+ * where 1/L is 0 (the product L overflowed, and the weights would be
+ * silently wrong).  Where bad != 0 the back ends write NaN
  * coordinates and report the sample as a pole (bad >= 1) or an overflow
  * (bad = 0.5) (docs/codegen.md).  A scalar output has one slot, point -1.
  */
@@ -40,8 +40,7 @@
     X(MUL, 2, "*")    /* d = r[a] * r[b]                                    */ \
     X(DIV, 2, "/")    /* d = r[a] / r[b]   (b is checked by a POLE first)   */ \
     X(POWI, 1, NULL)  /* d = pow(r[a], b), integer b > PLAN_POW_CHAIN       */  \
-    X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */ \
-    X(NONFINITE, 1, NULL) /* d = r[a] is inf or NaN ? 1 : 0 (den overflow)  */
+    X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */
 
 /* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
  * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
@@ -126,7 +125,6 @@ int plan_mul(Plan *p, int a, int b);
 int plan_div(Plan *p, int a, int b);
 int plan_pow(Plan *p, int a, long e); // e >= 0; shares the powers it builds
 int plan_pole(Plan *p, int den);
-int plan_nonfinite(Plan *p, int den);
 /* Appends an output; consumes nothing (arrays are copied). */
 void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
                      int nterms, const int *point, const int *reg, int bad);

@@ -468,14 +468,21 @@ static void test_emit_c_desargues_centroid_at_half(void **state)
         assert_true(bout[12 + k] == D[k]);  // t = 1: D
         assert_true(bout[6 + k] == out[k]); // t = 1/2 as above
     }
-    /* the plan shares one denominator and one division */
-    int ndiv = 0, npole = 0;
+    /* the plan shares one denominator and one division; two checks: the
+     * pole of the denominator's one factor, the overflow (1/L == 0) */
+    int ndiv = 0, npole = 0, inv = -1;
     for (int i = 0; i < p->nins; i++) {
         ndiv += p->ins[i].op == PLAN_DIV;
         npole += p->ins[i].op == PLAN_POLE;
+        if (p->ins[i].op == PLAN_DIV)
+            inv = i;
     }
     assert_int_equal(ndiv, 1);
-    assert_int_equal(npole, 1);
+    assert_int_equal(npole, 2);
+    int on_inv = 0;
+    for (int i = 0; i < p->nins; i++)
+        on_inv += p->ins[i].op == PLAN_POLE && p->ins[i].a == inv;
+    assert_int_equal(on_inv, 1);
     compiled_clear(&c);
     plan_free(p);
     derived_free(d);
