@@ -175,9 +175,12 @@ char *pc_weight_str(const pc_scheme *s, int output, int point)
     } else {
         if (point < 0 || point >= d->npoints)
             return NULL;
-        w = pteq_weight(o->eq, point);
-        if (!w)
+        slong k = 0;
+        while (k < o->eq->len && o->eq->terms[k].point != point)
+            k++;
+        if (k == o->eq->len)
             return copy_str("0");
+        w = o->w + k;
     }
     char *f = ratfun_get_str(w, &d->ring);
     char *r = copy_str(f);

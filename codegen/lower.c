@@ -436,7 +436,7 @@ Plan *lower_derived(const Derived *d, FILE *err)
                 ws[i] = out->scalar;
                 point[i] = -1;
             } else {
-                ws[i] = &out->eq->terms[i].w;
+                ws[i] = &out->w[i];
                 point[i] = (int)out->eq->terms[i].point;
             }
         }

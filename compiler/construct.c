@@ -2,31 +2,42 @@
 
 #include <stdlib.h>
 
+#include <flint/nmod_vec.h>
+#include <flint/ulong_extras.h>
+
 #include "compiler/linsolve.h"
 
+/* P*(1 - s) + Q*s: one combination over one denominator */
 void construct_along(PointEq res, const PointEq p, const PointEq q,
                      const RatFun s, const Ring *r)
 {
-    PointEq d;
-    pteq_init(d, r);
-    pteq_sub(d, q, p, r);
-    pteq_addmul(res, p, d, s, r);
-    pteq_clear(d, r);
+    RatFun sb;
+    ratfun_init(sb, r);
+    ratfun_one(sb, r);
+    ratfun_sub(sb, sb, s, r);
+    pteq_lincomb(res, p, sb, q, s, r);
+    ratfun_clear(sb, r);
 }
 
+/* P/(1 + k) + Q*k/(1 + k) */
 int construct_divide(PointEq res, const PointEq p, const PointEq q,
                      const RatFun k, const Ring *r)
 {
-    RatFun den;
-    PointEq num;
-    int st;
+    RatFun den, wp, wq;
+    int st = RATFUN_OK;
     ratfun_init(den, r);
-    pteq_init(num, r);
+    ratfun_init(wp, r);
+    ratfun_init(wq, r);
     ratfun_one(den, r);
     ratfun_add(den, den, k, r);
-    pteq_addmul(num, p, q, k, r);
-    st = pteq_scalar_div(res, num, den, r);
-    pteq_clear(num, r);
+    if (ratfun_inv(wp, den, r) != RATFUN_OK) {
+        st = RATFUN_EDIVZERO;
+    } else {
+        ratfun_mul(wq, wp, k, r);
+        pteq_lincomb(res, p, wp, q, wq, r);
+    }
+    ratfun_clear(wq, r);
+    ratfun_clear(wp, r);
     ratfun_clear(den, r);
     return st;
 }
@@ -162,8 +173,342 @@ static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
     return rank;
 }
 
+
+/* ---- meet, fraction-free ----------------------------------------------- */
+
+/*
+ * The intersection point of two flats in homogeneous form.  Each defining
+ * point (or direction) of a flat is a column: its numerators over the base
+ * points (its denominator only scales it, which changes no span).  With
+ * G = [a_1 .. a_na | b_1 .. b_nb] (m rows, k = na + nb columns) the flats
+ * meet in one point exactly when G has rank k - 1; then its null vector z
+ * gives M ~ sum z_i a_i = -sum z_j b_j, and M = that over its weight sum.
+ *
+ * A column that is a base point X itself (a "unit" column, as in
+ * line(A, P)) only fixes its own z from row X, so it is eliminated with
+ * its row first; the other z come from k' - 1 independent rows R of what
+ * is left, as signed maximal minors, z_j = (-1)^j det(G'_R without column
+ * j): polynomial products only, no division and no gcd.  M is then formed
+ * row by row from the side whose terms do not cancel (a row X of a unit
+ * column on side a takes -sum_b z_j b_j[X]: the a-side sum there is that
+ * plus terms that cancel), and one content reduction makes it primitive.
+ * For meet(line(A, P), line(B, Q)) in the plane ABC this is three products,
+ * M ~ (P_C Q_A, Q_C P_B, Q_C P_C).
+ *
+ * R is chosen by Gaussian elimination of G' evaluated at a random point
+ * modulo a 61-bit prime, which never claims a rank that G' lacks (a minor
+ * non-zero mod p is non-zero); rows outside R are then checked exactly.
+ * Anything else (two unit columns of one point, no column left, rank too
+ * small mod p, a failed check, M zero or at infinity) returns 0 and
+ * construct_meet takes the exact general path, which also says what is
+ * degenerate.
+ */
+
+#define MEET_MAX_COLS 5
+
+/* x mod p at vals (mod p); 0 and *ok = 0 when exponents do not fit */
+static ulong eval_mod(const fmpz_mpoly_t x, const ulong *vals, nmod_t mod,
+                      ulong *exp, int *ok, const Ring *r)
+{
+    ulong acc = 0;
+    slong nv = fmpz_mpoly_ctx_nvars(r->ctx);
+    if (x->bits > FLINT_BITS) {
+        *ok = 0;
+        return 0;
+    }
+    for (slong i = 0; i < x->length; i++) {
+        ulong t = fmpz_fdiv_ui(x->coeffs + i, mod.n);
+        fmpz_mpoly_get_term_exp_ui(exp, x, i, r->ctx);
+        for (slong v = 0; v < nv && t != 0; v++)
+            if (exp[v] != 0)
+                t = nmod_mul(t, nmod_pow_ui(vals[v], exp[v], mod), mod);
+        acc = nmod_add(acc, t, mod);
+    }
+    return acc;
+}
+
+/* the numerator of point pt in x, or NULL */
+static const fmpz_mpoly_struct *num_at(const PointEq x, slong pt)
+{
+    for (slong i = 0; i < x->len; i++)
+        if (x->terms[i].point == pt)
+            return x->terms[i].num;
+    return NULL;
+}
+
+/* The minor of rows sel[0..|mask|-1] and the columns in mask (bits index
+ * cols[]), by Laplace expansion along its last row, memoised in minor[]
+ * (have[mask] set once computed): only the minors the wanted ones need are
+ * formed. */
+static const fmpz_mpoly_struct *
+get_minor(fmpz_mpoly_struct *minor, char *have, slong mask,
+          const fmpz_mpoly_struct **G, slong k, const slong *sel,
+          const slong *cols, slong nc, fmpz_mpoly_t t, const Ring *r)
+{
+    fmpz_mpoly_struct *res = minor + mask;
+    slong lev = 0, q = 0;
+
+    if (have[mask])
+        return res;
+    have[mask] = 1;
+    for (slong c = 0; c < nc; c++)
+        lev += (mask >> c) & 1;
+    fmpz_mpoly_zero(res, r->ctx);
+    if (lev == 0) {
+        fmpz_mpoly_one(res, r->ctx);
+        return res;
+    }
+    for (slong c = 0; c < nc; c++) {
+        if (!(mask & (WORD(1) << c)))
+            continue;
+        const fmpz_mpoly_struct *g = G[sel[lev - 1] * k + cols[c]];
+        if (g != NULL) {
+            const fmpz_mpoly_struct *sub = get_minor(
+                minor, have, mask ^ (WORD(1) << c), G, k, sel, cols, nc, t, r);
+            if (!fmpz_mpoly_is_zero(sub, r->ctx)) {
+                fmpz_mpoly_mul(t, g, sub, r->ctx);
+                if ((lev - 1 + q) & 1)
+                    fmpz_mpoly_sub(res, res, t, r->ctx);
+                else
+                    fmpz_mpoly_add(res, res, t, r->ctx);
+            }
+        }
+        q++;
+    }
+    return res;
+}
+
+/* acc = sign * sum of z[j]*G[i*k + j] over the columns j of cols[0..nc)
+ * in [lo, hi) */
+static void row_sum(fmpz_mpoly_t acc, const fmpz_mpoly_struct **G, slong i,
+                    slong k, const fmpz_mpoly_struct *z, const slong *cols,
+                    slong nc, slong lo, slong hi, int sign, fmpz_mpoly_t t,
+                    const Ring *r)
+{
+    fmpz_mpoly_zero(acc, r->ctx);
+    for (slong c = 0; c < nc; c++) {
+        slong j = cols[c];
+        const fmpz_mpoly_struct *g = G[i * k + j];
+        if (j < lo || j >= hi || g == NULL || fmpz_mpoly_is_zero(z + c, r->ctx))
+            continue;
+        fmpz_mpoly_mul(t, g, z + c, r->ctx);
+        fmpz_mpoly_add(acc, acc, t, r->ctx);
+    }
+    if (sign < 0)
+        fmpz_mpoly_neg(acc, acc, r->ctx);
+}
+
+/* the work of row_sum, estimated as the sum of the products' term counts */
+static double row_cost(const fmpz_mpoly_struct **G, slong i, slong k,
+                       const fmpz_mpoly_struct *z, const slong *cols, slong nc,
+                       slong lo, slong hi)
+{
+    double c = 0;
+    for (slong q = 0; q < nc; q++) {
+        slong j = cols[q];
+        if (j >= lo && j < hi && G[i * k + j] != NULL)
+            c += (double)G[i * k + j]->length * (double)z[q].length;
+    }
+    return c;
+}
+
+static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
+                              slong k, const slong *rows, slong m,
+                              const Ring *r)
+{
+    int ok = 1, found = 0;
+    slong nv = fmpz_mpoly_ctx_nvars(r->ctx), rank = 0, nc = 0, nr = 0;
+    slong sel[MEET_MAX_COLS], cl[MEET_MAX_COLS], pivot[MEET_MAX_COLS];
+    ulong basis[MEET_MAX_COLS][MEET_MAX_COLS], row_mod[MEET_MAX_COLS];
+    nmod_t mod;
+    flint_rand_t st;
+    ulong *vals = flint_malloc((size_t)FLINT_MAX(nv, 1) * sizeof(ulong));
+    ulong *exp = flint_malloc((size_t)FLINT_MAX(nv, 1) * sizeof(ulong));
+    slong *row_unit = flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(slong));
+    slong *rl = flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(slong));
+    const fmpz_mpoly_struct **G =
+        flint_calloc((size_t)FLINT_MAX(m * k, 1), sizeof(fmpz_mpoly_struct *));
+    fmpz_mpoly_struct *minor = NULL, *z = NULL;
+    char *have = NULL;
+    slong nmask = 0;
+    fmpz_mpoly_t t, u;
+    PointEq acc;
+
+    fmpz_mpoly_init(t, r->ctx);
+    fmpz_mpoly_init(u, r->ctx);
+    pteq_init(acc, r);
+    if (k > MEET_MAX_COLS)
+        goto done;
+    for (slong i = 0; i < m; i++) {
+        row_unit[i] = -1;
+        for (slong j = 0; j < k; j++)
+            G[i * k + j] = num_at(cols[j], rows[i]);
+    }
+    /* unit columns and their rows leave the system */
+    for (slong j = 0; j < k; j++) {
+        const PointEqStruct *c = cols[j];
+        if (c->len == 1 && fmpz_mpoly_is_one(c->terms[0].num, r->ctx) &&
+            fmpz_mpoly_is_one(c->den, r->ctx)) {
+            slong i = 0;
+            while (rows[i] != c->terms[0].point)
+                i++;
+            if (row_unit[i] >= 0)
+                goto done; /* one point on both sides, or twice */
+            row_unit[i] = j;
+        } else {
+            cl[nc++] = j;
+        }
+    }
+    for (slong i = 0; i < m; i++)
+        if (row_unit[i] < 0)
+            rl[nr++] = i;
+    if (nc == 0 || nr < nc - 1)
+        goto done;
+
+    /* rows R: independent rows of G' at a random point mod p */
+    nmod_init(&mod, UWORD(2305843009213693951)); /* 2^61 - 1 */
+    flint_randinit(st);
+    for (slong v = 0; v < nv; v++)
+        vals[v] = 1 + n_randint(st, mod.n - 1);
+    flint_randclear(st);
+    for (slong q = 0; q < nr && ok; q++) {
+        slong i = rl[q], c;
+        for (slong j = 0; j < nc && ok; j++) {
+            const fmpz_mpoly_struct *g = G[i * k + cl[j]];
+            row_mod[j] = g ? eval_mod(g, vals, mod, exp, &ok, r) : 0;
+        }
+        for (slong b = 0; b < rank; b++) { /* reduce by the basis */
+            ulong f = row_mod[pivot[b]];
+            if (f == 0)
+                continue;
+            for (slong j = 0; j < nc; j++)
+                row_mod[j] = nmod_sub(row_mod[j],
+                                      nmod_mul(f, basis[b][j], mod), mod);
+        }
+        for (c = 0; c < nc && row_mod[c] == 0; c++)
+            ;
+        if (c == nc)
+            continue;
+        if (rank == nc - 1) { /* rank nc: no common point (skew) */
+            ok = 0;
+            break;
+        }
+        ulong inv = nmod_inv(row_mod[c], mod);
+        for (slong j = 0; j < nc; j++)
+            basis[rank][j] = nmod_mul(row_mod[j], inv, mod);
+        for (slong b = 0; b < rank; b++) { /* keep the basis reduced */
+            ulong f = basis[b][c];
+            if (f == 0)
+                continue;
+            for (slong j = 0; j < nc; j++)
+                basis[b][j] = nmod_sub(basis[b][j],
+                                       nmod_mul(f, basis[rank][j], mod), mod);
+        }
+        pivot[rank] = c;
+        sel[rank++] = i;
+    }
+    if (!ok || rank != nc - 1)
+        goto done;
+
+    /* the null vector of G': z[c] for column cl[c] */
+    nmask = WORD(1) << nc;
+    minor = flint_malloc((size_t)nmask * sizeof(fmpz_mpoly_struct));
+    have = flint_calloc((size_t)nmask, 1);
+    for (slong s = 0; s < nmask; s++)
+        fmpz_mpoly_init(minor + s, r->ctx);
+    z = flint_malloc((size_t)nc * sizeof(fmpz_mpoly_struct));
+    for (slong c = 0; c < nc; c++) {
+        fmpz_mpoly_init(z + c, r->ctx);
+        const fmpz_mpoly_struct *mc =
+            get_minor(minor, have, (nmask - 1) ^ (WORD(1) << c), G, k, sel,
+                      cl, nc, t, r);
+        if (c & 1)
+            fmpz_mpoly_neg(z + c, mc, r->ctx);
+        else
+            fmpz_mpoly_set(z + c, mc, r->ctx);
+    }
+
+    /* the other rows of G' must vanish too (else rank nc: fall back) */
+    for (slong q = 0, b = 0; q < nr; q++) {
+        if (b < rank && sel[b] == rl[q]) {
+            b++;
+            continue;
+        }
+        row_sum(u, G, rl[q], k, z, cl, nc, 0, k, 1, t, r);
+        if (!fmpz_mpoly_is_zero(u, r->ctx))
+            goto done;
+    }
+
+    /* M row by row (rows are sorted base points); its weight sum is the
+     * denominator */
+    fmpz_mpoly_zero(acc->den, r->ctx);
+    for (slong i = 0; i < m; i++) {
+        fmpz_mpoly_struct *num = pteq_append(acc, rows[i], r);
+        slong un = row_unit[i];
+        if (un >= 0 && un < na)
+            row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, r);
+        else if (un >= 0)
+            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, r);
+        else if (row_cost(G, i, k, z, cl, nc, 0, na) <=
+                 row_cost(G, i, k, z, cl, nc, na, k))
+            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, r);
+        else
+            row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, r);
+        fmpz_mpoly_add(acc->den, acc->den, num, r->ctx);
+    }
+    if (fmpz_mpoly_is_zero(acc->den, r->ctx)) {
+        pteq_zero(acc, r);
+        goto done; /* at infinity, or zero: the general path tells */
+    }
+    pteq_canonicalise(acc, r);
+    pteq_swap(res, acc, r);
+    found = 1;
+
+done:
+    if (z != NULL) {
+        for (slong c = 0; c < nc; c++)
+            fmpz_mpoly_clear(z + c, r->ctx);
+        flint_free(z);
+    }
+    if (minor != NULL) {
+        for (slong s = 0; s < nmask; s++)
+            fmpz_mpoly_clear(minor + s, r->ctx);
+        flint_free(minor);
+    }
+    flint_free(have);
+    pteq_clear(acc, r);
+    fmpz_mpoly_clear(u, r->ctx);
+    fmpz_mpoly_clear(t, r->ctx);
+    flint_free(G);
+    flint_free(rl);
+    flint_free(row_unit);
+    flint_free(exp);
+    flint_free(vals);
+    return found;
+}
+
 MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
                           const PointEq *b, slong nb, const Ring *r)
+{
+    if (na + nb <= MEET_MAX_COLS) { /* shallow copies, read only */
+        PointEqStruct gen[MEET_MAX_COLS];
+        slong m;
+        for (slong j = 0; j < na; j++)
+            gen[j] = *a[j];
+        for (slong j = 0; j < nb; j++)
+            gen[na + j] = *b[j];
+        slong *rows = support_union(&m, (const PointEq *)gen, na + nb);
+        int done = meet_fraction_free(res, (const PointEq *)gen, na, na + nb,
+                                      rows, m, r);
+        free(rows);
+        if (done)
+            return MEET_OK;
+    }
+    return construct_meet_general(res, a, na, b, nb, r);
+}
+
+MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
+                                  const PointEq *b, slong nb, const Ring *r)
 {
     /* unknowns: lambda_1..lambda_{na-1}, mu_1..mu_{nb-1};
      * sum lambda_i d_i - sum mu_j e_j = ob - oa  over every base point */

@@ -39,5 +39,12 @@ void construct_bezier(PointEq res, const RatFun s, const PointEq *pts,
  * checked identically: lines that are not coplanar are MEET_SKEW. */
 MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
                           const PointEq *b, slong nb, const Ring *r);
+/* The same by the general path alone: Gaussian elimination over the
+ * fraction field (linsolve), which also classifies every degenerate case.
+ * construct_meet first tries the fraction-free form (signed maximal minors
+ * of the homogeneous columns, one content reduction: construct.c) and
+ * comes here when that cannot decide; the tests compare the two. */
+MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
+                                  const PointEq *b, slong nb, const Ring *r);
 
 #endif

@@ -112,7 +112,9 @@ static double scalar_bits(const PointEq p, const RatFun s, const Ring *r)
 {
     double m = 0;
     for (slong i = 0; i < p->len; i++) {
-        double b = ratfun_log2_bits_product(&p->terms[i].w, s, r);
+        RatFunStruct w;
+        pteq_weight_view(&w, p, i);
+        double b = ratfun_log2_bits_product(&w, s, r);
         m = b > m ? b : m;
     }
     return m;
@@ -128,8 +130,10 @@ static double pair_bits(const PointEq p, const PointEq q, const Ring *r)
         } else if (p->terms[i].point > q->terms[j].point) {
             j++;
         } else {
-            double b = ratfun_log2_bits_product(&p->terms[i].w,
-                                                &q->terms[j].w, r);
+            RatFunStruct wp, wq;
+            pteq_weight_view(&wp, p, i);
+            pteq_weight_view(&wq, q, j);
+            double b = ratfun_log2_bits_product(&wp, &wq, r);
             m = b > m ? b : m;
             i++;
             j++;
@@ -317,8 +321,13 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
     }
     res->is_point = ve.is_point;
     if (x->sym->kind == SYM_POINT && ve.is_point) {
-        const RatFunStruct *wx = pteq_weight(ve.p, x->sym->index);
-        if (wx && too_big(D, scalar_bits(vb.p, wx, r), n) < 0) {
+        RatFun wx;
+        ratfun_init(wx, r);
+        pteq_get_weight(wx, ve.p, x->sym->index, r);
+        int big = !ratfun_is_zero(wx, r) &&
+                  too_big(D, scalar_bits(vb.p, wx, r), n) < 0;
+        ratfun_clear(wx, r);
+        if (big) {
             st = -1;
             goto done;
         }
@@ -328,8 +337,9 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
         double bits = 0;
         if (ve.is_point)
             for (slong i = 0; i < ve.p->len; i++) {
-                double b = ratfun_log2_bits_compose(&ve.p->terms[i].w, var,
-                                                    vb.s, r);
+                RatFunStruct w;
+                pteq_weight_view(&w, ve.p, i);
+                double b = ratfun_log2_bits_compose(&w, var, vb.s, r);
                 bits = b > bits ? b : bits;
             }
         else
@@ -427,7 +437,9 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
         double bits = 0;
         if (res->is_point)
             for (slong j = 0; j < res->p->len; j++) {
-                double b = ratfun_log2_bits_pow(&res->p->terms[j].w, k + 1, r);
+                RatFunStruct w;
+                pteq_weight_view(&w, res->p, j);
+                double b = ratfun_log2_bits_pow(&w, k + 1, r);
                 bits = b > bits ? b : bits;
             }
         else
@@ -758,6 +770,11 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
                 o->kind = ratfun_is_one(sum, r) ? KIND_POINT : KIND_VECTOR;
                 ratfun_clear(sum, r);
                 pteq_set(o->eq, v->p, r);
+                o->w = flint_malloc(sizeof(RatFunStruct) *
+                                    (size_t)FLINT_MAX(o->eq->len, 1));
+                for (slong k = 0; k < o->eq->len; k++)
+                    ratfun_init(o->w + k, r);
+                pteq_get_weights(o->w, o->eq, r);
             } else {
                 o->kind = KIND_SCALAR;
                 ratfun_set(o->scalar, v->s, r);
@@ -823,6 +840,11 @@ void derived_free(Derived *d)
     if (!d)
         return;
     for (slong i = 0; i < d->noutputs; i++) {
+        if (d->outputs[i].w != NULL) {
+            for (slong k = 0; k < d->outputs[i].eq->len; k++)
+                ratfun_clear(d->outputs[i].w + k, &d->ring);
+            flint_free(d->outputs[i].w);
+        }
         pteq_clear(d->outputs[i].eq, &d->ring);
         ratfun_clear(d->outputs[i].scalar, &d->ring);
         free((char *)d->outputs[i].name);

@@ -26,7 +26,11 @@ typedef enum Kind {
 typedef struct DerivedOutput {
     const char *name; // the defined name (owned by the Derived)
     Kind kind;
-    PointEq eq;    // KIND_POINT / KIND_VECTOR: the reduced equation
+    PointEq eq;    // KIND_POINT / KIND_VECTOR: the reduced equation, over
+                   // one common denominator (pteq.h)
+    RatFunStruct *w; // KIND_POINT / KIND_VECTOR: eq->len weights, w[i] that
+                     // of eq->terms[i].point, each reduced on its own (what
+                     // derive prints and codegen lowers); NULL for scalars
     RatFun scalar; // KIND_SCALAR: the reduced value
     int line;      // 1-based line of its definition in the scheme
     Span span;     // the defined name in its definition (for diagnostics)

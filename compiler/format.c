@@ -422,16 +422,16 @@ static void put_equation(Buf *b, const Derived *d, const DerivedOutput *o,
     /* a denominator shared by every weight is pulled out */
     int shared = origin < 0;
     for (slong i = 1; i < (*eq)->len && shared; i++)
-        shared = fmpz_mpoly_equal((*eq)->terms[i].w.den,
-                                  (*eq)->terms[0].w.den, r->ctx);
-    if (shared && fmpz_mpoly_is_one((*eq)->terms[0].w.den, r->ctx))
+        shared = fmpz_mpoly_equal(o->w[i].den,
+                                  o->w[0].den, r->ctx);
+    if (shared && fmpz_mpoly_is_one(o->w[0].den, r->ctx))
         shared = 0;
     if (shared) {
         Buf n = {0};
         for (slong i = 0; i < (*eq)->len; i++) {
             Buf pl = {0};
             point_label(&pl, d, (*eq)->terms[i].point, -1, st);
-            put_term(&n, pl.s, (*eq)->terms[i].w.num, NULL, r, st, i == 0);
+            put_term(&n, pl.s, o->w[i].num, NULL, r, st, i == 0);
             free(pl.s);
         }
         if (st == FMT_LATEX) {
@@ -440,7 +440,7 @@ static void put_equation(Buf *b, const Derived *d, const DerivedOutput *o,
             buf_puts(b, "}{");
             int dneg;
             Buf dd = {0};
-            put_factored_ex(&dd, (*eq)->terms[0].w.den, r, st, &dneg, 1, 1);
+            put_factored_ex(&dd, o->w[0].den, r, st, &dneg, 1, 1);
             if (dneg)
                 buf_puts(b, "-");
             buf_puts(b, dd.s);
@@ -450,7 +450,7 @@ static void put_equation(Buf *b, const Derived *d, const DerivedOutput *o,
             buf_puts(b, (*eq)->len > 1 ? "(" : "");
             buf_puts(b, n.s);
             buf_puts(b, (*eq)->len > 1 ? ")" : "");
-            put_den(b, (*eq)->terms[0].w.den, r, st);
+            put_den(b, o->w[0].den, r, st);
         }
         free(n.s);
         return;
@@ -462,7 +462,7 @@ static void put_equation(Buf *b, const Derived *d, const DerivedOutput *o,
             continue;
         Buf pl = {0};
         point_label(&pl, d, pt, origin, st);
-        put_term(b, pl.s, (*eq)->terms[i].w.num, (*eq)->terms[i].w.den, r, st,
+        put_term(b, pl.s, o->w[i].num, o->w[i].den, r, st,
                  first);
         free(pl.s);
         first = 0;
@@ -559,7 +559,7 @@ void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)
             }
             fputs("\"terms\": {", out);
             for (slong k = 0; k < o->eq->len; k++) {
-                char *s = format_weight(&o->eq->terms[k].w, r);
+                char *s = format_weight(&o->w[k], r);
                 fprintf(out, "%s\"%s\": \"%s\"", k ? ", " : "",
                         d->points[o->eq->terms[k].point], s);
                 free(s);

@@ -1,21 +1,28 @@
 /*
- * pteq.c - point equations: sparse maps from base points to weights.
+ * pteq.c - point equations over one common denominator.
  *
- * A PointEq is a short array of (point, weight) terms sorted by point index,
- * with no zero weight stored.  Schemes have a handful of base points, so a
- * sorted array with linear merging beats any hashing.
+ * A PointEq is a short array of (point, numerator) terms sorted by point
+ * index, with no zero numerator stored, over one denominator (pteq.h).
+ * Schemes have a handful of base points, so a sorted array with linear
+ * merging beats any hashing.
  *
- * Slot reuse: every entry terms[0..alloc) holds an INITIALISED RatFun, used
- * or not.  Removing a term rotates its RatFun past len instead of clearing
- * it, and inserting rotates a spare one in, so the polynomial buffers are
- * recycled and the hot operation acc = acc + y*s (along, divide, bezier,
- * meet) updates weights in place without allocating once acc has grown.
- * Terms are moved by swapping whole structs, which moves ownership and never
- * duplicates it.
+ * Every entry terms[0..alloc) holds an INITIALISED numerator, used or not,
+ * so buffers are recycled; terms are moved by swapping whole structs, which
+ * moves ownership and never duplicates it.
+ *
+ * The cost model: an operation on two equations forms its result over the
+ * lcm of their denominators with polynomial products only, then makes it
+ * primitive with ONE content reduction (canonicalise: a running gcd of the
+ * denominator with the numerators, shortest first, that stops as soon as it
+ * reaches 1).  The per-weight representation it replaces needed one gcd per
+ * weight and per addition.  Scalar multiples use the structure of the
+ * operands instead (scalar_mul).  Reduced weights are formed only where a
+ * caller asks for them (pteq_get_weight: printing, lowering, tests).
  */
 #include "compiler/pteq.h"
 
 #include <stdint.h>
+#include <stdlib.h>
 
 static void swap_terms(PtTerm *a, PtTerm *b)
 {
@@ -35,7 +42,7 @@ static void fit_length(PointEq x, slong len, const Ring *r)
     x->terms = flint_realloc(x->terms, (size_t)na * sizeof(PtTerm));
     for (slong i = x->alloc; i < na; i++) {
         x->terms[i].point = -1;
-        ratfun_init(&x->terms[i].w, r);
+        fmpz_mpoly_init(x->terms[i].num, r->ctx);
     }
     x->alloc = na;
 }
@@ -55,104 +62,42 @@ static slong find(const PointEq x, slong point)
     return lo;
 }
 
-/* opens slot k for point (a spare RatFun with an unspecified value is
- * rotated in; the caller sets it) and returns its weight */
-static RatFunStruct *insert_at(PointEq x, slong k, slong point, const Ring *r)
+static int lc_negative(const fmpz_mpoly_t p)
 {
-    fit_length(x, x->len + 1, r);
-    for (slong i = x->len; i > k; i--)
-        swap_terms(x->terms + i, x->terms + i - 1);
-    x->terms[k].point = point;
-    x->len++;
-    return &x->terms[k].w;
+    return p->length > 0 && fmpz_sgn(p->coeffs + 0) < 0;
 }
 
-static void remove_at(PointEq x, slong k)
+static void exact_div(fmpz_mpoly_t q, const fmpz_mpoly_t a,
+                      const fmpz_mpoly_t b, const Ring *r)
 {
-    for (slong i = k; i + 1 < x->len; i++)
-        swap_terms(x->terms + i, x->terms + i + 1);
-    x->len--;
-}
-
-/* drops zero weights, keeping the order */
-static void compact(PointEq x, const Ring *r)
-{
-    slong j = 0;
-
-    for (slong i = 0; i < x->len; i++) {
-        if (ratfun_is_zero(&x->terms[i].w, r))
-            continue;
-        if (i != j)
-            swap_terms(x->terms + i, x->terms + j);
-        j++;
+    if (fmpz_mpoly_is_one(b, r->ctx)) {
+        fmpz_mpoly_set(q, a, r->ctx);
+    } else if (fmpz_mpoly_is_fmpz(b, r->ctx)) {
+        fmpz_mpoly_scalar_divexact_fmpz(q, a, b->coeffs + 0, r->ctx);
+    } else {
+        int ok = fmpz_mpoly_divides(q, a, b, r->ctx);
+        (void)ok;
+        FLINT_ASSERT(ok);
     }
-    x->len = j;
-}
-
-/* Does w live inside x's term array?  Then growing or rotating x would
- * move it under the caller's feet, so callers copy it first. */
-static int points_into(const PointEq x, const RatFunStruct *w)
-{
-    uintptr_t p = (uintptr_t)w, lo = (uintptr_t)x->terms;
-    return x->terms != NULL && p >= lo &&
-           p < lo + (uintptr_t)x->alloc * sizeof(PtTerm);
-}
-
-/* res += sign * y * s (s == NULL means 1); res and y distinct, s not inside
- * res.  One merge pass: the terms of both are sorted by point. */
-static void accumulate(PointEq res, const PointEq y, const RatFunStruct *s,
-                       int sign, const Ring *r)
-{
-    slong i = 0;
-    RatFun t;
-
-    ratfun_init(t, r);
-    for (slong j = 0; j < y->len; j++) {
-        slong pt = y->terms[j].point;
-        const RatFunStruct *v = &y->terms[j].w;
-        if (s != NULL) {
-            ratfun_mul(t, v, s, r);
-            v = t;
-        }
-        while (i < res->len && res->terms[i].point < pt)
-            i++;
-        if (i < res->len && res->terms[i].point == pt) {
-            RatFunStruct *w = &res->terms[i].w;
-            if (sign > 0)
-                ratfun_add(w, w, v, r);
-            else
-                ratfun_sub(w, w, v, r);
-            if (ratfun_is_zero(w, r))
-                remove_at(res, i);
-            else
-                i++;
-        } else {
-            RatFunStruct *w = insert_at(res, i, pt, r);
-            if (sign > 0)
-                ratfun_set(w, v, r);
-            else
-                ratfun_neg(w, v, r);
-            i++;
-        }
-    }
-    ratfun_clear(t, r);
 }
 
 /* ---- management ------------------------------------------------------- */
 
 void pteq_init(PointEq x, const Ring *r)
 {
-    (void)r;
     x->terms = NULL;
     x->len = 0;
     x->alloc = 0;
+    fmpz_mpoly_init(x->den, r->ctx);
+    fmpz_mpoly_one(x->den, r->ctx);
 }
 
 void pteq_clear(PointEq x, const Ring *r)
 {
     for (slong i = 0; i < x->alloc; i++)
-        ratfun_clear(&x->terms[i].w, r);
+        fmpz_mpoly_clear(x->terms[i].num, r->ctx);
     flint_free(x->terms);
+    fmpz_mpoly_clear(x->den, r->ctx);
     x->terms = NULL;
     x->len = x->alloc = 0;
 }
@@ -172,77 +117,233 @@ void pteq_set(PointEq res, const PointEq x, const Ring *r)
     fit_length(res, x->len, r);
     for (slong i = 0; i < x->len; i++) {
         res->terms[i].point = x->terms[i].point;
-        ratfun_set(&res->terms[i].w, &x->terms[i].w, r);
+        fmpz_mpoly_set(res->terms[i].num, x->terms[i].num, r->ctx);
     }
     res->len = x->len;
+    fmpz_mpoly_set(res->den, x->den, r->ctx);
 }
 
 void pteq_zero(PointEq res, const Ring *r)
 {
-    (void)r;
     res->len = 0;
+    fmpz_mpoly_one(res->den, r->ctx);
 }
 
 void pteq_set_point(PointEq res, slong point, const Ring *r)
 {
     fit_length(res, 1, r);
     res->terms[0].point = point;
-    ratfun_one(&res->terms[0].w, r);
+    fmpz_mpoly_one(res->terms[0].num, r->ctx);
     res->len = 1;
+    fmpz_mpoly_one(res->den, r->ctx);
+}
+
+fmpz_mpoly_struct *pteq_append(PointEq x, slong point, const Ring *r)
+{
+    fit_length(x, x->len + 1, r);
+    x->terms[x->len].point = point;
+    return x->terms[x->len++].num;
+}
+
+/* order of the terms by numerator length, shortest first (the cheapest
+ * gcd partners of the denominator come first) */
+static slong *by_length(const PointEq x)
+{
+    slong *o = flint_malloc((size_t)FLINT_MAX(x->len, 1) * sizeof(slong));
+    for (slong i = 0; i < x->len; i++) {
+        slong j = i;
+        for (; j > 0 && x->terms[o[j - 1]].num->length >
+                            x->terms[i].num->length;
+             j--)
+            o[j] = o[j - 1];
+        o[j] = i;
+    }
+    return o;
+}
+
+void pteq_canonicalise(PointEq x, const Ring *r)
+{
+    slong j = 0;
+    fmpz_mpoly_t g;
+
+    for (slong i = 0; i < x->len; i++) {
+        if (fmpz_mpoly_is_zero(x->terms[i].num, r->ctx))
+            continue;
+        if (i != j)
+            swap_terms(x->terms + i, x->terms + j);
+        j++;
+    }
+    x->len = j;
+    if (x->len == 0) {
+        fmpz_mpoly_one(x->den, r->ctx);
+        return;
+    }
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_set(g, x->den, r->ctx);
+    if (lc_negative(g))
+        fmpz_mpoly_neg(g, g, r->ctx);
+    if (!fmpz_mpoly_is_one(g, r->ctx)) {
+        slong *o = by_length(x);
+        for (slong k = 0; k < x->len && !fmpz_mpoly_is_one(g, r->ctx); k++)
+            ratfun_poly_gcd(g, g, x->terms[o[k]].num, r);
+        flint_free(o);
+    }
+    if (!fmpz_mpoly_is_one(g, r->ctx)) {
+        for (slong i = 0; i < x->len; i++)
+            exact_div(x->terms[i].num, x->terms[i].num, g, r);
+        exact_div(x->den, x->den, g, r);
+    }
+    if (lc_negative(x->den)) {
+        for (slong i = 0; i < x->len; i++)
+            fmpz_mpoly_neg(x->terms[i].num, x->terms[i].num, r->ctx);
+        fmpz_mpoly_neg(x->den, x->den, r->ctx);
+    }
+    fmpz_mpoly_clear(g, r->ctx);
 }
 
 int pteq_is_canonical(const PointEq x, const Ring *r)
 {
-    for (slong i = 0; i < x->len; i++) {
+    int ok = x->len <= x->alloc && !fmpz_mpoly_is_zero(x->den, r->ctx) &&
+             !lc_negative(x->den);
+    fmpz_mpoly_t g;
+
+    for (slong i = 0; i < x->len && ok; i++) {
         if (i > 0 && x->terms[i - 1].point >= x->terms[i].point)
-            return 0;
-        if (x->terms[i].point < 0 || ratfun_is_zero(&x->terms[i].w, r) ||
-            !ratfun_is_canonical(&x->terms[i].w, r))
-            return 0;
+            ok = 0;
+        if (x->terms[i].point < 0 ||
+            fmpz_mpoly_is_zero(x->terms[i].num, r->ctx))
+            ok = 0;
     }
-    return x->len <= x->alloc;
+    if (!ok)
+        return 0;
+    if (x->len == 0)
+        return fmpz_mpoly_is_one(x->den, r->ctx);
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_set(g, x->den, r->ctx);
+    for (slong i = 0; i < x->len; i++)
+        if (!fmpz_mpoly_gcd(g, g, x->terms[i].num, r->ctx))
+            ok = 0;
+    ok = ok && fmpz_mpoly_is_one(g, r->ctx);
+    fmpz_mpoly_clear(g, r->ctx);
+    return ok;
 }
 
 /* ---- weights ---------------------------------------------------------- */
 
-const RatFunStruct *pteq_weight(const PointEq x, slong point)
+int pteq_has_point(const PointEq x, slong point)
 {
     slong k = find(x, point);
-    if (k < x->len && x->terms[k].point == point)
-        return &x->terms[k].w;
-    return NULL;
+    return k < x->len && x->terms[k].point == point;
+}
+
+void pteq_weight_view(RatFunStruct *v, const PointEq x, slong i)
+{
+    v->num[0] = x->terms[i].num[0];
+    v->den[0] = x->den[0];
 }
 
 void pteq_get_weight(RatFun res, const PointEq x, slong point, const Ring *r)
 {
-    const RatFunStruct *w = pteq_weight(x, point);
-    if (w != NULL)
-        ratfun_set(res, w, r);
-    else
+    slong k = find(x, point);
+    if (k < x->len && x->terms[k].point == point) {
+        fmpz_mpoly_set(res->num, x->terms[k].num, r->ctx);
+        fmpz_mpoly_set(res->den, x->den, r->ctx);
+        ratfun_canonicalise(res, r); /* den != 0 */
+    } else {
         ratfun_zero(res, r);
+    }
+}
+
+void pteq_get_weights(RatFunStruct *w, const PointEq x, const Ring *r)
+{
+    for (slong i = 0; i < x->len; i++) {
+        fmpz_mpoly_set(w[i].num, x->terms[i].num, r->ctx);
+        fmpz_mpoly_set(w[i].den, x->den, r->ctx);
+        ratfun_canonicalise(w + i, r);
+    }
+}
+
+/* lcm of the weights' dens; each numerator is scaled by lcm/den.  The
+ * result is primitive without a further gcd: a prime power of the lcm comes
+ * whole from some den_i, and num_i is coprime to den_i. */
+void pteq_set_weights(PointEq res, const slong *points, const RatFunStruct *w,
+                      slong n, const Ring *r)
+{
+    PointEq acc;
+    fmpz_mpoly_t g, q;
+    slong *ord = flint_malloc((size_t)FLINT_MAX(n, 1) * sizeof(slong));
+    slong m = 0;
+
+    pteq_init(acc, r);
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_init(q, r->ctx);
+    for (slong i = 0; i < n; i++) { /* non-zero weights, sorted by point */
+        if (ratfun_is_zero(w + i, r))
+            continue;
+        slong j = m++;
+        for (; j > 0 && points[ord[j - 1]] > points[i]; j--)
+            ord[j] = ord[j - 1];
+        ord[j] = i;
+    }
+    for (slong k = 0; k < m; k++) { /* acc->den = lcm */
+        const fmpz_mpoly_struct *d = w[ord[k]].den;
+        if (fmpz_mpoly_equal(acc->den, d, r->ctx) ||
+            fmpz_mpoly_is_one(d, r->ctx))
+            continue;
+        ratfun_poly_gcd(g, acc->den, d, r);
+        exact_div(q, d, g, r);
+        fmpz_mpoly_mul(acc->den, acc->den, q, r->ctx);
+    }
+    for (slong k = 0; k < m; k++) {
+        const RatFunStruct *wi = w + ord[k];
+        fmpz_mpoly_struct *num = pteq_append(acc, points[ord[k]], r);
+        exact_div(q, acc->den, wi->den, r);
+        fmpz_mpoly_mul(num, wi->num, q, r->ctx);
+    }
+    pteq_swap(res, acc, r);
+    fmpz_mpoly_clear(q, r->ctx);
+    fmpz_mpoly_clear(g, r->ctx);
+    pteq_clear(acc, r);
+    flint_free(ord);
+}
+
+/* the reduced weights of x, with their points, for the per-weight paths */
+static RatFunStruct *weights_of(slong **points, const PointEq x, const Ring *r)
+{
+    RatFunStruct *w =
+        flint_malloc((size_t)FLINT_MAX(x->len + 1, 1) * sizeof(RatFunStruct));
+    *points = flint_malloc((size_t)(x->len + 1) * sizeof(slong));
+    for (slong i = 0; i <= x->len; i++)
+        ratfun_init(w + i, r);
+    pteq_get_weights(w, x, r);
+    for (slong i = 0; i < x->len; i++)
+        (*points)[i] = x->terms[i].point;
+    return w;
+}
+
+static void weights_free(RatFunStruct *w, slong *points, slong n,
+                         const Ring *r)
+{
+    for (slong i = 0; i <= n; i++)
+        ratfun_clear(w + i, r);
+    flint_free(w);
+    flint_free(points);
 }
 
 void pteq_set_weight(PointEq x, slong point, const RatFun w, const Ring *r)
 {
-    slong k;
+    slong *pts, n0 = x->len, n = x->len, k = find(x, point);
+    RatFunStruct *ws = weights_of(&pts, x, r);
 
-    if (points_into(x, w)) {
-        RatFun t;
-        ratfun_init(t, r);
-        ratfun_set(t, w, r);
-        pteq_set_weight(x, point, t, r);
-        ratfun_clear(t, r);
-        return;
+    if (k < n && pts[k] == point) {
+        ratfun_set(ws + k, w, r);
+    } else {
+        pts[n] = point;
+        ratfun_set(ws + n, w, r);
+        n++;
     }
-    k = find(x, point);
-    if (k < x->len && x->terms[k].point == point) {
-        if (ratfun_is_zero(w, r))
-            remove_at(x, k);
-        else
-            ratfun_set(&x->terms[k].w, w, r);
-    } else if (!ratfun_is_zero(w, r)) {
-        ratfun_set(insert_at(x, k, point, r), w, r);
-    }
+    pteq_set_weights(x, pts, ws, n, r);
+    weights_free(ws, pts, n0, r);
 }
 
 int pteq_is_zero(const PointEq x, const Ring *r)
@@ -253,35 +354,28 @@ int pteq_is_zero(const PointEq x, const Ring *r)
 
 int pteq_equal(const PointEq x, const PointEq y, const Ring *r)
 {
-    if (x->len != y->len)
+    if (x->len != y->len || !fmpz_mpoly_equal(x->den, y->den, r->ctx))
         return 0;
     for (slong i = 0; i < x->len; i++)
         if (x->terms[i].point != y->terms[i].point ||
-            !ratfun_equal(&x->terms[i].w, &y->terms[i].w, r))
+            !fmpz_mpoly_equal(x->terms[i].num, y->terms[i].num, r->ctx))
             return 0;
     return 1;
 }
 
-/* Derived equations usually share one denominator across all weights
- * (meet() divides by one determinant); then the numerators are summed and
- * a single gcd reduces the total, instead of one gcd per term. */
+/* one gcd at most: for a point the numerators sum to the den itself */
 void pteq_weight_sum(RatFun res, const PointEq x, const Ring *r)
 {
-    int same_den = x->len > 1;
     RatFun acc;
 
     ratfun_init(acc, r);
-    for (slong i = 1; i < x->len && same_den; i++)
-        same_den =
-            fmpz_mpoly_equal(x->terms[i].w.den, x->terms[0].w.den, r->ctx);
-    if (same_den) {
-        for (slong i = 0; i < x->len; i++)
-            fmpz_mpoly_add(acc->num, acc->num, x->terms[i].w.num, r->ctx);
-        fmpz_mpoly_set(acc->den, x->terms[0].w.den, r->ctx);
+    for (slong i = 0; i < x->len; i++)
+        fmpz_mpoly_add(acc->num, acc->num, x->terms[i].num, r->ctx);
+    if (fmpz_mpoly_equal(acc->num, x->den, r->ctx)) {
+        ratfun_one(acc, r);
+    } else if (!fmpz_mpoly_is_zero(acc->num, r->ctx)) {
+        fmpz_mpoly_set(acc->den, x->den, r->ctx);
         ratfun_canonicalise(acc, r); /* den != 0 */
-    } else {
-        for (slong i = 0; i < x->len; i++)
-            ratfun_add(acc, acc, &x->terms[i].w, r);
     }
     ratfun_swap(res, acc, r);
     ratfun_clear(acc, r);
@@ -293,40 +387,17 @@ void pteq_neg(PointEq res, const PointEq x, const Ring *r)
 {
     pteq_set(res, x, r);
     for (slong i = 0; i < res->len; i++)
-        ratfun_neg(&res->terms[i].w, &res->terms[i].w, r);
+        fmpz_mpoly_neg(res->terms[i].num, res->terms[i].num, r->ctx);
 }
 
-void pteq_add(PointEq res, const PointEq x, const PointEq y, const Ring *r)
-{
-    if (x == y) {
-        pteq_set(res, x, r);
-        for (slong i = 0; i < res->len; i++)
-            ratfun_mul_si(&res->terms[i].w, &res->terms[i].w, 2, r);
-    } else if (res == y) {
-        accumulate(res, x, NULL, 1, r); /* addition commutes */
-    } else {
-        pteq_set(res, x, r);
-        accumulate(res, y, NULL, 1, r);
-    }
-}
-
-void pteq_sub(PointEq res, const PointEq x, const PointEq y, const Ring *r)
-{
-    if (x == y) {
-        pteq_zero(res, r);
-    } else if (res == y) {
-        accumulate(res, x, NULL, -1, r); /* y - x, then negate */
-        pteq_neg(res, res, r);
-    } else {
-        pteq_set(res, x, r);
-        accumulate(res, y, NULL, -1, r);
-    }
-}
-
+/* x*(a/b) with x primitive and a/b reduced: gcd(a*N, b*d) is
+ * gcd(a, d)*gcd(b, N) (a prime of d divides no N_i entirely, and one of a
+ * and b at most), so two gcds of the small scalar replace a reduction of
+ * the whole equation. */
 void pteq_scalar_mul(PointEq res, const PointEq x, const RatFun s,
                      const Ring *r)
 {
-    RatFun t;
+    fmpz_mpoly_t a, b, g;
 
     if (ratfun_is_zero(s, r)) {
         pteq_zero(res, r);
@@ -336,16 +407,43 @@ void pteq_scalar_mul(PointEq res, const PointEq x, const RatFun s,
         pteq_set(res, x, r);
         return;
     }
-    /* s may be one of res's own weights: then keep a copy across the loop */
-    ratfun_init(t, r);
-    if (points_into(res, s)) {
-        ratfun_set(t, s, r);
-        s = t;
-    }
+    fmpz_mpoly_init(a, r->ctx);
+    fmpz_mpoly_init(b, r->ctx);
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_set(a, s->num, r->ctx); /* s may live inside res */
+    fmpz_mpoly_set(b, s->den, r->ctx);
     pteq_set(res, x, r);
+    if (res->len == 0)
+        goto cleanup;
+    /* a/g1 over d/g1 */
+    ratfun_poly_gcd(g, a, res->den, r);
+    if (!fmpz_mpoly_is_one(g, r->ctx)) {
+        exact_div(a, a, g, r);
+        exact_div(res->den, res->den, g, r);
+    }
+    /* b/g2 against the numerators' content */
+    fmpz_mpoly_set(g, b, r->ctx);
+    for (slong i = 0; i < res->len && !fmpz_mpoly_is_one(g, r->ctx); i++)
+        ratfun_poly_gcd(g, g, res->terms[i].num, r);
+    if (!fmpz_mpoly_is_one(g, r->ctx)) {
+        exact_div(b, b, g, r);
+        for (slong i = 0; i < res->len; i++)
+            exact_div(res->terms[i].num, res->terms[i].num, g, r);
+    }
     for (slong i = 0; i < res->len; i++)
-        ratfun_mul(&res->terms[i].w, &res->terms[i].w, s, r);
-    ratfun_clear(t, r);
+        if (!fmpz_mpoly_is_one(a, r->ctx))
+            fmpz_mpoly_mul(res->terms[i].num, res->terms[i].num, a, r->ctx);
+    if (!fmpz_mpoly_is_one(b, r->ctx))
+        fmpz_mpoly_mul(res->den, res->den, b, r->ctx);
+    if (lc_negative(res->den)) {
+        for (slong i = 0; i < res->len; i++)
+            fmpz_mpoly_neg(res->terms[i].num, res->terms[i].num, r->ctx);
+        fmpz_mpoly_neg(res->den, res->den, r->ctx);
+    }
+cleanup:
+    fmpz_mpoly_clear(g, r->ctx);
+    fmpz_mpoly_clear(b, r->ctx);
+    fmpz_mpoly_clear(a, r->ctx);
 }
 
 int pteq_scalar_div(PointEq res, const PointEq x, const RatFun s, const Ring *r)
@@ -361,41 +459,107 @@ int pteq_scalar_div(PointEq res, const PointEq x, const RatFun s, const Ring *r)
     return RATFUN_OK;
 }
 
+/* ma = m * a (m == NULL: 1) */
+static void mul_opt(fmpz_mpoly_t ma, const fmpz_mpoly_struct *m,
+                    const fmpz_mpoly_t a, const Ring *r)
+{
+    if (m == NULL)
+        fmpz_mpoly_set(ma, a, r->ctx);
+    else
+        fmpz_mpoly_mul(ma, m, a, r->ctx);
+}
+
+/*
+ * res = x*(a/b) + y*(c/e).  Over F1 = b*dx and F2 = e*dy: the common
+ * denominator is lcm(F1, F2) = F1*(F2/g), g = gcd(F1, F2); x's numerators
+ * are multiplied by a*(F2/g), y's by c*(F1/g), and one content reduction
+ * makes the sum primitive.  s == NULL or u == NULL stands for 1.
+ */
+static void lincomb(PointEq res, const PointEq x, const RatFunStruct *s,
+                    const PointEq y, const RatFunStruct *u, const Ring *r)
+{
+    PointEq acc;
+    fmpz_mpoly_t f1, f2, g, mx, my, t;
+    const fmpz_mpoly_struct *px = NULL, *py = NULL;
+    slong i = 0, j = 0;
+
+    pteq_init(acc, r);
+    fmpz_mpoly_init(f1, r->ctx);
+    fmpz_mpoly_init(f2, r->ctx);
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_init(mx, r->ctx);
+    fmpz_mpoly_init(my, r->ctx);
+    fmpz_mpoly_init(t, r->ctx);
+    mul_opt(f1, s ? s->den : NULL, x->den, r);
+    mul_opt(f2, u ? u->den : NULL, y->den, r);
+    if (fmpz_mpoly_equal(f1, f2, r->ctx)) {
+        fmpz_mpoly_set(acc->den, f1, r->ctx);
+        px = s ? s->num : NULL;
+        py = u ? u->num : NULL;
+    } else {
+        ratfun_poly_gcd(g, f1, f2, r);
+        exact_div(t, f2, g, r); /* F2/g */
+        mul_opt(mx, s ? s->num : NULL, t, r);
+        fmpz_mpoly_mul(acc->den, f1, t, r->ctx);
+        exact_div(t, f1, g, r); /* F1/g */
+        mul_opt(my, u ? u->num : NULL, t, r);
+        px = mx;
+        py = my;
+    }
+    while (i < x->len || j < y->len) {
+        slong pi = i < x->len ? x->terms[i].point : WORD_MAX;
+        slong pj = j < y->len ? y->terms[j].point : WORD_MAX;
+        fmpz_mpoly_struct *num = pteq_append(acc, FLINT_MIN(pi, pj), r);
+        if (pi <= pj)
+            mul_opt(num, px, x->terms[i].num, r);
+        else
+            fmpz_mpoly_zero(num, r->ctx);
+        if (pj <= pi) {
+            mul_opt(t, py, y->terms[j].num, r);
+            fmpz_mpoly_add(num, num, t, r->ctx);
+        }
+        i += pi <= pj;
+        j += pj <= pi;
+    }
+    pteq_canonicalise(acc, r);
+    pteq_swap(res, acc, r);
+    fmpz_mpoly_clear(t, r->ctx);
+    fmpz_mpoly_clear(my, r->ctx);
+    fmpz_mpoly_clear(mx, r->ctx);
+    fmpz_mpoly_clear(g, r->ctx);
+    fmpz_mpoly_clear(f2, r->ctx);
+    fmpz_mpoly_clear(f1, r->ctx);
+    pteq_clear(acc, r);
+}
+
+void pteq_lincomb(PointEq res, const PointEq x, const RatFun s,
+                  const PointEq y, const RatFun u, const Ring *r)
+{
+    lincomb(res, x, ratfun_is_one(s, r) ? NULL : s, y,
+            ratfun_is_one(u, r) ? NULL : u, r);
+}
+
+void pteq_add(PointEq res, const PointEq x, const PointEq y, const Ring *r)
+{
+    lincomb(res, x, NULL, y, NULL, r);
+}
+
+void pteq_sub(PointEq res, const PointEq x, const PointEq y, const Ring *r)
+{
+    RatFun m;
+    ratfun_init(m, r);
+    ratfun_set_si(m, -1, r);
+    lincomb(res, x, NULL, y, m, r);
+    ratfun_clear(m, r);
+}
+
 void pteq_addmul(PointEq res, const PointEq x, const PointEq y, const RatFun s,
                  const Ring *r)
 {
-    RatFun t;
-    PointEq tmp;
-
-    if (ratfun_is_zero(s, r)) {
+    if (ratfun_is_zero(s, r))
         pteq_set(res, x, r);
-        return;
-    }
-    if (x == y) {
-        /* x + x*s = x*(1 + s) */
-        ratfun_init(t, r);
-        ratfun_one(t, r);
-        ratfun_add(t, t, s, r);
-        pteq_scalar_mul(res, x, t, r);
-        ratfun_clear(t, r);
-        return;
-    }
-    ratfun_init(t, r);
-    pteq_init(tmp, r);
-    if (points_into(res, s)) {
-        ratfun_set(t, s, r);
-        s = t;
-    }
-    if (res == y) {
-        pteq_set(tmp, x, r);
-        accumulate(tmp, y, s, 1, r);
-        pteq_swap(res, tmp, r);
-    } else {
-        pteq_set(res, x, r);
-        accumulate(res, y, s, 1, r);
-    }
-    pteq_clear(tmp, r);
-    ratfun_clear(t, r);
+    else
+        lincomb(res, x, NULL, y, ratfun_is_one(s, r) ? NULL : s, r);
 }
 
 /* sum_{i != point} w_i X_i + w_point * p */
@@ -403,44 +567,80 @@ void pteq_subst_point(PointEq res, const PointEq x, slong point,
                       const PointEq p, const Ring *r)
 {
     RatFun w;
-    PointEq tmp;
-    slong k;
+    PointEq rest;
+    slong k = find(x, point);
 
-    if (pteq_weight(x, point) == NULL) {
+    if (!(k < x->len && x->terms[k].point == point)) {
         pteq_set(res, x, r);
         return;
     }
     ratfun_init(w, r);
-    pteq_init(tmp, r);
+    pteq_init(rest, r);
     pteq_get_weight(w, x, point, r);
-    pteq_set(tmp, x, r);
-    k = find(tmp, point);
-    remove_at(tmp, k);
-    accumulate(tmp, p, w, 1, r);
-    pteq_swap(res, tmp, r);
-    pteq_clear(tmp, r);
+    pteq_set(rest, x, r);
+    fmpz_mpoly_zero(rest->terms[k].num, r->ctx);
+    pteq_canonicalise(rest, r);
+    lincomb(res, rest, NULL, p, w, r);
+    pteq_clear(rest, r);
     ratfun_clear(w, r);
 }
 
+/* On the one denominator: with s = a/b, every numerator and the den as
+ * b^E * p(a/b), E the largest degree in var among them, then one content
+ * reduction.  The den composed to zero is a pole: some weight's reduced
+ * denominator (whose lcm the den is) vanishes identically. */
 int pteq_compose_var(PointEq res, const PointEq x, slong var, const RatFun s,
                      const Ring *r)
 {
-    int st = RATFUN_OK;
-    PointEq tmp;
+    int st = RATFUN_OK, depends = 0;
+    slong e = 0, d, *deg;
+    PointEq acc;
+    fmpz_mpoly_t pw;
 
-    pteq_init(tmp, r);
-    fit_length(tmp, x->len, r);
-    for (slong i = 0; i < x->len; i++) {
-        tmp->terms[i].point = x->terms[i].point;
-        st = ratfun_compose_var(&tmp->terms[i].w, &x->terms[i].w, var, s, r);
-        if (st != RATFUN_OK)
-            goto cleanup;
+    if (fmpz_mpoly_degrees_fit_si(x->den, r->ctx)) {
+        depends = fmpz_mpoly_degree_si(x->den, var, r->ctx) > 0;
+        for (slong i = 0; i < x->len && !depends; i++)
+            depends = fmpz_mpoly_degree_si(x->terms[i].num, var, r->ctx) > 0;
+    } else {
+        depends = 1;
     }
-    tmp->len = x->len;
-    compact(tmp, r); /* t - 1 at t := 1 vanishes */
-    pteq_swap(res, tmp, r);
-cleanup:
-    pteq_clear(tmp, r);
+    if (!depends) {
+        pteq_set(res, x, r);
+        return RATFUN_OK;
+    }
+    pteq_init(acc, r);
+    fmpz_mpoly_init(pw, r->ctx);
+    deg = flint_malloc((size_t)(x->len + 1) * sizeof(slong));
+    for (slong i = 0; i <= x->len && st == RATFUN_OK; i++) {
+        const fmpz_mpoly_struct *p = i < x->len ? x->terms[i].num : x->den;
+        fmpz_mpoly_struct *out =
+            i < x->len ? pteq_append(acc, x->terms[i].point, r) : acc->den;
+        if (!ratfun_poly_compose_homog(out, deg + i, p, var, s->num, s->den,
+                                       r))
+            st = RATFUN_EOVERFLOW;
+        else
+            e = FLINT_MAX(e, deg[i]);
+    }
+    if (st == RATFUN_OK && fmpz_mpoly_is_zero(acc->den, r->ctx))
+        st = RATFUN_EPOLE;
+    for (slong i = 0; i <= x->len && st == RATFUN_OK; i++) {
+        fmpz_mpoly_struct *out = i < x->len ? acc->terms[i].num : acc->den;
+        d = e - deg[i];
+        if (d == 0 || fmpz_mpoly_is_one(s->den, r->ctx))
+            continue;
+        if (!fmpz_mpoly_pow_ui(pw, s->den, (ulong)d, r->ctx)) {
+            st = RATFUN_EOVERFLOW;
+            break;
+        }
+        fmpz_mpoly_mul(out, out, pw, r->ctx);
+    }
+    if (st == RATFUN_OK) {
+        pteq_canonicalise(acc, r); /* drops t - 1 at t := 1 */
+        pteq_swap(res, acc, r);
+    }
+    flint_free(deg);
+    fmpz_mpoly_clear(pw, r->ctx);
+    pteq_clear(acc, r);
     return st;
 }
 
@@ -452,8 +652,11 @@ void pteq_derivative(PointEq res, const PointEq x, slong var, const Ring *r)
 void pteq_derivative_n(PointEq res, const PointEq x, slong var, ulong k,
                        const Ring *r)
 {
-    pteq_set(res, x, r);
-    for (slong i = 0; i < res->len; i++)
-        ratfun_derivative_n(&res->terms[i].w, &res->terms[i].w, var, k, r);
-    compact(res, r);
+    slong *pts, n = x->len;
+    RatFunStruct *w = weights_of(&pts, x, r);
+
+    for (slong i = 0; i < n; i++)
+        ratfun_derivative_n(w + i, w + i, var, k, r);
+    pteq_set_weights(res, pts, w, n, r);
+    weights_free(w, pts, n, r);
 }

@@ -57,6 +57,7 @@ static slong common_var(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
     return v;
 }
 
+
 /* Univariate cofactors through fmpz_poly: 1 if g != 1 (ta, tb, tg set),
  * 0 if g = 1, -1 if the conversion is not possible (use fmpz_mpoly). */
 static int univar_cofactors(fmpz_mpoly_t ta, fmpz_mpoly_t tb, fmpz_mpoly_t tg,
@@ -179,6 +180,54 @@ static void reduce(fmpz_mpoly_t num, fmpz_mpoly_t den, const Ring *r)
     fmpz_mpoly_clear(tg, r->ctx);
     fmpz_mpoly_clear(td, r->ctx);
     fmpz_mpoly_clear(tn, r->ctx);
+}
+
+int ratfun_poly_gcd(fmpz_mpoly_t g, const fmpz_mpoly_t a, const fmpz_mpoly_t b,
+                    const Ring *r)
+{
+    int ok = 1;
+
+    if (fmpz_mpoly_is_zero(a, r->ctx) || fmpz_mpoly_equal(a, b, r->ctx)) {
+        fmpz_mpoly_set(g, b, r->ctx);
+    } else if (fmpz_mpoly_is_zero(b, r->ctx)) {
+        fmpz_mpoly_set(g, a, r->ctx);
+    } else if (fmpz_mpoly_is_fmpz(a, r->ctx) || fmpz_mpoly_is_fmpz(b, r->ctx)) {
+        fmpz_t c, d;
+        fmpz_init(c);
+        fmpz_init(d);
+        _fmpz_vec_content(c, a->coeffs, a->length);
+        _fmpz_vec_content(d, b->coeffs, b->length);
+        fmpz_gcd(c, c, d);
+        fmpz_mpoly_set_fmpz(g, c, r->ctx);
+        fmpz_clear(d);
+        fmpz_clear(c);
+        return 1;
+    } else {
+        slong v = common_var(a, b, r);
+        fmpz_poly_t A, B, G;
+        int done = 0;
+        if (v >= 0) {
+            fmpz_poly_init(A);
+            fmpz_poly_init(B);
+            fmpz_poly_init(G);
+            if (fmpz_mpoly_get_fmpz_poly(A, a, v, r->ctx) &&
+                fmpz_mpoly_get_fmpz_poly(B, b, v, r->ctx)) {
+                fmpz_poly_gcd(G, A, B);
+                fmpz_mpoly_set_fmpz_poly(g, G, v, r->ctx);
+                done = 1;
+            }
+            fmpz_poly_clear(G);
+            fmpz_poly_clear(B);
+            fmpz_poly_clear(A);
+        }
+        if (!done && !fmpz_mpoly_gcd(g, a, b, r->ctx)) {
+            fmpz_mpoly_one(g, r->ctx);
+            ok = 0;
+        }
+    }
+    if (lc_is_negative(g))
+        fmpz_mpoly_neg(g, g, r->ctx);
+    return ok;
 }
 
 int ratfun_canonicalise(RatFun x, const Ring *r)
@@ -703,7 +752,7 @@ void ratfun_derivative_n(RatFun res, const RatFun x, slong var, ulong k,
  *   acc_0 = c_0,  acc_j = acc_{j-1}*a^(e_{j-1}-e_j) + c_j*b^(e_0-e_j),
  *   res = acc_last * a^e_last.
  * Returns 0 if a power overflows FLINT's exponent range. */
-static int homog_compose(fmpz_mpoly_t res, slong *deg, const fmpz_mpoly_t p,
+int ratfun_poly_compose_homog(fmpz_mpoly_t res, slong *deg, const fmpz_mpoly_t p,
                          slong var, const fmpz_mpoly_t a, const fmpz_mpoly_t b,
                          const Ring *r)
 {
@@ -775,8 +824,8 @@ int ratfun_compose_var(RatFun res, const RatFun x, slong var, const RatFun s,
     }
     ratfun_init(t, r);
     fmpz_mpoly_init(pw, r->ctx);
-    if (!homog_compose(t->num, &dn, x->num, var, s->num, s->den, r) ||
-        !homog_compose(t->den, &dd, x->den, var, s->num, s->den, r)) {
+    if (!ratfun_poly_compose_homog(t->num, &dn, x->num, var, s->num, s->den, r) ||
+        !ratfun_poly_compose_homog(t->den, &dd, x->den, var, s->num, s->den, r)) {
         st = RATFUN_EOVERFLOW;
         goto cleanup;
     }

@@ -84,6 +84,13 @@ int ratfun_pow_si(RatFun res, const RatFun x, slong e, const Ring *r);
  * RATFUN_EDIVZERO (x untouched) when den is zero. */
 int ratfun_canonicalise(RatFun x, const Ring *r);
 
+/* g = gcd(a, b) over Z (content included, lc(g) > 0; gcd(0, 0) = 0), with
+ * the fast paths of the reduction: a constant or a unit operand, equal
+ * operands, one shared variable (through fmpz_poly).  g may alias a or b.
+ * Returns 1 when FLINT computed it, 0 when it could not (then g = 1). */
+int ratfun_poly_gcd(fmpz_mpoly_t g, const fmpz_mpoly_t a, const fmpz_mpoly_t b,
+                    const Ring *r);
+
 /* partial derivative d x / d var */
 void ratfun_derivative(RatFun res, const RatFun x, slong var, const Ring *r);
 /* the k-th partial derivative (k >= 0), reduced once at the end */
@@ -94,6 +101,14 @@ void ratfun_derivative_n(RatFun res, const RatFun x, slong var, ulong k,
  * identically zero under the substitution (res is then untouched). */
 int ratfun_compose_var(RatFun res, const RatFun x, slong var, const RatFun s,
                        const Ring *r);
+/* res = b^e * p(var := a/b) with e = deg_var(p) (*deg = e): the
+ * polynomial part of a substitution, for callers that keep one
+ * denominator themselves.  Returns 0 if a power overflows FLINT's exponent
+ * range. */
+int ratfun_poly_compose_homog(fmpz_mpoly_t res, slong *deg,
+                              const fmpz_mpoly_t p, slong var,
+                              const fmpz_mpoly_t a, const fmpz_mpoly_t b,
+                              const Ring *r);
 /* Exact value at vals[0..nvars-1]; RATFUN_EPOLE if den vanishes there. */
 int ratfun_evaluate_fmpq(fmpq_t res, const RatFun x, const fmpq *vals,
                          const Ring *r);

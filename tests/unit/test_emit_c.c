@@ -205,7 +205,7 @@ static int exact_weights(const Derived *d, int o, const fmpq *vals, fmpq *w,
     int pole = 0;
     for (int k = 0; k < nterms; k++) {
         const RatFunStruct *x =
-            out->kind == KIND_SCALAR ? out->scalar : &out->eq->terms[k].w;
+            out->kind == KIND_SCALAR ? out->scalar : &out->w[k];
         if (ratfun_evaluate_fmpq(w + k, x, vals, &d->ring) == RATFUN_EPOLE)
             pole = 1;
     }
