@@ -428,6 +428,21 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
             fmpz_mpoly_set(z + c, mc, r->ctx);
     }
 
+    /* z's own content (z = (N, -N) for two lines through the same ratio
+     * N/D) would otherwise multiply M and only be found again, at twice
+     * the degree, by the reduction at the end */
+    if (nc >= 2) {
+        fmpz_mpoly_zero(u, r->ctx);
+        for (slong c = 0; c < nc && !fmpz_mpoly_is_one(u, r->ctx); c++)
+            ratfun_poly_gcd(u, u, z + c, r);
+        if (!fmpz_mpoly_is_zero(u, r->ctx) && !fmpz_mpoly_is_one(u, r->ctx))
+            for (slong c = 0; c < nc; c++) {
+                int ok_div = fmpz_mpoly_divides(z + c, z + c, u, r->ctx);
+                (void)ok_div;
+                FLINT_ASSERT(ok_div);
+            }
+    }
+
     /* the other rows of G' must vanish too (else rank nc: fall back) */
     for (slong q = 0, b = 0; q < nr; q++) {
         if (b < rank && sel[b] == rl[q]) {
