@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compiler/mem.h"
+
 enum { BLOCK_SIZE = 64 * 1024 };
 
 struct ArenaBlock {
@@ -27,11 +29,7 @@ void arena_init(Arena *a)
 
 static ArenaBlock *new_block(size_t size)
 {
-    ArenaBlock *b = malloc(sizeof(ArenaBlock) + size);
-    if (!b) {
-        fputs("pointcalc: out of memory\n", stderr);
-        abort();
-    }
+    ArenaBlock *b = pc_xmalloc(sizeof(ArenaBlock) + size);
     b->next = NULL;
     b->used = 0;
     b->size = size;

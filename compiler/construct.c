@@ -6,6 +6,7 @@
 #include <flint/ulong_extras.h>
 
 #include "compiler/linsolve.h"
+#include "compiler/mem.h"
 
 /* P*(1 - s) + Q*s: one combination over one denominator */
 void construct_along(PointEq res, const PointEq p, const PointEq q,
@@ -119,7 +120,7 @@ static slong *support_union(slong *nrows, const PointEq *eqs, slong n)
     slong cap = 0;
     for (slong i = 0; i < n; i++)
         cap += eqs[i]->len;
-    slong *rows = malloc(sizeof(slong) * (size_t)(cap ? cap : 1));
+    slong *rows = pc_xmalloc(sizeof(slong) * (size_t)(cap ? cap : 1));
     slong m = 0;
     for (slong i = 0; i < n; i++)
         for (slong j = 0; j < eqs[i]->len; j++) {
@@ -146,9 +147,9 @@ static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
         free(rows);
         return 0;
     }
-    RatFunStruct *a = malloc(sizeof(RatFunStruct) * (size_t)(m * n));
-    RatFunStruct *b = malloc(sizeof(RatFunStruct) * (size_t)m);
-    RatFunStruct *x = malloc(sizeof(RatFunStruct) * (size_t)n);
+    RatFunStruct *a = pc_xmalloc(sizeof(RatFunStruct) * (size_t)(m * n));
+    RatFunStruct *b = pc_xmalloc(sizeof(RatFunStruct) * (size_t)m);
+    RatFunStruct *x = pc_xmalloc(sizeof(RatFunStruct) * (size_t)n);
     for (slong i = 0; i < m; i++) {
         ratfun_init(b + i, r);
         for (slong j = 0; j < n; j++) {
@@ -205,6 +206,8 @@ static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
  */
 
 #define MEET_MAX_COLS 5
+/* the limit of one intermediate product (ratfun.h's estimates) */
+#define MEET_MAX_LOG2_BITS 30.0
 
 /* x mod p at vals (mod p); 0 and *ok = 0 when exponents do not fit */
 static ulong eval_mod(const fmpz_mpoly_t x, const ulong *vals, nmod_t mod,
@@ -236,6 +239,12 @@ static const fmpz_mpoly_struct *num_at(const PointEq x, slong pt)
     return NULL;
 }
 
+/* 1 when the product a*b could exceed the limit of one intermediate */
+static int too_big(const fmpz_mpoly_t a, const fmpz_mpoly_t b, const Ring *r)
+{
+    return ratfun_poly_log2_bits_mul(a, b, r) > MEET_MAX_LOG2_BITS;
+}
+
 /* The minor of rows sel[0..|mask|-1] and the columns in mask (bits index
  * cols[]), by Laplace expansion along its last row, memoised in minor[]
  * (have[mask] set once computed): only the minors the wanted ones need are
@@ -243,7 +252,8 @@ static const fmpz_mpoly_struct *num_at(const PointEq x, slong pt)
 static const fmpz_mpoly_struct *
 get_minor(fmpz_mpoly_struct *minor, char *have, slong mask,
           const fmpz_mpoly_struct **G, slong k, const slong *sel,
-          const slong *cols, slong nc, fmpz_mpoly_t t, const Ring *r)
+          const slong *cols, slong nc, fmpz_mpoly_t t, int *big,
+          const Ring *r)
 {
     fmpz_mpoly_struct *res = minor + mask;
     slong lev = 0, q = 0;
@@ -263,9 +273,16 @@ get_minor(fmpz_mpoly_struct *minor, char *have, slong mask,
             continue;
         const fmpz_mpoly_struct *g = G[sel[lev - 1] * k + cols[c]];
         if (g != NULL) {
-            const fmpz_mpoly_struct *sub = get_minor(
-                minor, have, mask ^ (WORD(1) << c), G, k, sel, cols, nc, t, r);
+            const fmpz_mpoly_struct *sub =
+                get_minor(minor, have, mask ^ (WORD(1) << c), G, k, sel, cols,
+                          nc, t, big, r);
+            if (*big)
+                return res;
             if (!fmpz_mpoly_is_zero(sub, r->ctx)) {
+                if (too_big(g, sub, r)) {
+                    *big = 1;
+                    return res;
+                }
                 fmpz_mpoly_mul(t, g, sub, r->ctx);
                 if ((lev - 1 + q) & 1)
                     fmpz_mpoly_sub(res, res, t, r->ctx);
@@ -283,7 +300,7 @@ get_minor(fmpz_mpoly_struct *minor, char *have, slong mask,
 static void row_sum(fmpz_mpoly_t acc, const fmpz_mpoly_struct **G, slong i,
                     slong k, const fmpz_mpoly_struct *z, const slong *cols,
                     slong nc, slong lo, slong hi, int sign, fmpz_mpoly_t t,
-                    const Ring *r)
+                    int *big, const Ring *r)
 {
     fmpz_mpoly_zero(acc, r->ctx);
     for (slong c = 0; c < nc; c++) {
@@ -291,6 +308,10 @@ static void row_sum(fmpz_mpoly_t acc, const fmpz_mpoly_struct **G, slong i,
         const fmpz_mpoly_struct *g = G[i * k + j];
         if (j < lo || j >= hi || g == NULL || fmpz_mpoly_is_zero(z + c, r->ctx))
             continue;
+        if (too_big(g, z + c, r)) {
+            *big = 1;
+            return;
+        }
         fmpz_mpoly_mul(t, g, z + c, r->ctx);
         fmpz_mpoly_add(acc, acc, t, r->ctx);
     }
@@ -316,7 +337,7 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
                               slong k, const slong *rows, slong m,
                               const Ring *r)
 {
-    int ok = 1, found = 0;
+    int ok = 1, found = 0, big = 0;
     slong nv = fmpz_mpoly_ctx_nvars(r->ctx), rank = 0, nc = 0, nr = 0;
     slong sel[MEET_MAX_COLS], cl[MEET_MAX_COLS], pivot[MEET_MAX_COLS];
     ulong basis[MEET_MAX_COLS][MEET_MAX_COLS], row_mod[MEET_MAX_COLS];
@@ -421,7 +442,9 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
         fmpz_mpoly_init(z + c, r->ctx);
         const fmpz_mpoly_struct *mc =
             get_minor(minor, have, (nmask - 1) ^ (WORD(1) << c), G, k, sel,
-                      cl, nc, t, r);
+                      cl, nc, t, &big, r);
+        if (big)
+            goto done;
         if (c & 1)
             fmpz_mpoly_neg(z + c, mc, r->ctx);
         else
@@ -449,8 +472,8 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
             b++;
             continue;
         }
-        row_sum(u, G, rl[q], k, z, cl, nc, 0, k, 1, t, r);
-        if (!fmpz_mpoly_is_zero(u, r->ctx))
+        row_sum(u, G, rl[q], k, z, cl, nc, 0, k, 1, t, &big, r);
+        if (big || !fmpz_mpoly_is_zero(u, r->ctx))
             goto done;
     }
 
@@ -461,14 +484,16 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
         fmpz_mpoly_struct *num = pteq_append(acc, rows[i], r);
         slong un = row_unit[i];
         if (un >= 0 && un < na)
-            row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, r);
+            row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, &big, r);
         else if (un >= 0)
-            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, r);
+            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, &big, r);
         else if (row_cost(G, i, k, z, cl, nc, 0, na) <=
                  row_cost(G, i, k, z, cl, nc, na, k))
-            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, r);
+            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, &big, r);
         else
-            row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, r);
+            row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, &big, r);
+        if (big)
+            goto done;
         fmpz_mpoly_add(acc->den, acc->den, num, r->ctx);
     }
     if (fmpz_mpoly_is_zero(acc->den, r->ctx)) {
@@ -499,7 +524,7 @@ done:
     flint_free(row_unit);
     flint_free(exp);
     flint_free(vals);
-    return found;
+    return big ? -1 : found;
 }
 
 MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
@@ -516,8 +541,8 @@ MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
         int done = meet_fraction_free(res, (const PointEq *)gen, na, na + nb,
                                       rows, m, r);
         free(rows);
-        if (done)
-            return MEET_OK;
+        if (done != 0)
+            return done > 0 ? MEET_OK : MEET_TOO_BIG;
     }
     return construct_meet_general(res, a, na, b, nb, r);
 }
@@ -530,7 +555,7 @@ MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
     slong n = na - 1 + nb - 1, m = 0;
     MeetStatus st = MEET_OK;
     PointEq oa, ob, rhs;
-    PointEq *cols = malloc(sizeof(PointEq) * (size_t)(n + 1));
+    PointEq *cols = pc_xmalloc(sizeof(PointEq) * (size_t)(n + 1));
     pteq_init(oa, r);
     pteq_init(ob, r);
     pteq_init(rhs, r);
@@ -550,9 +575,9 @@ MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
     pteq_set(cols[n], rhs, r); /* for the row union only */
     rows = support_union(&m, (const PointEq *)cols, n + 1);
 
-    A = malloc(sizeof(RatFunStruct) * (size_t)(m * n + 1));
-    B = malloc(sizeof(RatFunStruct) * (size_t)(m + 1));
-    X = malloc(sizeof(RatFunStruct) * (size_t)n);
+    A = pc_xmalloc(sizeof(RatFunStruct) * (size_t)(m * n + 1));
+    B = pc_xmalloc(sizeof(RatFunStruct) * (size_t)(m + 1));
+    X = pc_xmalloc(sizeof(RatFunStruct) * (size_t)n);
     for (slong i = 0; i < m; i++) {
         ratfun_init(B + i, r);
         pteq_get_weight(B + i, rhs, rows[i], r);

@@ -18,6 +18,8 @@ typedef enum MeetStatus {
     MEET_COINCIDENT,        // directions dependent, a common line/point set
     MEET_SKEW,              // independent directions but not coplanar
     MEET_NO_POINT,          // a flat has no proper point (only vectors)
+    MEET_TOO_BIG,           // an intermediate product could exceed 2^30
+                            // bits (128 MB; ratfun.h's size estimates)
 } MeetStatus;
 
 /* along(P, Q, s) = P + (Q - P)*s  (monograph 1.3: AP/AQ = s) */

@@ -14,10 +14,12 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "compiler/arena.h"
 #include "compiler/construct.h"
 #include "compiler/diag.h"
+#include "compiler/mem.h"
 #include "compiler/sema.h"
 #include "grammar/parse.h"
 
@@ -63,7 +65,7 @@ static void value_set(Value *res, const Value *x, const Ring *r)
 static int number_to_fmpq(fmpq_t q, const char *text)
 {
     size_t n = strlen(text);
-    char *digits = malloc(n + 2);
+    char *digits = pc_xmalloc(n + 2);
     size_t k = 0;
     long frac = 0, exp10 = 0;
     int in_frac = 0;
@@ -293,6 +295,12 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
                              : "lines in meet() are skew (not coplanar): "
                                "they do not meet");
             break;
+        case MEET_TOO_BIG:
+            diag_error(D->diag, n->span,
+                       "expression too large to compute exactly: an "
+                       "intermediate product of meet() could need more than "
+                       "128 MB of coefficients");
+            break;
         case MEET_NO_POINT: /* checked above */
             diag_error(D->diag, n->span,
                        "internal error: a flat of meet() without a point");
@@ -455,7 +463,7 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
     case BI_BEZIER: {
         slong npts = n->nargs - 1;
         RatFun s;
-        PointEq *pts = malloc(sizeof(PointEq) * (size_t)npts);
+        PointEq *pts = pc_xmalloc(sizeof(PointEq) * (size_t)npts);
         ratfun_init(s, r);
         for (slong i = 0; i < npts; i++)
             pteq_init(pts[i], r);
@@ -665,19 +673,11 @@ static void derive_def(Deriver *D, Sym *s)
     ratfun_clear(sum, r);
 }
 
-static char *xstrdup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    memcpy(d, s, n);
-    return d;
-}
-
 static char **copy_names(Sym **syms, int n)
 {
-    char **names = calloc((size_t)(n ? n : 1), sizeof(char *));
+    char **names = pc_xcalloc((size_t)(n ? n : 1), sizeof(char *));
     for (int i = 0; i < n; i++)
-        names[i] = xstrdup(syms[i]->name);
+        names[i] = pc_xstrdup(syms[i]->name);
     return names;
 }
 
@@ -686,7 +686,7 @@ static char *base_name(const char *filename)
 {
     const char *b = strrchr(filename, '/');
     b = b ? b + 1 : filename;
-    char *s = xstrdup(b);
+    char *s = pc_xstrdup(b);
     char *dot = strrchr(s, '.');
     if (dot && dot != s)
         *dot = '\0';
@@ -712,15 +712,13 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
     if (!info)
         goto done;
 
-    d = calloc(1, sizeof(Derived));
-    d->filename = xstrdup(filename);
-    d->text = malloc(len ? len : 1);
-    if (!d->text)
-        abort();
+    d = pc_xcalloc(1, sizeof(Derived));
+    d->filename = pc_xstrdup(filename);
+    d->text = pc_xmalloc(len ? len : 1);
     if (len)
         memcpy(d->text, text, len);
     d->len = len;
-    d->scheme = info->scheme_name ? xstrdup(info->scheme_name)
+    d->scheme = info->scheme_name ? pc_xstrdup(info->scheme_name)
                                   : base_name(filename);
     d->npoints = info->npoints;
     d->points = copy_names(info->points, info->npoints);
@@ -730,7 +728,7 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
     d->consts = copy_names(info->consts, info->nconsts);
     {
         slong nv = d->nparams + d->nconsts;
-        const char **vars = malloc(sizeof(char *) * (size_t)(nv ? nv : 1));
+        const char **vars = pc_xmalloc(sizeof(char *) * (size_t)(nv ? nv : 1));
         for (slong i = 0; i < d->nparams; i++)
             vars[i] = d->params[i];
         for (slong i = 0; i < d->nconsts; i++)
@@ -741,8 +739,8 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
     const Ring *r = &d->ring;
 
     Deriver D = {.diag = &diag, .r = r, .info = info};
-    D.defs = malloc(sizeof(Value) * (size_t)(info->ndefs ? info->ndefs : 1));
-    D.state = calloc((size_t)(info->ndefs ? info->ndefs : 1), sizeof(int));
+    D.defs = pc_xmalloc(sizeof(Value) * (size_t)(info->ndefs ? info->ndefs : 1));
+    D.state = pc_xcalloc((size_t)(info->ndefs ? info->ndefs : 1), sizeof(int));
     for (int i = 0; i < info->ndefs; i++)
         value_init(&D.defs[i], r);
     for (int i = 0; i < info->ndefs; i++)
@@ -750,14 +748,14 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
 
     if (diag.nerrors == 0) {
         d->noutputs = info->noutputs;
-        d->outputs = calloc((size_t)(info->noutputs ? info->noutputs : 1),
+        d->outputs = pc_xcalloc((size_t)(info->noutputs ? info->noutputs : 1),
                             sizeof(DerivedOutput));
         for (int i = 0; i < info->noutputs; i++) {
             Sym *s = info->outputs[i];
             DerivedOutput *o = &d->outputs[i];
             Value *v = &D.defs[s->index];
             int line, col;
-            o->name = xstrdup(s->name);
+            o->name = pc_xstrdup(s->name);
             source_locate(&src, s->span.start, &line, &col);
             o->line = line;
             o->span = s->span;
@@ -798,37 +796,71 @@ done:
     return d;
 }
 
+static Derived *file_error(const char *filename, FILE *err, int *nerrors,
+                           const char *fmt, const char *what)
+{
+    if (err) {
+        fprintf(err, "%s: error: ", filename);
+        fprintf(err, fmt, what);
+        fputc('\n', err);
+    }
+    if (nerrors)
+        *nerrors = 1;
+    return NULL;
+}
+
+/* At most DERIVE_MAX_SOURCE bytes are read, whatever the file is (a
+ * regular file is refused by its size before reading; a device or a pipe
+ * after the limit + 1 bytes), so /dev/zero ends at once and in bounded
+ * memory. */
 Derived *derive_file(const char *filename, FILE *err, int *nerrors)
 {
+    char limit[32];
+    struct stat sb;
+    snprintf(limit, sizeof limit, "%d MiB", DERIVE_MAX_SOURCE >> 20);
     FILE *f = fopen(filename, "rb");
-    if (!f) {
-        if (err)
-            fprintf(err, "%s: error: cannot open the file: %s\n", filename,
-                    strerror(errno));
-        if (nerrors)
-            *nerrors = 1;
-        return NULL;
+    if (!f)
+        return file_error(filename, err, nerrors,
+                          "cannot open the file: %s", strerror(errno));
+    if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        fclose(f);
+        return file_error(filename, err, nerrors, "cannot read the file: %s",
+                          "it is a directory");
     }
-    size_t cap = 4096, len = 0;
-    char *buf = malloc(cap);
-    size_t got;
+    if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) &&
+        sb.st_size > (off_t)DERIVE_MAX_SOURCE) {
+        fclose(f);
+        return file_error(filename, err, nerrors,
+                          "cannot read the file: it is larger than %s, the "
+                          "limit of a scheme",
+                          limit);
+    }
+    size_t cap = 4096, len = 0, got;
+    char *buf = pc_xmalloc(cap);
     while ((got = fread(buf + len, 1, cap - len, f)) > 0) {
         len += got;
+        if (len > (size_t)DERIVE_MAX_SOURCE)
+            break;
         if (len == cap) {
-            cap *= 2;
-            buf = realloc(buf, cap);
+            cap = cap * 2 > (size_t)DERIVE_MAX_SOURCE + 1
+                      ? (size_t)DERIVE_MAX_SOURCE + 1
+                      : cap * 2;
+            buf = pc_xrealloc(buf, cap);
         }
     }
-    int bad = ferror(f);
+    int bad = ferror(f), e = errno;
     fclose(f);
+    if (len > (size_t)DERIVE_MAX_SOURCE) {
+        free(buf);
+        return file_error(filename, err, nerrors,
+                          "cannot read the file: it is larger than %s, the "
+                          "limit of a scheme",
+                          limit);
+    }
     if (bad) {
         free(buf);
-        if (err)
-            fprintf(err, "%s: error: cannot read the file: %s\n", filename,
-                    strerror(errno));
-        if (nerrors)
-            *nerrors = 1;
-        return NULL;
+        return file_error(filename, err, nerrors, "cannot read the file: %s",
+                          strerror(e));
     }
     Derived *d = derive_source(filename, buf, len, err, nerrors);
     free(buf);

@@ -57,7 +57,12 @@ typedef struct Derived {
  * receives their count.  Returns NULL when the scheme has an error. */
 Derived *derive_source(const char *filename, const char *text, size_t len,
                        FILE *err, int *nerrors);
-/* Same, reading the file; an unreadable file is one error. */
+/* The largest scheme text accepted, in bytes (offsets in spans are int). */
+#define DERIVE_MAX_SOURCE (16 << 20)
+
+/* Same, reading the file; an unreadable file, a directory, or a file of
+ * more than DERIVE_MAX_SOURCE bytes is one error ("FILE: error: cannot read
+ * the file: WHY"), found in bounded time and memory. */
 Derived *derive_file(const char *filename, FILE *err, int *nerrors);
 void derived_free(Derived *d);
 

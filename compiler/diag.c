@@ -3,6 +3,8 @@
 #include <stdarg.h>
 #include <stdlib.h>
 
+#include "compiler/mem.h"
+
 void diag_init(Diag *d, const Source *src, FILE *out)
 {
     d->src = src;
@@ -64,9 +66,7 @@ static void report(Diag *d, Span span, const char *what, const char *fmt,
     fclose(m);
     if (d->nmsgs == d->amsgs) {
         d->amsgs = d->amsgs ? 2 * d->amsgs : 8;
-        d->msgs = realloc(d->msgs, sizeof *d->msgs * (size_t)d->amsgs);
-        if (!d->msgs)
-            abort();
+        d->msgs = pc_xrealloc(d->msgs, sizeof *d->msgs * (size_t)d->amsgs);
     }
     DiagMsg *g = &d->msgs[d->nmsgs];
     int is_note = what[0] == 'n';
@@ -76,37 +76,143 @@ static void report(Diag *d, Span span, const char *what, const char *fmt,
     d->nmsgs++;
 }
 
-static void emit(Diag *d, Span span, const char *what, const char *fmt,
-                 va_list ap)
+/* ---- the location and the excerpt, through a sink ---------------------- */
+
+/* the display form of the byte(s) at p: a valid UTF-8 character or a tab as
+ * themselves (one column), a control byte, DEL or a byte of no valid
+ * sequence as \xNN (four columns) - so that printing a line can never drive
+ * the terminal; *bytes receives how many bytes it covers */
+static int cell(char *out, const char *p, size_t n, int *bytes)
 {
-    const Source *s = d->src;
+    static const char hex[] = "0123456789abcdef";
+    unsigned char c = (unsigned char)p[0];
+    int k = source_char_len(p, n);
+    if (k > 1 || (k == 1 && ((c >= 0x20 && c < 0x7f) || c == '\t'))) {
+        for (int i = 0; i < k; i++)
+            out[i] = p[i];
+        *bytes = k;
+        return k;
+    }
+    out[0] = '\\';
+    out[1] = 'x';
+    out[2] = hex[c >> 4];
+    out[3] = hex[c & 15];
+    *bytes = 1;
+    return 4;
+}
+
+static void put_str(DiagSink *k, const char *s)
+{
+    size_t n = 0;
+    while (s[n])
+        n++;
+    k->put(k->ctx, s, n);
+}
+
+static void put_int(DiagSink *k, long v)
+{
+    char b[24];
+    int i = (int)sizeof b;
+    unsigned long u = v < 0 ? 0UL - (unsigned long)v : (unsigned long)v;
+    do {
+        b[--i] = (char)('0' + u % 10);
+        u /= 10;
+    } while (u);
+    if (v < 0)
+        b[--i] = '-';
+    k->put(k->ctx, b + i, sizeof b - (size_t)i);
+}
+
+/* text escaped cell by cell */
+static void put_escaped(DiagSink *k, const char *s, size_t n)
+{
+    char c[4];
+    for (size_t i = 0; i < n;) {
+        int used, w = cell(c, s + i, n - i, &used);
+        k->put(k->ctx, c, (size_t)(w == 4 && used == 1 ? 4 : used));
+        i += (size_t)used;
+    }
+}
+
+static Span clamp(const Source *s, Span span)
+{
     if (span.start < 0)
         span.start = 0;
     if ((size_t)span.start > s->len)
         span.start = (int)s->len;
     if (span.end < span.start)
         span.end = span.start;
+    return span;
+}
+
+void diag_put_location(DiagSink *k, const Source *s, Span span,
+                       const char *what)
+{
     int line, col;
+    const char *name = s->name;
+    size_t n = 0;
+    while (name[n])
+        n++;
+    span = clamp(s, span);
     source_locate(s, span.start, &line, &col);
-    fprintf(d->out, "%s:%d:%d: %s: ", s->name, line, col, what);
+    put_escaped(k, name, n);
+    put_str(k, ":");
+    put_int(k, line);
+    put_str(k, ":");
+    put_int(k, col);
+    put_str(k, ": ");
+    put_str(k, what);
+    put_str(k, ": ");
+}
+
+void diag_put_excerpt(DiagSink *k, const Source *s, Span span)
+{
+    int line, col, len;
+    char c[4];
+    span = clamp(s, span);
+    source_locate(s, span.start, &line, &col);
+    const char *text = source_line(s, line, &len);
+    int from = (int)(s->text + span.start - text); /* byte offset in line */
+    int to = (int)(s->text + span.end - text);
+    put_escaped(k, text, (size_t)len);
+    put_str(k, "\n");
+    /* the caret under the first cell of the span, '~' under the rest;
+     * tabs kept so that it lines up under tabbed text */
+    int i = 0, marks = 0;
+    for (; i < from && i < len;) {
+        int used, w = cell(c, text + i, (size_t)(len - i), &used);
+        if (c[0] == '\t' && w == 1)
+            k->put(k->ctx, "\t", 1);
+        else
+            for (int j = 0; j < (w == 4 && used == 1 ? 4 : 1); j++)
+                k->put(k->ctx, " ", 1);
+        i += used;
+    }
+    k->put(k->ctx, "^", 1);
+    for (; i < to && i < len;) {
+        int used, w = cell(c, text + i, (size_t)(len - i), &used);
+        int width = w == 4 && used == 1 ? 4 : 1;
+        for (int j = marks == 0 ? 1 : 0; j < width; j++)
+            k->put(k->ctx, "~", 1);
+        marks++;
+        i += used;
+    }
+    put_str(k, "\n");
+}
+
+static void put_file(void *ctx, const char *s, size_t n)
+{
+    fwrite(s, 1, n, (FILE *)ctx);
+}
+
+static void emit(Diag *d, Span span, const char *what, const char *fmt,
+                 va_list ap)
+{
+    DiagSink k = {put_file, d->out};
+    diag_put_location(&k, d->src, span, what);
     vfprintf(d->out, fmt, ap);
     fputc('\n', d->out);
-    int len;
-    const char *text = source_line(s, line, &len);
-    /* the line as it is, but a NUL (which would end it early) as a space */
-    for (int i = 0; i < len; i++)
-        fputc(text[i] ? text[i] : ' ', d->out);
-    fputc('\n', d->out);
-    /* caret line: keep tabs so the caret lines up under tabbed text */
-    for (int i = 0; i < col - 1 && i < len; i++)
-        fputc(text[i] == '\t' ? '\t' : ' ', d->out);
-    fputc('^', d->out);
-    int width = span.end - span.start;
-    if (col - 1 + width > len)
-        width = len - (col - 1);
-    for (int i = 1; i < width; i++)
-        fputc('~', d->out);
-    fputc('\n', d->out);
+    diag_put_excerpt(&k, d->src, span);
 }
 
 void diag_error(Diag *d, Span span, const char *fmt, ...)

@@ -49,4 +49,20 @@ __attribute__((format(printf, 3, 4)))
 #endif
 void diag_note(Diag *d, Span span, const char *fmt, ...);
 
+/* The parts of a message, written through a sink: what diag_error prints,
+ * and what a handler that may not allocate (the budgets' signal handler,
+ * the out-of-memory handler) prints with write(2).  Both are
+ * async-signal-safe when put is.  Control bytes, DEL and invalid UTF-8 in
+ * the file name and the source line are shown escaped (\x1b), so printing
+ * a diagnostic can never drive the terminal; the caret counts characters. */
+typedef struct DiagSink {
+    void (*put)(void *ctx, const char *s, size_t n);
+    void *ctx;
+} DiagSink;
+/* "NAME:LINE:COL: WHAT: " */
+void diag_put_location(DiagSink *k, const Source *s, Span span,
+                       const char *what);
+/* the source line of span, then its caret line, each ending in '\n' */
+void diag_put_excerpt(DiagSink *k, const Source *s, Span span);
+
 #endif

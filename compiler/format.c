@@ -6,6 +6,8 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
+#include "compiler/mem.h"
+
 /* ---- a growable string ---------------------------------------------- */
 
 typedef struct Buf {
@@ -17,7 +19,7 @@ static void buf_putn(Buf *b, const char *s, size_t n)
 {
     if (b->len + n + 1 > b->cap) {
         b->cap = 2 * (b->len + n + 1) + 32;
-        b->s = realloc(b->s, b->cap);
+        b->s = pc_xrealloc(b->s, b->cap);
     }
     memcpy(b->s + b->len, s, n);
     b->len += n;
@@ -97,7 +99,7 @@ static void put_poly(Buf *b, const fmpz_mpoly_t p, const Ring *r,
     }
     fmpz_t c;
     fmpz_init(c);
-    ulong *e = malloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
     fmpz_mpoly_get_term_coeff_fmpz(c, p, 0, r->ctx);
     int reverse = fmpz_sgn(c) < 0 && len > 1;
     for (slong k = 0; k < len; k++) {
@@ -217,8 +219,8 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
         return 1;
     }
     int neg = fmpz_sgn(f->constant) < 0;
-    Factor *fs = malloc(sizeof(Factor) * (size_t)(f->num ? f->num : 1));
-    ulong *zero = calloc((size_t)(r->nvars ? r->nvars : 1) + 1, sizeof(ulong));
+    Factor *fs = pc_xmalloc(sizeof(Factor) * (size_t)(f->num ? f->num : 1));
+    ulong *zero = pc_xcalloc((size_t)(r->nvars ? r->nvars : 1) + 1, sizeof(ulong));
     fmpz_t c;
     fmpz_init(c);
     for (slong i = 0; i < f->num; i++) {

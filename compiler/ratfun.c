@@ -1288,6 +1288,19 @@ static void shapes_clear(Shapes *s)
     flint_free(s->degs);
 }
 
+double ratfun_poly_log2_bits_mul(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
+                                 const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    slong *degs = flint_malloc((size_t)(2 * nv) * sizeof(slong));
+    Shape sa, sb;
+    shape_of(&sa, a, degs, r);
+    shape_of(&sb, b, degs + nv, r);
+    double bits = prod_bits(&sa, &sb, nv);
+    flint_free(degs);
+    return bits;
+}
+
 double ratfun_log2_bits_product(const RatFun x, const RatFun y, const Ring *r)
 {
     slong nv = r->ctx->minfo->nvars;

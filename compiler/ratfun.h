@@ -126,6 +126,9 @@ int ratfun_evaluate_fmpq(fmpq_t res, const RatFun x, const fmpq *vals,
 double ratfun_log2_bits_product(const RatFun x, const RatFun y,
                                 const Ring *r);
 double ratfun_log2_bits_pow(const RatFun x, slong e, const Ring *r);
+/* the same estimate for the product of two polynomials */
+double ratfun_poly_log2_bits_mul(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
+                                 const Ring *r);
 double ratfun_log2_bits_compose(const RatFun x, slong var, const RatFun s,
                                 const Ring *r);
 

@@ -227,9 +227,114 @@ static void test_diag_nul_in_line(void **state)
     assert_null(d);
     assert_string_equal(out, "x.pcs:2:6: error: unexpected byte 0x00; "
                              "expected a name, a number, an operator or '#'\n"
-                             "M = A  + B\n"
-                             "     ^\n");
+                             "M = A\\x00 + B\n"
+                             "     ^~~~\n");
     free(out);
+}
+
+/* the diagnostics of text as derive_source reports it */
+static char *diagnose(const char *name, const char *text, size_t len)
+{
+    char *out = NULL;
+    size_t n = 0;
+    FILE *mem = open_memstream(&out, &n);
+    Derived *d = derive_source(name, text, len, mem, NULL);
+    fclose(mem);
+    assert_null(d);
+    return out;
+}
+
+/* control bytes and invalid UTF-8 never reach the terminal raw (a scheme
+ * with ESC sequences used to retitle and clear the terminal when its error
+ * was printed); columns and carets count characters, the escapes four
+ * cells wide */
+static void test_diag_escapes_and_utf8_columns(void **state)
+{
+    (void)state;
+    static const char esc[] = "point A\nM = A + \x1b[2J\n";
+    char *out = diagnose("e\x1b.pcs", esc, sizeof esc - 1);
+    assert_string_equal(out,
+                        "e\\x1b.pcs:2:9: error: unexpected byte 0x1b; "
+                        "expected a name, a number, an operator or '#'\n"
+                        "M = A + \\x1b[2J\n"
+                        "        ^~~~\n");
+    free(out);
+    /* two 2-byte letters, then an invalid byte: columns 5 and 10 */
+    static const char u8[] = "point A\nM = \xc3\xa9\xc3\xa9 + \xff\n";
+    out = diagnose("u.pcs", u8, sizeof u8 - 1);
+    assert_string_equal(out,
+                        "u.pcs:2:5: error: unexpected non-ASCII text; names "
+                        "are ASCII letters, digits and '_'\n"
+                        "M = \xc3\xa9\xc3\xa9 + \\xff\n"
+                        "    ^~\n"
+                        "u.pcs:2:10: error: unexpected non-ASCII text; names "
+                        "are ASCII letters, digits and '_'\n"
+                        "M = \xc3\xa9\xc3\xa9 + \\xff\n"
+                        "         ^~~~\n");
+    free(out);
+}
+
+/* derive_file's message for a file it refuses */
+static char *file_diagnostic(const char *path)
+{
+    char *out = NULL;
+    size_t n = 0;
+    FILE *mem = open_memstream(&out, &n);
+    int nerr = 0;
+    Derived *d = derive_file(path, mem, &nerr);
+    fclose(mem);
+    assert_null(d);
+    assert_int_equal(nerr, 1);
+    return out;
+}
+
+/* input is bounded: an endless device, a directory, and a file one byte
+ * over the limit are refused, in bounded time and memory */
+static void test_input_limits(void **state)
+{
+    (void)state;
+    char *out = file_diagnostic("/dev/zero");
+    assert_string_equal(out, "/dev/zero: error: cannot read the file: it is "
+                             "larger than 16 MiB, the limit of a scheme\n");
+    free(out);
+    out = file_diagnostic(".");
+    assert_string_equal(out,
+                        ".: error: cannot read the file: it is a directory\n");
+    free(out);
+    char path[] = "/tmp/pc_limitXXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "wb");
+    assert_non_null(f);
+    assert_int_equal(fseek(f, (long)DERIVE_MAX_SOURCE, SEEK_SET), 0);
+    fputc('\n', f); /* DERIVE_MAX_SOURCE + 1 bytes */
+    fclose(f);
+    out = file_diagnostic(path);
+    assert_non_null(strstr(out, "larger than 16 MiB"));
+    free(out);
+    remove(path);
+}
+
+/* "\r\n" and a lone "\r" end lines like "\n" (a CR-only file used to be
+ * read as one line) */
+static void test_line_ends_cr_crlf(void **state)
+{
+    (void)state;
+    static const char *const texts[] = {
+        "point A, B\rparam t\rM = along(A, B, t)\rN = along(A, B, s)\r",
+        "point A, B\r\nparam t\r\nM = along(A, B, t) # c\r\n"
+        "N = along(A, B, s)\r\n",
+        "point A, B\nparam t\rM = along(A, B, t)\r\nN = along(A, B, s)",
+    };
+    for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++) {
+        char *out = diagnose("c.pcs", texts[i], strlen(texts[i]));
+        assert_string_equal(out, "c.pcs:4:17: error: undefined name 's'; "
+                                 "expected a declared point, parameter, "
+                                 "constant or an earlier definition\n"
+                                 "N = along(A, B, s)\n"
+                                 "                ^\n");
+        free(out);
+    }
 }
 
 /* the size limits refuse what would be huge, not what is merely large:
@@ -270,6 +375,9 @@ int main(void)
         cmocka_unit_test(test_decimals_are_exact),
         cmocka_unit_test(test_deep_expressions_are_refused),
         cmocka_unit_test(test_diag_nul_in_line),
+        cmocka_unit_test(test_diag_escapes_and_utf8_columns),
+        cmocka_unit_test(test_line_ends_cr_crlf),
+        cmocka_unit_test(test_input_limits),
         cmocka_unit_test(test_limits_allow_reasonable_results),
     };
     int rc = cmocka_run_group_tests_name("front", tests, NULL, NULL);

@@ -1,0 +1,188 @@
+/*
+ * mem.c - the one out-of-memory policy (mem.h).
+ *
+ * The counting allocators keep a small header in front of every block
+ * with its size, so that frees and reallocs know what they release
+ * whatever the C library offers.  A reserve of 64 KiB is given back just
+ * before the handler runs, so that it can still report.
+ */
+#include "compiler/mem.h"
+
+#include <gmp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <flint/flint.h>
+
+static MemOomHandler handler;
+static void *handler_arg;
+static void *reserve;
+static size_t limit, in_use, peak;
+
+void mem_set_oom_handler(MemOomHandler fn, void *arg)
+{
+    handler = fn;
+    handler_arg = arg;
+    if (reserve == NULL)
+        reserve = malloc(64 * 1024);
+}
+
+_Noreturn void pc_out_of_memory(MemFailure why)
+{
+    static const char msg[] = "pointcalc: error: out of memory\n";
+    static const char budget[] =
+        "pointcalc: error: the memory budget ran out\n";
+    free(reserve);
+    reserve = NULL;
+    if (handler != NULL)
+        handler(why, handler_arg);
+    if (why == MEM_BUDGET) {
+        if (write(2, budget, sizeof budget - 1) < 0)
+            _exit(1);
+    } else if (write(2, msg, sizeof msg - 1) < 0) {
+        _exit(1);
+    }
+    _exit(1);
+}
+
+void *pc_xmalloc(size_t n)
+{
+    void *p = malloc(n ? n : 1);
+    if (p == NULL)
+        pc_out_of_memory(MEM_SYSTEM);
+    return p;
+}
+
+void *pc_xcalloc(size_t n, size_t size)
+{
+    void *p = calloc(n ? n : 1, size ? size : 1);
+    if (p == NULL)
+        pc_out_of_memory(MEM_SYSTEM);
+    return p;
+}
+
+void *pc_xrealloc(void *p, size_t n)
+{
+    void *q = realloc(p, n ? n : 1);
+    if (q == NULL)
+        pc_out_of_memory(MEM_SYSTEM);
+    return q;
+}
+
+char *pc_xstrndup(const char *s, size_t n)
+{
+    char *d = pc_xmalloc(n + 1);
+    memcpy(d, s, n);
+    d[n] = '\0';
+    return d;
+}
+
+char *pc_xstrdup(const char *s)
+{
+    return pc_xstrndup(s, strlen(s));
+}
+
+/* ---- counted allocators for GMP and FLINT -------------------------------- */
+
+#define HDR 16 /* keeps max_align_t alignment for the caller */
+
+static void count(size_t add, size_t sub)
+{
+    in_use = in_use + add - sub;
+    if (in_use > peak)
+        peak = in_use;
+}
+
+static void *c_alloc(size_t n)
+{
+    if (limit && (n > limit || in_use > limit - n))
+        pc_out_of_memory(MEM_BUDGET);
+    char *p = malloc(n + HDR);
+    if (p == NULL)
+        pc_out_of_memory(MEM_SYSTEM);
+    memcpy(p, &n, sizeof n);
+    count(n, 0);
+    return p + HDR;
+}
+
+static void c_free(void *q)
+{
+    if (q == NULL)
+        return;
+    char *p = (char *)q - HDR;
+    size_t n;
+    memcpy(&n, p, sizeof n);
+    count(0, n);
+    free(p);
+}
+
+static void *c_realloc(void *q, size_t n)
+{
+    if (q == NULL)
+        return c_alloc(n);
+    char *p = (char *)q - HDR;
+    size_t old;
+    memcpy(&old, p, sizeof old);
+    if (limit && n > old && (n - old > limit || in_use > limit - (n - old)))
+        pc_out_of_memory(MEM_BUDGET);
+    char *np = realloc(p, n + HDR);
+    if (np == NULL)
+        pc_out_of_memory(MEM_SYSTEM);
+    memcpy(np, &n, sizeof n);
+    count(n, old);
+    return np + HDR;
+}
+
+static void *c_calloc(size_t n, size_t size)
+{
+    if (size != 0 && n > (size_t)-1 / size)
+        pc_out_of_memory(MEM_SYSTEM);
+    void *p = c_alloc(n * size);
+    memset(p, 0, n * size);
+    return p;
+}
+
+static void *gmp_realloc(void *q, size_t old, size_t n)
+{
+    (void)old;
+    return c_realloc(q, n);
+}
+
+static void gmp_free(void *q, size_t n)
+{
+    (void)n;
+    c_free(q);
+}
+
+void mem_use_for_gmp_flint(void)
+{
+    static int done;
+    if (done)
+        return;
+    done = 1;
+    if (reserve == NULL)
+        reserve = malloc(64 * 1024);
+    mp_set_memory_functions(c_alloc, gmp_realloc, gmp_free);
+    __flint_set_memory_functions(c_alloc, c_calloc, c_realloc, c_free);
+}
+
+void mem_set_limit(size_t bytes)
+{
+    limit = bytes;
+}
+
+size_t mem_limit(void)
+{
+    return limit;
+}
+
+size_t mem_in_use(void)
+{
+    return in_use;
+}
+
+size_t mem_peak(void)
+{
+    return peak;
+}

@@ -1,0 +1,54 @@
+/*
+ * mem.h - the one out-of-memory policy of the tree.
+ *
+ * pc_xmalloc & co. never return NULL.  When memory cannot be had - the
+ * system refuses it, or the memory budget (mem_set_limit) would be
+ * exceeded - they call pc_out_of_memory(), which does not return: it calls
+ * the handler (mem_set_oom_handler; pointcalc's own prints a located error
+ * at the statement being derived and exits 1), and without one writes
+ * "pointcalc: error: out of memory" to stderr and exits 1 with _exit (no
+ * partial output is flushed).
+ *
+ * mem_use_for_gmp_flint() routes GMP's and FLINT's allocations through the
+ * same policy and counts them, so that the memory budget covers exact
+ * arithmetic (where all the memory goes).  It changes process-wide
+ * settings: the command line calls it; a program using the library calls
+ * it when it wants the budget and the policy for its own GMP use too.
+ */
+#ifndef PC_MEM_H
+#define PC_MEM_H
+
+#include <stddef.h>
+
+void *pc_xmalloc(size_t n);
+void *pc_xcalloc(size_t n, size_t size);
+void *pc_xrealloc(void *p, size_t n);
+char *pc_xstrdup(const char *s);
+char *pc_xstrndup(const char *s, size_t n);
+
+/* why the handler was called */
+typedef enum MemFailure {
+    MEM_SYSTEM, // the system refused the allocation
+    MEM_BUDGET, // the memory budget would be exceeded
+} MemFailure;
+
+/* does not return; see above */
+_Noreturn void pc_out_of_memory(MemFailure why);
+
+/* The handler must not return (it may _exit or longjmp at its own risk)
+ * and must not allocate: it runs where an allocation just failed.  NULL
+ * restores the default. */
+typedef void (*MemOomHandler)(MemFailure why, void *arg);
+void mem_set_oom_handler(MemOomHandler fn, void *arg);
+
+/* Routes GMP's (mp_set_memory_functions) and FLINT's allocators through
+ * this policy, with accounting.  Idempotent. */
+void mem_use_for_gmp_flint(void);
+/* The memory budget in bytes for what mem_use_for_gmp_flint counts (0: no
+ * budget), and the bytes those allocators hold now and at most so far. */
+void mem_set_limit(size_t bytes);
+size_t mem_limit(void);
+size_t mem_in_use(void);
+size_t mem_peak(void);
+
+#endif
