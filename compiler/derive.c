@@ -15,8 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "compiler/arena.h"
+#include "compiler/budget.h"
 #include "compiler/construct.h"
 #include "compiler/diag.h"
 #include "compiler/mem.h"
@@ -36,7 +38,36 @@ typedef struct Deriver {
     SemaInfo *info;
     Value *defs; // one per definition, initialised
     int *state;  // per definition: 0 not yet, 1 done, -1 failed
+    const Source *src;
+    double deadline;   // CLOCK_MONOTONIC seconds; 0: no time budget
+    double max_seconds;
+    int expired;       // the time budget ran out (reported once)
+    FILE *verbose;     // progress per definition, or NULL
 } Deriver;
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* 1 (reported at n, once) when the time budget has run out */
+static int out_of_time(Deriver *D, const Node *n)
+{
+    if (D->expired)
+        return 1;
+    if (D->deadline == 0 || now_seconds() <= D->deadline)
+        return 0;
+    char amount[48];
+    budget_format_seconds(amount, sizeof amount, D->max_seconds);
+    diag_error(D->diag, n->span,
+               "the time budget of %s ran out while deriving this; raise it "
+               "with --max-seconds",
+               amount);
+    D->expired = 1;
+    return 1;
+}
 
 static void value_init(Value *v, const Ring *r)
 {
@@ -538,6 +569,8 @@ done:
 static int eval(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
+    if (out_of_time(D, n))
+        return -1;
     switch (n->kind) {
     case ND_NUM: {
         fmpq_t q;
@@ -646,16 +679,59 @@ static int eval(Deriver *D, Value *res, const Node *n)
     return -1;
 }
 
+/* terms, total degree and largest coefficient bits of a value */
+static void value_size(const Value *v, slong *terms, slong *deg, slong *bits,
+                       const Ring *r)
+{
+    const fmpz_mpoly_struct *p[2];
+    slong n = 0;
+    *terms = *deg = *bits = 0;
+    for (slong i = -1; i < (v->is_point ? v->p->len : 1); i++) {
+        if (v->is_point) {
+            p[0] = i < 0 ? v->p->den : v->p->terms[i].num;
+            n = 1;
+        } else {
+            if (i >= 0)
+                break;
+            p[0] = v->s->num;
+            p[1] = v->s->den;
+            n = 2;
+        }
+        for (slong k = 0; k < n; k++) {
+            *terms += p[k]->length;
+            slong dg = fmpz_mpoly_total_degree_si(p[k], r->ctx);
+            slong bt = FLINT_ABS(fmpz_mpoly_max_bits(p[k]));
+            *deg = FLINT_MAX(*deg, dg);
+            *bits = FLINT_MAX(*bits, bt);
+        }
+    }
+}
+
 /* derives definition i and checks its weight sum */
 static void derive_def(Deriver *D, Sym *s)
 {
     const Ring *r = D->r;
     Value *v = &D->defs[s->index];
-    if (s->bad || eval(D, v, s->def->expr) < 0) {
+    double t0 = D->verbose ? now_seconds() : 0;
+    budget_statement(D->src, s->def->expr->span);
+    if (s->bad || D->expired || eval(D, v, s->def->expr) < 0) {
         D->state[s->index] = -1;
         return;
     }
     D->state[s->index] = 1;
+    if (D->verbose) {
+        slong terms, deg, bits;
+        int line, col;
+        value_size(v, &terms, &deg, &bits, r);
+        source_locate(D->src, s->def->expr->span.start, &line, &col);
+        fprintf(D->verbose,
+                "%s:%d: %s: %.3f ms, %s, %ld terms, degree %ld, %ld-bit "
+                "coefficients\n",
+                D->src->name, line, s->name, 1e3 * (now_seconds() - t0),
+                v->is_point ? "combination of points" : "scalar",
+                (long)terms, (long)deg, (long)bits);
+        fflush(D->verbose);
+    }
     if (!v->is_point)
         return;
     RatFun sum;
@@ -696,6 +772,14 @@ static char *base_name(const char *filename)
 Derived *derive_source(const char *filename, const char *text, size_t len,
                        FILE *err, int *nerrors)
 {
+    DeriveOptions opt = {BUDGET_DEFAULT_SECONDS, NULL};
+    return derive_source_ex(filename, text, len, err, nerrors, &opt);
+}
+
+Derived *derive_source_ex(const char *filename, const char *text, size_t len,
+                          FILE *err, int *nerrors, const DeriveOptions *opt)
+{
+    double start = now_seconds();
     Arena arena;
     Source src;
     Diag diag;
@@ -738,7 +822,10 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
     }
     const Ring *r = &d->ring;
 
-    Deriver D = {.diag = &diag, .r = r, .info = info};
+    Deriver D = {.diag = &diag, .r = r, .info = info, .src = &src};
+    D.max_seconds = opt->max_seconds;
+    D.deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
+    D.verbose = opt->verbose;
     D.defs = pc_xmalloc(sizeof(Value) * (size_t)(info->ndefs ? info->ndefs : 1));
     D.state = pc_xcalloc((size_t)(info->ndefs ? info->ndefs : 1), sizeof(int));
     for (int i = 0; i < info->ndefs; i++)
@@ -788,6 +875,7 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
         d = NULL;
     }
 done:
+    budget_statement(NULL, (Span){0, 0});
     diag_flush(&diag);
     if (nerrors)
         *nerrors = diag.nerrors;
@@ -814,6 +902,13 @@ static Derived *file_error(const char *filename, FILE *err, int *nerrors,
  * after the limit + 1 bytes), so /dev/zero ends at once and in bounded
  * memory. */
 Derived *derive_file(const char *filename, FILE *err, int *nerrors)
+{
+    DeriveOptions opt = {BUDGET_DEFAULT_SECONDS, NULL};
+    return derive_file_ex(filename, err, nerrors, &opt);
+}
+
+Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
+                        const DeriveOptions *opt)
 {
     char limit[32];
     struct stat sb;
@@ -862,7 +957,7 @@ Derived *derive_file(const char *filename, FILE *err, int *nerrors)
         return file_error(filename, err, nerrors, "cannot read the file: %s",
                           strerror(e));
     }
-    Derived *d = derive_source(filename, buf, len, err, nerrors);
+    Derived *d = derive_source_ex(filename, buf, len, err, nerrors, opt);
     free(buf);
     return d;
 }

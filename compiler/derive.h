@@ -52,11 +52,23 @@ typedef struct Derived {
     DerivedOutput *outputs;
 } Derived;
 
+/* How a derivation runs (budget.h): a wall-clock budget checked between
+ * operations (0: none; derive_source uses BUDGET_DEFAULT_SECONDS), and a
+ * stream for progress: per definition, its line, the time it took and the
+ * size of its value (terms, total degree, coefficient bits), or NULL. */
+typedef struct DeriveOptions {
+    double max_seconds;
+    FILE *verbose;
+} DeriveOptions;
+
 /* Derive a scheme from source text.  Diagnostics (contract section 4 format)
  * go to err, which may be NULL to discard them; *nerrors (if not NULL)
  * receives their count.  Returns NULL when the scheme has an error. */
 Derived *derive_source(const char *filename, const char *text, size_t len,
                        FILE *err, int *nerrors);
+/* the same with options (opt not NULL) */
+Derived *derive_source_ex(const char *filename, const char *text, size_t len,
+                          FILE *err, int *nerrors, const DeriveOptions *opt);
 /* The largest scheme text accepted, in bytes (offsets in spans are int). */
 #define DERIVE_MAX_SOURCE (16 << 20)
 
@@ -64,6 +76,8 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
  * more than DERIVE_MAX_SOURCE bytes is one error ("FILE: error: cannot read
  * the file: WHY"), found in bounded time and memory. */
 Derived *derive_file(const char *filename, FILE *err, int *nerrors);
+Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
+                        const DeriveOptions *opt);
 void derived_free(Derived *d);
 
 /* Reports an error found after derivation (a back end's: e.g. a coefficient

@@ -15,8 +15,10 @@
 #include <flint/flint.h>
 
 #include "codegen/cli.h"
+#include "compiler/budget.h"
 #include "compiler/derive.h"
 #include "compiler/format.h"
+#include "compiler/mem.h"
 
 #define PC_VERSION "0.1.0"
 
@@ -28,6 +30,11 @@ static const char usage[] =
     "[--format csv|json]\n"
     "       pointcalc --help | --version\n"
     "\n"
+    "\n"
+    "Every command also takes --max-seconds S and --max-memory SIZE (the\n"
+    "budget of the derivation; defaults 60 and 2G, 0 for none) and -v,\n"
+    "--verbose (the time and size of every definition, on stderr).\n"
+    "\n"
     "Reduces a point-calculus scheme (.pcs) exactly to its final point\n"
     "equations, emits C for them, or evaluates them.  SPEC is a value (0.5),\n"
     "a list (0,0.25,1) or lo:hi:count.  See docs/language.md.\n";
@@ -36,8 +43,17 @@ static int derive_main(int argc, char **argv)
 {
     const char *file = NULL, *origin = NULL;
     FormatStyle style = FMT_TEXT;
+    BudgetOptions bo;
+    budget_options_default(&bo);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
+        int used = budget_parse_option(&bo, argc, argv, i, stderr);
+        if (used < 0)
+            return 2;
+        if (used > 0) {
+            i += used - 1;
+            continue;
+        }
         if (strcmp(a, "--format") == 0 && i + 1 < argc) {
             const char *f = argv[++i];
             if (strcmp(f, "text") == 0)
@@ -72,7 +88,9 @@ static int derive_main(int argc, char **argv)
         return 2;
     }
     int nerrors = 0;
-    Derived *d = derive_file(file, stderr, &nerrors);
+    DeriveOptions opt = {bo.max_seconds, bo.verbose ? stderr : NULL};
+    budget_arm(bo.max_seconds, bo.max_memory);
+    Derived *d = derive_file_ex(file, stderr, &nerrors, &opt);
     if (!d)
         return 1;
     slong o = -1;
@@ -88,6 +106,7 @@ static int derive_main(int argc, char **argv)
         }
     }
     format_derived(stdout, d, style, o);
+    budget_disarm();
     derived_free(d);
     return 0;
 }
@@ -95,6 +114,8 @@ static int derive_main(int argc, char **argv)
 int main(int argc, char **argv)
 {
     int rc;
+    /* before anything allocates: GMP and FLINT under the one policy */
+    mem_use_for_gmp_flint();
     if (argc < 2) {
         fputs(usage, stderr);
         return 2;

@@ -14,6 +14,7 @@
 #include <flint/flint.h>
 
 #include "compiler/arena.h"
+#include "compiler/budget.h"
 #include "compiler/derive.h"
 #include "compiler/diag.h"
 #include "compiler/sema.h"
@@ -315,6 +316,105 @@ static void test_input_limits(void **state)
     remove(path);
 }
 
+/* the time budget, checked between operations: a budget that has run out
+ * before the first node is reported there, once, and nothing else is
+ * derived */
+static void test_time_budget_soft(void **state)
+{
+    (void)state;
+    static const char text[] = "point A, B\nparam t\nM = along(A, B, t)\n"
+                               "N = along(A, B, 1 - t)\n";
+    char *out = NULL;
+    size_t n = 0;
+    FILE *mem = open_memstream(&out, &n);
+    DeriveOptions opt = {1e-9, NULL};
+    int nerr = 0;
+    Derived *d =
+        derive_source_ex("b.pcs", text, sizeof text - 1, mem, &nerr, &opt);
+    fclose(mem);
+    assert_null(d);
+    assert_int_equal(nerr, 1);
+    assert_string_equal(out, "b.pcs:3:5: error: the time budget of 1e-09 s "
+                             "ran out while deriving this; raise it with "
+                             "--max-seconds\n"
+                             "M = along(A, B, t)\n"
+                             "    ^~~~~~~~~~~~~~\n");
+    free(out);
+}
+
+/* --verbose: one line per definition with its size (the time varies) */
+static void test_verbose_progress(void **state)
+{
+    (void)state;
+    static const char text[] = "point A, B, C\nparam t\nM = along(A, B, t)\n"
+                               "k = t^2 + 3\n";
+    char *out = NULL;
+    size_t n = 0;
+    FILE *mem = open_memstream(&out, &n);
+    DeriveOptions opt = {0, mem};
+    Derived *d = derive_source_ex("v.pcs", text, sizeof text - 1, NULL, NULL,
+                                  &opt);
+    fclose(mem);
+    assert_non_null(d);
+    derived_free(d);
+    /* M = (A*(1 - t) + B*t)/1: numerators 2 + 1 terms, den 1 term */
+    char *l1 = strstr(out, "v.pcs:3: M: ");
+    char *l2 = strstr(out, "v.pcs:4: k: ");
+    assert_true(l1 == out && l2 != NULL);
+    assert_non_null(strstr(l1, " ms, combination of points, 4 terms, degree "
+                               "1, 1-bit coefficients\nv.pcs:4: k: "));
+    assert_non_null(
+        strstr(l2, " ms, scalar, 3 terms, degree 2, 2-bit coefficients\n"));
+    free(out);
+}
+
+static void test_budget_options(void **state)
+{
+    (void)state;
+    BudgetOptions b;
+    static const char *const ok_text[] = {
+        "x",  "--max-seconds", "2.5", "--max-memory", "512M",
+        "-v", "--max-memory",  "3G",  "--max-memory", "4096"};
+    static const char *const bad_text[] = {
+        "--max-seconds", "-1", "--max-memory", "2X",
+        "--max-seconds", "1s", "--max-memory"};
+    char *ok[10], *bad[7]; /* argv is char ** */
+    for (int i = 0; i < 10; i++)
+        ok[i] = (char *)ok_text[i];
+    for (int i = 0; i < 7; i++)
+        bad[i] = (char *)bad_text[i];
+    budget_options_default(&b);
+    assert_true(b.max_seconds == 60.0 && b.max_memory == (size_t)2 << 30);
+    assert_int_equal(budget_parse_option(&b, 10, ok, 0, stderr), 0);
+    assert_int_equal(budget_parse_option(&b, 10, ok, 1, stderr), 2);
+    assert_true(b.max_seconds == 2.5);
+    assert_int_equal(budget_parse_option(&b, 10, ok, 3, stderr), 2);
+    assert_true(b.max_memory == (size_t)512 << 20);
+    assert_int_equal(budget_parse_option(&b, 10, ok, 5, stderr), 1);
+    assert_true(b.verbose);
+    assert_int_equal(budget_parse_option(&b, 10, ok, 6, stderr), 2);
+    assert_true(b.max_memory == (size_t)3 << 30);
+    assert_int_equal(budget_parse_option(&b, 10, ok, 8, stderr), 2);
+    assert_true(b.max_memory == 4096);
+    char *msg = NULL;
+    size_t n = 0;
+    FILE *mem = open_memstream(&msg, &n);
+    assert_int_equal(budget_parse_option(&b, 7, bad, 0, mem), -1);
+    assert_int_equal(budget_parse_option(&b, 7, bad, 2, mem), -1);
+    assert_int_equal(budget_parse_option(&b, 7, bad, 4, mem), -1);
+    assert_int_equal(budget_parse_option(&b, 7, bad, 6, mem), -1);
+    fclose(mem);
+    assert_string_equal(
+        msg, "pointcalc: --max-seconds '-1': expected a number of seconds "
+             "from 0 (no budget) up\n"
+             "pointcalc: --max-memory '2X': expected a size in bytes, or with "
+             "K, M or G (KiB, MiB, GiB), e.g. 2G (0: no budget)\n"
+             "pointcalc: --max-seconds '1s': expected a number of seconds, "
+             "e.g. 60 or 0.5 (0: no budget)\n"
+             "pointcalc: --max-memory needs a value\n");
+    free(msg);
+}
+
 /* "\r\n" and a lone "\r" end lines like "\n" (a CR-only file used to be
  * read as one line) */
 static void test_line_ends_cr_crlf(void **state)
@@ -378,6 +478,9 @@ int main(void)
         cmocka_unit_test(test_diag_escapes_and_utf8_columns),
         cmocka_unit_test(test_line_ends_cr_crlf),
         cmocka_unit_test(test_input_limits),
+        cmocka_unit_test(test_time_budget_soft),
+        cmocka_unit_test(test_verbose_progress),
+        cmocka_unit_test(test_budget_options),
         cmocka_unit_test(test_limits_allow_reasonable_results),
     };
     int rc = cmocka_run_group_tests_name("front", tests, NULL, NULL);

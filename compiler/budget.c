@@ -1,0 +1,196 @@
+/*
+ * budget.c - the hard limits of the command line (budget.h).
+ *
+ * The current statement is kept in two slots and published by flipping an
+ * index, so a signal handler never reads a half-written one.
+ */
+#include "compiler/budget.h"
+
+#include <errno.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include "compiler/diag.h"
+#include "compiler/mem.h"
+
+typedef struct Where {
+    const Source *src;
+    Span span;
+} Where;
+
+static Where slots[2];
+static volatile sig_atomic_t cur = 0;
+static char time_msg[160], mem_msg[160], oom_msg[96];
+
+void budget_statement(const Source *src, Span span)
+{
+    int next = !cur;
+    slots[next].src = src;
+    slots[next].span = span;
+    cur = next;
+}
+
+void budget_options_default(BudgetOptions *b)
+{
+    b->max_seconds = BUDGET_DEFAULT_SECONDS;
+    b->max_memory = BUDGET_DEFAULT_MEMORY;
+    b->verbose = 0;
+}
+
+int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
+                        FILE *err)
+{
+    const char *a = argv[i];
+    if (strcmp(a, "--verbose") == 0 || strcmp(a, "-v") == 0) {
+        b->verbose = 1;
+        return 1;
+    }
+    int secs = strcmp(a, "--max-seconds") == 0;
+    if (!secs && strcmp(a, "--max-memory") != 0)
+        return 0;
+    if (i + 1 >= argc) {
+        fprintf(err, "pointcalc: %s needs a value\n", a);
+        return -1;
+    }
+    const char *v = argv[i + 1];
+    char *end;
+    errno = 0;
+    double x = strtod(v, &end);
+    if (end == v || errno != 0 || !(x >= 0) || x > 1e9) {
+        fprintf(err,
+                "pointcalc: %s '%s': expected a number of %s from 0 (no "
+                "budget) up\n",
+                a, v, secs ? "seconds" : "bytes");
+        return -1;
+    }
+    if (secs) {
+        if (*end != '\0') {
+            fprintf(err,
+                    "pointcalc: --max-seconds '%s': expected a number of "
+                    "seconds, e.g. 60 or 0.5 (0: no budget)\n",
+                    v);
+            return -1;
+        }
+        b->max_seconds = x;
+        return 2;
+    }
+    double unit = 1;
+    if (*end == 'K' || *end == 'k')
+        unit = 1024.0, end++;
+    else if (*end == 'M' || *end == 'm')
+        unit = 1048576.0, end++;
+    else if (*end == 'G' || *end == 'g')
+        unit = 1073741824.0, end++;
+    if (*end != '\0' || x * unit > 1e15) {
+        fprintf(err,
+                "pointcalc: --max-memory '%s': expected a size in bytes, or "
+                "with K, M or G (KiB, MiB, GiB), e.g. 2G (0: no budget)\n",
+                v);
+        return -1;
+    }
+    b->max_memory = (size_t)(x * unit);
+    return 2;
+}
+
+void budget_format_seconds(char *buf, size_t cap, double s)
+{
+    snprintf(buf, cap, "%g s", s);
+}
+
+void budget_format_bytes(char *buf, size_t cap, size_t b)
+{
+    if (b >= ((size_t)1 << 30) && b % ((size_t)1 << 30) == 0)
+        snprintf(buf, cap, "%zu GiB", b >> 30);
+    else if (b >= ((size_t)1 << 20))
+        snprintf(buf, cap, "%zu MiB", b >> 20);
+    else
+        snprintf(buf, cap, "%zu bytes", b);
+}
+
+static void put_fd(void *ctx, const char *s, size_t n)
+{
+    int fd = *(const int *)ctx;
+    while (n > 0) {
+        ssize_t w = write(fd, s, n);
+        if (w <= 0)
+            return;
+        s += w;
+        n -= (size_t)w;
+    }
+}
+
+/* the located message (or a plain one when no statement is current) */
+static void report(const char *msg)
+{
+    static const int fd = 2;
+    DiagSink k = {put_fd, (void *)&fd};
+    const Where *w = &slots[cur];
+    if (w->src != NULL) {
+        diag_put_location(&k, w->src, w->span, "error");
+        put_fd((void *)&fd, msg, strlen(msg));
+        put_fd((void *)&fd, "\n", 1);
+        diag_put_excerpt(&k, w->src, w->span);
+    } else {
+        put_fd((void *)&fd, "pointcalc: error: ", 18);
+        put_fd((void *)&fd, msg, strlen(msg));
+        put_fd((void *)&fd, "\n", 1);
+    }
+}
+
+static void on_alarm(int sig)
+{
+    (void)sig;
+    report(time_msg);
+    _exit(1);
+}
+
+static void on_oom(MemFailure why, void *arg)
+{
+    (void)arg;
+    report(why == MEM_BUDGET ? mem_msg : oom_msg);
+    _exit(1);
+}
+
+void budget_arm(double max_seconds, size_t max_memory)
+{
+    char amount[48];
+    budget_format_seconds(amount, sizeof amount, max_seconds);
+    snprintf(time_msg, sizeof time_msg,
+             "the time budget of %s ran out while deriving this; raise it "
+             "with --max-seconds",
+             amount);
+    budget_format_bytes(amount, sizeof amount, max_memory);
+    snprintf(mem_msg, sizeof mem_msg,
+             "the memory budget of %s ran out while deriving this; raise it "
+             "with --max-memory",
+             amount);
+    snprintf(oom_msg, sizeof oom_msg,
+             "out of memory while deriving this (the system refused more)");
+    mem_set_limit(max_memory);
+    mem_set_oom_handler(on_oom, NULL);
+    if (max_seconds > 0) {
+        struct sigaction sa;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_alarm;
+        sigemptyset(&sa.sa_mask);
+        sigaction(SIGALRM, &sa, NULL);
+        struct itimerval it = {{0, 0}, {0, 0}};
+        /* a quarter second after the deadline that derive checks itself,
+         * so that its message (at the exact expression) comes first
+         * wherever it can */
+        double t = max_seconds + 0.25;
+        it.it_value.tv_sec = (time_t)t;
+        it.it_value.tv_usec = (suseconds_t)((t - (double)(time_t)t) * 1e6);
+        setitimer(ITIMER_REAL, &it, NULL);
+    }
+}
+
+void budget_disarm(void)
+{
+    struct itimerval it = {{0, 0}, {0, 0}};
+    setitimer(ITIMER_REAL, &it, NULL);
+}
