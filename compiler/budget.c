@@ -16,6 +16,7 @@
 
 #include "compiler/diag.h"
 #include "compiler/mem.h"
+#include "compiler/numfmt.h"
 
 typedef struct Where {
     const Source *src;
@@ -59,7 +60,7 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
     const char *v = argv[i + 1];
     char *end;
     errno = 0;
-    double x = strtod(v, &end);
+    double x = pc_strtod(v, &end);
     if (end == v || errno != 0 || !(x >= 0) || x > 1e9) {
         fprintf(err,
                 "pointcalc: %s '%s': expected a number of %s from 0 (no "
@@ -98,7 +99,7 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
 
 void budget_format_seconds(char *buf, size_t cap, double s)
 {
-    snprintf(buf, cap, "%g s", s);
+    pc_snprintf(buf, cap, "%g s", s);
 }
 
 void budget_format_bytes(char *buf, size_t cap, size_t b)

@@ -22,6 +22,7 @@
 #include "compiler/construct.h"
 #include "compiler/diag.h"
 #include "compiler/mem.h"
+#include "compiler/numfmt.h"
 #include "compiler/sema.h"
 #include "grammar/parse.h"
 
@@ -724,7 +725,7 @@ static void derive_def(Deriver *D, Sym *s)
         int line, col;
         value_size(v, &terms, &deg, &bits, r);
         source_locate(D->src, s->def->expr->span.start, &line, &col);
-        fprintf(D->verbose,
+        pc_fprintf(D->verbose,
                 "%s:%d: %s: %.3f ms, %s, %ld terms, degree %ld, %ld-bit "
                 "coefficients\n",
                 D->src->name, line, s->name, 1e3 * (now_seconds() - t0),

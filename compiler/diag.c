@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "compiler/mem.h"
+#include "compiler/numfmt.h"
 
 void diag_init(Diag *d, const Source *src, FILE *out)
 {
@@ -210,7 +211,7 @@ static void emit(Diag *d, Span span, const char *what, const char *fmt,
 {
     DiagSink k = {put_file, d->out};
     diag_put_location(&k, d->src, span, what);
-    vfprintf(d->out, fmt, ap);
+    pc_vfprintf(d->out, fmt, ap);
     fputc('\n', d->out);
     diag_put_excerpt(&k, d->src, span);
 }

@@ -5,6 +5,8 @@
 
 #include <math.h>
 
+#include "compiler/numfmt.h"
+
 void output_number(FILE *out, double v, OutputFormat f)
 {
     if (isnan(v))
@@ -12,7 +14,7 @@ void output_number(FILE *out, double v, OutputFormat f)
     else if (isinf(v))
         fputs(f == OUTPUT_JSON ? "null" : v > 0 ? "inf" : "-inf", out);
     else
-        fprintf(out, "%.17g", v == 0 ? 0.0 : v); // never "-0"
+        pc_fprintf(out, "%.17g", v == 0 ? 0.0 : v); // never "-0"
 }
 
 void output_json_string(FILE *out, const char *s)

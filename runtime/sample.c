@@ -13,13 +13,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compiler/numfmt.h"
+
 int sample_number(const char *text, double *v)
 {
     char *end;
     if (!*text || strchr(" \t\n", *text))
         return -1;
     errno = 0;
-    double x = strtod(text, &end);
+    double x = pc_strtod(text, &end);
     /* ERANGE on underflow too: a subnormal result (1e-310) is a double, a
      * result flushed to 0 (1e-400) is not what was written */
     if (*end != '\0' || !isfinite(x) || (errno == ERANGE && x == 0))
