@@ -26,6 +26,7 @@
  * and the output's name; emit_c_clash reports when two coincide.
  */
 #include "codegen/emit_c.h"
+#include "compiler/numfmt.h"
 
 #include <ctype.h>
 #include <stdarg.h>
@@ -337,12 +338,12 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
 static void print_double(FILE *out, double v)
 {
     char buf[40];
-    snprintf(buf, sizeof buf, "%.17g", v);
+    pc_snprintf(buf, sizeof buf, "%.17g", v);
     /* the shortest of %.15g/%.16g/%.17g that round-trips */
     for (int prec = 15; prec < 17; prec++) {
         char t[40];
-        snprintf(t, sizeof t, "%.*g", prec, v);
-        if (strtod(t, NULL) == v) {
+        pc_snprintf(t, sizeof t, "%.*g", prec, v);
+        if (pc_strtod(t, NULL) == v) {
             memcpy(buf, t, sizeof t);
             break;
         }

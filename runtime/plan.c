@@ -10,6 +10,7 @@
  * built in different ways still meet.
  */
 #include "runtime/plan.h"
+#include "compiler/numfmt.h"
 
 #include <assert.h>
 #include <math.h>
@@ -536,7 +537,7 @@ void plan_dump(FILE *out, const Plan *p)
         fprintf(out, "  r%d = %s", i, plan_op_name((PlanOp)x->op));
         switch ((PlanOp)x->op) {
         case PLAN_CONST:
-            fprintf(out, " %.17g", p->k[x->a]);
+            pc_fprintf(out, " %.17g", p->k[x->a]);
             break;
         case PLAN_INPUT:
             fprintf(out, " %s",
