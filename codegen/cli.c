@@ -12,14 +12,19 @@
  */
 #include "codegen/cli.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "compiler/budget.h"
 #include "compiler/derive.h"
+#include "compiler/mem.h"
 #include "runtime/eval.h"
 #include "runtime/output.h"
 #include "runtime/sample.h"
@@ -44,7 +49,20 @@ static int usage_error(FILE *err, const char *usage, const char *fmt, ...)
     return 2;
 }
 
-/* writes text to path (or to out when path is NULL); 0 or 1 */
+/* 1 when a and b name the same file: the same text, or the same inode */
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (strcmp(a, b) == 0)
+        return 1;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
+/* Writes text to path (or to out when path is NULL); 0 or 1.  The file is
+ * written whole to a temporary file in the same directory and renamed into
+ * place, so a reader (or a concurrent pointcalc) sees the old file or the
+ * new one, never a mixture, and a failed write leaves the old one alone. */
 static int write_text(const char *path, const char *text, size_t len, FILE *out,
                       FILE *err)
 {
@@ -52,18 +70,38 @@ static int write_text(const char *path, const char *text, size_t len, FILE *out,
         fwrite(text, 1, len, out);
         return 0;
     }
-    FILE *f = fopen(path, "w");
-    if (!f || fwrite(text, 1, len, f) != len) {
-        fprintf(err, "pointcalc: cannot write '%s'\n", path);
-        if (f)
-            fclose(f);
-        return 1;
+    const char *slash = strrchr(path, '/');
+    size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
+    char *tmp = pc_xmalloc(strlen(path) + 16);
+    memcpy(tmp, path, dir);
+    snprintf(tmp + dir, strlen(path) + 16 - dir, ".%s.XXXXXX", path + dir);
+    int fd = mkstemp(tmp);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    int ok = f != NULL && fwrite(text, 1, len, f) == len;
+    int e = errno;
+    if (f != NULL && fclose(f) != 0 && ok) {
+        ok = 0;
+        e = errno;
+    } else if (f == NULL && fd >= 0) {
+        close(fd);
     }
-    if (fclose(f) != 0) {
-        fprintf(err, "pointcalc: cannot write '%s'\n", path);
-        return 1;
+    if (ok) {
+        /* mkstemp makes the file 0600; give it what a new file gets */
+        mode_t mask = umask(0);
+        umask(mask);
+        chmod(tmp, 0666 & ~mask);
+        if (rename(tmp, path) != 0) {
+            ok = 0;
+            e = errno;
+        }
     }
-    return 0;
+    if (!ok) {
+        fprintf(err, "pointcalc: cannot write '%s': %s\n", path, strerror(e));
+        if (fd >= 0)
+            unlink(tmp);
+    }
+    free(tmp);
+    return !ok;
 }
 
 /* ---- emit-c -------------------------------------------------------------- */
@@ -72,10 +110,17 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
 {
     const char *file = NULL, *cpath = NULL, *hpath = NULL, *prefix = NULL;
     int dump = 0;
+    BudgetOptions bo;
+    budget_options_default(&bo);
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int has = i + 1 < argc;
-        if (strcmp(a, "-o") == 0 && has)
+        int used = budget_parse_option(&bo, argc, argv, i, err);
+        if (used < 0)
+            return 2;
+        if (used > 0)
+            i += used - 1;
+        else if (strcmp(a, "-o") == 0 && has)
             cpath = argv[++i];
         else if (strcmp(a, "--header") == 0 && has)
             hpath = argv[++i];
@@ -98,10 +143,22 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
         return usage_error(err, emit_usage,
                            "--prefix '%s' is not a usable C identifier",
                            prefix);
-    Derived *d = derive_file(file, err, NULL);
+    if ((cpath && same_file(cpath, file)) || (hpath && same_file(hpath, file)))
+        return usage_error(err, emit_usage,
+                           "%s '%s' is the scheme itself; it would be "
+                           "overwritten",
+                           cpath && same_file(cpath, file) ? "-o" : "--header",
+                           cpath && same_file(cpath, file) ? cpath : hpath);
+    if (cpath && hpath && same_file(cpath, hpath))
+        return usage_error(err, emit_usage,
+                           "-o and --header name the same file '%s'", cpath);
+    DeriveOptions opt = {bo.max_seconds, bo.verbose ? err : NULL};
+    budget_arm(bo.max_seconds, bo.max_memory);
+    Derived *d = derive_file_ex(file, err, NULL, &opt);
     if (!d)
         return 1;
     Plan *p = lower_derived(d, err);
+    budget_disarm();
     if (p && !dump && emit_c_check(p, d, prefix, err)) {
         plan_free(p);
         p = NULL;
@@ -149,6 +206,7 @@ typedef struct Assign {
 } Assign;
 
 typedef struct EvalArgs {
+    BudgetOptions budget;
     const char *file;
     const char *output;
     OutputFormat format;
@@ -194,10 +252,16 @@ static int parse_eval_args(EvalArgs *a, int argc, char **argv, FILE *err)
 {
     memset(a, 0, sizeof *a);
     a->format = OUTPUT_CSV;
+    budget_options_default(&a->budget);
     for (int i = 1; i < argc; i++) {
         const char *o = argv[i];
         int has = i + 1 < argc;
-        if ((strcmp(o, "--at") == 0 || strcmp(o, "--set") == 0 ||
+        int used = budget_parse_option(&a->budget, argc, argv, i, err);
+        if (used < 0)
+            return 2;
+        if (used > 0) {
+            i += used - 1;
+        } else if ((strcmp(o, "--at") == 0 || strcmp(o, "--set") == 0 ||
              strcmp(o, "--param") == 0) &&
             has) {
             const char *v = argv[++i];
@@ -382,11 +446,8 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
                              a->set[i].name, a->set[i].text);
         }
     }
-    for (int k = 0; k < p->nconsts && !rc; k++)
-        if (!seen[k])
-            rc = usage_error(err, eval_usage, "missing --set %s=VALUE",
-                             p->consts[k]);
-    /* params */
+    /* params (before the missing consts: a const given as --param is
+     * reported as such, not as a missing --set) */
     int *pseen = seen + p->nconsts;
     for (int i = 0; i < a->nparam && !rc; i++) {
         int k = find_name(p->params, p->nparams, a->param[i].name);
@@ -411,6 +472,10 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
                              a->param[i].name, a->param[i].text, msg);
         }
     }
+    for (int k = 0; k < p->nconsts && !rc; k++)
+        if (!seen[k])
+            rc = usage_error(err, eval_usage, "missing --set %s=VALUE",
+                             p->consts[k]);
     for (int k = 0; k < p->nparams && !rc; k++)
         if (!pseen[k])
             rc = usage_error(err, eval_usage, "missing --param %s=SPEC",
@@ -492,12 +557,15 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
         eval_args_clear(&a);
         return rc;
     }
-    Derived *d = derive_file(a.file, err, NULL);
+    DeriveOptions opt = {a.budget.max_seconds, a.budget.verbose ? err : NULL};
+    budget_arm(a.budget.max_seconds, a.budget.max_memory);
+    Derived *d = derive_file_ex(a.file, err, NULL, &opt);
     if (!d) {
         eval_args_clear(&a);
         return 1;
     }
     Plan *p = lower_derived(d, err);
+    budget_disarm(); /* evaluation takes what the grid asks for */
     derived_free(d);
     if (!p) {
         eval_args_clear(&a);

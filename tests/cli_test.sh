@@ -141,5 +141,70 @@ for f in examples/*.pcs; do
     done
 done
 
+# ---- bounds (issue 10): budgets, input limits, safe outputs -------------
+
+# a chain of meets that takes seconds: the time budget stops it at the
+# statement, located, exit 1, nothing on stdout (the hard timer when FLINT
+# is inside one long product)
+{ printf 'param u, v\nconst k, h\npoint A, B, C\nX0 = (A + 2*B + 4*C)/7\n'
+  for i in 1 2 3 4 5; do
+      printf 'X%d = meet(line(A, along(X%d, B, u + k)), line(B, along(X%d, C, v + h)))\n' $i $((i - 1)) $((i - 1))
+  done; } >"$tmp/chain.pcs"
+"$PC" derive "$tmp/chain.pcs" --max-seconds 0.2 >"$tmp/out" 2>"$tmp/err"
+check "time budget: exit 1" test $? -eq 1
+check "time budget: nothing on stdout" test ! -s "$tmp/out"
+check "time budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the time budget of 0.2 s ran out while deriving this; raise it with --max-seconds" "$tmp/err"
+"$PC" derive "$tmp/chain.pcs" --max-memory 20M >"$tmp/out" 2>"$tmp/err"
+check "memory budget: exit 1" test $? -eq 1
+check "memory budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the memory budget of 20 MiB ran out while deriving this; raise it with --max-memory" "$tmp/err"
+"$PC" emit-c "$tmp/chain.pcs" --max-seconds 0.2 >"$tmp/out" 2>"$tmp/err"
+check "emit-c time budget" test $? -eq 1 -a ! -s "$tmp/out"
+"$PC" eval "$tmp/chain.pcs" --max-memory 20M --at A=0,0 --at B=1,0 --at C=0,1 \
+    --param u=0.5 --param v=0.5 --set k=1 --set h=2 >"$tmp/out" 2>"$tmp/err"
+check "eval memory budget" test $? -eq 1 -a ! -s "$tmp/out"
+"$PC" derive "$tmp/chain.pcs" --max-seconds 1x >/dev/null 2>"$tmp/err"
+check "bad --max-seconds: exit 2" test $? -eq 2
+"$PC" derive examples/desargues_arc.pcs -v >"$tmp/out" 2>"$tmp/err"
+check "verbose: a line per definition" test "$(grep -c '^examples/desargues_arc.pcs:[0-9]*: [A-Za-z0-9_]*: [0-9.]* ms, ' "$tmp/err")" -eq "$(grep -c '^[A-Za-z0-9_]* = ' examples/desargues_arc.pcs)"
+check "verbose: the result on stdout" grep -q '^M = ' "$tmp/out"
+# the system refusing memory is an error at the statement, not an abort
+# (not under AddressSanitizer, which needs its address space)
+if ! nm "$PC" 2>/dev/null | grep -q __asan_init; then
+    { printf 'point A, B\nparam t\nP0 = A\n'
+      for i in $(seq 1 2000); do printf 'P%d = along(P%d, B, t)\n' $i $((i - 1)); done; } >"$tmp/c2000.pcs"
+    (ulimit -v 400000; "$PC" derive "$tmp/c2000.pcs" --max-memory 0 >"$tmp/out" 2>"$tmp/err")
+    check "out of memory: exit 1" test $? -eq 1
+    check "out of memory: located" grep -q "c2000.pcs:[0-9]*:[0-9]*: error: out of memory while deriving this (the system refused more)" "$tmp/err"
+fi
+
+# input limits
+"$PC" derive /dev/zero >"$tmp/out" 2>"$tmp/err"
+check "/dev/zero refused" grep -qx "/dev/zero: error: cannot read the file: it is larger than 16 MiB, the limit of a scheme" "$tmp/err"
+"$PC" derive "$tmp" >"$tmp/out" 2>"$tmp/err"
+check "a directory refused" grep -q "error: cannot read the file: it is a directory" "$tmp/err"
+
+# safe outputs: never the scheme itself, never one file twice, reasons
+cp examples/desargues_arc.pcs "$tmp/s.pcs"
+"$PC" emit-c "$tmp/s.pcs" -o "$tmp/s.pcs" 2>"$tmp/err"
+check "-o the scheme: exit 2" test $? -eq 2
+check "-o the scheme: untouched" cmp -s "$tmp/s.pcs" examples/desargues_arc.pcs
+"$PC" emit-c "$tmp/s.pcs" -o "$tmp/./s.pcs" 2>/dev/null
+check "-o the scheme by another path: exit 2" test $? -eq 2
+"$PC" emit-c "$tmp/s.pcs" -o "$tmp/o.c" --header "$tmp/o.c" 2>"$tmp/err"
+check "-o and --header the same: exit 2" test $? -eq 2
+"$PC" emit-c "$tmp/s.pcs" -o "$tmp/nodir/o.c" 2>"$tmp/err"
+check "unwritable -o: exit 1 with the reason" grep -qx "pointcalc: cannot write '$tmp/nodir/o.c': No such file or directory" "$tmp/err"
+"$PC" emit-c "$tmp/s.pcs" -o "$tmp/o.c" --header "$tmp/o.h"
+check "outputs written whole, no temporary left" test -s "$tmp/o.c" -a -s "$tmp/o.h" -a -z "$(ls -A "$tmp" | grep '^\.o\.')"
+check "outputs get the usual mode" test "$(stat -c %a "$tmp/o.c")" = "$(umask -S >/dev/null; printf '%o' $((0666 & ~$(umask))))"
+# two writers at once: each result is one whole file, never a mixture
+for i in 1 2 3 4 5 6; do "$PC" emit-c "$tmp/s.pcs" -o "$tmp/race.c" & done; wait
+check "concurrent writers: a whole file" cmp -s "$tmp/race.c" "$tmp/o.c"
+
+# a const given as --param is named as such (it used to say "missing --set")
+"$PC" eval examples/conic_engineering_discriminant.pcs --at A=0,0 --at B=1,0 \
+    --at C=0,1 --param u=0.5 --param k=1 >/dev/null 2>"$tmp/err"
+check "const as --param" grep -qx "pointcalc: --param k: 'k' is a const; give it with --set k=VALUE" "$tmp/err"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
