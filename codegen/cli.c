@@ -141,8 +141,15 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
         return usage_error(err, emit_usage, "emit-c needs a scheme FILE");
     if (prefix && !emit_c_valid_prefix(prefix))
         return usage_error(err, emit_usage,
-                           "--prefix '%s' is not a usable C identifier",
-                           prefix);
+                           "--prefix '%s' is not a usable C identifier%s",
+                           prefix,
+                           prefix[0] == '_' &&
+                                   (prefix[1] == '_' ||
+                                    (prefix[1] >= 'A' && prefix[1] <= 'Z'))
+                               ? " (names beginning with __ or with _ and a "
+                                 "capital letter are reserved for the C "
+                                 "implementation)"
+                               : "");
     if ((cpath && same_file(cpath, file)) || (hpath && same_file(hpath, file)))
         return usage_error(err, emit_usage,
                            "%s '%s' is the scheme itself; it would be "

@@ -134,8 +134,11 @@ static int is_reserved(const char *s)
 
 int emit_c_valid_prefix(const char *s)
 {
-    /* function names are PREFIX_OUTPUT: any identifier but a keyword */
+    /* function names are PREFIX_OUTPUT: any identifier but a keyword or
+     * one that C reserves for the implementation (__x, _Foo) */
     if (!s || !(isalpha((unsigned char)s[0]) || s[0] == '_'))
+        return 0;
+    if (s[0] == '_' && (s[1] == '_' || isupper((unsigned char)s[1])))
         return 0;
     for (const char *q = s; *q; q++)
         if (!(isalnum((unsigned char)*q) || *q == '_'))

@@ -466,12 +466,15 @@ Plan *lower_derived(const Derived *d, FILE *err)
             if (L.error != LOWER_OK)
                 derived_error(
                     d, err, out->span,
-                    "%s cannot be evaluated in double precision: a "
-                    "coefficient of its equation (about 10^%ld) %s",
-                    out->name, (long)L.error_exp10,
                     L.error == LOWER_OVERFLOW
-                        ? "is beyond the largest double"
-                        : "is below the smallest double and would be 0");
+                        ? "%s cannot be evaluated in double precision: "
+                          "scaled to integer coefficients, its equation has "
+                          "a coefficient of about 10^%ld, beyond the largest "
+                          "double"
+                        : "%s cannot be evaluated in double precision: a "
+                          "coefficient of its equation (about 10^%ld) is "
+                          "below the smallest double and would be 0",
+                    out->name, (long)L.error_exp10);
         }
         if (atoms || degree < 0 || degree > DEGREE_MAX ||
             L.error != LOWER_OK) {

@@ -201,6 +201,15 @@ check "outputs get the usual mode" test "$(stat -c %a "$tmp/o.c")" = "$(umask -S
 for i in 1 2 3 4 5 6; do "$PC" emit-c "$tmp/s.pcs" -o "$tmp/race.c" & done; wait
 check "concurrent writers: a whole file" cmp -s "$tmp/race.c" "$tmp/o.c"
 
+# prefixes that C reserves are refused
+for pre in __x _Foo; do
+    "$PC" emit-c examples/desargues_arc.pcs --prefix "$pre" >"$tmp/out" 2>"$tmp/err"
+    check "--prefix $pre refused" test $? -eq 2 -a ! -s "$tmp/out"
+    check "--prefix $pre: why" grep -q "^pointcalc: --prefix '$pre' is not a usable C identifier (names beginning with __ or with _ and a capital letter are reserved for the C implementation)$" "$tmp/err"
+done
+"$PC" emit-c examples/desargues_arc.pcs --prefix _ok >"$tmp/out"
+check "--prefix _ok accepted" grep -q '^void _ok_M(double t' "$tmp/out"
+
 # a const given as --param is named as such (it used to say "missing --set")
 "$PC" eval examples/conic_engineering_discriminant.pcs --at A=0,0 --at B=1,0 \
     --at C=0,1 --param u=0.5 --param k=1 >/dev/null 2>"$tmp/err"

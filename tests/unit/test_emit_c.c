@@ -678,8 +678,16 @@ static void test_lower_reports_unrepresentable_equations(void **state)
     /* weights that no double holds, whatever their scaling */
     char *e = lower_error("point A, B\nparam t\nM = A + (B - A)*10^400*t\n");
     assert_string_equal(e, "x.pcs:3:1: error: M cannot be evaluated in double "
-                           "precision: a coefficient of its equation (about "
-                           "10^400) is beyond the largest double");
+                           "precision: scaled to integer coefficients, its "
+                           "equation has a coefficient of about 10^400, "
+                           "beyond the largest double");
+    free(e);
+    /* a tiny ratio as written: the message says why 10^400 appears */
+    e = lower_error("point A, B\nparam t\nM = along(A, B, 10^-400*t)\n");
+    assert_string_equal(e, "x.pcs:3:1: error: M cannot be evaluated in double "
+                           "precision: scaled to integer coefficients, its "
+                           "equation has a coefficient of about 10^400, "
+                           "beyond the largest double");
     free(e);
     e = lower_error("point A, B\nparam t\nV = (B - A)*t/10^400\n");
     assert_string_equal(e, "x.pcs:3:1: error: V cannot be evaluated in double "
@@ -691,8 +699,9 @@ static void test_lower_reports_unrepresentable_equations(void **state)
      * where the value would be fine for some t (10^400 t + 1 at t = 0) */
     e = lower_error("point A, B\nparam t\nN = divide(A, B, 10^400*t)\n");
     assert_string_equal(e, "x.pcs:3:1: error: N cannot be evaluated in double "
-                           "precision: a coefficient of its equation (about "
-                           "10^400) is beyond the largest double");
+                           "precision: scaled to integer coefficients, its "
+                           "equation has a coefficient of about 10^400, "
+                           "beyond the largest double");
     free(e);
     e = lower_error("param t\nb = (((t^1000)^1000)^1000)^3\n");
     assert_string_equal(e, "x.pcs:2:1: error: b cannot be evaluated "
