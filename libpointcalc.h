@@ -43,8 +43,34 @@ enum {
  * FILE:LINE:COL: error: format (free() it; set to NULL on success). */
 pc_scheme *pc_scheme_parse(const char *name, const char *text, size_t len,
                            char **diagnostics);
-/* Same, reading the file at path. */
+/* Same, reading the file at path (at most 16 MiB). */
 pc_scheme *pc_scheme_load(const char *path, char **diagnostics);
+
+/* The work budget of a derivation.  max_seconds: wall clock, checked
+ * between exact operations (0: none; pc_scheme_parse and pc_scheme_load use
+ * 60); when it runs out the derivation fails with the diagnostic "the time
+ * budget of S s ran out while deriving this" at the expression it was
+ * deriving.  One FLINT operation is not interrupted (the library sets no
+ * signal handler), but products whose size estimate is beyond the limits
+ * are refused before they start, so none runs for long. */
+typedef struct pc_options {
+    double max_seconds;
+} pc_options;
+pc_scheme *pc_scheme_parse_opts(const char *name, const char *text,
+                                size_t len, const pc_options *opt,
+                                char **diagnostics);
+pc_scheme *pc_scheme_load_opts(const char *path, const pc_options *opt,
+                               char **diagnostics);
+
+/* Process-wide, and to be called before any other pc_ function (and before
+ * the program's own first use of GMP or FLINT): routes GMP's and FLINT's
+ * allocations through the library's counted allocators and sets a memory
+ * budget of `bytes` for them (0: none).  When the budget would be exceeded,
+ * or the system refuses memory, no error can be returned from inside GMP:
+ * the library writes "pointcalc: error: the memory budget ran out" (or
+ * "out of memory") to stderr and ends the process with _exit(1).  Without
+ * this call GMP's own policy applies (it aborts). */
+void pc_use_memory_budget(size_t bytes);
 void pc_scheme_free(pc_scheme *s);
 
 /* Names, in declaration order; indices are 0-based. */

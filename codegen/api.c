@@ -15,7 +15,9 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "compiler/budget.h"
 #include "compiler/derive.h"
+#include "compiler/mem.h"
 #include "runtime/eval.h"
 
 struct pc_scheme {
@@ -56,25 +58,55 @@ static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
     return s;
 }
 
-pc_scheme *pc_scheme_parse(const char *name, const char *text, size_t len,
-                           char **diagnostics)
+static DeriveOptions derive_options(const pc_options *opt)
+{
+    DeriveOptions o = {BUDGET_DEFAULT_SECONDS, NULL};
+    if (opt != NULL)
+        o.max_seconds = opt->max_seconds;
+    return o;
+}
+
+pc_scheme *pc_scheme_parse_opts(const char *name, const char *text,
+                                size_t len, const pc_options *opt,
+                                char **diagnostics)
 {
     char *msg = NULL;
     size_t mlen = 0;
+    DeriveOptions o = derive_options(opt);
     FILE *m = open_memstream(&msg, &mlen);
-    Derived *d = derive_source(name ? name : "<string>", text, len, m, NULL);
+    Derived *d = derive_source_ex(name ? name : "<string>", text, len, m,
+                                  NULL, &o);
+    fclose(m);
+    return wrap(d, msg, diagnostics);
+}
+
+pc_scheme *pc_scheme_parse(const char *name, const char *text, size_t len,
+                           char **diagnostics)
+{
+    return pc_scheme_parse_opts(name, text, len, NULL, diagnostics);
+}
+
+pc_scheme *pc_scheme_load_opts(const char *path, const pc_options *opt,
+                               char **diagnostics)
+{
+    char *msg = NULL;
+    size_t mlen = 0;
+    DeriveOptions o = derive_options(opt);
+    FILE *m = open_memstream(&msg, &mlen);
+    Derived *d = derive_file_ex(path, m, NULL, &o);
     fclose(m);
     return wrap(d, msg, diagnostics);
 }
 
 pc_scheme *pc_scheme_load(const char *path, char **diagnostics)
 {
-    char *msg = NULL;
-    size_t mlen = 0;
-    FILE *m = open_memstream(&msg, &mlen);
-    Derived *d = derive_file(path, m, NULL);
-    fclose(m);
-    return wrap(d, msg, diagnostics);
+    return pc_scheme_load_opts(path, NULL, diagnostics);
+}
+
+void pc_use_memory_budget(size_t bytes)
+{
+    mem_use_for_gmp_flint();
+    mem_set_limit(bytes);
 }
 
 void pc_scheme_free(pc_scheme *s)

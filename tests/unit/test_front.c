@@ -18,6 +18,7 @@
 #include "compiler/derive.h"
 #include "compiler/diag.h"
 #include "compiler/sema.h"
+#include "libpointcalc.h"
 #include "grammar/parse.h"
 
 /* parses text and returns the AST dump (or the diagnostics); caller frees */
@@ -368,6 +369,27 @@ static void test_verbose_progress(void **state)
     free(out);
 }
 
+/* the C API's budget option */
+static void test_api_time_budget(void **state)
+{
+    (void)state;
+    static const char text[] = "point A, B\nparam t\nM = along(A, B, t)\n";
+    char *diag = NULL;
+    pc_options opt = {1e-9};
+    pc_scheme *s = pc_scheme_parse_opts("a.pcs", text, sizeof text - 1, &opt,
+                                        &diag);
+    assert_null(s);
+    assert_non_null(diag);
+    assert_non_null(strstr(diag, "a.pcs:3:5: error: the time budget of 1e-09 "
+                                 "s ran out while deriving this"));
+    free(diag);
+    opt.max_seconds = 0; /* none */
+    s = pc_scheme_parse_opts("a.pcs", text, sizeof text - 1, &opt, &diag);
+    assert_non_null(s);
+    assert_null(diag);
+    pc_scheme_free(s);
+}
+
 static void test_budget_options(void **state)
 {
     (void)state;
@@ -481,6 +503,7 @@ int main(void)
         cmocka_unit_test(test_time_budget_soft),
         cmocka_unit_test(test_verbose_progress),
         cmocka_unit_test(test_budget_options),
+        cmocka_unit_test(test_api_time_budget),
         cmocka_unit_test(test_limits_allow_reasonable_results),
     };
     int rc = cmocka_run_group_tests_name("front", tests, NULL, NULL);
