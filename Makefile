@@ -91,25 +91,47 @@ asan:
 # the same suite under valgrind (fewer fuzz mutations: valgrind is ~30x slower)
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full \
            --errors-for-leak-kinds=definite,indirect
+# the CLI tests run the binary through a wrapper that execs it under valgrind
 valgrind: tests
+	@printf '#!/bin/sh\nexec $(VALGRIND) --error-exitcode=99 $(CURDIR)/$(B)/pointcalc "$$@"\n' \
+	  > $(B)/pointcalc-vg && chmod +x $(B)/pointcalc-vg
+	@printf '#!/bin/sh\nexec valgrind -q --error-exitcode=99 --leak-check=no $(CURDIR)/$(B)/pointcalc "$$@"\n' \
+	  > $(B)/pointcalc-vg-noleak && chmod +x $(B)/pointcalc-vg-noleak
 	@fail=0; for t in $(TESTS); do \
 	  echo "== valgrind $$t"; PC_FUZZ_MUTATIONS=15 PC_VALGRIND=1 PC_BIN=$(B)/pointcalc \
-	    $(VALGRIND) $$t || fail=1; done; exit $$fail
+	    $(VALGRIND) $$t || fail=1; done; \
+	  echo "== valgrind tests/cli_test.sh"; \
+	  PC_VALGRIND=1 PC_NOLEAK=$(B)/pointcalc-vg-noleak \
+	    tests/cli_test.sh $(B)/pointcalc-vg || fail=1; \
+	  echo "== valgrind $(B)/examples/api_example"; \
+	  $(VALGRIND) $(B)/examples/api_example > $(B)/examples/api_example.vg.out && \
+	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.vg.out \
+	    && echo "api_example: ok" || { echo "FAIL: api_example under valgrind"; fail=1; }; \
+	  exit $$fail
 
-# coverage-guided fuzzing of derive_source (clang + libFuzzer + ASan/UBSan);
-# FUZZ_SECONDS bounds the run
+# coverage-guided fuzzing (clang + libFuzzer + ASan/UBSan) of two targets:
+# derive_source and every back end (tests/fuzz/fuzz_derive.c), and eval's
+# command line (tests/fuzz/fuzz_eval_args.c); seeds from examples/ and
+# tests/, the language's dictionary; FUZZ_SECONDS bounds each run, FUZZ_RUNS
+# the executions.  Crashes land in build-fuzz/artifacts/.
 FUZZ_SECONDS ?= 120
+FUZZ_RUNS ?= 1000000
+FUZZ_CC = clang -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror \
+	  -I. -Ibuild-fuzz -g -O1 -fsanitize=fuzzer,address,undefined
+FUZZ_FLAGS = -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
+	  -rss_limit_mb=4096 -dict=tests/fuzz/pointcalc.dict \
+	  -artifact_prefix=build-fuzz/artifacts/
 fuzz:
 	$(MAKE) B=build-fuzz CC=clang OPT=-O1 \
 	  SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" \
 	  build-fuzz/libpointcalc.a
-	clang -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror \
-	  -I. -Ibuild-fuzz -g -O1 -fsanitize=fuzzer,address,undefined \
-	  -o build-fuzz/fuzz_derive tests/fuzz/fuzz_derive.c build-fuzz/libpointcalc.a $(LDLIBS)
-	@mkdir -p build-fuzz/corpus
+	$(FUZZ_CC) -o build-fuzz/fuzz_derive tests/fuzz/fuzz_derive.c build-fuzz/libpointcalc.a $(LDLIBS)
+	$(FUZZ_CC) -o build-fuzz/fuzz_eval_args tests/fuzz/fuzz_eval_args.c build-fuzz/libpointcalc.a $(LDLIBS)
+	@mkdir -p build-fuzz/corpus build-fuzz/corpus_eval build-fuzz/artifacts
 	cp examples/*.pcs tests/schemes/*.pcs tests/errors/*.pcs build-fuzz/corpus/
-	build-fuzz/fuzz_derive -max_total_time=$(FUZZ_SECONDS) -max_len=4096 \
-	  -timeout=10 -rss_limit_mb=4096 build-fuzz/corpus
+	cp tests/fuzz/eval_seeds/* build-fuzz/corpus_eval/
+	build-fuzz/fuzz_derive $(FUZZ_FLAGS) -max_len=4096 build-fuzz/corpus
+	build-fuzz/fuzz_eval_args $(FUZZ_FLAGS) -max_len=512 build-fuzz/corpus_eval
 
 # PYTHON: the interpreter for bench/lambdify.py; by default the first python3
 # on PATH that has sympy and numpy (else the first with sympy)

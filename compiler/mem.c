@@ -1,14 +1,13 @@
 /*
  * mem.c - the one out-of-memory policy (mem.h).
  *
- * The counting allocators keep a small header in front of every block
- * with its size, so that frees and reallocs know what they release
- * whatever the C library offers.  A reserve of 64 KiB is given back just
- * before the handler runs, so that it can still report.
+ * A reserve of 64 KiB is given back just before the handler runs, so that
+ * it can still report.
  */
 #include "compiler/mem.h"
 
 #include <gmp.h>
+#include <malloc.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -85,7 +84,9 @@ char *pc_xstrdup(const char *s)
 
 /* ---- counted allocators for GMP and FLINT -------------------------------- */
 
-#define HDR 16 /* keeps max_align_t alignment for the caller */
+/* The block sizes come from malloc_usable_size (glibc, valgrind and the
+ * sanitizers all provide it), so the pointers handed out are malloc's own:
+ * leak checkers see ordinary blocks. */
 
 static void count(size_t add, size_t sub)
 {
@@ -98,48 +99,45 @@ static void *c_alloc(size_t n)
 {
     if (limit && (n > limit || in_use > limit - n))
         pc_out_of_memory(MEM_BUDGET);
-    char *p = malloc(n + HDR);
+    void *p = malloc(n ? n : 1);
     if (p == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    memcpy(p, &n, sizeof n);
-    count(n, 0);
-    return p + HDR;
+    count(malloc_usable_size(p), 0);
+    return p;
 }
 
-static void c_free(void *q)
+static void c_free(void *p)
 {
-    if (q == NULL)
+    if (p == NULL)
         return;
-    char *p = (char *)q - HDR;
-    size_t n;
-    memcpy(&n, p, sizeof n);
-    count(0, n);
+    count(0, malloc_usable_size(p));
     free(p);
 }
 
-static void *c_realloc(void *q, size_t n)
+static void *c_realloc(void *p, size_t n)
 {
-    if (q == NULL)
+    if (p == NULL)
         return c_alloc(n);
-    char *p = (char *)q - HDR;
-    size_t old;
-    memcpy(&old, p, sizeof old);
+    size_t old = malloc_usable_size(p);
     if (limit && n > old && (n - old > limit || in_use > limit - (n - old)))
         pc_out_of_memory(MEM_BUDGET);
-    char *np = realloc(p, n + HDR);
-    if (np == NULL)
+    void *q = realloc(p, n ? n : 1);
+    if (q == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    memcpy(np, &n, sizeof n);
-    count(n, old);
-    return np + HDR;
+    count(malloc_usable_size(q), old);
+    return q;
 }
 
 static void *c_calloc(size_t n, size_t size)
 {
     if (size != 0 && n > (size_t)-1 / size)
         pc_out_of_memory(MEM_SYSTEM);
-    void *p = c_alloc(n * size);
-    memset(p, 0, n * size);
+    if (limit && (n * size > limit || in_use > limit - n * size))
+        pc_out_of_memory(MEM_BUDGET);
+    void *p = calloc(n ? n : 1, size ? size : 1);
+    if (p == NULL)
+        pc_out_of_memory(MEM_SYSTEM);
+    count(malloc_usable_size(p), 0);
     return p;
 }
 
