@@ -58,6 +58,17 @@ static slong common_var(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
 }
 
 
+/* g = gcd of the integer contents of a and b (positive) */
+static void contents_gcd(fmpz_t g, const fmpz_mpoly_t a, const fmpz_mpoly_t b)
+{
+    fmpz_t h;
+    fmpz_init(h);
+    _fmpz_vec_content(g, a->coeffs, a->length);
+    _fmpz_vec_content(h, b->coeffs, b->length);
+    fmpz_gcd(g, g, h);
+    fmpz_clear(h);
+}
+
 /* Univariate cofactors through fmpz_poly: 1 if g != 1 (ta, tb, tg set),
  * 0 if g = 1, -1 if the conversion is not possible (use fmpz_mpoly). */
 static int univar_cofactors(fmpz_mpoly_t ta, fmpz_mpoly_t tb, fmpz_mpoly_t tg,
@@ -115,12 +126,9 @@ static void cofactors(const fmpz_mpoly_struct **pa,
     if (fmpz_mpoly_is_one(a, r->ctx) || fmpz_mpoly_is_one(b, r->ctx))
         return;
     if (fmpz_mpoly_is_fmpz(a, r->ctx) || fmpz_mpoly_is_fmpz(b, r->ctx)) {
-        fmpz_t g, h;
+        fmpz_t g;
         fmpz_init(g);
-        fmpz_init(h);
-        _fmpz_vec_content(g, a->coeffs, a->length);
-        _fmpz_vec_content(h, b->coeffs, b->length);
-        fmpz_gcd(g, g, h);
+        contents_gcd(g, a, b);
         if (!fmpz_is_one(g)) {
             fmpz_mpoly_scalar_divexact_fmpz(ta, a, g, r->ctx);
             fmpz_mpoly_scalar_divexact_fmpz(tb, b, g, r->ctx);
@@ -129,7 +137,6 @@ static void cofactors(const fmpz_mpoly_struct **pa,
             *pb = tb;
             *pg = tg;
         }
-        fmpz_clear(h);
         fmpz_clear(g);
         return;
     }
@@ -192,14 +199,10 @@ int ratfun_poly_gcd(fmpz_mpoly_t g, const fmpz_mpoly_t a, const fmpz_mpoly_t b,
     } else if (fmpz_mpoly_is_zero(b, r->ctx)) {
         fmpz_mpoly_set(g, a, r->ctx);
     } else if (fmpz_mpoly_is_fmpz(a, r->ctx) || fmpz_mpoly_is_fmpz(b, r->ctx)) {
-        fmpz_t c, d;
+        fmpz_t c;
         fmpz_init(c);
-        fmpz_init(d);
-        _fmpz_vec_content(c, a->coeffs, a->length);
-        _fmpz_vec_content(d, b->coeffs, b->length);
-        fmpz_gcd(c, c, d);
+        contents_gcd(c, a, b);
         fmpz_mpoly_set_fmpz(g, c, r->ctx);
-        fmpz_clear(d);
         fmpz_clear(c);
         return 1;
     } else {
