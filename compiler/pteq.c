@@ -649,14 +649,46 @@ void pteq_derivative(PointEq res, const PointEq x, slong var, const Ring *r)
     pteq_derivative_n(res, x, var, 1, r);
 }
 
+/* On the one denominator, as ratfun_derivative_n does for one weight:
+ * (N_j / d^(j+1))' = (N_j' d - (j+1) N_j d') / d^(j+2) for every numerator
+ * at once, then one content reduction (per weight it took a gcd to reduce
+ * each weight, another after differentiating it, and an lcm to put the
+ * weights back over one denominator). */
 void pteq_derivative_n(PointEq res, const PointEq x, slong var, ulong k,
                        const Ring *r)
 {
-    slong *pts, n = x->len;
-    RatFunStruct *w = weights_of(&pts, x, r);
+    PointEq acc;
+    fmpz_mpoly_t dd, u, v;
 
-    for (slong i = 0; i < n; i++)
-        ratfun_derivative_n(w + i, w + i, var, k, r);
-    pteq_set_weights(res, pts, w, n, r);
-    weights_free(w, pts, n, r);
+    if (k == 0) {
+        pteq_set(res, x, r);
+        return;
+    }
+    pteq_init(acc, r);
+    fmpz_mpoly_init(dd, r->ctx);
+    fmpz_mpoly_init(u, r->ctx);
+    fmpz_mpoly_init(v, r->ctx);
+    pteq_set(acc, x, r);
+    fmpz_mpoly_derivative(dd, x->den, var, r->ctx);
+    for (ulong j = 0; j < k; j++)
+        for (slong i = 0; i < acc->len; i++) {
+            fmpz_mpoly_struct *N = acc->terms[i].num;
+            fmpz_mpoly_derivative(u, N, var, r->ctx);
+            if (fmpz_mpoly_is_zero(dd, r->ctx)) {
+                fmpz_mpoly_swap(N, u, r->ctx); /* constant den: d stays */
+                continue;
+            }
+            fmpz_mpoly_mul(u, u, x->den, r->ctx);
+            fmpz_mpoly_mul(v, N, dd, r->ctx);
+            fmpz_mpoly_scalar_mul_ui(v, v, j + 1, r->ctx);
+            fmpz_mpoly_sub(N, u, v, r->ctx);
+        }
+    if (!fmpz_mpoly_is_zero(dd, r->ctx))
+        fmpz_mpoly_pow_ui(acc->den, x->den, k + 1, r->ctx);
+    pteq_canonicalise(acc, r); /* drops the weights that were constant */
+    pteq_swap(res, acc, r);
+    fmpz_mpoly_clear(v, r->ctx);
+    fmpz_mpoly_clear(u, r->ctx);
+    fmpz_mpoly_clear(dd, r->ctx);
+    pteq_clear(acc, r);
 }

@@ -604,6 +604,16 @@ static void test_pteq_compose_derivative_per_point(void **state)
         pteq_set(got, x, r);
         pteq_derivative(got, got, var, r);
         assert_true(pteq_equal(got, want, r));
+        /* the k-th derivative at once (one reduction over d^(k+1)) is k
+         * single steps */
+        for (ulong k = 2; k <= 3; k++) {
+            pteq_derivative(want, want, var, r);
+            pteq_derivative_n(got, x, var, k, r);
+            CHECK_CANON(got);
+            assert_true(pteq_equal(got, want, r));
+        }
+        pteq_derivative_n(got, x, var, 0, r);
+        assert_true(pteq_equal(got, x, r));
     }
     /* M = A*(1-t) + B*t at t := 1 is B alone; d/dt M = B - A, sum 0 */
     pteq_zero(x, r);
