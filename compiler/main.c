@@ -91,6 +91,7 @@ static int derive_main(int argc, char **argv)
     DeriveOptions opt = {bo.max_seconds, bo.verbose ? stderr : NULL};
     budget_arm(bo.max_seconds, bo.max_memory);
     Derived *d = derive_file_ex(file, stderr, &nerrors, &opt);
+    budget_disarm(); /* the derivation is budgeted, not the printing */
     if (!d)
         return 1;
     slong o = -1;
@@ -106,7 +107,6 @@ static int derive_main(int argc, char **argv)
         }
     }
     format_derived(stdout, d, style, o);
-    budget_disarm();
     derived_free(d);
     return 0;
 }
