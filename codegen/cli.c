@@ -31,7 +31,9 @@
 
 static const char emit_usage[] =
     "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]"
-    " [--dump-plan]\n";
+    " [--dump-plan]\n"
+    "                        [--functions plain,checked,batch,batch_checked]"
+    "\n";
 static const char eval_usage[] =
     "usage: pointcalc eval FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
     "                      --param t=SPEC ... [--output NAME] "
@@ -110,6 +112,7 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
 {
     const char *file = NULL, *cpath = NULL, *hpath = NULL, *prefix = NULL;
     int dump = 0;
+    unsigned functions = EMIT_C_ALL;
     BudgetOptions bo;
     budget_options_default(&bo);
     for (int i = 1; i < argc; i++) {
@@ -126,6 +129,15 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
             hpath = argv[++i];
         else if (strcmp(a, "--prefix") == 0 && has)
             prefix = argv[++i];
+        else if (strcmp(a, "--functions") == 0 && has) {
+            const char *bad = NULL;
+            functions = emit_c_parse_functions(argv[++i], &bad);
+            if (functions == 0)
+                return usage_error(err, emit_usage,
+                                   "--functions '%s': '%.*s' is not one of "
+                                   "plain, checked, batch, batch_checked, all",
+                                   argv[i], (int)strcspn(bad, ","), bad);
+        }
         else if (strcmp(a, "--dump-plan") == 0)
             dump = 1;
         else if (a[0] == '-' && a[1] != '\0')
@@ -180,11 +192,11 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
     if (dump)
         plan_dump(m, p);
     else
-        emit_c(m, p, prefix, file);
+        emit_c_ex(m, p, prefix, file, functions);
     fclose(m);
     if (hpath) {
         m = open_memstream(&htext, &hlen);
-        emit_c_header(m, p, prefix, file);
+        emit_c_header_ex(m, p, prefix, file, functions);
         fclose(m);
     }
     plan_free(p);

@@ -132,6 +132,35 @@ static int is_reserved(const char *s)
     return in_list(s) || internal_shape(s) || reserved_family(s);
 }
 
+unsigned emit_c_parse_functions(const char *list, const char **bad)
+{
+    static const struct {
+        const char *name;
+        unsigned bits;
+    } items[] = {{"plain", EMIT_C_ONE},
+                 {"checked", EMIT_C_ONE_CHECKED},
+                 {"batch", EMIT_C_BATCH},
+                 {"batch_checked", EMIT_C_BATCH_CHECKED},
+                 {"all", EMIT_C_ALL}};
+    unsigned want = 0;
+    const char *s = list;
+    for (;;) {
+        size_t n = strcspn(s, ",");
+        unsigned bits = 0;
+        for (size_t i = 0; i < sizeof items / sizeof *items; i++)
+            if (strlen(items[i].name) == n && strncmp(items[i].name, s, n) == 0)
+                bits = items[i].bits;
+        if (bits == 0) {
+            *bad = s;
+            return 0;
+        }
+        want |= bits;
+        if (s[n] == '\0')
+            return want;
+        s += n + 1;
+    }
+}
+
 int emit_c_valid_prefix(const char *s)
 {
     /* function names are PREFIX_OUTPUT: any identifier but a keyword or
@@ -205,7 +234,8 @@ static const char *const variant_suffix[] = {"", "_checked", "_batch",
                                              "_batch_checked"};
 
 typedef struct Names {
-    char *prefix; // owned
+    unsigned want; // EMIT_C_* bits: the variants that are public
+    char *prefix;  // owned
     char **fn;    // owned: function name of output i, variant v at 4*i + v
     char **in;    // C names of params then consts (owned)
     char **pt;    // C names of points (owned)
@@ -250,6 +280,7 @@ static char *c_name(const Names *N, int nin, int npt, const char *user)
 
 static void names_init(Names *N, const Plan *p, const char *prefix)
 {
+    N->want = EMIT_C_ALL;
     N->prefix = identifier(prefix ? prefix : p->name);
     N->nfn = p->noutputs * NVARIANTS;
     N->fn = calloc((size_t)N->nfn + 1, sizeof *N->fn);
@@ -387,7 +418,9 @@ static void signature(FILE *out, const Plan *p, const Names *N, int oi,
                       Variant v)
 {
     static const char *const ret[] = {"void ", "int ", "void ", "size_t "};
-    char *head = xasprintf("%s%s(", ret[v], N->fn[NVARIANTS * oi + v]);
+    /* a _checked variant that only its plain one calls is private */
+    char *head = xasprintf("%s%s%s(", N->want & (1u << v) ? "" : "static ",
+                           ret[v], N->fn[NVARIANTS * oi + v]);
     Line L;
     line_start(&L, out, head);
     free(head);
@@ -917,6 +950,8 @@ static void prototypes(FILE *out, const Plan *p, const Names *N)
 {
     for (int i = 0; i < p->noutputs; i++)
         for (int v = ONE; v <= BATCH_CHECKED; v++) {
+            if (!(N->want & (1u << v)))
+                continue;
             signature(out, p, N, i, (Variant)v);
             fputs(";\n", out);
         }
@@ -924,8 +959,15 @@ static void prototypes(FILE *out, const Plan *p, const Names *N)
 
 void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
 {
+    emit_c_ex(out, p, prefix, source, EMIT_C_ALL);
+}
+
+void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
+               const char *source, unsigned functions)
+{
     Names N;
     names_init(&N, p, prefix);
+    N.want = functions & EMIT_C_ALL ? functions & EMIT_C_ALL : EMIT_C_ALL;
     banner(out, p, &N, source, "C99");
     fputs("#include <math.h>\n#include <stddef.h>\n\n", out);
     prototypes(out, p, &N);
@@ -941,10 +983,14 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
         memset(role, 0, sizeof *role * (size_t)p->nins);
         set_roles(p, C.o, role, owned);
         fprintf(out, "/* ---- %s (line %d) ---- */\n\n", C.o->name, C.o->line);
-        emit_one(&C);
-        emit_forward(&C, ONE);
-        emit_batch(&C);
-        emit_forward(&C, BATCH);
+        if (N.want & (EMIT_C_ONE | EMIT_C_ONE_CHECKED))
+            emit_one(&C);
+        if (N.want & EMIT_C_ONE)
+            emit_forward(&C, ONE);
+        if (N.want & (EMIT_C_BATCH | EMIT_C_BATCH_CHECKED))
+            emit_batch(&C);
+        if (N.want & EMIT_C_BATCH)
+            emit_forward(&C, BATCH);
     }
     for (int r = 0; r < p->nins; r++)
         free(owned[r]);
@@ -957,8 +1003,15 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
 void emit_c_header(FILE *out, const Plan *p, const char *prefix,
                    const char *source)
 {
+    emit_c_header_ex(out, p, prefix, source, EMIT_C_ALL);
+}
+
+void emit_c_header_ex(FILE *out, const Plan *p, const char *prefix,
+                      const char *source, unsigned functions)
+{
     Names N;
     names_init(&N, p, prefix);
+    N.want = functions & EMIT_C_ALL ? functions & EMIT_C_ALL : EMIT_C_ALL;
     banner(out, p, &N, source, "Header");
     char *guard = malloc(strlen(N.prefix) + 16);
     if (!guard)

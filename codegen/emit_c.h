@@ -29,6 +29,26 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source);
 void emit_c_header(FILE *out, const Plan *p, const char *prefix,
                    const char *source);
 
+/* Which of the four functions per output are emitted (emit-c
+ * --functions): a set of these bits (0 or EMIT_C_ALL: all four).  A
+ * _checked function that is not asked for but whose plain variant is
+ * (which calls it) is emitted static. */
+enum {
+    EMIT_C_ONE = 1,           // NAME_M
+    EMIT_C_ONE_CHECKED = 2,   // NAME_M_checked
+    EMIT_C_BATCH = 4,         // NAME_M_batch
+    EMIT_C_BATCH_CHECKED = 8, // NAME_M_batch_checked
+    EMIT_C_ALL = 15,
+};
+void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
+               const char *source, unsigned functions);
+void emit_c_header_ex(FILE *out, const Plan *p, const char *prefix,
+                      const char *source, unsigned functions);
+/* the bits of a --functions list ("plain,batch", "checked", "all" ...);
+ * 0 when an item is not one of plain, checked, batch, batch_checked, all
+ * (*bad then points at it) */
+unsigned emit_c_parse_functions(const char *list, const char **bad);
+
 /* 1 when two outputs would generate the same C function name (*o1 < *o2,
  * e.g. outputs M and M_batch: NAME_M_batch), or a name that is a C keyword
  * or macro (*o1 == *o2); *name receives it (free() it).  0 when every name
