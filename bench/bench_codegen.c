@@ -1,28 +1,33 @@
 /*
- * bench_codegen.c - the Desargues arc in 3D over 10^6 and 10^7 parameter
- * values, single thread, ns/point (median of several runs):
+ * bench_codegen.c - evaluation speed of the Desargues arc M(t) in 3D, one
+ * thread, ns/point, at 10^6 and 10^7 points.
  *
- *   generated   emit-c's desargues_arc_M_batch, compiled at run time with
- *               `cc -std=c99 -O2 -shared -fPIC` and dlopen'ed
- *   runtime     plan_eval, the interpreter of the same Plan
- *   naive       the construction step by step in floating point: along x 5,
- *               meet x 3 (each a 2x2 solve of the normal equations)
- *   hand        hand-written loops of the closed formula: `simple` (the
- *               weights per sample, then the coordinates) and `careful`
- *               (each coordinate a cubic in t with coefficients combined
- *               from the points once, Horner, one division per sample:
- *               what an engineer writes for this one curve); the goals are
- *               measured against the faster of the two
- *   floor       writing the same output (3 doubles per point from t[i])
- *   lambdify    sympy.lambdify with and without cse (bench/lambdify.py,
- *               run with $PYTHON, default python3; skipped when it lacks
- *               sympy)
+ * Contestants, each at both flag sets (`cc -O2` and `cc -O3
+ * -march=native`: the generated code and bench/kernels.c are compiled at
+ * run time into one shared object per flag set, so every comparison is
+ * like for like):
  *
- * Times are CPU time of this process (CLOCK_PROCESS_CPUTIME_ID, the bench
- * is single-threaded), less disturbed by other load than wall time.
+ *   generated      emit-c's desargues_arc_M_batch
+ *   hand, simple   the weights per sample, then the coordinates
+ *   hand, careful  each coordinate a cubic, coefficients combined once,
+ *                  Horner, one division: what an engineer writes
+ *   store floor    3 doubles stored per point, nothing read
+ *   stream floor   the same with non-temporal stores (SSE2)
+ *   read + store   t read and stored three times (not a floor: it reads)
  *
- * Goals (docs/codegen.md): generated <= 1.2x hand, <= 2x floor; runtime
- * <= 4x generated.  PC_BENCH_QUICK=1 runs 10^5 and 10^6 only.
+ * and, compiled with the bench itself: runtime (plan_eval, the
+ * interpreter of the same Plan) and the naive construction step by step.
+ *
+ * Every contestant runs once per round, the rounds interleaved with a
+ * rotating order, so that a slow spell of the host spreads over all of
+ * them instead of landing on one; each reports the median and the spread
+ * (lowest and highest round).  A goal is judged on the ratio of two
+ * contestants within each round (paired), and stated as met or not met
+ * only when every round agrees; otherwise "undecided (spread)".
+ *
+ * Goals (issue 6): generated <= 1.0x the careful hand loop at each flag
+ * set; runtime <= 4x generated.  PC_BENCH_QUICK=1 runs 10^5 and 10^6.
+ * Times are CPU time of this process (CLOCK_PROCESS_CPUTIME_ID).
  */
 #include <dlfcn.h>
 #include <math.h>
@@ -42,6 +47,9 @@
 
 typedef void (*batch_fn)(size_t, const double *, const double *, const double *,
                          const double *, const double *, int, double *);
+typedef void (*kernel_fn)(size_t, const double *, const double *,
+                          const double *, const double *, const double *,
+                          double *);
 
 static double A[3] = {0.0, 0.0, 0.0}, B[3] = {1.0, 0.2, -0.3},
               C[3] = {0.1, 1.0, 0.4}, D[3] = {-0.2, 0.3, 1.0};
@@ -60,54 +68,6 @@ static int cmp_double(const void *a, const void *b)
 }
 
 /* ---- the contestants ---------------------------------------------------- */
-
-static void hand(size_t n, const double *t, double *out)
-{
-    for (size_t i = 0; i < n; i++) {
-        double s = t[i], u = 1.0 - s;
-        double inv = 1.0 / ((2.0 * s - 2.0) * s + 1.0);
-        double s2 = s * s, u2 = u * u;
-        double wa = u2 * u * inv, wb = s2 * u * inv, wc = s * u2 * inv,
-               wd = s2 * s * inv;
-        double *o = out + 3 * i;
-        o[0] = wa * A[0] + wb * B[0] + wc * C[0] + wd * D[0];
-        o[1] = wa * A[1] + wb * B[1] + wc * C[1] + wd * D[1];
-        o[2] = wa * A[2] + wb * B[2] + wc * C[2] + wd * D[2];
-    }
-}
-
-/* the careful hand-written loop: M_c(t) = (k3 t^3 + k2 t^2 + k1 t + k0) /
- * (2t^2 - 2t + 1) per coordinate c, with (1-t)^3 = 1 - 3t + 3t^2 - t^3,
- * t^2(1-t) = t^2 - t^3, t(1-t)^2 = t - 2t^2 + t^3 combined once */
-static void hand_careful(size_t n, const double *restrict t,
-                         double *restrict out)
-{
-    double k[3][4];
-    for (int c = 0; c < 3; c++) {
-        k[c][0] = A[c];
-        k[c][1] = -3.0 * A[c] + C[c];
-        k[c][2] = 3.0 * A[c] + B[c] - 2.0 * C[c];
-        k[c][3] = -A[c] - B[c] + C[c] + D[c];
-    }
-    for (size_t i = 0; i < n; i++) {
-        double s = t[i];
-        double inv = 1.0 / ((2.0 * s - 2.0) * s + 1.0);
-        double *o = out + 3 * i;
-        o[0] = (((k[0][3] * s + k[0][2]) * s + k[0][1]) * s + k[0][0]) * inv;
-        o[1] = (((k[1][3] * s + k[1][2]) * s + k[1][1]) * s + k[1][0]) * inv;
-        o[2] = (((k[2][3] * s + k[2][2]) * s + k[2][1]) * s + k[2][0]) * inv;
-    }
-}
-
-static void floor_loop(size_t n, const double *t, double *out)
-{
-    for (size_t i = 0; i < n; i++) {
-        double *o = out + 3 * i;
-        o[0] = t[i];
-        o[1] = t[i];
-        o[2] = t[i];
-    }
-}
 
 static void along(double *r, const double *p, const double *q, double s)
 {
@@ -156,75 +116,94 @@ static void naive(size_t n, const double *t, double *out)
     }
 }
 
-/* ---- setup -------------------------------------------------------------- */
+/* ---- the contestants ---------------------------------------------------- */
+
+enum { FLAGSETS = 2, PER_SET = 6, NC = FLAGSETS * PER_SET + 2 };
+static const char *const flagsets[FLAGSETS] = {"-O2", "-O3 -march=native"};
+static const char *const set_names[PER_SET] = {
+    "generated", "hand, simple", "hand, careful", "store floor",
+    "stream floor", "read + store"};
+static const char *const kernel_syms[PER_SET] = {
+    NULL, "hand_simple", "hand_careful", "floor_store", "floor_stream",
+    "floor_read_store"};
+
+typedef struct Contestant {
+    char name[64];
+    batch_fn gen;    // the generated function, or
+    kernel_fn kern;  // a kernel, or
+    int builtin;     // 1 runtime, 2 naive
+} Contestant;
 
 typedef struct Bench {
     const Plan *plan;
-    batch_fn gen;
     const double *t;
     double *out;
     int m; // the output M
 } Bench;
 
-static double time_one(const Bench *b, int which, size_t n)
+static double time_one(const Bench *b, const Contestant *c, size_t n)
 {
     const double *pts[4] = {A, B, C, D};
     const double *prm[1] = {b->t};
     double t0 = now();
-    switch (which) {
-    case 0:
-        b->gen(n, b->t, A, B, C, D, 3, b->out);
-        break;
-    case 1:
+    if (c->gen)
+        c->gen(n, b->t, A, B, C, D, 3, b->out);
+    else if (c->kern)
+        c->kern(n, b->t, A, B, C, D, b->out);
+    else if (c->builtin == 1)
         plan_eval(b->plan, b->m, n, prm, NULL, pts, 3, b->out, NULL);
-        break;
-    case 2:
+    else
         naive(n, b->t, b->out);
-        break;
-    case 3:
-        hand(n, b->t, b->out);
-        break;
-    case 4:
-        hand_careful(n, b->t, b->out);
-        break;
-    default:
-        floor_loop(n, b->t, b->out);
-    }
     return now() - t0;
 }
 
-static void *compile_generated(const Plan *p, char *dir, batch_fn *fn)
+/* generated code + bench/kernels.c at one flag set, as one shared object */
+static void *compile_set(const char *dir, const char *cfile, int set)
 {
-    char path[160], cmd[400];
-    strcpy(dir, "/tmp/pc_bench_XXXXXX");
-    if (!mkdtemp(dir))
-        return NULL;
-    snprintf(path, sizeof path, "%s/arc.c", dir);
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return NULL;
-    emit_c(f, p, NULL, "examples/desargues_arc.pcs");
-    fclose(f);
+    char cmd[600], so[200];
+    snprintf(so, sizeof so, "%s/set%d.so", dir, set);
     snprintf(cmd, sizeof cmd,
-             "cc -std=c99 -Wall -Wextra -O2 -fPIC -shared -o %s/arc.so %s", dir,
-             path);
+             "cc -std=c99 -Wall -Wextra %s -fPIC -shared -o %s %s "
+             "bench/kernels.c",
+             flagsets[set], so, cfile);
     if (system(cmd) != 0)
         return NULL;
-    snprintf(path, sizeof path, "%s/arc.so", dir);
-    void *so = dlopen(path, RTLD_NOW);
-    if (so)
-        *fn = (batch_fn)(uintptr_t)dlsym(so, "desargues_arc_M_batch");
-    return so;
+    return dlopen(so, RTLD_NOW | RTLD_LOCAL);
 }
 
 static void cleanup_dir(const char *dir)
 {
-    char path[160];
-    snprintf(path, sizeof path, "%s/arc.c", dir);
-    unlink(path);
-    snprintf(path, sizeof path, "%s/arc.so", dir);
-    unlink(path);
-    rmdir(dir);
+    char cmd[200];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0)
+        fprintf(stderr, "bench_codegen: could not remove %s\n", dir);
+}
+
+/* median and range of x[0..n) (sorted copy) */
+static void stats(const double *x, int n, double *med, double *lo, double *hi)
+{
+    double *s = malloc(sizeof *s * (size_t)n);
+    memcpy(s, x, sizeof *s * (size_t)n);
+    qsort(s, (size_t)n, sizeof *s, cmp_double);
+    *med = s[n / 2];
+    *lo = s[0];
+    *hi = s[n - 1];
+    free(s);
+}
+
+/* a goal on the per-round ratio a/b: met when every round is within it */
+static void verdict(const char *what, const double *ta, const double *tb,
+                    int rounds, double goal)
+{
+    double r[64], med, lo, hi;
+    for (int k = 0; k < rounds; k++)
+        r[k] = ta[k] / tb[k];
+    stats(r, rounds, &med, &lo, &hi);
+    printf("  %-44s %5.2f [%4.2f..%4.2f] goal <= %.1f: %s\n", what, med, lo,
+           hi, goal,
+           hi <= goal  ? "met"
+           : lo > goal ? "not met"
+                       : "undecided (spread)");
 }
 
 /* runs bench/lambdify.py; prints its lines; returns 0 when it ran */
@@ -252,10 +231,6 @@ static void lambdify(size_t n)
 
 int main(void)
 {
-    static const char *const names[] = {
-        "generated (emit-c batch)", "runtime (plan_eval)", "naive construction",
-        "hand-written, simple", "hand-written, careful", "memory-write floor"};
-    enum { NW = 6 };
     int quick = getenv("PC_BENCH_QUICK") != NULL;
     size_t sizes[2] = {quick ? 100000 : 1000000, quick ? 1000000 : 10000000};
     Derived *d = derive_file("examples/desargues_arc.pcs", stderr, NULL);
@@ -268,46 +243,89 @@ int main(void)
         fputs("bench_codegen: no output M\n", stderr);
         return 1;
     }
-    char dir[64];
-    batch_fn gen = NULL;
-    void *so = compile_generated(plan, dir, &gen);
-    if (!so || !gen) {
-        fputs("bench_codegen: cannot compile the generated code\n", stderr);
+    char dir[64], cfile[128];
+    strcpy(dir, "/tmp/pc_bench_XXXXXX");
+    if (!mkdtemp(dir))
         return 1;
+    snprintf(cfile, sizeof cfile, "%s/arc.c", dir);
+    FILE *f = fopen(cfile, "w");
+    if (!f)
+        return 1;
+    emit_c_ex(f, plan, NULL, "examples/desargues_arc.pcs", EMIT_C_BATCH);
+    fclose(f);
+
+    Contestant cs[NC];
+    void *so[FLAGSETS];
+    memset(cs, 0, sizeof cs);
+    for (int set = 0; set < FLAGSETS; set++) {
+        so[set] = compile_set(dir, cfile, set);
+        if (!so[set]) {
+            fprintf(stderr, "bench_codegen: cannot compile at %s\n",
+                    flagsets[set]);
+            return 1;
+        }
+        for (int k = 0; k < PER_SET; k++) {
+            Contestant *c = &cs[set * PER_SET + k];
+            snprintf(c->name, sizeof c->name, "%s (%s)", set_names[k],
+                     flagsets[set]);
+            if (k == 0)
+                c->gen = (batch_fn)(uintptr_t)dlsym(so[set],
+                                                    "desargues_arc_M_batch");
+            else
+                c->kern = (kernel_fn)(uintptr_t)dlsym(so[set], kernel_syms[k]);
+            if (!c->gen && !c->kern) {
+                fprintf(stderr, "bench_codegen: %s missing\n", c->name);
+                return 1;
+            }
+        }
     }
-    printf("bench_codegen: Desargues arc M(t) in 3D, single thread, "
-           "ns/point (median)\n");
+    strcpy(cs[NC - 2].name, "runtime (plan_eval)");
+    cs[NC - 2].builtin = 1;
+    strcpy(cs[NC - 1].name, "naive construction");
+    cs[NC - 1].builtin = 2;
+
+    printf("bench_codegen: Desargues arc M(t) in 3D, single thread, ns/point: "
+           "median [lowest..highest round], rounds interleaved\n");
     for (int si = 0; si < 2; si++) {
         size_t n = sizes[si];
-        int runs = n > 5000000 ? 5 : 9;
+        int rounds = n > 5000000 ? 7 : 15;
         double *t = malloc(sizeof *t * n), *out = malloc(sizeof *out * 3 * n);
+        double tm[NC][64];
         for (size_t i = 0; i < n; i++)
             t[i] = (double)i / (double)(n - 1);
         memset(out, 0, sizeof *out * 3 * n); // fault the pages in
-        Bench b = {plan, gen, t, out, m};
-        double med[NW];
-        for (int w = 0; w < NW; w++) {
-            double tm[9];
-            time_one(&b, w, n); // warm up
-            for (int r = 0; r < runs; r++)
-                tm[r] = time_one(&b, w, n);
-            qsort(tm, (size_t)runs, sizeof *tm, cmp_double);
-            med[w] = tm[runs / 2] * 1e9 / (double)n;
+        Bench b = {plan, t, out, m};
+        for (int c = 0; c < NC; c++)
+            time_one(&b, &cs[c], n); // warm up
+        for (int k = 0; k < rounds; k++)
+            for (int j = 0; j < NC; j++) {
+                int c = (j + k) % NC; // rotating order
+                tm[c][k] = time_one(&b, &cs[c], n) * 1e9 / (double)n;
+            }
+        printf("\nn = %zu (%d rounds)\n", n, rounds);
+        for (int c = 0; c < NC; c++) {
+            double med, lo, hi;
+            stats(tm[c], rounds, &med, &lo, &hi);
+            printf("  %-36s %8.3f [%7.3f..%7.3f]\n", cs[c].name, med, lo, hi);
         }
-        printf("\nn = %zu\n", n);
-        for (int w = 0; w < NW; w++)
-            printf("  %-26s %8.3f ns/point  %6.2fx generated\n", names[w],
-                   med[w], med[w] / med[0]);
-        double hand_best = med[3] < med[4] ? med[3] : med[4];
-        printf("  goals: generated/hand %.2f (<= 1.2), generated/floor %.2f "
-               "(<= 2), runtime/generated %.2f (<= 4)\n",
-               med[0] / hand_best, med[0] / med[5], med[1] / med[0]);
+        for (int set = 0; set < FLAGSETS; set++) {
+            char what[96];
+            const double *g = tm[set * PER_SET];
+            snprintf(what, sizeof what, "generated / hand careful (%s)",
+                     flagsets[set]);
+            verdict(what, g, tm[set * PER_SET + 2], rounds, 1.0);
+            snprintf(what, sizeof what, "generated / store floor (%s)",
+                     flagsets[set]);
+            verdict(what, g, tm[set * PER_SET + 3], rounds, 2.0);
+        }
+        verdict("runtime / generated (-O2)", tm[NC - 2], tm[0], rounds, 4.0);
         fflush(stdout);
         lambdify(n);
         free(out);
         free(t);
     }
-    dlclose(so);
+    for (int set = 0; set < FLAGSETS; set++)
+        dlclose(so[set]);
     cleanup_dir(dir);
     plan_free(plan);
     flint_cleanup_master();
