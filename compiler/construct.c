@@ -455,6 +455,25 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
      * N/D) would otherwise multiply M and only be found again, at twice
      * the degree, by the reduction at the end */
     if (nc >= 2) {
+        /* the likely content first: the denominators of the columns (in a
+         * plane through points made from one X, every minor carries X's
+         * denominator); dividing by a known factor is far cheaper than
+         * finding it with a gcd of the z */
+        for (slong c = 0; c < nc; c++) {
+            const fmpz_mpoly_struct *den = cols[cl[c]]->den;
+            int again = !fmpz_mpoly_is_fmpz(den, r->ctx);
+            for (slong e = 0; e < c && again; e++)
+                again = !fmpz_mpoly_equal(den, cols[cl[e]]->den, r->ctx);
+            if (again) {
+                for (slong j = 0; j < nc && again; j++)
+                    again = fmpz_mpoly_is_zero(z + j, r->ctx) ||
+                            fmpz_mpoly_divides(minor + j, z + j, den, r->ctx);
+                if (again)
+                    for (slong j = 0; j < nc; j++)
+                        if (!fmpz_mpoly_is_zero(z + j, r->ctx))
+                            fmpz_mpoly_swap(z + j, minor + j, r->ctx);
+            }
+        }
         fmpz_mpoly_zero(u, r->ctx);
         for (slong c = 0; c < nc && !fmpz_mpoly_is_one(u, r->ctx); c++)
             ratfun_poly_gcd(u, u, z + c, r);
