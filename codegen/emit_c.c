@@ -590,6 +590,13 @@ static void emit_one(const Ctx *C)
         fputs("    out[0] = ", out);
         weight(C, 0);
         fputs(";\n", out);
+        /* x - x is 0 unless x is NaN or infinite */
+        fputs("    if (!(out[0] - out[0] == 0.0)) { /* not finite: a NaN "
+              "input, or beyond double */\n"
+              "        out[0] = (double)NAN;\n"
+              "        return 3;\n"
+              "    }\n",
+              out);
     } else {
         fputs("    for (c = 0; c < dim; c++)\n        out[c] = ", out);
         if (o->nterms == 0)
@@ -601,6 +608,14 @@ static void emit_one(const Ctx *C)
             fprintf(out, " * %s[c]", C->N->pt[o->point[k]]);
         }
         fputs(";\n", out);
+        fputs("    for (c = 0; c < dim; c++)\n"
+              "        if (!(out[c] - out[c] == 0.0)) { /* not finite: a NaN "
+              "input, or beyond double */\n"
+              "            for (c = 0; c < dim; c++)\n"
+              "                out[c] = (double)NAN;\n"
+              "            return 3;\n"
+              "        }\n",
+              out);
     }
     fputs("    return 0;\n}\n\n", out);
 }
@@ -738,6 +753,27 @@ static void emit_batch(Ctx *C)
         fputs("    int c;\n", out);
     C->batch = 0;
     instructions(C, 1, "    ");
+    /* non-finite consts or point coordinates: every sample is status 3 */
+    fputs("    int bad_in = 0;\n", out);
+    for (int i = p->nparams; i < C->N->nin; i++)
+        fprintf(out, "    bad_in |= !(%s - %s == 0.0);\n", C->N->in[i],
+                C->N->in[i]);
+    if (!scalar) {
+        int any_pt = 0;
+        for (int k = 0; k < o->nterms; k++)
+            any_pt |= o->point[k] >= 0;
+        if (any_pt) {
+            fputs("    for (c = 0; c < dim; c++) {\n", out);
+            for (int k = 0; k < o->nterms; k++) {
+                if (o->point[k] < 0)
+                    continue;
+                const char *nm = C->N->pt[o->point[k]];
+                fprintf(out, "        bad_in |= !(%s[c] - %s[c] == 0.0);\n",
+                        nm, nm);
+            }
+            fputs("    }\n", out);
+        }
+    }
     fprintf(out, "    for (i0 = 0; i0 < n; i0 += %d) {\n", BLOCK);
     fprintf(out, "        const size_t m = n - i0 < %d ? n - i0 : %d;\n", BLOCK,
             BLOCK);
@@ -830,6 +866,50 @@ static void emit_batch(Ctx *C)
               "            for (j = 0; j < m; j++)\n"
               "                status[i0 + j] = 0;\n",
               out);
+    /* samples not finite for another reason: a NaN parameter, or a
+     * weight beyond double (x - x is 0 unless x is NaN or infinite),
+     * counted over the block's weights in a loop of fixed length (it
+     * vectorises, like the pole count); the rows are looked at only when
+     * one is not finite.  Non-finite points or consts were found before
+     * the loop (bad_in). */
+    /* w - w is 0, or NaN when w is NaN or infinite; the sum of them
+     * compared with != (like the pole count) vectorises */
+    fprintf(out,
+            "        if (status != NULL) { /* only when asked: it costs "
+            "~1 ns a sample */\n"
+            "            int nf = bad_in;\n"
+            "            for (j = 0; j < %d; j++)\n"
+            "                nf += ",
+            BLOCK);
+    for (int k = 0; k < nslots; k++)
+        fprintf(out, "%s(w%d[j] - w%d[j])", k ? "\n                      + "
+                                              : "",
+                k, k);
+    fputs(" != 0.0;\n", out);
+    fputs("            if (nf != 0)\n"
+          "                for (j = 0; j < m; j++) {\n",
+          out);
+    if (o->bad >= 0)
+        fputs("                    if (fb[j] != 0.0)\n"
+              "                        continue;\n",
+              out);
+    fputs("                    if (!bad_in", out);
+    for (int k = 0; k < nslots; k++)
+        fprintf(out, "\n                        && w%d[j] - w%d[j] == 0.0", k,
+                k);
+    fputs(")\n                        continue;\n", out);
+    if (scalar)
+        fputs("                    out[i0 + j] = (double)NAN;\n", out);
+    else
+        fputs("                    for (c = 0; c < dim; c++)\n"
+              "                        out[(i0 + j) * (size_t)dim + "
+              "(size_t)c] = (double)NAN;\n",
+              out);
+    fputs("                    nbad++;\n"
+          "                    status[i0 + j] = 3;\n"
+          "                }\n"
+          "        }\n",
+          out);
     fputs("    }\n    return nbad;\n}\n\n", out);
     for (int k = 0; k < nslots; k++) {
         if (owned[k])
@@ -939,9 +1019,11 @@ static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
             " * %s_M_batch(n, ...) for n values (params as arrays), both\n"
             " * writing dim coordinates per value (one number for a scalar).\n"
             " * Poles: where a denominator of the reduced equation is 0 the\n"
-            " * coordinates are NaN; %s_M_checked returns 1 there (else 0)\n"
+            " * coordinates are NaN; %s_M_checked returns 1 there (2 for a\n"
+            " * denominator beyond double, 3 for a value not finite otherwise:\n"
+            " * a NaN input; else 0)\n"
             " * and %s_M_batch_checked returns how many samples are poles\n"
-            " * (status[i] = 1 for each, when status is not NULL).\n"
+            " * (status[i] = 1, 2 or 3 for each, when status is not NULL).\n"
             " */\n",
             N->prefix, N->prefix, N->prefix, N->prefix);
 }

@@ -6,7 +6,8 @@
  *   void   NAME_M(params, consts, points, int dim, double *out);
  *   void   NAME_M_batch(size_t n, param arrays, consts, points, int dim,
  *                       double *out);
- *   int    NAME_M_checked(... as NAME_M ...);            0 ok, 1 pole
+ *   int    NAME_M_checked(... as NAME_M ...);   0 ok, 1 pole, 2 overflow,
+ *                                                3 not finite (a NaN input)
  *   size_t NAME_M_batch_checked(... as NAME_M_batch ...,
  *                               unsigned char *status);  number of poles
  *

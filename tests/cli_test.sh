@@ -258,6 +258,32 @@ check "--functions plain computes what the full file does" test $? -eq 0
 check "--functions with an unknown item: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
 check "--functions: names the item" grep -q "^pointcalc: --functions 'plain,foo': 'foo' is not one of plain, checked, batch, batch_checked, all$" "$tmp/err"
 
+# the _checked functions: status 3 (and NaN) for a value that is not finite
+# without a pole - a NaN parameter, or t^2 beyond double - status 0 only
+# when every coordinate is finite
+"$PC" emit-c examples/parabola_one_ratio.pcs -o "$tmp/par.c"
+cat >"$tmp/nan.c" <<'EOF_C'
+#include <math.h>
+#include <stdio.h>
+int parabola_one_ratio_M_checked(double t, const double *A1, const double *A2, const double *A3, int dim, double *out);
+size_t parabola_one_ratio_M_batch_checked(size_t n, const double *t, const double *A1, const double *A2, const double *A3, int dim, double *out, unsigned char *status);
+int main(void)
+{
+    double a[2] = {0, 0}, b[2] = {1, 0}, c[2] = {0, 1}, o[2], out[6];
+    double t[3] = {0.5, NAN, 1e200};
+    unsigned char st[3];
+    int s1 = parabola_one_ratio_M_checked(NAN, a, b, c, 2, o);
+    int nan1 = isnan(o[0]) && isnan(o[1]);
+    int s2 = parabola_one_ratio_M_checked(0.5, a, b, c, 2, o);
+    size_t nb = parabola_one_ratio_M_batch_checked(3, t, a, b, c, 2, out, st);
+    printf("%d %d %d %zu %d %d %d %d %d\n", s1, nan1, s2, nb, st[0], st[1], st[2],
+           isnan(out[2]) && isnan(out[3]), isfinite(out[0]) && isfinite(out[1]));
+    return 0;
+}
+EOF_C
+cc -std=c99 -O2 -o "$tmp/nan" "$tmp/nan.c" "$tmp/par.c" -lm
+check "_checked: status 3 for NaN and overflowing values" test "$("$tmp/nan")" = "3 1 0 2 0 3 3 1 1"
+
 # a const given as --param is named as such (it used to say "missing --set")
 "$PC" eval examples/conic_engineering_discriminant.pcs --at A=0,0 --at B=1,0 \
     --at C=0,1 --param u=0.5 --param k=1 >/dev/null 2>"$tmp/err"
