@@ -31,7 +31,7 @@ struct pc_plan {
 static char *copy_str(const char *s)
 {
     size_t n = strlen(s) + 1;
-    char *r = malloc(n);
+    char *r = pc_xmalloc(n);
     if (r)
         memcpy(r, s, n);
     return r;
@@ -49,7 +49,7 @@ static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
     }
     if (!d)
         return NULL;
-    pc_scheme *s = malloc(sizeof *s);
+    pc_scheme *s = pc_xmalloc(sizeof *s);
     if (!s) {
         derived_free(d);
         return NULL;
@@ -243,7 +243,7 @@ pc_plan *pc_compile(const pc_scheme *s, char **diagnostics)
     hand_over(m, &msg, p != NULL, diagnostics);
     if (!p)
         return NULL;
-    pc_plan *r = malloc(sizeof *r);
+    pc_plan *r = pc_xmalloc(sizeof *r);
     if (!r) {
         plan_free(p);
         return NULL;

@@ -252,14 +252,10 @@ static int push_assign(Assign **list, int *n, const char *arg)
     const char *eq = strchr(arg, '=');
     if (!eq || eq == arg)
         return -1;
-    *list = realloc(*list, sizeof **list * (size_t)(*n + 1));
-    if (!*list)
-        abort();
+    *list = pc_xrealloc(*list, sizeof **list * (size_t)(*n + 1));
     Assign *x = &(*list)[(*n)++];
     size_t len = (size_t)(eq - arg);
-    x->name_buf = malloc(len + 1);
-    if (!x->name_buf)
-        abort();
+    x->name_buf = pc_xmalloc(len + 1);
     memcpy(x->name_buf, arg, len);
     x->name_buf[len] = '\0';
     x->name = x->name_buf;
@@ -368,18 +364,14 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
 {
     char list[512];
     memset(s, 0, sizeof *s);
-    s->sel = calloc((size_t)p->noutputs + 1, sizeof *s->sel);
-    s->pt = calloc((size_t)p->npoints + 1, sizeof *s->pt);
-    s->consts = calloc((size_t)p->nconsts + 1, sizeof *s->consts);
-    s->specs = calloc((size_t)p->nparams + 1, sizeof *s->specs);
-    if (!s->sel || !s->pt || !s->consts || !s->specs)
-        abort();
+    s->sel = pc_xcalloc((size_t)p->noutputs + 1, sizeof *s->sel);
+    s->pt = pc_xcalloc((size_t)p->npoints + 1, sizeof *s->pt);
+    s->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *s->consts);
+    s->specs = pc_xcalloc((size_t)p->nparams + 1, sizeof *s->specs);
     if (a->output) {
         int o = plan_find_output(p, a->output);
         if (o < 0) {
-            char **names = malloc(sizeof *names * (size_t)(p->noutputs + 1));
-            if (!names)
-                abort();
+            char **names = pc_xmalloc(sizeof *names * (size_t)(p->noutputs + 1));
             for (int i = 0; i < p->noutputs; i++)
                 names[i] = p->outputs[i].name;
             name_list(names, p->noutputs, list, sizeof list);
@@ -440,9 +432,7 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
                                o->name);
     }
     /* consts */
-    int *seen = calloc((size_t)(p->nconsts + p->nparams) + 1, sizeof *seen);
-    if (!seen)
-        abort();
+    int *seen = pc_xcalloc((size_t)(p->nconsts + p->nparams) + 1, sizeof *seen);
     int rc = 0;
     for (int i = 0; i < a->nset && !rc; i++) {
         int k = find_name(p->consts, p->nconsts, a->set[i].name);
@@ -606,21 +596,16 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
     if (chunk == 0)
         chunk = 1;
     int np = p->nparams;
-    double **pv = malloc(sizeof *pv * (size_t)(np + 1));
-    double **res = malloc(sizeof *res * (size_t)(s.nsel + 1));
-    unsigned char **st = malloc(sizeof *st * (size_t)(s.nsel + 1));
-    double *row = malloc(sizeof *row * (size_t)(np + 1));
-    if (!pv || !res || !st || !row)
-        abort();
+    double **pv = pc_xmalloc(sizeof *pv * (size_t)(np + 1));
+    double **res = pc_xmalloc(sizeof *res * (size_t)(s.nsel + 1));
+    unsigned char **st = pc_xmalloc(sizeof *st * (size_t)(s.nsel + 1));
+    double *row = pc_xmalloc(sizeof *row * (size_t)(np + 1));
     for (int i = 0; i < np; i++)
-        if (!(pv[i] = malloc(sizeof **pv * chunk)))
-            abort();
+        pv[i] = pc_xmalloc(sizeof **pv * chunk);
     for (int j = 0; j < s.nsel; j++) {
         int nc = columns(p, &p->outputs[s.sel[j]], s.dim);
-        res[j] = malloc(sizeof **res * chunk * (size_t)(nc ? nc : 1));
-        st[j] = malloc(chunk);
-        if (!res[j] || !st[j])
-            abort();
+        res[j] = pc_xmalloc(sizeof **res * chunk * (size_t)(nc ? nc : 1));
+        st[j] = pc_xmalloc(chunk);
     }
     size_t npoles = 0, noverflows = 0;
     if (a.format == OUTPUT_CSV)

@@ -27,6 +27,7 @@
  */
 #include "codegen/emit_c.h"
 #include "compiler/numfmt.h"
+#include "compiler/mem.h"
 
 #include <ctype.h>
 #include <stdarg.h>
@@ -175,15 +176,6 @@ int emit_c_valid_prefix(const char *s)
     return !in(keywords, s);
 }
 
-static char *xstrdup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *r = malloc(n);
-    if (!r)
-        abort();
-    return memcpy(r, s, n);
-}
-
 /* printf into a new string (malloc'ed) */
 #if defined(__GNUC__)
 __attribute__((format(printf, 1, 2)))
@@ -197,9 +189,7 @@ xasprintf(const char *fmt, ...)
     va_end(ap);
     if (n < 0)
         abort();
-    char *r = malloc((size_t)n + 1);
-    if (!r)
-        abort();
+    char *r = pc_xmalloc((size_t)n + 1);
     va_start(ap, fmt);
     vsnprintf(r, (size_t)n + 1, fmt, ap);
     va_end(ap);
@@ -213,9 +203,7 @@ xasprintf(const char *fmt, ...)
 static char *identifier(const char *s)
 {
     size_t n = strlen(s);
-    char *r = malloc(n + 4);
-    if (!r)
-        abort();
+    char *r = pc_xmalloc(n + 4);
     size_t k = 0;
     if (!(isalpha((unsigned char)s[0]) || s[0] == '_')) {
         memcpy(r, "pc_", 3);
@@ -269,9 +257,7 @@ static char *c_name(const Names *N, int nin, int npt, const char *user)
     }
     while (is_reserved(s) || taken(N, nin, npt, s)) {
         size_t n = strlen(s);
-        s = realloc(s, n + 2);
-        if (!s)
-            abort();
+        s = pc_xrealloc(s, n + 2);
         s[n] = '_';
         s[n + 1] = '\0';
     }
@@ -283,13 +269,11 @@ static void names_init(Names *N, const Plan *p, const char *prefix)
     N->want = EMIT_C_ALL;
     N->prefix = identifier(prefix ? prefix : p->name);
     N->nfn = p->noutputs * NVARIANTS;
-    N->fn = calloc((size_t)N->nfn + 1, sizeof *N->fn);
+    N->fn = pc_xcalloc((size_t)N->nfn + 1, sizeof *N->fn);
     N->nin = p->nparams + p->nconsts;
     N->npt = p->npoints;
-    N->in = calloc((size_t)N->nin + 1, sizeof *N->in);
-    N->pt = calloc((size_t)N->npt + 1, sizeof *N->pt);
-    if (!N->fn || !N->in || !N->pt)
-        abort();
+    N->in = pc_xcalloc((size_t)N->nin + 1, sizeof *N->in);
+    N->pt = pc_xcalloc((size_t)N->npt + 1, sizeof *N->pt);
     for (int i = 0; i < p->noutputs; i++) {
         char *oname = identifier(p->outputs[i].name);
         for (int v = 0; v < NVARIANTS; v++)
@@ -352,14 +336,14 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
         if (in_list(N.fn[a])) {
             *o1 = *o2 = a / NVARIANTS;
             found = 1;
-            *name = xstrdup(N.fn[a]);
+            *name = pc_xstrdup(N.fn[a]);
         }
         for (int b = a + 1; b < N.nfn && !found; b++)
             if (strcmp(N.fn[a], N.fn[b]) == 0) {
                 *o1 = a / NVARIANTS;
                 *o2 = b / NVARIANTS;
                 found = 1;
-                *name = xstrdup(N.fn[a]);
+                *name = pc_xstrdup(N.fn[a]);
             }
     }
     names_clear(&N);
@@ -706,10 +690,8 @@ static void emit_batch(Ctx *C)
     const Plan *p = C->p;
     int scalar = o->kind == PLAN_SCALAR;
     int nslots = scalar ? 1 : o->nterms;
-    Slot *slot = calloc((size_t)nslots + 1, sizeof *slot);
-    char **owned = calloc((size_t)nslots + 1, sizeof *owned);
-    if (!slot || !owned)
-        abort();
+    Slot *slot = pc_xcalloc((size_t)nslots + 1, sizeof *slot);
+    char **owned = pc_xcalloc((size_t)nslots + 1, sizeof *owned);
     /* what the batch code computes: the roots of the peeled weights, their
      * uniform factors, the pole flag (a scalar is written as it is) */
     memset(C->live, 0, (size_t)p->nins);
@@ -1054,11 +1036,9 @@ void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
     fputs("#include <math.h>\n#include <stddef.h>\n\n", out);
     prototypes(out, p, &N);
     fputs("\n", out);
-    unsigned char *live = malloc((size_t)p->nins + 1);
-    const char **role = calloc((size_t)p->nins + 1, sizeof *role);
-    char **owned = calloc((size_t)p->nins + 1, sizeof *owned);
-    if (!live || !role || !owned)
-        abort();
+    unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
+    const char **role = pc_xcalloc((size_t)p->nins + 1, sizeof *role);
+    char **owned = pc_xcalloc((size_t)p->nins + 1, sizeof *owned);
     for (int i = 0; i < p->noutputs; i++) {
         Ctx C = {out, p, &N, i, &p->outputs[i], live, 0, role};
         plan_live(p, i, live);
@@ -1095,9 +1075,7 @@ void emit_c_header_ex(FILE *out, const Plan *p, const char *prefix,
     names_init(&N, p, prefix);
     N.want = functions & EMIT_C_ALL ? functions & EMIT_C_ALL : EMIT_C_ALL;
     banner(out, p, &N, source, "Header");
-    char *guard = malloc(strlen(N.prefix) + 16);
-    if (!guard)
-        abort();
+    char *guard = pc_xmalloc(strlen(N.prefix) + 16);
     size_t k = 0;
     for (const char *s = N.prefix; *s; s++)
         guard[k++] = (char)toupper((unsigned char)*s);

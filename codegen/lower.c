@@ -17,6 +17,7 @@
  * reach the Plan: they are folded into the constant c_i.
  */
 #include "codegen/lower.h"
+#include "compiler/mem.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -73,9 +74,7 @@ static void factored_mul(Factored *F, int reg, slong exp)
         }
     if (F->n == F->alloc) {
         F->alloc = F->alloc ? 2 * F->alloc : 4;
-        F->f = realloc(F->f, sizeof *F->f * (size_t)F->alloc);
-        if (!F->f)
-            abort();
+        F->f = pc_xrealloc(F->f, sizeof *F->f * (size_t)F->alloc);
     }
     F->f[F->n].reg = reg;
     F->f[F->n].exp = exp;
@@ -305,11 +304,9 @@ static void factor_poly(Lower *L, Factored *F, const fmpz_mpoly_t P)
 static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
                           int *reg, int *bad)
 {
-    Factored *num = malloc(sizeof *num * (size_t)(n ? n : 1));
-    Factored *den = malloc(sizeof *den * (size_t)(n ? n : 1));
+    Factored *num = pc_xmalloc(sizeof *num * (size_t)(n ? n : 1));
+    Factored *den = pc_xmalloc(sizeof *den * (size_t)(n ? n : 1));
     Factored lcm;
-    if (!num || !den)
-        abort();
     factored_init(&lcm);
     for (slong i = 0; i < n; i++) {
         factored_init(&num[i]);
@@ -426,11 +423,9 @@ Plan *lower_derived(const Derived *d, FILE *err)
     for (slong o = 0; o < d->noutputs; o++) {
         const DerivedOutput *out = &d->outputs[o];
         slong n = out->kind == KIND_SCALAR ? 1 : out->eq->len;
-        const RatFunStruct **ws = malloc(sizeof *ws * (size_t)(n ? n : 1));
-        int *point = malloc(sizeof *point * (size_t)(n ? n : 1));
-        int *reg = malloc(sizeof *reg * (size_t)(n ? n : 1));
-        if (!ws || !point || !reg)
-            abort();
+        const RatFunStruct **ws = pc_xmalloc(sizeof *ws * (size_t)(n ? n : 1));
+        int *point = pc_xmalloc(sizeof *point * (size_t)(n ? n : 1));
+        int *reg = pc_xmalloc(sizeof *reg * (size_t)(n ? n : 1));
         for (slong i = 0; i < n; i++) {
             if (out->kind == KIND_SCALAR) {
                 ws[i] = out->scalar;

@@ -23,6 +23,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compiler/mem.h"
+
 enum { BL = PLAN_BLOCK };
 
 /* ---- block kernels ----------------------------------------------------- */
@@ -155,15 +157,15 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
 static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
 {
     int n = p->nins;
-    unsigned char *live = plan_xmalloc((size_t)n);
-    int *last = plan_xmalloc(sizeof *last * (size_t)n);
-    double *uval = plan_xmalloc(sizeof *uval * (size_t)n);
+    unsigned char *live = pc_xmalloc((size_t)n);
+    int *last = pc_xmalloc(sizeof *last * (size_t)n);
+    double *uval = pc_xmalloc(sizeof *uval * (size_t)n);
     /* peephole (plan_peel): a weight -x is read as x, and the sign goes to
      * the point's coordinates once per call instead of every sample;
      * liveness then starts from those roots */
     const PlanOutput *po = &p->outputs[o];
-    g->root = plan_xmalloc(sizeof *g->root * (size_t)(po->nterms + 1));
-    g->coef = plan_xmalloc(sizeof *g->coef * (size_t)(po->nterms + 1));
+    g->root = pc_xmalloc(sizeof *g->root * (size_t)(po->nterms + 1));
+    g->coef = pc_xmalloc(sizeof *g->coef * (size_t)(po->nterms + 1));
     memset(live, 0, (size_t)n);
     for (int k = 0; k < po->nterms; k++) {
         int sign;
@@ -187,8 +189,8 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
         else
             uval[i] = scalar_op(p, x, uval);
     }
-    g->v = plan_xmalloc(sizeof *g->v * (size_t)n);
-    g->slot = plan_xmalloc(sizeof *g->slot * (size_t)n);
+    g->v = pc_xmalloc(sizeof *g->v * (size_t)n);
+    g->slot = pc_xmalloc(sizeof *g->slot * (size_t)n);
     g->nv = 0;
     /* last use of every varying register */
     for (int i = 0; i < n; i++) {
@@ -210,13 +212,13 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
         last[po->bad] = INT32_MAX;
     /* slots: uniform registers that varying code reads (or that are
      * results) get a broadcast slot; varying ones share by linear scan */
-    int *free_slots = plan_xmalloc(sizeof *free_slots * (size_t)(n + 1));
+    int *free_slots = pc_xmalloc(sizeof *free_slots * (size_t)(n + 1));
     int nfree = 0, nslots = 0;
     for (int i = 0; i < n; i++)
         if (live[i] && p->ins[i].uniform &&
             (last[i] >= 0 || last[i] == INT32_MAX))
             g->slot[i] = nslots++;
-    int *uniform_slots = plan_xmalloc(sizeof *uniform_slots * (size_t)(n + 1));
+    int *uniform_slots = pc_xmalloc(sizeof *uniform_slots * (size_t)(n + 1));
     int nu = 0;
     for (int i = 0; i < n; i++)
         if (g->slot[i] >= 0)
@@ -239,10 +241,6 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
     g->nslots = nslots;
     size_t bytes = sizeof(double) * BL * (size_t)(nslots ? nslots : 1);
     g->rf = aligned_alloc(64, bytes);
-    if (!g->rf) {
-        fputs("pointcalc: out of memory\n", stderr);
-        abort();
-    }
     for (int u = 0; u < nu; u++) {
         double *d = g->rf + (size_t)g->slot[uniform_slots[u]] * BL;
         for (int j = 0; j < BL; j++)

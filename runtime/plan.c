@@ -11,43 +11,19 @@
  */
 #include "runtime/plan.h"
 #include "compiler/numfmt.h"
+#include "compiler/mem.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-void *plan_xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (!p) {
-        fputs("pointcalc: out of memory\n", stderr);
-        abort();
-    }
-    return p;
-}
-
-static void *xrealloc(void *old, size_t n)
-{
-    void *p = realloc(old, n ? n : 1);
-    if (!p) {
-        fputs("pointcalc: out of memory\n", stderr);
-        abort();
-    }
-    return p;
-}
-
-static char *xstrdup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    return memcpy(plan_xmalloc(n), s, n);
-}
 
 static char **copy_names(int n, const char *const *names)
 {
-    char **v = plan_xmalloc(sizeof *v * (size_t)n);
+    char **v = pc_xmalloc(sizeof *v * (size_t)n);
     for (int i = 0; i < n; i++)
-        v[i] = xstrdup(names[i]);
+        v[i] = pc_xstrdup(names[i]);
     return v;
 }
 
@@ -91,9 +67,9 @@ Plan *plan_new(const char *name, int nparams, const char *const *params,
                int nconsts, const char *const *consts, int npoints,
                const char *const *points)
 {
-    Plan *p = plan_xmalloc(sizeof *p);
+    Plan *p = pc_xmalloc(sizeof *p);
     memset(p, 0, sizeof *p);
-    p->name = xstrdup(name);
+    p->name = pc_xstrdup(name);
     p->nparams = nparams;
     p->nconsts = nconsts;
     p->npoints = npoints;
@@ -158,7 +134,7 @@ static void rehash(Plan *p, int cap)
 {
     free(p->hash);
     p->hcap = cap;
-    p->hash = plan_xmalloc(sizeof *p->hash * (size_t)cap);
+    p->hash = pc_xmalloc(sizeof *p->hash * (size_t)cap);
     for (int i = 0; i < cap; i++)
         p->hash[i] = -1;
     for (int i = 0; i < p->nins; i++) {
@@ -187,7 +163,7 @@ static int intern(Plan *p, PlanOp op, int32_t a, int32_t b)
         }
     if (p->nins == p->ains) {
         p->ains = p->ains ? 2 * p->ains : 64;
-        p->ins = xrealloc(p->ins, sizeof *p->ins * (size_t)p->ains);
+        p->ins = pc_xrealloc(p->ins, sizeof *p->ins * (size_t)p->ains);
     }
     PlanIns *x = &p->ins[p->nins];
     x->op = (uint8_t)op;
@@ -217,7 +193,7 @@ int plan_const(Plan *p, double v)
         v = 0; // one zero: -0.0 and 0.0 share a register
     if (p->nk == p->ak) {
         p->ak = p->ak ? 2 * p->ak : 32;
-        p->k = xrealloc(p->k, sizeof *p->k * (size_t)p->ak);
+        p->k = pc_xrealloc(p->k, sizeof *p->k * (size_t)p->ak);
     }
     p->k[p->nk] = v;
     return intern(p, PLAN_CONST, p->nk++, 0);
@@ -419,14 +395,14 @@ void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
                      int nterms, const int *point, const int *reg, int bad)
 {
     p->outputs =
-        xrealloc(p->outputs, sizeof *p->outputs * (size_t)(p->noutputs + 1));
+        pc_xrealloc(p->outputs, sizeof *p->outputs * (size_t)(p->noutputs + 1));
     PlanOutput *o = &p->outputs[p->noutputs++];
-    o->name = xstrdup(name);
+    o->name = pc_xstrdup(name);
     o->kind = kind;
     o->line = line;
     o->nterms = nterms;
-    o->point = plan_xmalloc(sizeof *o->point * (size_t)nterms);
-    o->reg = plan_xmalloc(sizeof *o->reg * (size_t)nterms);
+    o->point = pc_xmalloc(sizeof *o->point * (size_t)nterms);
+    o->reg = pc_xmalloc(sizeof *o->reg * (size_t)nterms);
     memcpy(o->point, point, sizeof *o->point * (size_t)nterms);
     memcpy(o->reg, reg, sizeof *o->reg * (size_t)nterms);
     o->bad = bad;
@@ -471,8 +447,8 @@ void plan_live_close(const Plan *p, unsigned char *live)
 
 void plan_prune(Plan *p)
 {
-    unsigned char *live = plan_xmalloc((size_t)p->nins);
-    int *map = plan_xmalloc(sizeof *map * (size_t)p->nins);
+    unsigned char *live = pc_xmalloc((size_t)p->nins);
+    int *map = pc_xmalloc(sizeof *map * (size_t)p->nins);
     plan_live(p, -1, live);
     int n = 0;
     for (int i = 0; i < p->nins; i++) {

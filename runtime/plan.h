@@ -151,10 +151,6 @@ void plan_dump(FILE *out, const Plan *p);
 const char *plan_op_name(PlanOp op);
 int plan_op_nargs(PlanOp op);
 
-/* malloc that never returns NULL (it aborts with a message): runtime/'s
- * allocations. */
-void *plan_xmalloc(size_t n);
-
 /* Index of the output called name, or -1. */
 int plan_find_output(const Plan *p, const char *name);
 

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "compiler/numfmt.h"
+#include "compiler/mem.h"
 
 int sample_number(const char *text, double *v)
 {
@@ -36,10 +37,8 @@ long sample_numbers(const char *text, double **v)
     long n = 1;
     for (size_t i = 0; i < len; i++)
         n += text[i] == ',';
-    char *buf = malloc(len + 1);
-    double *out = malloc(sizeof *out * (size_t)n);
-    if (!buf || !out)
-        abort();
+    char *buf = pc_xmalloc(len + 1);
+    double *out = pc_xmalloc(sizeof *out * (size_t)n);
     memcpy(buf, text, len + 1);
     long k = 0;
     char *field = buf;
