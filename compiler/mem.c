@@ -88,9 +88,11 @@ char *pc_xstrdup(const char *s)
  * sanitizers all provide it), so the pointers handed out are malloc's own:
  * leak checkers see ordinary blocks. */
 
+/* saturating: a block allocated before mem_use_for_gmp_flint and freed
+ * after it was never counted */
 static void count(size_t add, size_t sub)
 {
-    in_use = in_use + add - sub;
+    in_use = in_use + add > sub ? in_use + add - sub : 0;
     if (in_use > peak)
         peak = in_use;
 }
