@@ -223,8 +223,10 @@ int main(void)
                 break;
             }
             if (strncmp(buf, "refused", 7) == 0) {
-                printf("%-9s %10s %22s %12s %12s\n", name, "refused",
-                       buf + 8, "", was);
+                char in[48];
+                snprintf(in, sizeof in, "(in %.4f s)", atof(buf + 8));
+                printf("%-9s %10s %22s %12s %12s\n", name, "refused", in, "",
+                       was);
                 break;
             }
             if (sscanf(buf, "%lf %lf %lf %zu", &med, &lo, &hi, &bytes) != 4)
