@@ -459,12 +459,14 @@ int pteq_scalar_div(PointEq res, const PointEq x, const RatFun s, const Ring *r)
     return RATFUN_OK;
 }
 
-/* ma = m * a (m == NULL: 1) */
+/* ma = m * a (m == NULL: 1); products by 1 are copies */
 static void mul_opt(fmpz_mpoly_t ma, const fmpz_mpoly_struct *m,
                     const fmpz_mpoly_t a, const Ring *r)
 {
-    if (m == NULL)
+    if (m == NULL || fmpz_mpoly_is_one(m, r->ctx))
         fmpz_mpoly_set(ma, a, r->ctx);
+    else if (fmpz_mpoly_is_one(a, r->ctx))
+        fmpz_mpoly_set(ma, m, r->ctx);
     else
         fmpz_mpoly_mul(ma, m, a, r->ctx);
 }
