@@ -174,8 +174,10 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
     DeriveOptions opt = {bo.max_seconds, bo.verbose ? err : NULL};
     budget_arm(bo.max_seconds, bo.max_memory);
     Derived *d = derive_file_ex(file, err, NULL, &opt);
-    if (!d)
+    if (!d) {
+        budget_disarm();
         return 1;
+    }
     Plan *p = lower_derived(d, err);
     budget_disarm();
     if (p && !dump && emit_c_check(p, d, prefix, err)) {
@@ -570,6 +572,7 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
     budget_arm(a.budget.max_seconds, a.budget.max_memory);
     Derived *d = derive_file_ex(a.file, err, NULL, &opt);
     if (!d) {
+        budget_disarm();
         eval_args_clear(&a);
         return 1;
     }
