@@ -24,6 +24,7 @@
 #include "compiler/mem.h"
 #include "compiler/numfmt.h"
 #include "compiler/sema.h"
+#include "compiler/solve.h"
 #include "grammar/parse.h"
 
 /* the value of an expression while deriving */
@@ -44,7 +45,16 @@ typedef struct Deriver {
     double max_seconds;
     int expired;       // the time budget ran out (reported once)
     FILE *verbose;     // progress per definition, or NULL
+    slong ucol0;       // unknown k is point column ucol0 + k while unknown
+    PointEq *usol;     // per unknown: its solution, once solved
+    int *usolved;      // per unknown: 1 once its solve succeeded
 } Deriver;
+
+/* the point column of a base point or an (unsolved) unknown */
+static slong point_col(const Deriver *D, const Sym *s)
+{
+    return s->kind == SYM_UNKNOWN ? D->ucol0 + s->index : s->index;
+}
 
 static double now_seconds(void)
 {
@@ -360,10 +370,11 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
         goto done;
     }
     res->is_point = ve.is_point;
-    if (x->sym->kind == SYM_POINT && ve.is_point) {
+    int xpoint = x->sym->kind == SYM_POINT || x->sym->kind == SYM_UNKNOWN;
+    if (xpoint && ve.is_point) {
         RatFun wx;
         ratfun_init(wx, r);
-        pteq_get_weight(wx, ve.p, x->sym->index, r);
+        pteq_get_weight(wx, ve.p, point_col(D, x->sym), r);
         int big = !ratfun_is_zero(wx, r) &&
                   too_big(D, scalar_bits(vb.p, wx, r), n) < 0;
         ratfun_clear(wx, r);
@@ -371,7 +382,7 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
             st = -1;
             goto done;
         }
-    } else if (x->sym->kind != SYM_POINT) {
+    } else if (!xpoint) {
         slong var = x->sym->index +
                     (x->sym->kind == SYM_CONST ? D->info->nparams : 0);
         double bits = 0;
@@ -389,20 +400,21 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
             goto done;
         }
     }
-    if (x->sym->kind == SYM_POINT) {
+    if (xpoint) {
         RatFun sum;
         ratfun_init(sum, r);
         pteq_weight_sum(sum, vb.p, r);
         if (!ratfun_is_one(sum, r)) {
             char *s = show(sum, r);
             diag_error(D->diag, by->span,
-                       "the replacement of base point '%s' must be a point, "
-                       "but its weights sum to %s, not 1",
+                       "the replacement of %s '%s' must be a point, but its "
+                       "weights sum to %s, not 1",
+                       x->sym->kind == SYM_POINT ? "base point" : "unknown",
                        x->sym->name, s);
             flint_free(s);
             st = -1;
         } else if (ve.is_point) {
-            pteq_subst_point(res->p, ve.p, x->sym->index, vb.p, r);
+            pteq_subst_point(res->p, ve.p, point_col(D, x->sym), vb.p, r);
         } else {
             ratfun_set(res->s, ve.s, r);
         }
@@ -608,7 +620,12 @@ static int eval(Deriver *D, Value *res, const Node *n)
             value_set(res, &D->defs[s->index], r);
             return 0;
         case SYM_UNKNOWN:
-            return -1;
+            res->is_point = 1;
+            if (D->usolved[s->index])
+                pteq_set(res->p, D->usol[s->index], r);
+            else
+                pteq_set_point(res->p, D->ucol0 + s->index, r);
+            return 0;
         }
         return -1;
     }
@@ -750,6 +767,190 @@ static void derive_def(Deriver *D, Sym *s)
     ratfun_clear(sum, r);
 }
 
+/* replaces unknown column col by its solution x in every value derived so
+ * far: the definitions and the unknowns solved earlier in terms of it */
+static void substitute_solved(Deriver *D, slong col, const PointEq x)
+{
+    const Ring *r = D->r;
+    for (int i = 0; i < D->info->ndefs; i++) {
+        Value *v = &D->defs[i];
+        if (D->state[i] == 1 && v->is_point && pteq_has_point(v->p, col))
+            pteq_subst_point(v->p, v->p, col, x, r);
+    }
+    for (int k = 0; k < D->info->nunknowns; k++)
+        if (D->usolved[k] && pteq_has_point(D->usol[k], col))
+            pteq_subst_point(D->usol[k], D->usol[k], col, x, r);
+}
+
+/* the names of the unknowns flagged in `which`, "'B', 'C'" (caller frees) */
+static char *unknown_list(Sym **syms, const char *which, slong n)
+{
+    size_t len = 1;
+    for (slong j = 0; j < n; j++)
+        if (which[j])
+            len += strlen(syms[j]->name) + 4;
+    char *out = pc_xmalloc(len), *o = out;
+    *o = '\0';
+    for (slong j = 0; j < n; j++)
+        if (which[j])
+            o += sprintf(o, "%s'%s'", o == out ? "" : ", ", syms[j]->name);
+    return out;
+}
+
+/* `solve EQ, ... for X, ...`: the equations as combinations that vanish,
+ * solved for the unknown columns (solve.c); the solutions replace the
+ * unknowns in everything derived so far and in every later use */
+static void derive_solve(Deriver *D, Stmt *st)
+{
+    const Ring *r = D->r;
+    slong neq = 0, nunk = 0;
+    if (st->bad || D->expired)
+        return;
+    budget_statement(D->src, st->span);
+    for (Equation *e = st->eqs; e; e = e->next)
+        neq++;
+    for (Name *nm = st->names; nm; nm = nm->next)
+        nunk++;
+    PointEq *eqs = pc_xmalloc(sizeof(PointEq) * (size_t)neq);
+    PointEq *x = pc_xmalloc(sizeof(PointEq) * (size_t)nunk);
+    Sym **syms = pc_xmalloc(sizeof(Sym *) * (size_t)nunk);
+    slong *cols = pc_xmalloc(sizeof(slong) * (size_t)nunk);
+    char *undetermined = pc_xcalloc((size_t)nunk, 1);
+    char *dependent = pc_xcalloc((size_t)neq, 1);
+    Equation **eqn = pc_xmalloc(sizeof(Equation *) * (size_t)neq);
+    Name **names = pc_xmalloc(sizeof(Name *) * (size_t)nunk);
+    RatFun sl, sr;
+    int ok = 1;
+    double t0 = D->verbose ? now_seconds() : 0;
+
+    ratfun_init(sl, r);
+    ratfun_init(sr, r);
+    slong j = 0;
+    for (Name *nm = st->names; nm; nm = nm->next, j++) {
+        names[j] = nm;
+        pteq_init(x[j], r);
+        /* sema checked: an unknown, solved here only */
+        syms[j] = NULL;
+        for (int k = 0; k < D->info->nunknowns && !syms[j]; k++)
+            if (strcmp(D->info->unknowns[k]->name, nm->text) == 0)
+                syms[j] = D->info->unknowns[k];
+        cols[j] = D->ucol0 + syms[j]->index;
+    }
+    slong e = 0;
+    for (Equation *q = st->eqs; q; q = q->next, e++) {
+        PointEq rhs;
+        eqn[e] = q;
+        pteq_init(eqs[e], r);
+        pteq_init(rhs, r);
+        if (eval_point(D, eqs[e], q->lhs) < 0 || eval_point(D, rhs, q->rhs) < 0) {
+            ok = 0;
+        } else {
+            pteq_weight_sum(sl, eqs[e], r);
+            pteq_weight_sum(sr, rhs, r);
+            int lk = ratfun_is_one(sl, r) ? 1 : ratfun_is_zero(sl, r) ? 0 : -1;
+            int rk = ratfun_is_one(sr, r) ? 1 : ratfun_is_zero(sr, r) ? 0 : -1;
+            const Node *bad = lk < 0 ? q->lhs : rk < 0 ? q->rhs : NULL;
+            if (bad) {
+                char *txt = show(lk < 0 ? sl : sr, r);
+                diag_error(D->diag, bad->span,
+                           "weights of this side sum to %s, not 0 (a vector) "
+                           "or 1 (a point)",
+                           txt);
+                flint_free(txt);
+                ok = 0;
+            } else if (lk != rk) {
+                diag_error(D->diag, q->span,
+                           "cannot equate a %s and a %s: the left side's "
+                           "weights sum to %d, the right side's to %d",
+                           lk ? "point" : "vector", rk ? "point" : "vector",
+                           lk, rk);
+                ok = 0;
+            } else {
+                pteq_sub(eqs[e], eqs[e], rhs, r);
+            }
+        }
+        pteq_clear(rhs, r);
+    }
+    if (ok) {
+        SolveStatus ss =
+            solve_points(x, (const PointEq *)eqs, neq, cols, nunk,
+                         undetermined, dependent, r);
+        if (ss == SOLVE_OK) {
+            for (j = 0; j < nunk; j++) {
+                pteq_swap(D->usol[syms[j]->index], x[j], r);
+                D->usolved[syms[j]->index] = 1;
+                substitute_solved(D, cols[j], D->usol[syms[j]->index]);
+            }
+        } else if (ss == SOLVE_SINGULAR) {
+            char *list = unknown_list(syms, undetermined, nunk);
+            for (j = 0; j < nunk && !undetermined[j]; j++)
+                ;
+            diag_error(D->diag, names[j < nunk ? j : 0]->span,
+                       "singular system: the equations leave %s undetermined",
+                       list);
+            for (e = 0; e < neq; e++)
+                if (dependent[e])
+                    diag_note(D->diag, eqn[e]->span,
+                              "this equation follows from the others");
+            free(list);
+        } else if (ss == SOLVE_INCONSISTENT) {
+            for (e = 0; e < neq && !dependent[e]; e++)
+                ;
+            diag_error(D->diag, eqn[e < neq ? e : 0]->span,
+                       "inconsistent system: this equation contradicts the "
+                       "others");
+        } else {
+            diag_error(D->diag, st->span,
+                       "expression too large to compute exactly: an "
+                       "intermediate product of this solve could need more "
+                       "than %.0f MB of coefficients",
+                       exp2(RATFUN_MAX_LOG2_BITS - 23));
+        }
+    }
+    if (D->verbose) {
+        int line, col;
+        source_locate(D->src, st->span.start, &line, &col);
+        pc_fprintf(D->verbose, "%s:%d: solve for %ld unknown%s: %.3f ms\n",
+                   D->src->name, line, (long)nunk, nunk == 1 ? "" : "s",
+                   1e3 * (now_seconds() - t0));
+        fflush(D->verbose);
+    }
+    ratfun_clear(sr, r);
+    ratfun_clear(sl, r);
+    for (e = 0; e < neq; e++)
+        pteq_clear(eqs[e], r);
+    for (j = 0; j < nunk; j++)
+        pteq_clear(x[j], r);
+    free(names);
+    free(eqn);
+    free(dependent);
+    free(undetermined);
+    free(cols);
+    free(syms);
+    free(x);
+    free(eqs);
+}
+
+/* 0, or -1 after reporting that output o (value p) still holds an unknown
+ * that no solve determined */
+static int check_no_unknown(Deriver *D, const Sym *o, const PointEq p)
+{
+    for (slong i = 0; i < p->len; i++) {
+        slong c = p->terms[i].point;
+        if (c < D->ucol0)
+            continue;
+        const Sym *u = D->info->unknowns[c - D->ucol0];
+        diag_error(D->diag, o->span,
+                   "'%s' depends on the unknown '%s', which no solve "
+                   "determines; expected 'solve ... for %s' before the "
+                   "output",
+                   o->name, u->name, u->name);
+        diag_note(D->diag, u->span, "'%s' was declared here", u->name);
+        return -1;
+    }
+    return 0;
+}
+
 static char **copy_names(Sym **syms, int n)
 {
     char **names = pc_xcalloc((size_t)(n ? n : 1), sizeof(char *));
@@ -831,8 +1032,25 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     D.state = pc_xcalloc((size_t)(info->ndefs ? info->ndefs : 1), sizeof(int));
     for (int i = 0; i < info->ndefs; i++)
         value_init(&D.defs[i], r);
-    for (int i = 0; i < info->ndefs; i++)
-        derive_def(&D, info->defs[i]);
+    D.ucol0 = info->npoints;
+    D.usol = pc_xmalloc(sizeof(PointEq) * (size_t)(info->nunknowns ? info->nunknowns : 1));
+    D.usolved = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1), sizeof(int));
+    for (int k = 0; k < info->nunknowns; k++)
+        pteq_init(D.usol[k], r);
+    for (int i = 0; i < info->nsteps; i++) {
+        if (info->steps[i]->kind == ST_SOLVE)
+            derive_solve(&D, info->steps[i]);
+        else
+            derive_def(&D, info->steps[i]->sym);
+    }
+    /* an output may not keep an unknown that no solve determined */
+    for (int i = 0; i < info->noutputs && diag.nerrors == 0; i++) {
+        Sym *s = info->outputs[i];
+        if (s->kind == SYM_DEF && D.defs[s->index].is_point)
+            check_no_unknown(&D, s, D.defs[s->index].p);
+        else if (s->kind == SYM_UNKNOWN)
+            check_no_unknown(&D, s, D.usol[s->index]);
+    }
 
     if (diag.nerrors == 0) {
         d->noutputs = info->noutputs;
@@ -841,7 +1059,12 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
         for (int i = 0; i < info->noutputs; i++) {
             Sym *s = info->outputs[i];
             DerivedOutput *o = &d->outputs[i];
-            Value *v = &D.defs[s->index];
+            Value uv, *v = &D.defs[s->index];
+            if (s->kind == SYM_UNKNOWN) { /* solved: a point */
+                uv.is_point = 1;
+                uv.p[0] = D.usol[s->index][0]; /* borrowed */
+                v = &uv;
+            }
             int line, col;
             o->name = pc_xstrdup(s->name);
             source_locate(&src, s->span.start, &line, &col);
@@ -869,6 +1092,10 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     }
     for (int i = 0; i < info->ndefs; i++)
         value_clear(&D.defs[i], r);
+    for (int k = 0; k < info->nunknowns; k++)
+        pteq_clear(D.usol[k], r);
+    free(D.usol);
+    free(D.usolved);
     free(D.defs);
     free(D.state);
     if (diag.nerrors) {

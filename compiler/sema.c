@@ -36,7 +36,7 @@ typedef struct Sema {
     Diag *diag;
     Sym *table[NBUCKETS];
     SemaInfo *info;
-    int cap_points, cap_params, cap_consts, cap_defs;
+    int cap_points, cap_params, cap_consts, cap_defs, cap_unknowns, cap_steps;
 } Sema;
 
 static unsigned hash(const char *s)
@@ -123,6 +123,21 @@ static Sym *declare(Sema *S, const char *name, Span span, SymKind kind)
 
 static int check_expr(Sema *S, Node *n);
 
+/* a definition or a solve, in source order */
+static void push_step(Sema *S, Stmt *st)
+{
+    SemaInfo *I = S->info;
+    if (I->nsteps == S->cap_steps) {
+        int nc = S->cap_steps ? 2 * S->cap_steps : 8;
+        Stmt **na = arena_alloc(S->arena, sizeof(Stmt *) * (size_t)nc);
+        if (I->nsteps)
+            memcpy(na, I->steps, sizeof(Stmt *) * (size_t)I->nsteps);
+        I->steps = na;
+        S->cap_steps = nc;
+    }
+    I->steps[I->nsteps++] = st;
+}
+
 /* the kind of a name used in an expression: 1 point, 0 scalar, -1 error */
 static int check_name(Sema *S, Node *n)
 {
@@ -155,11 +170,8 @@ static int check_name(Sema *S, Node *n)
     case SYM_PARAM:
     case SYM_CONST:
         return 0;
-    case SYM_UNKNOWN:
-        diag_error(S->diag, n->span,
-                   "unknowns are not supported yet (planned: linear point "
-                   "systems, monograph ch. 4)");
-        return -1;
+    case SYM_UNKNOWN: /* a free point until its solve, then its solution */
+        return 1;
     case SYM_DEF:
         return s->bad ? -1 : s->is_point;
     }
@@ -318,7 +330,7 @@ static int check_call(Sema *S, Node *n)
             return -1;
         }
         x->sym = s;
-        if (s->kind == SYM_POINT) {
+        if (s->kind == SYM_POINT || s->kind == SYM_UNKNOWN) {
             if (expect(S, arg(n, 2), 1, "the replacement of a base point") <
                 0)
                 return -1;
@@ -327,8 +339,8 @@ static int check_call(Sema *S, Node *n)
                 return -1;
         } else {
             diag_error(S->diag, x->span,
-                       "subst() replaces a parameter, a constant or a base "
-                       "point, but '%s' is %s",
+                       "subst() replaces a parameter, a constant, a base "
+                       "point or an unknown, but '%s' is %s",
                        x->text, sym_kind_word(s->kind));
             return -1;
         }
@@ -486,10 +498,79 @@ static void declare_list(Sema *S, Stmt *st, SymKind kind)
             s->index = I->nconsts;
             push(S, &I->consts, &I->nconsts, &S->cap_consts, s);
             break;
+        case SYM_UNKNOWN:
+            s->is_point = 1;
+            s->index = I->nunknowns;
+            push(S, &I->unknowns, &I->nunknowns, &S->cap_unknowns, s);
+            break;
         default:
             break;
         }
     }
+}
+
+/* `solve EQ, ... for X, ...`: both sides of every equation combinations of
+ * points, every name after `for` an unknown not solved before, as many
+ * equations as unknowns.  Marks the statement bad on any error. */
+static void check_solve(Sema *S, Stmt *st)
+{
+    int neq = 0, nunk = 0, errors0 = S->diag->nerrors;
+    for (Equation *e = st->eqs; e; e = e->next, neq++) {
+        int kl = check_expr(S, e->lhs), kr = check_expr(S, e->rhs);
+        if (kl < 0 || kr < 0)
+            continue;
+        if (kl != kr)
+            diag_error(S->diag, e->span,
+                       "cannot equate %s and %s; expected both sides to be "
+                       "points or vectors",
+                       kind_word(kl), kind_word(kr));
+        else if (kl == 0)
+            diag_error(S->diag, e->span,
+                       "a scalar equation cannot determine unknown points; "
+                       "expected an equation between points or vectors");
+    }
+    for (Name *nm = st->names; nm; nm = nm->next, nunk++) {
+        Sym *s = lookup(S, nm->text);
+        if (!s) {
+            diag_error(S->diag, nm->span,
+                       "undefined name '%s' after 'for'; expected an unknown "
+                       "declared with 'unknown %s'",
+                       nm->text, nm->text);
+            continue;
+        }
+        if (s->kind != SYM_UNKNOWN) {
+            diag_error(S->diag, nm->span,
+                       "'%s' is %s; expected an unknown (declared with "
+                       "'unknown') after 'for'",
+                       nm->text, sym_kind_word(s->kind));
+            continue;
+        }
+        if (s->solved_by == st) {
+            diag_error(S->diag, nm->span, "'%s' is listed twice", nm->text);
+            continue;
+        }
+        if (s->solved_by) {
+            diag_error(S->diag, nm->span, "the unknown '%s' is solved twice",
+                       nm->text);
+            diag_note(S->diag, s->solved_by->span,
+                      "'%s' was first solved here", nm->text);
+            continue;
+        }
+        s->solved_by = st;
+    }
+    if (neq != nunk)
+        diag_error(S->diag, st->span,
+                   "%d equation%s for %d unknown%s: the system is %s; "
+                   "expected one point equation per unknown point",
+                   neq, neq == 1 ? "" : "s", nunk, nunk == 1 ? "" : "s",
+                   neq < nunk ? "underdetermined" : "over-determined");
+    st->bad = S->diag->nerrors != errors0;
+    if (st->bad) /* a solve with an error solves nothing */
+        for (Name *nm = st->names; nm; nm = nm->next) {
+            Sym *s = lookup(S, nm->text);
+            if (s && s->solved_by == st)
+                s->solved_by = NULL;
+        }
 }
 
 SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
@@ -527,15 +608,11 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
             declare_list(&S, st, SYM_CONST);
             break;
         case ST_UNKNOWN:
-            diag_error(diag, st->span,
-                       "'unknown' is not supported yet (planned: linear point "
-                       "systems, monograph ch. 4)");
             declare_list(&S, st, SYM_UNKNOWN);
             break;
         case ST_SOLVE:
-            diag_error(diag, st->span,
-                       "'solve' is not supported yet (planned: linear point "
-                       "systems, monograph ch. 4)");
+            check_solve(&S, st);
+            push_step(&S, st);
             break;
         case ST_DEF: {
             int k = check_expr(&S, st->expr);
@@ -543,6 +620,8 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
             if (!s)
                 break;
             s->def = st;
+            st->sym = s;
+            push_step(&S, st);
             s->bad = k < 0;
             s->is_point = k > 0;
             s->index = I->ndefs;
@@ -573,11 +652,18 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
                            nm->text);
                 continue;
             }
-            if (s->kind != SYM_DEF) {
+            if (s->kind != SYM_DEF && s->kind != SYM_UNKNOWN) {
                 diag_error(diag, nm->span,
                            "'%s' is %s; expected a definition (NAME = EXPR) "
-                           "in output",
+                           "or a solved unknown in output",
                            nm->text, sym_kind_word(s->kind));
+                continue;
+            }
+            if (s->kind == SYM_UNKNOWN && !s->solved_by) {
+                diag_error(diag, nm->span,
+                           "the unknown '%s' is never solved; expected "
+                           "'solve ... for %s' before it is output",
+                           nm->text, nm->text);
                 continue;
             }
             for (int i = 0; i < I->noutputs; i++)

@@ -55,7 +55,7 @@ typedef enum SymKind {
     SYM_POINT,   // base point of the simplex; index = point number
     SYM_PARAM,   // current parameter; index = ring variable
     SYM_CONST,   // symbolic constant; index = ring variable
-    SYM_UNKNOWN, // unknown of a later `solve` (not supported yet)
+    SYM_UNKNOWN, // unknown point of a `solve`; index = unknown number
     SYM_DEF,     // NAME = EXPR; index = definition number
 } SymKind;
 
@@ -67,6 +67,7 @@ struct Sym {
     int is_point;  // SYM_POINT, SYM_DEF of a combination: 1; scalars: 0
     int bad;       // its definition had an error: uses are not re-reported
     Stmt *def;     // SYM_DEF: the statement
+    Stmt *solved_by; // SYM_UNKNOWN: the `solve` that determines it, or NULL
     Sym *next;     // in the table's bucket chain
 };
 
@@ -80,8 +81,12 @@ typedef struct SemaInfo {
     int nconsts;
     Sym **defs; // definition order
     int ndefs;
-    Sym **outputs; // `output` list, default the last definition
-    int noutputs;
+    Sym **unknowns; // declaration order: unknown k is the point column
+    int nunknowns;  // npoints + k while it is unknown (derive.c)
+    Stmt **steps;   // the definitions and solves in source order
+    int nsteps;
+    Sym **outputs; // `output` list (definitions and solved unknowns),
+    int noutputs;  // default the last definition
 } SemaInfo;
 
 /* Checks s and returns what it found, also when it reported errors

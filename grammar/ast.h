@@ -101,6 +101,10 @@ struct Stmt {
     Node *expr;   // ST_DEF
     Node *lo, *hi; // ST_PARAM range (both NULL when absent)
     Equation *eqs; // ST_SOLVE
+
+    // filled by sema
+    Sym *sym; // ST_DEF: the defined name
+    int bad;  // ST_SOLVE: an error was reported; derive skips it
 };
 
 typedef struct Scheme {

@@ -155,7 +155,8 @@ names:
 equations:
   expr '=' expr     { $$ = ast_new_equation(p->arena, $1, $3, @$); }
 | equations ',' expr '=' expr
-                    { $$ = ast_append_equation($1, ast_new_equation(p->arena, $3, $5, @$)); }
+                    { Span sp = {@3.start, @5.end};
+                      $$ = ast_append_equation($1, ast_new_equation(p->arena, $3, $5, sp)); }
 ;
 
 expr:
