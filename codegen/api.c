@@ -60,7 +60,7 @@ static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
 
 static DeriveOptions derive_options(const pc_options *opt)
 {
-    DeriveOptions o = {BUDGET_DEFAULT_SECONDS, NULL};
+    DeriveOptions o = {.max_seconds = BUDGET_DEFAULT_SECONDS};
     if (opt != NULL)
         o.max_seconds = opt->max_seconds;
     return o;

@@ -171,7 +171,10 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
     if (cpath && hpath && same_file(cpath, hpath))
         return usage_error(err, emit_usage,
                            "-o and --header name the same file '%s'", cpath);
-    DeriveOptions opt = {bo.max_seconds, bo.verbose ? err : NULL};
+    DeriveOptions opt = {.max_seconds = bo.max_seconds,
+                         .verbose = bo.verbose ? err : NULL,
+                         .defines = bo.defines,
+                         .ndefines = bo.ndefines};
     budget_arm(bo.max_seconds, bo.max_memory);
     Derived *d = derive_file_ex(file, err, NULL, &opt);
     if (!d) {
@@ -568,7 +571,10 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
         eval_args_clear(&a);
         return rc;
     }
-    DeriveOptions opt = {a.budget.max_seconds, a.budget.verbose ? err : NULL};
+    DeriveOptions opt = {.max_seconds = a.budget.max_seconds,
+                         .verbose = a.budget.verbose ? err : NULL,
+                         .defines = a.budget.defines,
+                         .ndefines = a.budget.ndefines};
     budget_arm(a.budget.max_seconds, a.budget.max_memory);
     Derived *d = derive_file_ex(a.file, err, NULL, &opt);
     if (!d) {

@@ -6,6 +6,8 @@
  */
 #include "compiler/budget.h"
 
+#include "compiler/expand.h"
+
 #include <errno.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -37,6 +39,7 @@ void budget_statement(const Source *src, Span span)
 
 void budget_options_default(BudgetOptions *b)
 {
+    memset(b, 0, sizeof *b);
     b->max_seconds = BUDGET_DEFAULT_SECONDS;
     b->max_memory = BUDGET_DEFAULT_MEMORY;
     b->verbose = 0;
@@ -49,6 +52,27 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
     if (strcmp(a, "--verbose") == 0 || strcmp(a, "-v") == 0) {
         b->verbose = 1;
         return 1;
+    }
+    if (strncmp(a, "-D", 2) == 0) {
+        const char *d = a[2] ? a + 2 : i + 1 < argc ? argv[i + 1] : NULL;
+        if (!d) {
+            fprintf(err, "pointcalc: -D needs NAME=INTEGER\n");
+            return -1;
+        }
+        if (expand_check_define(d) != 0) {
+            fprintf(err,
+                    "pointcalc: -D '%s': expected NAME=INTEGER, e.g. -D "
+                    "n=24 (a whole number below 2^40 in magnitude)\n",
+                    d);
+            return -1;
+        }
+        if (b->ndefines == BUDGET_MAX_DEFINES) {
+            fprintf(err, "pointcalc: more than %d -D options\n",
+                    BUDGET_MAX_DEFINES);
+            return -1;
+        }
+        b->defines[b->ndefines++] = d;
+        return a[2] ? 1 : 2;
     }
     int secs = strcmp(a, "--max-seconds") == 0;
     if (!secs && strcmp(a, "--max-memory") != 0)

@@ -40,14 +40,18 @@ void budget_arm(double max_seconds, size_t max_memory);
 /* stops the timer (evaluation after a derivation is not budgeted) */
 void budget_disarm(void);
 
-/* The budget options every command takes: --max-seconds S (0: none),
+/* The options every command takes: --max-seconds S (0: none),
  * --max-memory SIZE (bytes, or with a suffix K, M, G: KiB, MiB, GiB; 0:
- * none), --verbose / -v.  Returns the number of arguments consumed at
+ * none), --verbose / -v, and -D NAME=INTEGER / -DNAME=INTEGER (overrides
+ * `int NAME = ...` of the scheme).  Returns the number of arguments consumed at
  * argv[*i] (0: not a budget option; -1: a bad value, reported to err). */
+#define BUDGET_MAX_DEFINES 64
 typedef struct BudgetOptions {
     double max_seconds;
     size_t max_memory;
     int verbose;
+    const char *defines[BUDGET_MAX_DEFINES]; // -D NAME=INTEGER (argv's
+    int ndefines;                            // strings), expand.h
 } BudgetOptions;
 void budget_options_default(BudgetOptions *b);
 int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,

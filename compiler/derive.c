@@ -21,6 +21,7 @@
 #include "compiler/budget.h"
 #include "compiler/construct.h"
 #include "compiler/diag.h"
+#include "compiler/expand.h"
 #include "compiler/mem.h"
 #include "compiler/numfmt.h"
 #include "compiler/sema.h"
@@ -693,6 +694,8 @@ static int eval(Deriver *D, Value *res, const Node *n)
         return eval_pow(D, res, n);
     case ND_CALL:
         return eval_call(D, res, n);
+    case ND_INDEX: /* expand.c replaced every one */
+        return -1;
     }
     return -1;
 }
@@ -974,7 +977,7 @@ static char *base_name(const char *filename)
 Derived *derive_source(const char *filename, const char *text, size_t len,
                        FILE *err, int *nerrors)
 {
-    DeriveOptions opt = {BUDGET_DEFAULT_SECONDS, NULL};
+    DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS};
     return derive_source_ex(filename, text, len, err, nerrors, &opt);
 }
 
@@ -993,6 +996,23 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
 
     Scheme *scheme = parse_scheme(&src, &arena, &diag);
     SemaInfo *info = NULL;
+    if (diag.nerrors == 0) {
+        int nd = opt->defines ? opt->ndefines : 0;
+        char *used = pc_xcalloc((size_t)(nd ? nd : 1), 1);
+        expand_scheme(scheme, &arena, &diag, opt->defines, nd, used);
+        for (int k = 0; k < nd; k++)
+            if (!used[k]) { /* not located: it is not in the file */
+                const char *eq = strchr(opt->defines[k], '=');
+                int nlen = eq ? (int)(eq - opt->defines[k]) : 0;
+                if (err)
+                    fprintf(err,
+                            "%s: error: -D %s: the scheme declares no "
+                            "'int %.*s'\n",
+                            filename, opt->defines[k], nlen, opt->defines[k]);
+                diag.nerrors++;
+            }
+        free(used);
+    }
     if (diag.nerrors == 0)
         info = sema_check(scheme, &arena, &diag);
     if (!info)
@@ -1131,7 +1151,7 @@ static Derived *file_error(const char *filename, FILE *err, int *nerrors,
  * memory. */
 Derived *derive_file(const char *filename, FILE *err, int *nerrors)
 {
-    DeriveOptions opt = {BUDGET_DEFAULT_SECONDS, NULL};
+    DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS};
     return derive_file_ex(filename, err, nerrors, &opt);
 }
 

@@ -59,6 +59,8 @@ typedef struct Derived {
 typedef struct DeriveOptions {
     double max_seconds;
     FILE *verbose;
+    const char *const *defines; // ndefines "NAME=INTEGER" overriding the
+    int ndefines;               // scheme's `int NAME = ...` (-D), or NULL
 } DeriveOptions;
 
 /* Derive a scheme from source text.  Diagnostics (contract section 4 format)

@@ -33,7 +33,8 @@ static const char usage[] =
     "\n"
     "Every command also takes --max-seconds S and --max-memory SIZE (the\n"
     "budget of the derivation; defaults 60 and 2G, 0 for none) and -v,\n"
-    "--verbose (the time and size of every definition, on stderr).\n"
+    "--verbose (the time and size of every definition, on stderr), and\n"
+    "-D NAME=INTEGER, which overrides the scheme's 'int NAME = ...'.\n"
     "\n"
     "Reduces a point-calculus scheme (.pcs) exactly to its final point\n"
     "equations, emits C for them, or evaluates them.  SPEC is a value (0.5),\n"
@@ -88,7 +89,10 @@ static int derive_main(int argc, char **argv)
         return 2;
     }
     int nerrors = 0;
-    DeriveOptions opt = {bo.max_seconds, bo.verbose ? stderr : NULL};
+    DeriveOptions opt = {.max_seconds = bo.max_seconds,
+                         .verbose = bo.verbose ? stderr : NULL,
+                         .defines = bo.defines,
+                         .ndefines = bo.ndefines};
     budget_arm(bo.max_seconds, bo.max_memory);
     Derived *d = derive_file_ex(file, stderr, &nerrors, &opt);
     budget_disarm(); /* the derivation is budgeted, not the printing */

@@ -472,6 +472,9 @@ static int check_expr(Sema *S, Node *n)
     case ND_CALL:
         k = check_call(S, n);
         break;
+    case ND_INDEX: /* expand.c replaced every one; kept for safety */
+        diag_error(S->diag, n->span, "internal error: an unexpanded index");
+        break;
     }
     n->is_point = k > 0;
     return k;
@@ -584,6 +587,8 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
 
     for (Stmt *st = scheme->stmts; st; st = st->next) {
         switch (st->kind) {
+        case ST_INT: /* expand.c has substituted its value */
+            break;
         case ST_SCHEME:
             if (I->scheme_name) {
                 diag_error(diag, st->span, "a second 'scheme' statement");

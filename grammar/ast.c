@@ -62,6 +62,22 @@ Node *ast_new_call(Arena *a, const char *name, Span name_span, Node *args,
     return n;
 }
 
+Node *ast_new_index(Arena *a, const char *name, Span name_span, Node *lo,
+                    Node *hi, Span span)
+{
+    Node *n = arena_new(a, Node);
+    n->kind = ND_INDEX;
+    n->text = name;
+    n->name_span = name_span;
+    n->lhs = lo;
+    n->rhs = hi;
+    n->span = span;
+    n->depth = lo->depth + 1;
+    if (hi && hi->depth + 1 > n->depth)
+        n->depth = hi->depth + 1;
+    return n;
+}
+
 Node *ast_append(Node *list, Node *item)
 {
     if (!list)
@@ -152,6 +168,15 @@ static void dump_node(FILE *out, const Node *n)
         dump_node(out, n->lhs);
         fputc(')', out);
         return;
+    case ND_INDEX:
+        fprintf(out, "(%s ", n->text);
+        dump_node(out, n->lhs);
+        if (n->rhs) {
+            fputs(" .. ", out);
+            dump_node(out, n->rhs);
+        }
+        fputc(')', out);
+        return;
     case ND_CALL:
         fprintf(out, "(%s", n->text);
         for (const Node *a = n->args; a; a = a->next) {
@@ -172,8 +197,18 @@ static void dump_node(FILE *out, const Node *n)
 
 static void dump_names(FILE *out, const Name *n)
 {
-    for (; n; n = n->next)
+    for (; n; n = n->next) {
         fprintf(out, " %s", n->text);
+        if (n->index || n->lo) {
+            fputc('[', out);
+            dump_node(out, n->index ? n->index : n->lo);
+            if (n->hi) {
+                fputs("..", out);
+                dump_node(out, n->hi);
+            }
+            fputc(']', out);
+        }
+    }
 }
 
 void ast_dump(FILE *out, const Scheme *s)
@@ -199,6 +234,13 @@ void ast_dump(FILE *out, const Scheme *s)
             dump_node(out, e->lhs);
             fputc(' ', out);
             dump_node(out, e->rhs);
+            if (e->var) {
+                fprintf(out, " (for %s ", e->var);
+                dump_node(out, e->lo);
+                fputc(' ', out);
+                dump_node(out, e->hi);
+                fputc(')', out);
+            }
             fputc(')', out);
         }
         fputs(")\n", out);

@@ -24,7 +24,9 @@
     X(ND_MUL, "*")     /* lhs * rhs: at most one side a combination */         \
     X(ND_DIV, "/")     /* lhs / rhs: rhs a non-zero scalar */                  \
     X(ND_POW, "^")     /* lhs ^ rhs: rhs an integer constant */                \
-    X(ND_CALL, "call") /* name(args): a builtin (along, meet, sin, ...) */
+    X(ND_CALL, "call") /* name(args): a builtin (along, meet, sin, ...) */    \
+    X(ND_INDEX, "index") /* name[lhs], or name[lhs..rhs] as call arguments: \
+                            members of a family (expand.c replaces them) */
 
 typedef enum NodeKind {
 #define X(k, s) k,
@@ -59,12 +61,15 @@ struct Node {
     int is_point; // 1 if the value is a combination of points, 0 a scalar
 };
 
-/* A name in a declaration list (`point A, B`, `output M, N`). */
+/* A name in a declaration list (`point A, B`, `output M, N`): a plain
+ * name, one member NAME[index], or a family or range NAME[lo..hi]. */
 typedef struct Name Name;
 struct Name {
     const char *text;
     Span span;
     Name *next;
+    Node *index;   // NAME[index], or NULL
+    Node *lo, *hi; // NAME[lo..hi], or NULL
 };
 
 #define PC_STMT_KINDS(X)                                                       \
@@ -72,6 +77,7 @@ struct Name {
     X(ST_POINT, "point")     /* point A, B, ...: the simplex */                \
     X(ST_PARAM, "param")     /* param t [in [lo, hi]] */                       \
     X(ST_CONST, "const")     /* const k, pD */                                 \
+    X(ST_INT, "int")         /* int n = EXPR: an integer scheme constant */    \
     X(ST_UNKNOWN, "unknown") /* unknown C1, C2 (solved by `solve`) */          \
     X(ST_DEF, "def")         /* NAME = EXPR */                                 \
     X(ST_SOLVE, "solve")     /* solve EQ, ... for X, ... */                    \
@@ -83,12 +89,16 @@ typedef enum StmtKind {
 #undef X
 } StmtKind;
 
-/* `lhs = rhs` inside solve */
+/* `lhs = rhs` inside solve, or `lhs = rhs for var in lo..hi` (one
+ * equation per value of var; expand.c unrolls it) */
 typedef struct Equation Equation;
 struct Equation {
     Node *lhs, *rhs;
     Span span;
     Equation *next;
+    const char *var; // the comprehension's variable, or NULL
+    Span var_span;
+    Node *lo, *hi;
 };
 
 typedef struct Stmt Stmt;
@@ -119,6 +129,9 @@ Node *ast_new_binary(Arena *a, NodeKind kind, Node *lhs, Node *rhs,
 /* args: a list built with ast_append */
 Node *ast_new_call(Arena *a, const char *name, Span name_span, Node *args,
                    Span span);
+/* name[lo] (hi NULL) or the range name[lo..hi] */
+Node *ast_new_index(Arena *a, const char *name, Span name_span, Node *lo,
+                    Node *hi, Span span);
 Node *ast_append(Node *list, Node *item);
 Name *ast_new_namelist(Arena *a, const char *text, Span span);
 Name *ast_append_name(Name *list, Name *item);

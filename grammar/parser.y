@@ -41,6 +41,8 @@ typedef struct Parser {
     Diag *diag;
     Scheme *scheme;
     Stmt *tail; // last statement, for appending
+    Equation *seqs; // the solve being parsed: its equations so far
+    Name *snames;   // ... and its unknowns
 } Parser;
 
 /* a span from the first to the last right-hand-side symbol (jq's rule) */
@@ -104,7 +106,7 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
 %token NEWLINE "end of line"
 %token SCHEME "'scheme'" POINT "'point'" PARAM "'param'" CONST "'const'"
 %token UNKNOWN "'unknown'" SOLVE "'solve'" FOR "'for'" OUTPUT "'output'"
-%token IN "'in'"
+%token IN "'in'" DOTDOT "'..'"
 
 %left '+' '-'
 %left '*' '/'
@@ -112,9 +114,8 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
 %right '^'
 
 %type <Node *> expr args
-%type <Name *> names
+%type <Name *> names name
 %type <Stmt *> stmt
-%type <Equation *> equations
 
 %%
 
@@ -143,26 +144,78 @@ stmt:
 | OUTPUT names      { $$ = stmt_names(p, ST_OUTPUT, $2, @$); }
 | IDENT '=' expr    { $$ = ast_new_stmt(p->arena, ST_DEF, @$);
                       $$->name = ast_new_namelist(p->arena, $1, @1); $$->expr = $3; }
-| SOLVE equations FOR names
-                    { $$ = stmt_names(p, ST_SOLVE, $4, @$); $$->eqs = $2; }
+| IDENT IDENT '=' expr /* `int n = 12`: int is a keyword only here, so
+                         that older schemes may still call a point int */
+                    { if (strcmp($1, "int") != 0) {
+                          diag_error(p->diag, @1,
+                                     "unexpected '%s' before the name '%s'; "
+                                     "expected 'int %s = ...' or '%s = ...'",
+                                     $1, $2, $2, $2);
+                          $$ = NULL;
+                      } else {
+                          $$ = ast_new_stmt(p->arena, ST_INT, @$);
+                          $$->name = ast_new_namelist(p->arena, $2, @2);
+                          $$->expr = $4;
+                      } }
+| SOLVE             { p->seqs = NULL; p->snames = NULL; }
+  solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;
+                      p->seqs = NULL; p->snames = NULL; }
+;
+
+/* NAME, a family NAME[lo..hi], or one member NAME[i] */
+name:
+  IDENT             { $$ = ast_new_namelist(p->arena, $1, @1); }
+| IDENT '[' expr ']'
+                    { $$ = ast_new_namelist(p->arena, $1, @$); $$->index = $3; }
+| IDENT '[' expr DOTDOT expr ']'
+                    { $$ = ast_new_namelist(p->arena, $1, @$); $$->lo = $3; $$->hi = $5; }
 ;
 
 names:
-  IDENT             { $$ = ast_new_namelist(p->arena, $1, @1); }
-| names ',' IDENT   { $$ = ast_append_name($1, ast_new_namelist(p->arena, $3, @3)); }
+  name              { $$ = $1; }
+| names ',' name    { $$ = ast_append_name($1, $3); }
 ;
 
-equations:
-  expr '=' expr     { $$ = ast_new_equation(p->arena, $1, $3, @$); }
-| equations ',' expr '=' expr
-                    { Span sp = {@3.start, @5.end};
-                      $$ = ast_append_equation($1, ast_new_equation(p->arena, $3, $5, sp)); }
+/* solve EQ [for i in a..b], ... for X, ...: right-recursive, so that after
+ * an equation `for i in` (a comprehension) and `for X` (the unknowns) are
+ * told apart by the token after the name; the equations are collected in
+ * the parser, in source order */
+solve_eqs:
+  equation solve_tail
+;
+
+solve_tail:
+  FOR names         { p->snames = $2; }
+| ',' solve_eqs
+| compr solve_tail2
+;
+
+solve_tail2:
+  FOR names         { p->snames = $2; }
+| ',' solve_eqs
+;
+
+equation:
+  expr '=' expr     { p->seqs = ast_append_equation(p->seqs,
+                          ast_new_equation(p->arena, $1, $3, @$)); }
+;
+
+compr:
+  FOR IDENT IN expr DOTDOT expr
+                    { Equation *e = p->seqs;
+                      while (e->next)
+                          e = e->next;
+                      e->var = $2; e->var_span = @2; e->lo = $4; e->hi = $6;
+                      e->span.end = @6.end; }
 ;
 
 expr:
   NUMBER            { $$ = ast_new_num(p->arena, $1, @$); }
 | IDENT             { $$ = ast_new_name(p->arena, $1, @$); }
 | IDENT '(' args ')' { $$ = ast_new_call(p->arena, $1, @1, $3, @$); }
+| IDENT '[' expr ']' { $$ = ast_new_index(p->arena, $1, @1, $3, NULL, @$); }
+| IDENT '[' expr DOTDOT expr ']'
+                    { $$ = ast_new_index(p->arena, $1, @1, $3, $5, @$); }
 | '(' expr ')'      { $$ = $2; $$->span = @$; }
 | '-' expr %prec UMINUS { $$ = ast_new_unary(p->arena, ND_NEG, $2, @$); }
 | '+' expr %prec UMINUS { $$ = $2; }

@@ -1,0 +1,762 @@
+/*
+ * expand.c - families, int constants and comprehensions (see expand.h).
+ *
+ * One walk over the statements in source order.  Names known here: the int
+ * constants, the families, and every plain name declared so far (to refuse
+ * a comprehension variable or a member name that would hide one).  Every
+ * other name is left for sema.
+ */
+#include "compiler/expand.h"
+
+#include <ctype.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "compiler/mem.h"
+
+typedef struct IntSym {
+    const char *name;
+    slong value;
+    Span span;
+} IntSym;
+
+typedef struct Family {
+    const char *name;
+    slong lo, hi; // members lo..hi (empty when lo > hi)
+    Span span;
+    const char *what; // "points", "unknowns"
+} Family;
+
+typedef struct Expander {
+    Arena *a;
+    Diag *d;
+    IntSym *ints;
+    int nints, capints;
+    Family *fams;
+    int nfams, capfams;
+    const char **names; // plain names declared so far
+    Span *spans;
+    int nnames, capnames;
+    const char *var; // the comprehension variable being unrolled, or NULL
+    slong var_value;
+    long members;    // family members and unrolled equations so far
+    long nodes;      // nodes copied so far
+    int over;        // a size limit was reported
+} Expander;
+
+static IntSym *find_int(Expander *E, const char *name)
+{
+    for (int i = 0; i < E->nints; i++)
+        if (strcmp(E->ints[i].name, name) == 0)
+            return &E->ints[i];
+    return NULL;
+}
+
+static Family *find_family(Expander *E, const char *name)
+{
+    for (int i = 0; i < E->nfams; i++)
+        if (strcmp(E->fams[i].name, name) == 0)
+            return &E->fams[i];
+    return NULL;
+}
+
+static int find_name(Expander *E, const char *name)
+{
+    for (int i = 0; i < E->nnames; i++)
+        if (strcmp(E->names[i], name) == 0)
+            return i;
+    return -1;
+}
+
+/* the family member a plain name would denote ("M_3" with M[1..5]), or
+ * NULL */
+static Family *member_of(Expander *E, const char *name, slong *index)
+{
+    const char *us = strrchr(name, '_');
+    if (!us || us == name || !us[1] || strlen(us + 1) > 12)
+        return NULL;
+    for (const char *c = us + 1; *c; c++)
+        if (!isdigit((unsigned char)*c))
+            return NULL;
+    if (us[1] == '0' && us[2]) /* M_03 is no member's name */
+        return NULL;
+    slong k = strtol(us + 1, NULL, 10);
+    for (int i = 0; i < E->nfams; i++) {
+        Family *f = &E->fams[i];
+        if (strlen(f->name) == (size_t)(us - name) &&
+            strncmp(f->name, name, (size_t)(us - name)) == 0 && k >= f->lo &&
+            k <= f->hi) {
+            *index = k;
+            return f;
+        }
+    }
+    return NULL;
+}
+
+/* 0, or -1 after reporting that name is taken by an int, a family or a
+ * family member, or (plain_too) by a plain name: sema reports two plain
+ * declarations of one name itself */
+static int check_free(Expander *E, const char *name, Span span, int plain_too)
+{
+    IntSym *is = find_int(E, name);
+    Family *f = find_family(E, name);
+    int k = plain_too ? find_name(E, name) : -1;
+    slong idx;
+    if (is || f || k >= 0) {
+        diag_error(E->d, span, "redefinition of '%s'", name);
+        diag_note(E->d, is ? is->span : f ? f->span : E->spans[k],
+                  "'%s' was first declared here", name);
+        return -1;
+    }
+    if ((f = member_of(E, name, &idx)) != NULL) {
+        diag_error(E->d, span,
+                   "'%s' is the name of the family member %s[%ld]; choose "
+                   "another name",
+                   name, f->name, (long)idx);
+        diag_note(E->d, f->span, "the family %s is declared here", f->name);
+        return -1;
+    }
+    return 0;
+}
+
+static void add_name(Expander *E, const char *name, Span span)
+{
+    if (E->nnames == E->capnames) {
+        E->capnames = E->capnames ? 2 * E->capnames : 32;
+        E->names = pc_xrealloc(E->names, sizeof(char *) * (size_t)E->capnames);
+        E->spans = pc_xrealloc(E->spans, sizeof(Span) * (size_t)E->capnames);
+    }
+    E->names[E->nnames] = name;
+    E->spans[E->nnames++] = span;
+}
+
+static const char *member_name(Expander *E, const char *base, slong k)
+{
+    char buf[32];
+    size_t n = strlen(base);
+    snprintf(buf, sizeof buf, "_%ld", (long)k);
+    char *s = arena_alloc(E->a, n + strlen(buf) + 1);
+    memcpy(s, base, n);
+    strcpy(s + n, buf);
+    return s;
+}
+
+/* ---- integer expressions ------------------------------------------------ */
+
+static int int_range(Expander *E, Span span, __int128 v, slong *out)
+{
+    if (v >= EXPAND_MAX_INT || v <= -EXPAND_MAX_INT) {
+        diag_error(E->d, span,
+                   "integer too large: the integers of a scheme stay below "
+                   "2^40 in magnitude");
+        return -1;
+    }
+    *out = (slong)v;
+    return 0;
+}
+
+/* n as a whole number: numbers, int constants, the comprehension variable,
+ * + - * / ^ (an exact division, a non-negative exponent) */
+static int eval_int(Expander *E, const Node *n, slong *out)
+{
+    slong a, b;
+    switch (n->kind) {
+    case ND_NUM: {
+        const char *c = n->text;
+        for (; *c; c++)
+            if (!isdigit((unsigned char)*c))
+                break;
+        if (*c || strlen(n->text) > 13) {
+            if (*c)
+                diag_error(E->d, n->span,
+                           "expected a whole number here, found '%s'",
+                           n->text);
+            else
+                diag_error(E->d, n->span,
+                           "integer too large: the integers of a scheme stay "
+                           "below 2^40 in magnitude");
+            return -1;
+        }
+        return int_range(E, n->span, (__int128)strtoll(n->text, NULL, 10),
+                         out);
+    }
+    case ND_NAME: {
+        if (E->var && strcmp(n->text, E->var) == 0) {
+            *out = E->var_value;
+            return 0;
+        }
+        IntSym *is = find_int(E, n->text);
+        if (is) {
+            *out = is->value;
+            return 0;
+        }
+        diag_error(E->d, n->span,
+                   "'%s' is not an integer; expected whole numbers, 'int' "
+                   "constants and comprehension variables here",
+                   n->text);
+        return -1;
+    }
+    case ND_NEG:
+        if (eval_int(E, n->lhs, &a) < 0)
+            return -1;
+        *out = -a;
+        return 0;
+    case ND_ADD:
+    case ND_SUB:
+    case ND_MUL:
+    case ND_DIV:
+    case ND_POW:
+        if (eval_int(E, n->lhs, &a) < 0 || eval_int(E, n->rhs, &b) < 0)
+            return -1;
+        switch (n->kind) {
+        case ND_ADD:
+            return int_range(E, n->span, (__int128)a + b, out);
+        case ND_SUB:
+            return int_range(E, n->span, (__int128)a - b, out);
+        case ND_MUL:
+            return int_range(E, n->span, (__int128)a * b, out);
+        case ND_DIV:
+            if (b == 0) {
+                diag_error(E->d, n->rhs->span, "division by zero");
+                return -1;
+            }
+            if (a % b != 0) {
+                diag_error(E->d, n->span,
+                           "%ld/%ld is not a whole number; expected an exact "
+                           "division here",
+                           (long)a, (long)b);
+                return -1;
+            }
+            *out = a / b;
+            return 0;
+        default: {
+            if (b < 0) {
+                diag_error(E->d, n->rhs->span,
+                           "expected a non-negative exponent here, found %ld",
+                           (long)b);
+                return -1;
+            }
+            __int128 p = 1;
+            for (slong k = 0; k < b; k++) {
+                p *= a;
+                if (p >= EXPAND_MAX_INT || p <= -EXPAND_MAX_INT)
+                    return int_range(E, n->span, p, out);
+                if (p == 0 || p == 1)
+                    break;
+            }
+            if (p == 1 && a == -1 && b % 2)
+                p = -1;
+            return int_range(E, n->span, p, out);
+        }
+        }
+    case ND_CALL:
+    case ND_INDEX:
+        break;
+    }
+    diag_error(E->d, n->span,
+               "expected a whole number here (numbers, 'int' constants, "
+               "comprehension variables, + - * / ^)");
+    return -1;
+}
+
+/* ---- expressions -------------------------------------------------------- */
+
+static int budget_nodes(Expander *E, const Node *n, long k)
+{
+    E->nodes += k;
+    if (E->nodes <= EXPAND_MAX_NODES)
+        return 0;
+    if (!E->over)
+        diag_error(E->d, n->span,
+                   "the scheme unrolls to more than %d expression nodes; "
+                   "expected smaller families or comprehensions",
+                   EXPAND_MAX_NODES);
+    E->over = 1;
+    return -1;
+}
+
+static int budget_members(Expander *E, Span span, slong k)
+{
+    if (k > 0)
+        E->members += (long)k;
+    if (E->members <= EXPAND_MAX_MEMBERS)
+        return 0;
+    if (!E->over)
+        diag_error(E->d, span,
+                   "the scheme unrolls to more than %d family members and "
+                   "equations; expected smaller families or comprehensions",
+                   EXPAND_MAX_MEMBERS);
+    E->over = 1;
+    return -1;
+}
+
+static Node *clone(Expander *E, const Node *n)
+{
+    if (!n)
+        return NULL;
+    Node *c = arena_new(E->a, Node);
+    *c = *n;
+    c->lhs = clone(E, n->lhs);
+    c->rhs = clone(E, n->rhs);
+    c->next = NULL;
+    c->args = NULL;
+    Node **tail = &c->args;
+    for (const Node *x = n->args; x; x = x->next) {
+        *tail = clone(E, x);
+        tail = &(*tail)->next;
+    }
+    return c;
+}
+
+static long count_nodes(const Node *n)
+{
+    long k = 0;
+    for (; n; n = n->next)
+        k += 1 + count_nodes(n->lhs) + count_nodes(n->rhs) +
+             count_nodes(n->args);
+    return k;
+}
+
+/* the number v as an expression (a negative one as -|v|) at span */
+static Node *number(Expander *E, slong v, Span span)
+{
+    char buf[32];
+    snprintf(buf, sizeof buf, "%ld", (long)(v < 0 ? -v : v));
+    Node *n = ast_new_num(E->a, arena_strdup(E->a, buf), span);
+    return v < 0 ? ast_new_unary(E->a, ND_NEG, n, span) : n;
+}
+
+/* the member index of family f that n's index denotes, checked */
+static int member_index(Expander *E, const Family *f, const Node *ix,
+                        slong *k)
+{
+    if (eval_int(E, ix, k) < 0)
+        return -1;
+    if (*k < f->lo || *k > f->hi) {
+        if (f->lo > f->hi)
+            diag_error(E->d, ix->span,
+                       "index %ld is out of range: the family %s is empty",
+                       (long)*k, f->name);
+        else
+            diag_error(E->d, ix->span,
+                       "index %ld is out of range: %s has the members "
+                       "%s[%ld..%ld]",
+                       (long)*k, f->name, f->name, (long)f->lo, (long)f->hi);
+        return -1;
+    }
+    return 0;
+}
+
+static Family *family_of(Expander *E, const char *name, Span span)
+{
+    Family *f = find_family(E, name);
+    if (!f)
+        diag_error(E->d, span,
+                   "'%s' is not a family; expected NAME[i] of a family "
+                   "declared as NAME[lo..hi]",
+                   name);
+    return f;
+}
+
+static int rewrite(Expander *E, Node **slot);
+
+/* a call's argument list with every range NAME[a..b] replaced by its
+ * members */
+static int rewrite_args(Expander *E, Node *call)
+{
+    int st = 0;
+    Node *out = NULL, **tail = &out;
+    int nargs = 0, depth = 1;
+    for (Node *x = call->args, *next; x; x = next) {
+        next = x->next;
+        x->next = NULL;
+        if (x->kind == ND_INDEX && x->rhs) {
+            Family *f = family_of(E, x->text, x->name_span);
+            slong lo, hi;
+            if (!f || eval_int(E, x->lhs, &lo) < 0 ||
+                eval_int(E, x->rhs, &hi) < 0) {
+                st = -1;
+                continue;
+            }
+            if (lo <= hi && (lo < f->lo || hi > f->hi)) {
+                slong bad = lo < f->lo ? lo : hi;
+                diag_error(E->d, lo < f->lo ? x->lhs->span : x->rhs->span,
+                           "index %ld is out of range: %s has the members "
+                           "%s[%ld..%ld]",
+                           (long)bad, f->name, f->name, (long)f->lo,
+                           (long)f->hi);
+                st = -1;
+                continue;
+            }
+            if (budget_nodes(E, x, hi - lo + 1) < 0)
+                return -1;
+            for (slong k = lo; k <= hi; k++) {
+                *tail = ast_new_name(E->a, member_name(E, f->name, k),
+                                     x->span);
+                tail = &(*tail)->next;
+                nargs++;
+            }
+            continue;
+        }
+        if (rewrite(E, &x) < 0)
+            st = -1;
+        *tail = x;
+        tail = &x->next;
+        nargs++;
+        if (x->depth + 1 > depth)
+            depth = x->depth + 1;
+    }
+    call->args = out;
+    call->nargs = nargs;
+    call->depth = depth;
+    return st;
+}
+
+static int rewrite(Expander *E, Node **slot)
+{
+    Node *n = *slot;
+    switch (n->kind) {
+    case ND_NUM:
+        return 0;
+    case ND_NAME: {
+        slong v;
+        if ((E->var && strcmp(n->text, E->var) == 0) || find_int(E, n->text)) {
+            eval_int(E, n, &v);
+            Node *num = number(E, v, n->span);
+            num->next = n->next;
+            *slot = num;
+            return 0;
+        }
+        Family *f = find_family(E, n->text);
+        if (f) {
+            diag_error(E->d, n->span,
+                       "'%s' is a family of %s; expected a member %s[i] or "
+                       "a range %s[a..b] among a function's arguments",
+                       n->text, f->what, n->text, n->text);
+            return -1;
+        }
+        return 0;
+    }
+    case ND_INDEX: {
+        slong k;
+        if (n->rhs) {
+            diag_error(E->d, n->span,
+                       "a range %s[a..b] stands for several points; expected "
+                       "it among the arguments of a function such as "
+                       "bezier()",
+                       n->text);
+            return -1;
+        }
+        Family *f = family_of(E, n->text, n->name_span);
+        if (!f || member_index(E, f, n->lhs, &k) < 0)
+            return -1;
+        Node *m = ast_new_name(E->a, member_name(E, f->name, k), n->span);
+        m->next = n->next;
+        *slot = m;
+        return 0;
+    }
+    case ND_CALL:
+        return rewrite_args(E, n);
+    case ND_NEG:
+    case ND_ADD:
+    case ND_SUB:
+    case ND_MUL:
+    case ND_DIV:
+    case ND_POW: {
+        int st = rewrite(E, &n->lhs);
+        if (n->rhs && rewrite(E, &n->rhs) < 0)
+            st = -1;
+        n->depth = n->lhs->depth + 1;
+        if (n->rhs && n->rhs->depth + 1 > n->depth)
+            n->depth = n->rhs->depth + 1;
+        return st;
+    }
+    }
+    return 0;
+}
+
+/* ---- name lists --------------------------------------------------------- */
+
+/* a declaration list: plain names and families NAME[lo..hi] */
+static Name *declare_names(Expander *E, Name *list, const char *what,
+                           int allow_family)
+{
+    Name *out = NULL, **tail = &out;
+    for (Name *nm = list, *next; nm; nm = next) {
+        next = nm->next;
+        nm->next = NULL;
+        if (nm->index || (nm->lo && !allow_family)) {
+            diag_error(E->d, nm->span,
+                       allow_family ? "expected a name or a family "
+                                      "NAME[lo..hi] in a declaration"
+                                    : "expected a plain name; families of "
+                                      "parameters and constants are not "
+                                      "supported");
+            continue;
+        }
+        if (check_free(E, nm->text, nm->span, nm->lo != NULL) < 0)
+            continue;
+        if (!nm->lo) {
+            add_name(E, nm->text, nm->span);
+            *tail = nm;
+            tail = &nm->next;
+            continue;
+        }
+        slong lo, hi;
+        if (eval_int(E, nm->lo, &lo) < 0 || eval_int(E, nm->hi, &hi) < 0)
+            continue;
+        if (lo < 0) {
+            diag_error(E->d, nm->lo->span,
+                       "a family's indices start at 0 or above, found %ld",
+                       (long)lo);
+            continue;
+        }
+        /* no earlier plain name may be one of its members */
+        int clash = 0;
+        for (int i = 0; i < E->nnames && !clash; i++) {
+            size_t bl = strlen(nm->text);
+            const char *s = E->names[i];
+            if (strncmp(s, nm->text, bl) == 0 && s[bl] == '_' &&
+                isdigit((unsigned char)s[bl + 1]) &&
+                !(s[bl + 1] == '0' && s[bl + 2]) &&
+                strspn(s + bl + 1, "0123456789") == strlen(s + bl + 1) &&
+                strlen(s + bl + 1) <= 12) {
+                slong k = strtol(s + bl + 1, NULL, 10);
+                if (k >= lo && k <= hi) {
+                    diag_error(E->d, nm->span,
+                               "the family member %s[%ld] would be named "
+                               "'%s', which is declared already",
+                               nm->text, (long)k, s);
+                    diag_note(E->d, E->spans[i], "'%s' was declared here", s);
+                    clash = 1;
+                }
+            }
+        }
+        if (clash || budget_members(E, nm->span, hi - lo + 1) < 0)
+            continue;
+        if (E->nfams == E->capfams) {
+            E->capfams = E->capfams ? 2 * E->capfams : 8;
+            E->fams = pc_xrealloc(E->fams, sizeof(Family) * (size_t)E->capfams);
+        }
+        E->fams[E->nfams++] = (Family){nm->text, lo, hi, nm->span, what};
+        for (slong k = lo; k <= hi; k++) {
+            Name *m = ast_new_namelist(E->a, member_name(E, nm->text, k),
+                                       nm->span);
+            *tail = m;
+            tail = &m->next;
+        }
+    }
+    return out;
+}
+
+/* a list that refers to names (for X, ...; output ...): plain names,
+ * members NAME[i] and ranges NAME[a..b] */
+static Name *refer_names(Expander *E, Name *list)
+{
+    Name *out = NULL, **tail = &out;
+    for (Name *nm = list, *next; nm; nm = next) {
+        next = nm->next;
+        nm->next = NULL;
+        if (!nm->index && !nm->lo) {
+            Family *f = find_family(E, nm->text);
+            if (f) { /* the whole family */
+                for (slong k = f->lo; k <= f->hi; k++) {
+                    Name *m = ast_new_namelist(
+                        E->a, member_name(E, f->name, k), nm->span);
+                    *tail = m;
+                    tail = &m->next;
+                }
+                continue;
+            }
+            *tail = nm;
+            tail = &nm->next;
+            continue;
+        }
+        Family *f = family_of(E, nm->text, nm->span);
+        slong lo, hi;
+        if (!f)
+            continue;
+        if (nm->index) {
+            if (member_index(E, f, nm->index, &lo) < 0)
+                continue;
+            hi = lo;
+        } else {
+            if (eval_int(E, nm->lo, &lo) < 0 || eval_int(E, nm->hi, &hi) < 0)
+                continue;
+            if (lo <= hi && (lo < f->lo || hi > f->hi)) {
+                const Node *bad = lo < f->lo ? nm->lo : nm->hi;
+                diag_error(E->d, bad->span,
+                           "index %ld is out of range: %s has the members "
+                           "%s[%ld..%ld]",
+                           (long)(lo < f->lo ? lo : hi), f->name, f->name,
+                           (long)f->lo, (long)f->hi);
+                continue;
+            }
+        }
+        for (slong k = lo; k <= hi; k++) {
+            Name *m = ast_new_namelist(E->a, member_name(E, f->name, k),
+                                       nm->span);
+            *tail = m;
+            tail = &m->next;
+        }
+    }
+    return out;
+}
+
+/* ---- statements --------------------------------------------------------- */
+
+static int parse_define(const char *text, char *name, size_t cap, slong *v)
+{
+    const char *eq = strchr(text, '=');
+    if (!eq || eq == text || (size_t)(eq - text) >= cap)
+        return -1;
+    if (!(isalpha((unsigned char)text[0]) || text[0] == '_'))
+        return -1;
+    for (const char *c = text; c < eq; c++)
+        if (!(isalnum((unsigned char)*c) || *c == '_'))
+            return -1;
+    const char *d = eq + 1;
+    if (*d == '-' || *d == '+')
+        d++;
+    if (!*d || strlen(d) > 13 || strspn(d, "0123456789") != strlen(d))
+        return -1;
+    long long x = strtoll(eq + 1, NULL, 10);
+    if (x >= EXPAND_MAX_INT || x <= -EXPAND_MAX_INT)
+        return -1;
+    memcpy(name, text, (size_t)(eq - text));
+    name[eq - text] = '\0';
+    *v = (slong)x;
+    return 0;
+}
+
+int expand_check_define(const char *text)
+{
+    char name[128];
+    slong v;
+    return parse_define(text, name, sizeof name, &v);
+}
+
+static void expand_int(Expander *E, Stmt *st, const char *const *defines,
+                       int ndefines, char *used)
+{
+    slong v;
+    const char *name = st->name->text;
+    if (check_free(E, name, st->name->span, 1) < 0)
+        return;
+    if (eval_int(E, st->expr, &v) < 0)
+        return;
+    for (int k = 0; k < ndefines; k++) {
+        char dn[128];
+        slong dv;
+        if (parse_define(defines[k], dn, sizeof dn, &dv) == 0 &&
+            strcmp(dn, name) == 0) {
+            v = dv;
+            used[k] = 1;
+        }
+    }
+    if (E->nints == E->capints) {
+        E->capints = E->capints ? 2 * E->capints : 8;
+        E->ints = pc_xrealloc(E->ints, sizeof(IntSym) * (size_t)E->capints);
+    }
+    E->ints[E->nints++] = (IntSym){name, v, st->name->span};
+}
+
+static void expand_solve(Expander *E, Stmt *st)
+{
+    Equation *out = NULL, **tail = &out;
+    for (Equation *e = st->eqs, *next; e; e = next) {
+        next = e->next;
+        e->next = NULL;
+        if (!e->var) {
+            if (rewrite(E, &e->lhs) < 0 || rewrite(E, &e->rhs) < 0) {
+                st->bad = 1;
+                continue;
+            }
+            *tail = e;
+            tail = &e->next;
+            continue;
+        }
+        slong lo, hi;
+        if (E->var) { /* cannot happen: comprehensions do not nest */
+            st->bad = 1;
+            continue;
+        }
+        if (check_free(E, e->var, e->var_span, 1) < 0 ||
+            eval_int(E, e->lo, &lo) < 0 || eval_int(E, e->hi, &hi) < 0 ||
+            budget_members(E, e->span, hi - lo + 1) < 0) {
+            st->bad = 1;
+            continue;
+        }
+        long size = count_nodes(e->lhs) + count_nodes(e->rhs);
+        for (slong k = lo; k <= hi; k++) {
+            if (budget_nodes(E, e->lhs, size) < 0) {
+                st->bad = 1;
+                break;
+            }
+            Equation *c = ast_new_equation(E->a, clone(E, e->lhs),
+                                           clone(E, e->rhs), e->span);
+            E->var = e->var;
+            E->var_value = k;
+            int bad = rewrite(E, &c->lhs) < 0 || rewrite(E, &c->rhs) < 0;
+            E->var = NULL;
+            if (bad) { /* one report is enough: stop at the first value */
+                st->bad = 1;
+                break;
+            }
+            *tail = c;
+            tail = &c->next;
+        }
+    }
+    st->eqs = out;
+    st->names = refer_names(E, st->names);
+}
+
+int expand_scheme(Scheme *s, Arena *a, Diag *diag,
+                  const char *const *defines, int ndefines, char *used)
+{
+    Expander E = {.a = a, .d = diag};
+    int errors0 = diag->nerrors;
+    for (int k = 0; k < ndefines; k++)
+        used[k] = 0;
+    for (Stmt *st = s->stmts; st && !E.over; st = st->next) {
+        switch (st->kind) {
+        case ST_SCHEME:
+            break;
+        case ST_INT:
+            expand_int(&E, st, defines, ndefines, used);
+            break;
+        case ST_POINT:
+            st->names = declare_names(&E, st->names, "points", 1);
+            break;
+        case ST_UNKNOWN:
+            st->names = declare_names(&E, st->names, "unknowns", 1);
+            break;
+        case ST_PARAM:
+        case ST_CONST:
+            st->names = declare_names(
+                &E, st->names, st->kind == ST_PARAM ? "params" : "consts", 0);
+            if (st->lo)
+                rewrite(&E, &st->lo);
+            if (st->hi)
+                rewrite(&E, &st->hi);
+            break;
+        case ST_DEF:
+            if (check_free(&E, st->name->text, st->name->span, 0) == 0)
+                add_name(&E, st->name->text, st->name->span);
+            rewrite(&E, &st->expr);
+            break;
+        case ST_SOLVE:
+            expand_solve(&E, st);
+            break;
+        case ST_OUTPUT:
+            st->names = refer_names(&E, st->names);
+            break;
+        }
+    }
+    free(E.ints);
+    free(E.fams);
+    free(E.names);
+    free(E.spans);
+    return diag->nerrors - errors0;
+}
