@@ -19,6 +19,7 @@ typedef struct IntSym {
     const char *name;
     slong value;
     Span span;
+    int bad; // its definition had an error: uses are not re-reported
 } IntSym;
 
 typedef struct Family {
@@ -189,7 +190,7 @@ static int eval_int(Expander *E, const Node *n, slong *out)
         IntSym *is = find_int(E, n->text);
         if (is) {
             *out = is->value;
-            return 0;
+            return is->bad ? -1 : 0;
         }
         diag_error(E->d, n->span,
                    "'%s' is not an integer; expected whole numbers, 'int' "
@@ -338,6 +339,12 @@ static int member_index(Expander *E, const Family *f, const Node *ix,
             diag_error(E->d, ix->span,
                        "index %ld is out of range: the family %s is empty",
                        (long)*k, f->name);
+        else if (E->var)
+            diag_error(E->d, ix->span,
+                       "index %ld (at %s = %ld) is out of range: %s has the "
+                       "members %s[%ld..%ld]",
+                       (long)*k, E->var, (long)E->var_value, f->name,
+                       f->name, (long)f->lo, (long)f->hi);
         else
             diag_error(E->d, ix->span,
                        "index %ld is out of range: %s has the members "
@@ -422,7 +429,8 @@ static int rewrite(Expander *E, Node **slot)
     case ND_NAME: {
         slong v;
         if ((E->var && strcmp(n->text, E->var) == 0) || find_int(E, n->text)) {
-            eval_int(E, n, &v);
+            if (eval_int(E, n, &v) < 0)
+                return -1;
             Node *num = number(E, v, n->span);
             num->next = n->next;
             *slot = num;
@@ -640,18 +648,19 @@ int expand_check_define(const char *text)
 static void expand_int(Expander *E, Stmt *st, const char *const *defines,
                        int ndefines, char *used)
 {
-    slong v;
+    slong v = 0;
     const char *name = st->name->text;
+    int bad;
     if (check_free(E, name, st->name->span, 1) < 0)
         return;
-    if (eval_int(E, st->expr, &v) < 0)
-        return;
+    bad = eval_int(E, st->expr, &v) < 0;
     for (int k = 0; k < ndefines; k++) {
         char dn[128];
         slong dv;
         if (parse_define(defines[k], dn, sizeof dn, &dv) == 0 &&
             strcmp(dn, name) == 0) {
             v = dv;
+            bad = 0;
             used[k] = 1;
         }
     }
@@ -659,7 +668,7 @@ static void expand_int(Expander *E, Stmt *st, const char *const *defines,
         E->capints = E->capints ? 2 * E->capints : 8;
         E->ints = pc_xrealloc(E->ints, sizeof(IntSym) * (size_t)E->capints);
     }
-    E->ints[E->nints++] = (IntSym){name, v, st->name->span};
+    E->ints[E->nints++] = (IntSym){name, bad ? 0 : v, st->name->span, bad};
 }
 
 static void expand_solve(Expander *E, Stmt *st)
