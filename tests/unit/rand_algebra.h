@@ -17,6 +17,7 @@
 #include <flint/fmpq.h>
 #include <flint/fmpz_mpoly.h>
 
+#include "compiler/pteq.h"
 #include "compiler/ratfun.h"
 
 static inline void rand_init(flint_rand_t st)
@@ -85,5 +86,38 @@ static inline void rand_fmpq(fmpq_t q, flint_rand_t st)
 {
     fmpq_randtest(q, st, 8);
 }
+
+/* a random combination of the base points lo..hi-1 with weight sum `sum`
+ * (1 a point, 0 a direction) */
+static inline void rand_comb(PointEq x, flint_rand_t st, slong lo, slong hi, int sum,
+                      const Ring *r)
+{
+    slong n = hi - lo;
+    slong *pts = malloc(sizeof(slong) * (size_t)n);
+    RatFunStruct *w = malloc(sizeof(RatFunStruct) * (size_t)n);
+    RatFun acc;
+    ratfun_init(acc, r);
+    ratfun_set_si(acc, sum, r);
+    for (slong i = 0; i < n; i++) {
+        pts[i] = lo + i;
+        ratfun_init(w + i, r);
+        if (i + 1 < n) {
+            if (n_randint(st, 3) == 0)
+                ratfun_zero(w + i, r);
+            else
+                rand_ratfun(w + i, st, r);
+            ratfun_sub(acc, acc, w + i, r);
+        } else {
+            ratfun_set(w + i, acc, r);
+        }
+    }
+    pteq_set_weights(x, pts, w, n, r);
+    for (slong i = 0; i < n; i++)
+        ratfun_clear(w + i, r);
+    free(w);
+    free(pts);
+    ratfun_clear(acc, r);
+}
+
 
 #endif

@@ -51,38 +51,6 @@ static int teardown(void **state)
     return 0;
 }
 
-/* a random combination of the base points lo..hi-1 with weight sum `sum`
- * (1 a point, 0 a direction) */
-static void rand_comb(PointEq x, flint_rand_t st, slong lo, slong hi, int sum,
-                      const Ring *r)
-{
-    slong n = hi - lo;
-    slong *pts = malloc(sizeof(slong) * (size_t)n);
-    RatFunStruct *w = malloc(sizeof(RatFunStruct) * (size_t)n);
-    RatFun acc;
-    ratfun_init(acc, r);
-    ratfun_set_si(acc, sum, r);
-    for (slong i = 0; i < n; i++) {
-        pts[i] = lo + i;
-        ratfun_init(w + i, r);
-        if (i + 1 < n) {
-            if (n_randint(st, 3) == 0)
-                ratfun_zero(w + i, r);
-            else
-                rand_ratfun(w + i, st, r);
-            ratfun_sub(acc, acc, w + i, r);
-        } else {
-            ratfun_set(w + i, acc, r);
-        }
-    }
-    pteq_set_weights(x, pts, w, n, r);
-    for (slong i = 0; i < n; i++)
-        ratfun_clear(w + i, r);
-    free(w);
-    free(pts);
-    ratfun_clear(acc, r);
-}
-
 /* a random generator over lo..hi-1: a base point, a point or a direction */
 static void rand_gen(PointEq x, flint_rand_t st, slong lo, slong hi,
                      int may_be_direction, const Ring *r)
