@@ -426,6 +426,98 @@ static void test_emit_c_examples_match_exact_and_runtime(void **state)
     }
 }
 
+/* An interpolation scheme passes through its nodes (issue: evaluation at
+ * the nodes): output 0 at t = k/n is point k, for k = 0..n, in the
+ * generated C (one point and batch) and in the runtime (what `eval` runs),
+ * to 1e-12 relative to the largest coordinate, in dims 2, 3 and 7, with
+ * random (non-dyadic) points. */
+static void check_nodes(const char *path, const char *define, int n)
+{
+    const char *defs[1] = {define};
+    DeriveOptions opt = {.max_seconds = 60, .defines = defs,
+                         .ndefines = define ? 1 : 0};
+    Derived *d = derive_file_ex(path, stderr, NULL, &opt);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    assert_non_null(p);
+    assert_int_equal(p->npoints, n + 1);
+    assert_int_equal(p->nparams, 1);
+    Compiled c;
+    compile_plan(&c, p);
+    one_fn one = (one_fn)(uintptr_t)dlsym(c.so, "w1_0");
+    batch_fn batch = (batch_fn)(uintptr_t)dlsym(c.so, "wb_0");
+    static const int dims[] = {2, 3, 7};
+    double ts[64];
+    const double *prm[1] = {ts};
+    for (int k = 0; k <= n; k++)
+        ts[k] = (double)k / n;
+    srand(12345);
+    for (int di = 0; di < 3; di++) {
+        int dim = dims[di];
+        double **pts = malloc(sizeof *pts * (size_t)(n + 1)), big = 0;
+        double *out = malloc(sizeof *out * (size_t)(dim * (n + 1)));
+        unsigned char st[64];
+        for (int k = 0; k <= n; k++) {
+            pts[k] = malloc(sizeof **pts * (size_t)dim);
+            for (int cc = 0; cc < dim; cc++) {
+                pts[k][cc] = 10.0 * rand() / RAND_MAX - 5.0;
+                big = fmax(big, fabs(pts[k][cc]));
+            }
+        }
+        for (int way = 0; way < 3; way++) {
+            if (way == 0)
+                for (int k = 0; k <= n; k++)
+                    assert_int_equal(one(ts + k, NULL,
+                                         (const double *const *)pts, dim,
+                                         out + k * dim, 1),
+                                     0);
+            else if (way == 1)
+                assert_int_equal(batch((size_t)n + 1, prm, NULL,
+                                       (const double *const *)pts, dim, out,
+                                       st, 1),
+                                 0);
+            else
+                assert_int_equal(plan_eval(p, 0, (size_t)n + 1, prm, NULL,
+                                           (const double *const *)pts, dim,
+                                           out, st),
+                                 0);
+            for (int k = 0; k <= n; k++)
+                for (int cc = 0; cc < dim; cc++) {
+                    double err = fabs(out[k * dim + cc] - pts[k][cc]) / big;
+                    total_checks++;
+                    if (!(err <= REL_TOL))
+                        fail_msg("%s (%s) dim %d, %s: node %d coordinate "
+                                 "%d off by %g relative",
+                                 path, define ? define : "-", dim,
+                                 way == 0   ? "generated"
+                                 : way == 1 ? "generated batch"
+                                            : "runtime",
+                                 k, cc, err);
+                }
+        }
+        for (int k = 0; k <= n; k++)
+            free(pts[k]);
+        free(pts);
+        free(out);
+    }
+    compiled_clear(&c);
+    plan_free(p);
+    derived_free(d);
+}
+
+static void test_emit_c_interpolation_passes_through_nodes(void **state)
+{
+    (void)state;
+    check_nodes("examples/interpolation_bezier_order2.pcs", NULL, 2);
+    check_nodes("examples/interpolation_desargues.pcs", NULL, 3);
+    check_nodes("examples/interpolation_rational_cubic.pcs", NULL, 3);
+    static const char *const orders[] = {"n=1", "n=2", "n=3", "n=4", "n=5",
+                                         "n=6", "n=8", "n=12"};
+    for (size_t i = 0; i < sizeof orders / sizeof *orders; i++)
+        check_nodes("examples/interpolation_bezier.pcs", orders[i],
+                    atoi(orders[i] + 2));
+}
+
 /* the contract's Desargues scheme, inline: at t = 1/2 the centroid */
 static const char desargues[] = "scheme desargues_arc\n"
                                 "point A, B, C, D\n"
@@ -792,6 +884,7 @@ int main(void)
         cmocka_unit_test(test_lower_keeps_powers_of_factors),
         cmocka_unit_test(test_emit_c_denominator_overflow_is_reported),
         cmocka_unit_test(test_emit_c_examples_match_exact_and_runtime),
+        cmocka_unit_test(test_emit_c_interpolation_passes_through_nodes),
     };
     int rc = cmocka_run_group_tests(tests, NULL, teardown);
     fprintf(stderr, "test_emit_c: %d value comparisons\n", total_checks);
