@@ -289,5 +289,31 @@ check "_checked: status 3 for NaN and overflowing values" test "$("$tmp/nan")" =
     --at C=0,1 --param u=0.5 --param k=1 >/dev/null 2>"$tmp/err"
 check "const as --param" grep -qx "pointcalc: --param k: 'k' is a const; give it with --set k=VALUE" "$tmp/err"
 
+# -D overrides an int of the scheme, for every command
+F=examples/interpolation_bezier.pcs
+"$PC" derive "$F" -D n=3 >"$tmp/out" 2>"$tmp/err"
+check "-D n=3: exit 0" test $? -eq 0 -a ! -s "$tmp/err"
+check "-D n=3: four nodes" grep -q 'M_4' "$tmp/out"
+check "-D n=3: no fifth" test -z "$(grep 'M_5' "$tmp/out")"
+"$PC" derive "$F" -Dn=2 --format json >"$tmp/json"
+check "-Dn=2 json: members named M_k" python3 -c "
+import json
+d=json.load(open('$tmp/json'))
+assert d['points']==['M_1','M_2','M_3'], d
+assert sorted(d['outputs'][0]['terms'])==['M_1','M_2','M_3']
+"
+"$PC" derive "$F" -D m=3 >"$tmp/out" 2>"$tmp/err"
+check "-D of an undeclared int: exit 1" test $? -eq 1 -a ! -s "$tmp/out"
+check "-D of an undeclared int: named" grep -qx "$F: error: -D m=3: the scheme declares no 'int m'" "$tmp/err"
+"$PC" derive "$F" -D n=x >"$tmp/out" 2>"$tmp/err"
+check "-D n=x: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
+check "-D n=x: says what is expected" grep -q "^pointcalc: -D 'n=x': expected NAME=INTEGER" "$tmp/err"
+"$PC" derive "$F" -D >/dev/null 2>&1
+check "-D without a value: exit 2" test $? -eq 2
+"$PC" emit-c "$F" -D n=2 >"$tmp/out"
+check "emit-c -D n=2: members as parameters" grep -q 'const double \*a_M_3, int dim' "$tmp/out"
+"$PC" eval "$F" -D n=2 --at M_1=0,0 --at M_2=1,1 --at M_3=2,0 --param t=0,0.5,1 >"$tmp/out"
+check "eval -D n=2: through the nodes" test "$(sed -n 2,4p "$tmp/out" | tr '\n' ' ')" = "0,0,0 0.5,1,1 1,2,0 "
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
