@@ -867,6 +867,8 @@ static void emit_batch(Ctx *C)
         fprintf(out, "%s(w%d[j] - w%d[j])", k ? "\n                      + "
                                               : "",
                 k, k);
+    if (nslots == 0) /* an output that is identically zero */
+        fputs("(double)0", out);
     fputs(" != 0.0;\n", out);
     fputs("            if (nf != 0)\n"
           "                for (j = 0; j < m; j++) {\n",

@@ -305,6 +305,38 @@ static void test_family_interpolation_is_lagrange(void **state)
     }
 }
 
+/* the contour arcs of 3.6 for k = 2..5 against the printed M2..M5:
+ * weights tb^(k+1)/den_k of A and t^(k+1)/den_k of B */
+static void test_contour_arcs_match_the_book(void **state)
+{
+    (void)state;
+    static const char *const den[] = {
+        "1 - (1-t)*t", "1 - 2*(1-t)*t", "1 - 3*(1-t)*t + (1-t)^2*t^2",
+        "1 - 4*(1-t)*t + 3*(1-t)^2*t^2"};
+    for (int k = 2; k <= 5; k++) {
+        char def[16], wa[128], wb[128];
+        const char *defs[1] = {def};
+        snprintf(def, sizeof def, "k=%d", k);
+        snprintf(wa, sizeof wa, "(1-t)^%d/(%s)", k + 1, den[k - 2]);
+        snprintf(wb, sizeof wb, "t^%d/(%s)", k + 1, den[k - 2]);
+        DeriveOptions opt = {.max_seconds = 60, .defines = defs,
+                             .ndefines = 1};
+        Derived *d = derive_file_ex("examples/contour_arcs.pcs", stderr, NULL,
+                                    &opt);
+        assert_non_null(d);
+        const DerivedOutput *m = &d->outputs[0];
+        assert_int_equal(m->eq->len, 3);
+        RatFun e;
+        ratfun_init(e, &d->ring);
+        assert_int_equal(ratfun_set_str(e, wa, &d->ring), 0);
+        assert_true(ratfun_equal(m->w + 0, e, &d->ring)); /* A */
+        assert_int_equal(ratfun_set_str(e, wb, &d->ring), 0);
+        assert_true(ratfun_equal(m->w + 1, e, &d->ring)); /* B */
+        ratfun_clear(e, &d->ring);
+        derived_free(d);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -313,6 +345,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_solve_singular_and_inconsistent,
                                         setup, teardown),
         cmocka_unit_test(test_family_interpolation_is_lagrange),
+        cmocka_unit_test(test_contour_arcs_match_the_book),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     flint_cleanup_master();
