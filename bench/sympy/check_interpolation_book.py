@@ -94,3 +94,51 @@ for i in range(4):
     print(f"(4.37) M{i+1}: {'ok' if sp.simplify(w[i] - printed[i]) == 0 else 'DIFFERS'}"
           f"  {w[i]}")
 print("(4.37)", {k: v for k, v in sol.items()})
+
+# 4.9: the arc of order 5 through M1..M4 (u = 0, 1/3, 2/3, 1) that keeps the
+# end tangents M1C2, M4C5 (C2, C5 given, C3, C4 unknown), and the cubic
+# through M1, M2, M3 (u = 0, 1/2, 1) that keeps the tangent M1C2
+u = sp.symbols('u')
+ub = 1 - u
+C2, C3, C4, C5 = sp.symbols('C2 C3 C4 C5')
+bez5 = (M1 * ub**5 + 5 * C2 * ub**4 * u + 10 * C3 * ub**3 * u**2 + 10 * C4 * ub**2 * u**3
+        + 5 * C5 * ub * u**4 + M4 * u**5)
+sol = sp.solve([bez5.subs(u, R(1, 3)) - M2, bez5.subs(u, R(2, 3)) - M3], [C3, C4])
+w = weights(bez5.subs(sol), [M1, M2, M3, M4, C2, C5])
+printed = [ub**2 * (ub**3 - R(21, 4) * ub * u**2 + R(5, 2) * u**3),
+           R(81, 4) * ub**2 * u**2 * (2 - 3 * u), R(81, 4) * ub**2 * u**2 * (3 * u - 1),
+           u**2 * (R(5, 2) * ub**3 - R(21, 4) * ub**2 * u + u**3),
+           5 * ub * u * (1 - R(9, 2) * ub * u) * ub, 5 * ub * u * (1 - R(9, 2) * ub * u) * u]
+for i, nm in enumerate(['M1', 'M2', 'M3', 'M4', 'C2', 'C5']):
+    print(f"4.9 order 5 {nm}: {'ok' if sp.simplify(w[i] - printed[i]) == 0 else 'DIFFERS'}  {w[i]}")
+print("4.9 order 5: C3 =", sol[C3], "  C4 =", sol[C4])
+bez3 = M1 * ub**3 + 3 * C2 * ub**2 * u + 3 * C3 * ub * u**2 + M3 * u**3
+sol = sp.solve([bez3.subs(u, R(1, 2)) - M2], [C3])
+w = weights(bez3.subs(sol), [M1, M2, M3, C2])
+printed = [ub * (1 - 2 * u), 8 * u**2 * ub, u**2 * (2 * u - 1), 3 * ub * u * (1 - 2 * u)]
+for i, nm in enumerate(['M1', 'M2', 'M3', 'C2']):
+    print(f"4.9 order 3 {nm}: {'ok' if sp.simplify(w[i] - printed[i]) == 0 else 'DIFFERS'}  {w[i]}")
+print("4.9 order 3: C3 =", sol[C3])
+
+# 4.10, (4.34): the adaptive parabola through M2 at v = v0; the book takes
+# v0 = (8.89 - 1.11)/(8.89 - 0.33) ~ 0.91 and prints rounded decimals
+v, v0 = sp.symbols('v v0')
+vb = 1 - v
+par = M1 * vb**2 + 2 * C_ * vb * v + M3 * v**2
+sol = sp.solve([par.subs(v, v0) - M2], [C_])
+w = weights(par.subs(sol), [M1, M2, M3])
+print("(4.34) general node v0:", w, " C =", sol[C_])
+for val in [R(91, 100), (R(889, 100) - R(111, 100)) / (R(889, 100) - R(33, 100))]:
+    print(f"(4.34) v0 = {val}: ", [sp.expand(x.subs(v0, val)) for x in w],
+          " C =", sp.expand(sol[C_].subs(v0, val)))
+print("(4.34) printed decimals at v0 = 0.91: 1/v0 =", sp.N(1 / R(91, 100), 6),
+      " 1/(v0(1-v0)) =", sp.N(1 / (R(91, 100) * R(9, 100)), 6),
+      " 1/(1-v0) =", sp.N(1 / R(9, 100), 6), " v0/(1-v0) =", sp.N(R(91, 9), 6))
+
+# 4.1: C from the book's own relation C kb = K - K_C k, K_C = (A + B)/2
+k, K = sp.symbols('k K')
+Csol = sp.solve(sp.Eq(C_ * (1 - k), K - (A + B) / 2 * k), C_)[0]
+printed = -A * k / (2 * (1 - k)) - B * k / (2 * (1 - k)) + K / k
+print("4.1 C:", sp.factor(Csol), " printed K coefficient 1/k:",
+      'ok' if sp.simplify(Csol - printed) == 0 else
+      'DIFFERS (K coefficient is ' + str(sp.factor(sp.diff(Csol, K))) + ')')
