@@ -7,8 +7,9 @@
  * unknown points with coefficients in t): pointcalc in-process (median of
  * repeated derivations, parse to reduced weights), then SymPy (the same
  * program as a SymPy user writes it, bench/sympy/bench_interpolation.py, one
- * run per order) and Maxima (linsolve, bench/maxima/bench_interpolation.mac)
- * when they are installed; "skipped" otherwise.  PYTHON names the
+ * run per order) and Maxima (linsolve, bench/maxima/bench_interpolation.mac,
+ * the mean over at least 0.2 s of runs: its clock ticks in 10 ms) when they
+ * are installed; "skipped" otherwise, "timeout" past 600 s.  PYTHON names the
  * interpreter (make bench finds one with sympy); PC_BENCH_PEERS=0 skips the
  * peers, PC_BENCH_MAX_N caps the peers' orders (default 48).
  *
@@ -132,7 +133,8 @@ int main(void)
     int peers = !getenv("PC_BENCH_PEERS") || atoi(getenv("PC_BENCH_PEERS"));
     const char *py = getenv("PYTHON");
     printf("interpolation (monograph 4.8): pointcalc median of in-process "
-           "derivations [IQR/median]; peers one run each, ms\n");
+           "derivations [IQR/median]; SymPy one run each; Maxima the mean "
+           "over >= 0.2 s of runs; ms\n");
     for (int i = 0; i < NORD; i++) {
         char def[16];
         snprintf(def, sizeof def, "n=%d", ORDERS[i]);
