@@ -55,6 +55,11 @@ pc_scheme *pc_scheme_load(const char *path, char **diagnostics);
  * are refused before they start, so none runs for long. */
 typedef struct pc_options {
     double max_seconds;
+    /* ndefines strings "NAME=INTEGER" overriding the scheme's `int NAME =
+     * ...` (the command line's -D; e.g. the order of a family scheme), or
+     * NULL; a define the scheme does not declare is an error */
+    const char *const *defines;
+    int ndefines;
 } pc_options;
 pc_scheme *pc_scheme_parse_opts(const char *name, const char *text,
                                 size_t len, const pc_options *opt,

@@ -61,8 +61,11 @@ static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
 static DeriveOptions derive_options(const pc_options *opt)
 {
     DeriveOptions o = {.max_seconds = BUDGET_DEFAULT_SECONDS};
-    if (opt != NULL)
+    if (opt != NULL) {
         o.max_seconds = opt->max_seconds;
+        o.defines = opt->defines;
+        o.ndefines = opt->defines ? opt->ndefines : 0;
+    }
     return o;
 }
 

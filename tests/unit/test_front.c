@@ -328,7 +328,7 @@ static void test_time_budget_soft(void **state)
     char *out = NULL;
     size_t n = 0;
     FILE *mem = open_memstream(&out, &n);
-    DeriveOptions opt = {1e-9, NULL};
+    DeriveOptions opt = {.max_seconds = 1e-9};
     int nerr = 0;
     Derived *d =
         derive_source_ex("b.pcs", text, sizeof text - 1, mem, &nerr, &opt);
@@ -352,7 +352,7 @@ static void test_verbose_progress(void **state)
     char *out = NULL;
     size_t n = 0;
     FILE *mem = open_memstream(&out, &n);
-    DeriveOptions opt = {0, mem};
+    DeriveOptions opt = {.max_seconds = 0, .verbose = mem};
     Derived *d = derive_source_ex("v.pcs", text, sizeof text - 1, NULL, NULL,
                                   &opt);
     fclose(mem);
@@ -375,7 +375,7 @@ static void test_api_time_budget(void **state)
     (void)state;
     static const char text[] = "point A, B\nparam t\nM = along(A, B, t)\n";
     char *diag = NULL;
-    pc_options opt = {1e-9};
+    pc_options opt = {.max_seconds = 1e-9};
     pc_scheme *s = pc_scheme_parse_opts("a.pcs", text, sizeof text - 1, &opt,
                                         &diag);
     assert_null(s);
@@ -388,6 +388,30 @@ static void test_api_time_budget(void **state)
     assert_non_null(s);
     assert_null(diag);
     pc_scheme_free(s);
+}
+
+/* the C API's -D: an int of a family scheme, and a define not declared */
+static void test_api_defines(void **state)
+{
+    (void)state;
+    static const char text[] = "int n = 2\npoint M[1..n+1]\nparam t\n"
+                               "X = bezier(t, M[1..n+1])\n";
+    const char *defs[1] = {"n=4"};
+    pc_options opt = {.max_seconds = 60, .defines = defs, .ndefines = 1};
+    char *diag = NULL;
+    pc_scheme *s =
+        pc_scheme_parse_opts("f.pcs", text, sizeof text - 1, &opt, &diag);
+    assert_non_null(s);
+    assert_int_equal(pc_npoints(s), 5);
+    assert_string_equal(pc_point_name(s, 4), "M_5");
+    pc_scheme_free(s);
+    defs[0] = "m=4";
+    s = pc_scheme_parse_opts("f.pcs", text, sizeof text - 1, &opt, &diag);
+    assert_null(s);
+    assert_non_null(diag);
+    assert_string_equal(diag,
+                        "f.pcs: error: -D m=4: the scheme declares no 'int m'\n");
+    free(diag);
 }
 
 static void test_budget_options(void **state)
@@ -504,6 +528,7 @@ int main(void)
         cmocka_unit_test(test_verbose_progress),
         cmocka_unit_test(test_budget_options),
         cmocka_unit_test(test_api_time_budget),
+        cmocka_unit_test(test_api_defines),
         cmocka_unit_test(test_limits_allow_reasonable_results),
     };
     int rc = cmocka_run_group_tests_name("front", tests, NULL, NULL);
