@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "compiler/mem.h"
+#include "compiler/sema.h"
 
 typedef struct IntSym {
     const char *name;
@@ -159,9 +160,17 @@ static int int_range(Expander *E, Span span, __int128 v, slong *out)
 
 /* n as a whole number: numbers, int constants, the comprehension variable,
  * + - * / ^ (an exact division, a non-negative exponent) */
+static int too_deep(const Node *n);
+
 static int eval_int(Expander *E, const Node *n, slong *out)
 {
     slong a, b;
+    if (too_deep(n)) {
+        diag_error(E->d, n->span,
+                   "expression nested too deeply (%d levels; at most %d)",
+                   n->depth, SEMA_MAX_DEPTH);
+        return -1;
+    }
     switch (n->kind) {
     case ND_NUM: {
         const char *c = n->text;
@@ -420,9 +429,19 @@ static int rewrite_args(Expander *E, Node *call)
     return st;
 }
 
+/* An expression deeper than sema accepts is left alone: sema refuses it at
+ * its root before recursing, and so must every pass before it (the
+ * recursion below would otherwise run as deep as the parser allows). */
+static int too_deep(const Node *n)
+{
+    return n->depth > SEMA_MAX_DEPTH;
+}
+
 static int rewrite(Expander *E, Node **slot)
 {
     Node *n = *slot;
+    if (too_deep(n))
+        return 0;
     switch (n->kind) {
     case ND_NUM:
         return 0;
@@ -677,7 +696,7 @@ static void expand_solve(Expander *E, Stmt *st)
     for (Equation *e = st->eqs, *next; e; e = next) {
         next = e->next;
         e->next = NULL;
-        if (!e->var) {
+        if (!e->var || too_deep(e->lhs) || too_deep(e->rhs)) {
             if (rewrite(E, &e->lhs) < 0 || rewrite(E, &e->rhs) < 0) {
                 st->bad = 1;
                 continue;
