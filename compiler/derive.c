@@ -22,6 +22,7 @@
 #include "compiler/construct.h"
 #include "compiler/diag.h"
 #include "compiler/expand.h"
+#include "compiler/linsolve.h"
 #include "compiler/mem.h"
 #include "compiler/numfmt.h"
 #include "compiler/sema.h"
@@ -47,9 +48,19 @@ typedef struct Deriver {
     int expired;       // the time budget ran out (reported once)
     FILE *verbose;     // progress per definition, or NULL
     slong ucol0;       // unknown k is point column ucol0 + k while unknown
-    PointEq *usol;     // per unknown: its solution, once solved
+    PointEq *usol;     // per unknown point: its solution, once solved
+    RatFunStruct *ssol; // per unknown scalar: its solution, once solved
+    slong *uvar;       // per unknown scalar: its ring variable (else -1)
     int *usolved;      // per unknown: 1 once its solve succeeded
 } Deriver;
+
+/* the ring variable of a param, a const or an unknown scalar */
+static slong scalar_var(const Deriver *D, const Sym *s)
+{
+    return s->kind == SYM_PARAM   ? s->index
+           : s->kind == SYM_CONST ? D->info->nparams + s->index
+                                  : D->uvar[s->index];
+}
 
 /* the point column of a base point or an (unsolved) unknown */
 static slong point_col(const Deriver *D, const Sym *s)
@@ -384,8 +395,7 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
             goto done;
         }
     } else if (!xpoint) {
-        slong var = x->sym->index +
-                    (x->sym->kind == SYM_CONST ? D->info->nparams : 0);
+        slong var = scalar_var(D, x->sym);
         double bits = 0;
         if (ve.is_point)
             for (slong i = 0; i < ve.p->len; i++) {
@@ -421,9 +431,7 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
         }
         ratfun_clear(sum, r);
     } else {
-        slong var = x->sym->index + (x->sym->kind == SYM_CONST
-                                         ? D->info->nparams
-                                         : 0);
+        slong var = scalar_var(D, x->sym);
         int rc = ve.is_point ? pteq_compose_var(res->p, ve.p, var, vb.s, r)
                              : ratfun_compose_var(res->s, ve.s, var, vb.s, r);
         if (rc != 0) {
@@ -481,8 +489,7 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
     case BI_DIFF: {
         const Node *x = nth(n, 1), *order = nth(n, 2);
         long k = order ? strtol(order->text, NULL, 10) : 1;
-        slong var = x->sym->index +
-                    (x->sym->kind == SYM_CONST ? D->info->nparams : 0);
+        slong var = scalar_var(D, x->sym);
         if (eval(D, res, nth(n, 0)) < 0)
             return -1;
         /* the k-th derivative of n/d is N/d^(k+1): about the size of
@@ -610,10 +617,7 @@ static int eval(Deriver *D, Value *res, const Node *n)
         case SYM_PARAM:
         case SYM_CONST:
             res->is_point = 0;
-            ratfun_gen(res->s,
-                       s->index + (s->kind == SYM_CONST ? D->info->nparams
-                                                        : 0),
-                       r);
+            ratfun_gen(res->s, scalar_var(D, s), r);
             return 0;
         case SYM_DEF:
             if (D->state[s->index] != 1)
@@ -621,8 +625,12 @@ static int eval(Deriver *D, Value *res, const Node *n)
             value_set(res, &D->defs[s->index], r);
             return 0;
         case SYM_UNKNOWN:
-            res->is_point = 1;
-            if (D->usolved[s->index])
+            res->is_point = s->is_point;
+            if (!s->is_point && D->usolved[s->index])
+                ratfun_set(res->s, D->ssol + s->index, r);
+            else if (!s->is_point)
+                ratfun_gen(res->s, scalar_var(D, s), r);
+            else if (D->usolved[s->index])
                 pteq_set(res->p, D->usol[s->index], r);
             else
                 pteq_set_point(res->p, D->ucol0 + s->index, r);
@@ -770,6 +778,31 @@ static void derive_def(Deriver *D, Sym *s)
     ratfun_clear(sum, r);
 }
 
+/* replaces the unknown scalar var by its solution v in every value derived
+ * so far (a value whose denominator vanishes then keeps its form: its
+ * definition was generic in var, and the outputs are checked later) */
+static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v)
+{
+    const Ring *r = D->r;
+    for (int i = 0; i < D->info->ndefs; i++) {
+        Value *d = &D->defs[i];
+        if (D->state[i] != 1)
+            continue;
+        if (d->is_point)
+            pteq_compose_var(d->p, d->p, var, v, r);
+        else
+            ratfun_compose_var(d->s, d->s, var, v, r);
+    }
+    for (int k = 0; k < D->info->nunknowns; k++) {
+        if (!D->usolved[k])
+            continue;
+        if (D->info->unknowns[k]->is_point)
+            pteq_compose_var(D->usol[k], D->usol[k], var, v, r);
+        else
+            ratfun_compose_var(D->ssol + k, D->ssol + k, var, v, r);
+    }
+}
+
 /* replaces unknown column col by its solution x in every value derived so
  * far: the definitions and the unknowns solved earlier in terms of it */
 static void substitute_solved(Deriver *D, slong col, const PointEq x)
@@ -798,6 +831,225 @@ static char *unknown_list(Sym **syms, const char *which, slong n)
         if (which[j])
             o += sprintf(o, "%s'%s'", o == out ? "" : ", ", syms[j]->name);
     return out;
+}
+
+/* The largest total degree of p in the ring variables vars[0..nv-1]; when
+ * it is at least `limit`, the first such monomial's text ("k^2", "k*m")
+ * goes to buf.  For the linearity check of solve. */
+static slong degree_in(const fmpz_mpoly_t p, const slong *vars, slong nv,
+                       slong limit, char *buf, size_t cap, const Ring *r)
+{
+    slong best = 0;
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    if (cap)
+        buf[0] = '\0';
+    for (slong i = 0; i < p->length; i++) {
+        slong d = 0;
+        fmpz_mpoly_get_term_exp_ui(e, p, i, r->ctx);
+        for (slong k = 0; k < nv; k++)
+            d += (slong)e[vars[k]];
+        if (d >= limit && best < limit) {
+            size_t len = 0;
+            for (slong k = 0; k < nv && cap; k++) {
+                if (e[vars[k]] == 0)
+                    continue;
+                len += (size_t)snprintf(buf + len, cap - len, "%s%s",
+                                        len ? "*" : "", r->names[vars[k]]);
+                if (e[vars[k]] > 1 && len < cap)
+                    len += (size_t)snprintf(buf + len, cap - len, "^%lu",
+                                            (unsigned long)e[vars[k]]);
+                if (len >= cap)
+                    len = cap - 1;
+            }
+        }
+        best = d > best ? d : best;
+    }
+    free(e);
+    return best;
+}
+
+/* the coefficient of vars[m] (m >= 0) or the part free of all vars (m < 0)
+ * in p, which is linear in them */
+static void linear_coeff(fmpz_mpoly_t c, const fmpz_mpoly_t p,
+                         const slong *vars, slong nv, slong m, const Ring *r)
+{
+    ulong *ex = pc_xcalloc((size_t)(nv ? nv : 1), sizeof(ulong));
+    if (m >= 0)
+        ex[m] = 1;
+    fmpz_mpoly_get_coeff_vars_ui(c, p, vars, ex, nv, r->ctx);
+    free(ex);
+}
+
+/* `solve` with unknown scalars among the unknowns: each point equation
+ * holds one scalar equation per known point (its weight on both sides
+ * agrees), each scalar equation one; the unknowns are the weights x[j][b]
+ * of every unknown point X_j on every known point b, and the scalars.  The
+ * numerators must be linear in the unknowns (the coefficient of an unknown
+ * point free of the unknown scalars, no product of two unknown scalars).
+ * Solved by linsolve over the rational functions of everything else. */
+static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
+                               Equation **pe, slong npe, RatFunStruct *seq,
+                               Equation **se, slong nse, Sym **syms,
+                               Name **names, slong nunk)
+{
+    const Ring *r = D->r;
+    slong nx = 0, nk = 0, nknown = 0, capk = 0;
+    slong *xcol = pc_xmalloc(sizeof(slong) * (size_t)nunk);
+    slong *kvar = pc_xmalloc(sizeof(slong) * (size_t)nunk);
+    slong *xsym = pc_xmalloc(sizeof(slong) * (size_t)nunk);
+    slong *ksym = pc_xmalloc(sizeof(slong) * (size_t)nunk);
+    slong *known = NULL;
+    char prod[128];
+    int ok = 1;
+    for (slong j = 0; j < nunk; j++) {
+        if (syms[j]->is_point) {
+            xsym[nx] = j;
+            xcol[nx++] = D->ucol0 + syms[j]->index;
+        } else {
+            ksym[nk] = j;
+            kvar[nk++] = D->uvar[syms[j]->index];
+        }
+    }
+    /* linearity, and the known columns */
+    for (slong e = 0; e < npe && ok; e++)
+        for (slong i = 0; i < peq[e]->len && ok; i++) {
+            slong c = peq[e]->terms[i].point, x;
+            const fmpz_mpoly_struct *num = peq[e]->terms[i].num;
+            for (x = 0; x < nx && xcol[x] != c; x++)
+                ;
+            if (x < nx) {
+                if (degree_in(num, kvar, nk, 1, prod, sizeof prod, r) > 0) {
+                    diag_error(D->diag, pe[e]->span,
+                               "the equation is not linear in the unknowns: "
+                               "it holds the product %s*%s",
+                               prod, syms[xsym[x]]->name);
+                    ok = 0;
+                }
+                continue;
+            }
+            if (degree_in(num, kvar, nk, 2, prod, sizeof prod, r) > 1) {
+                diag_error(D->diag, pe[e]->span,
+                           "the equation is not linear in the unknowns: it "
+                           "holds the product %s",
+                           prod);
+                ok = 0;
+            }
+            slong k;
+            for (k = 0; k < nknown && known[k] != c; k++)
+                ;
+            if (k == nknown) {
+                if (nknown == capk) {
+                    capk = capk ? 2 * capk : 16;
+                    known = pc_xrealloc(known, sizeof(slong) * (size_t)capk);
+                }
+                known[nknown++] = c;
+            }
+        }
+    for (slong e = 0; e < nse && ok; e++)
+        if (degree_in(seq[e].num, kvar, nk, 2, prod, sizeof prod, r) > 1) {
+            diag_error(D->diag, se[e]->span,
+                       "the equation is not linear in the unknowns: it holds "
+                       "the product %s",
+                       prod);
+            ok = 0;
+        }
+    /* the system: unknown x[j][b] is column j*nknown + b, scalar m is
+     * column nx*nknown + m */
+    slong ncol = nx * nknown + nk, nrow = npe * nknown + nse;
+    RatFunStruct *A = NULL, *b = NULL, *x = NULL;
+    fmpz_mpoly_t c;
+    fmpz_mpoly_init(c, r->ctx);
+    if (ok && ncol > 0) {
+        A = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(nrow * ncol, 1));
+        b = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(nrow, 1));
+        x = pc_xmalloc(sizeof(RatFunStruct) * (size_t)ncol);
+        for (slong i = 0; i < nrow * ncol; i++)
+            ratfun_init(A + i, r);
+        for (slong i = 0; i < nrow; i++)
+            ratfun_init(b + i, r);
+        for (slong i = 0; i < ncol; i++)
+            ratfun_init(x + i, r);
+        for (slong e = 0; e < npe; e++)
+            for (slong i = 0; i < peq[e]->len; i++) {
+                slong col = peq[e]->terms[i].point, xi, bi;
+                const fmpz_mpoly_struct *num = peq[e]->terms[i].num;
+                for (xi = 0; xi < nx && xcol[xi] != col; xi++)
+                    ;
+                if (xi < nx) { /* u * x[xi][b] in every row b of e */
+                    for (bi = 0; bi < nknown; bi++)
+                        fmpz_mpoly_set(A[(e * nknown + bi) * ncol + xi * nknown + bi].num,
+                                       num, r->ctx);
+                    continue;
+                }
+                for (bi = 0; known[bi] != col; bi++)
+                    ;
+                slong row = e * nknown + bi;
+                linear_coeff(c, num, kvar, nk, -1, r);
+                fmpz_mpoly_neg(b[row].num, c, r->ctx);
+                for (slong m = 0; m < nk; m++) {
+                    linear_coeff(c, num, kvar, nk, m, r);
+                    fmpz_mpoly_set(A[row * ncol + nx * nknown + m].num, c,
+                                   r->ctx);
+                }
+            }
+        for (slong e = 0; e < nse; e++) {
+            slong row = npe * nknown + e;
+            linear_coeff(c, seq[e].num, kvar, nk, -1, r);
+            fmpz_mpoly_neg(b[row].num, c, r->ctx);
+            for (slong m = 0; m < nk; m++) {
+                linear_coeff(c, seq[e].num, kvar, nk, m, r);
+                fmpz_mpoly_set(A[row * ncol + nx * nknown + m].num, c, r->ctx);
+            }
+        }
+        slong rank = 0;
+        LinSolveResult lr = linsolve(x, &rank, A, b, nrow, ncol, r);
+        if (lr == LINSOLVE_INCONSISTENT) {
+            diag_error(D->diag, st->span,
+                       "inconsistent system: the equations contradict each "
+                       "other");
+        } else if (lr == LINSOLVE_UNDERDETERMINED) {
+            diag_error(D->diag, names[0]->span,
+                       "singular system: the equations leave the unknowns "
+                       "undetermined (rank %ld of %ld scalar unknowns)",
+                       (long)rank, (long)ncol);
+        } else {
+            /* the scalars first: the points' weights do not hold them */
+            for (slong m = 0; m < nk; m++) {
+                Sym *u = syms[ksym[m]];
+                ratfun_set(D->ssol + u->index, x + nx * nknown + m, r);
+            }
+            for (slong xi = 0; xi < nx; xi++) {
+                Sym *u = syms[xsym[xi]];
+                pteq_set_weights(D->usol[u->index], known,
+                                 x + xi * nknown, nknown, r);
+            }
+            for (slong m = 0; m < nk; m++) {
+                Sym *u = syms[ksym[m]];
+                D->usolved[u->index] = 1;
+                substitute_solved_scalar(D, kvar[m], D->ssol + u->index);
+            }
+            for (slong xi = 0; xi < nx; xi++) {
+                Sym *u = syms[xsym[xi]];
+                D->usolved[u->index] = 1;
+                substitute_solved(D, xcol[xi], D->usol[u->index]);
+            }
+        }
+        for (slong i = 0; i < nrow * ncol; i++)
+            ratfun_clear(A + i, r);
+        for (slong i = 0; i < nrow; i++)
+            ratfun_clear(b + i, r);
+        for (slong i = 0; i < ncol; i++)
+            ratfun_clear(x + i, r);
+        free(A);
+        free(b);
+        free(x);
+    }
+    fmpz_mpoly_clear(c, r->ctx);
+    free(known);
+    free(ksym);
+    free(xsym);
+    free(kvar);
+    free(xcol);
 }
 
 /* `solve EQ, ... for X, ...`: the equations as combinations that vanish,
@@ -839,15 +1091,29 @@ static void derive_solve(Deriver *D, Stmt *st)
                 syms[j] = D->info->unknowns[k];
         cols[j] = D->ucol0 + syms[j]->index;
     }
+    slong nsc = 0;
+    for (j = 0; j < nunk; j++)
+        nsc += !syms[j]->is_point;
+    RatFunStruct *seqs = pc_xmalloc(sizeof(RatFunStruct) * (size_t)neq);
+    char *scalar_eq = pc_xcalloc((size_t)neq, 1);
     slong e = 0;
     for (Equation *q = st->eqs; q; q = q->next, e++) {
         PointEq rhs;
+        Value lv, rv;
         eqn[e] = q;
         pteq_init(eqs[e], r);
+        ratfun_init(seqs + e, r);
         pteq_init(rhs, r);
-        if (eval_point(D, eqs[e], q->lhs) < 0 || eval_point(D, rhs, q->rhs) < 0) {
+        value_init(&lv, r);
+        value_init(&rv, r);
+        if (eval(D, &lv, q->lhs) < 0 || eval(D, &rv, q->rhs) < 0) {
             ok = 0;
+        } else if (!lv.is_point) { /* sema: a scalar unknown is solved */
+            scalar_eq[e] = 1;
+            ratfun_sub(seqs + e, lv.s, rv.s, r);
         } else {
+            pteq_swap(eqs[e], lv.p, r);
+            pteq_swap(rhs, rv.p, r);
             pteq_weight_sum(sl, eqs[e], r);
             pteq_weight_sum(sr, rhs, r);
             int lk = ratfun_is_one(sl, r) ? 1 : ratfun_is_zero(sl, r) ? 0 : -1;
@@ -872,9 +1138,31 @@ static void derive_solve(Deriver *D, Stmt *st)
                 pteq_sub(eqs[e], eqs[e], rhs, r);
             }
         }
+        value_clear(&rv, r);
+        value_clear(&lv, r);
         pteq_clear(rhs, r);
     }
-    if (ok) {
+    if (ok && nsc > 0) {
+        PointEq *pe = pc_xmalloc(sizeof(PointEq) * (size_t)neq);
+        Equation **pq = pc_xmalloc(sizeof(Equation *) * (size_t)neq);
+        Equation **sq = pc_xmalloc(sizeof(Equation *) * (size_t)neq);
+        RatFunStruct *se = pc_xmalloc(sizeof(RatFunStruct) * (size_t)neq);
+        slong npe = 0, nse = 0;
+        for (e = 0; e < neq; e++) {
+            if (scalar_eq[e]) {
+                se[nse] = seqs[e]; /* borrowed */
+                sq[nse++] = eqn[e];
+            } else {
+                pe[npe][0] = eqs[e][0]; /* borrowed */
+                pq[npe++] = eqn[e];
+            }
+        }
+        derive_solve_mixed(D, st, pe, pq, npe, se, sq, nse, syms, names, nunk);
+        free(se);
+        free(sq);
+        free(pq);
+        free(pe);
+    } else if (ok) {
         SolveStatus ss =
             solve_points(x, (const PointEq *)eqs, neq, cols, nunk,
                          undetermined, dependent, r);
@@ -920,8 +1208,12 @@ static void derive_solve(Deriver *D, Stmt *st)
     }
     ratfun_clear(sr, r);
     ratfun_clear(sl, r);
-    for (e = 0; e < neq; e++)
+    for (e = 0; e < neq; e++) {
         pteq_clear(eqs[e], r);
+        ratfun_clear(seqs + e, r);
+    }
+    free(seqs);
+    free(scalar_eq);
     for (j = 0; j < nunk; j++)
         pteq_clear(x[j], r);
     free(names);
@@ -936,13 +1228,44 @@ static void derive_solve(Deriver *D, Stmt *st)
 
 /* 0, or -1 after reporting that output o (value p) still holds an unknown
  * that no solve determined */
-static int check_no_unknown(Deriver *D, const Sym *o, const PointEq p)
+/* 1 when p depends on ring variable var */
+static int poly_has_var(const fmpz_mpoly_t p, slong var, const Ring *r)
 {
-    for (slong i = 0; i < p->len; i++) {
-        slong c = p->terms[i].point;
+    return fmpz_mpoly_degree_si(p, var, r->ctx) > 0;
+}
+
+static int check_no_unknown(Deriver *D, const Sym *o, const Value *v)
+{
+    const Ring *r = D->r;
+    for (slong i = 0; i < (v->is_point ? v->p->len : 0); i++) {
+        slong c = v->p->terms[i].point;
         if (c < D->ucol0)
             continue;
         const Sym *u = D->info->unknowns[c - D->ucol0];
+        diag_error(D->diag, o->span,
+                   "'%s' depends on the unknown '%s', which no solve "
+                   "determines; expected 'solve ... for %s' before the "
+                   "output",
+                   o->name, u->name, u->name);
+        diag_note(D->diag, u->span, "'%s' was declared here", u->name);
+        return -1;
+    }
+    for (int k = 0; k < D->info->nunknowns; k++) {
+        slong var = D->uvar[k];
+        int dep = 0;
+        if (var < 0)
+            continue;
+        if (v->is_point) {
+            dep = poly_has_var(v->p->den, var, r);
+            for (slong i = 0; i < v->p->len && !dep; i++)
+                dep = poly_has_var(v->p->terms[i].num, var, r);
+        } else {
+            dep = poly_has_var(v->s->num, var, r) ||
+                  poly_has_var(v->s->den, var, r);
+        }
+        if (!dep)
+            continue;
+        const Sym *u = D->info->unknowns[k];
         diag_error(D->diag, o->span,
                    "'%s' depends on the unknown '%s', which no solve "
                    "determines; expected 'solve ... for %s' before the "
@@ -1033,12 +1356,22 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     d->nconsts = info->nconsts;
     d->consts = copy_names(info->consts, info->nconsts);
     {
-        slong nv = d->nparams + d->nconsts;
+        /* unknown scalars are ring variables after the consts */
+        for (int k = 0; k < info->nunknowns; k++)
+            d->nextra += !info->unknowns[k]->is_point;
+        d->extra = pc_xcalloc((size_t)(d->nextra ? d->nextra : 1),
+                              sizeof(char *));
+        for (int k = 0, m = 0; k < info->nunknowns; k++)
+            if (!info->unknowns[k]->is_point)
+                d->extra[m++] = pc_xstrdup(info->unknowns[k]->name);
+        slong nv = d->nparams + d->nconsts + d->nextra;
         const char **vars = pc_xmalloc(sizeof(char *) * (size_t)(nv ? nv : 1));
         for (slong i = 0; i < d->nparams; i++)
             vars[i] = d->params[i];
         for (slong i = 0; i < d->nconsts; i++)
             vars[d->nparams + i] = d->consts[i];
+        for (slong i = 0; i < d->nextra; i++)
+            vars[d->nparams + d->nconsts + i] = d->extra[i];
         ring_init(&d->ring, nv, vars);
         free(vars);
     }
@@ -1055,8 +1388,15 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     D.ucol0 = info->npoints;
     D.usol = pc_xmalloc(sizeof(PointEq) * (size_t)(info->nunknowns ? info->nunknowns : 1));
     D.usolved = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1), sizeof(int));
-    for (int k = 0; k < info->nunknowns; k++)
+    D.ssol = pc_xmalloc(sizeof(RatFunStruct) * (size_t)(info->nunknowns ? info->nunknowns : 1));
+    D.uvar = pc_xmalloc(sizeof(slong) * (size_t)(info->nunknowns ? info->nunknowns : 1));
+    for (int k = 0, m = 0; k < info->nunknowns; k++) {
         pteq_init(D.usol[k], r);
+        ratfun_init(D.ssol + k, r);
+        D.uvar[k] = info->unknowns[k]->is_point
+                        ? -1
+                        : d->nparams + d->nconsts + m++;
+    }
     for (int i = 0; i < info->nsteps; i++) {
         if (info->steps[i]->kind == ST_SOLVE)
             derive_solve(&D, info->steps[i]);
@@ -1066,10 +1406,15 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     /* an output may not keep an unknown that no solve determined */
     for (int i = 0; i < info->noutputs && diag.nerrors == 0; i++) {
         Sym *s = info->outputs[i];
-        if (s->kind == SYM_DEF && D.defs[s->index].is_point)
-            check_no_unknown(&D, s, D.defs[s->index].p);
-        else if (s->kind == SYM_UNKNOWN)
-            check_no_unknown(&D, s, D.usol[s->index]);
+        Value uv;
+        if (s->kind == SYM_DEF) {
+            check_no_unknown(&D, s, &D.defs[s->index]);
+        } else {
+            uv.is_point = s->is_point;
+            uv.p[0] = D.usol[s->index][0]; /* borrowed */
+            uv.s[0] = D.ssol[s->index];
+            check_no_unknown(&D, s, &uv);
+        }
     }
 
     if (diag.nerrors == 0) {
@@ -1080,9 +1425,10 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
             Sym *s = info->outputs[i];
             DerivedOutput *o = &d->outputs[i];
             Value uv, *v = &D.defs[s->index];
-            if (s->kind == SYM_UNKNOWN) { /* solved: a point */
-                uv.is_point = 1;
+            if (s->kind == SYM_UNKNOWN) { /* solved */
+                uv.is_point = s->is_point;
                 uv.p[0] = D.usol[s->index][0]; /* borrowed */
+                uv.s[0] = D.ssol[s->index];
                 v = &uv;
             }
             int line, col;
@@ -1112,9 +1458,13 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     }
     for (int i = 0; i < info->ndefs; i++)
         value_clear(&D.defs[i], r);
-    for (int k = 0; k < info->nunknowns; k++)
+    for (int k = 0; k < info->nunknowns; k++) {
         pteq_clear(D.usol[k], r);
+        ratfun_clear(D.ssol + k, r);
+    }
     free(D.usol);
+    free(D.ssol);
+    free(D.uvar);
     free(D.usolved);
     free(D.defs);
     free(D.state);
@@ -1232,6 +1582,9 @@ void derived_free(Derived *d)
         free(d->params[i]);
     for (slong i = 0; i < d->nconsts; i++)
         free(d->consts[i]);
+    for (slong i = 0; i < d->nextra; i++)
+        free(d->extra[i]);
+    free(d->extra);
     free(d->points);
     free(d->params);
     free(d->consts);

@@ -47,6 +47,8 @@ typedef struct Derived {
     char **params;
     slong nconsts; // consts: ring variables nparams..nparams+nconsts-1
     char **consts;
+    slong nextra;  // ring variables after the consts (unknown scalars of
+    char **extra;  // `solve`, which no output depends on), their names
     Ring ring;
     slong noutputs; // `output` list (default: the last definition)
     DerivedOutput *outputs;

@@ -170,8 +170,8 @@ static int check_name(Sema *S, Node *n)
     case SYM_PARAM:
     case SYM_CONST:
         return 0;
-    case SYM_UNKNOWN: /* a free point until its solve, then its solution */
-        return 1;
+    case SYM_UNKNOWN: /* free until its solve, then its solution */
+        return s->is_point;
     case SYM_DEF:
         return s->bad ? -1 : s->is_point;
     }
@@ -330,11 +330,12 @@ static int check_call(Sema *S, Node *n)
             return -1;
         }
         x->sym = s;
-        if (s->kind == SYM_POINT || s->kind == SYM_UNKNOWN) {
+        if (s->kind == SYM_POINT || (s->kind == SYM_UNKNOWN && s->is_point)) {
             if (expect(S, arg(n, 2), 1, "the replacement of a base point") <
                 0)
                 return -1;
-        } else if (s->kind == SYM_PARAM || s->kind == SYM_CONST) {
+        } else if (s->kind == SYM_PARAM || s->kind == SYM_CONST ||
+                   s->kind == SYM_UNKNOWN) {
             if (expect(S, arg(n, 2), 0, "the value substituted") < 0)
                 return -1;
         } else {
@@ -502,7 +503,7 @@ static void declare_list(Sema *S, Stmt *st, SymKind kind)
             push(S, &I->consts, &I->nconsts, &S->cap_consts, s);
             break;
         case SYM_UNKNOWN:
-            s->is_point = 1;
+            s->is_point = !st->scalar;
             s->index = I->nunknowns;
             push(S, &I->unknowns, &I->nunknowns, &S->cap_unknowns, s);
             break;
@@ -517,7 +518,11 @@ static void declare_list(Sema *S, Stmt *st, SymKind kind)
  * equations as unknowns.  Marks the statement bad on any error. */
 static void check_solve(Sema *S, Stmt *st)
 {
-    int neq = 0, nunk = 0, errors0 = S->diag->nerrors;
+    int neq = 0, nunk = 0, nscalar = 0, errors0 = S->diag->nerrors;
+    for (Name *nm = st->names; nm; nm = nm->next) {
+        Sym *s = lookup(S, nm->text);
+        nscalar += s && s->kind == SYM_UNKNOWN && !s->is_point;
+    }
     for (Equation *e = st->eqs; e; e = e->next, neq++) {
         int kl = check_expr(S, e->lhs), kr = check_expr(S, e->rhs);
         if (kl < 0 || kr < 0)
@@ -527,10 +532,12 @@ static void check_solve(Sema *S, Stmt *st)
                        "cannot equate %s and %s; expected both sides to be "
                        "points or vectors",
                        kind_word(kl), kind_word(kr));
-        else if (kl == 0)
+        else if (kl == 0 && nscalar == 0)
             diag_error(S->diag, e->span,
                        "a scalar equation cannot determine unknown points; "
-                       "expected an equation between points or vectors");
+                       "expected an equation between points or vectors, "
+                       "or an unknown scalar (unknown scalar k) to solve "
+                       "for");
     }
     for (Name *nm = st->names; nm; nm = nm->next, nunk++) {
         Sym *s = lookup(S, nm->text);
@@ -561,7 +568,9 @@ static void check_solve(Sema *S, Stmt *st)
         }
         s->solved_by = st;
     }
-    if (neq != nunk)
+    /* with unknown scalars a point equation holds one scalar equation per
+     * base point: the rank decides (derive.c) */
+    if (neq != nunk && nscalar == 0)
         diag_error(S->diag, st->span,
                    "%d equation%s for %d unknown%s: the system is %s; "
                    "expected one point equation per unknown point",

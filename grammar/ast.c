@@ -215,6 +215,8 @@ void ast_dump(FILE *out, const Scheme *s)
 {
     for (const Stmt *st = s->stmts; st; st = st->next) {
         fprintf(out, "(%s", ast_stmt_kind_name(st->kind));
+        if (st->scalar)
+            fputs(" scalar", out);
         if (st->name)
             fprintf(out, " %s", st->name->text);
         dump_names(out, st->names);

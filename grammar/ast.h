@@ -114,6 +114,7 @@ struct Stmt {
 
     // filled by sema
     Sym *sym; // ST_DEF: the defined name
+    int scalar; // ST_UNKNOWN: `unknown scalar k, ...`
     int bad;  // ST_SOLVE: an error was reported; derive skips it
 };
 

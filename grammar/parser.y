@@ -141,6 +141,18 @@ stmt:
                     { $$ = stmt_names(p, ST_PARAM, $2, @$); $$->lo = $5; $$->hi = $7; }
 | CONST names       { $$ = stmt_names(p, ST_CONST, $2, @$); }
 | UNKNOWN names     { $$ = stmt_names(p, ST_UNKNOWN, $2, @$); }
+| UNKNOWN IDENT names /* `unknown scalar k`: scalar is a keyword only here */
+                    { if (strcmp($2, "scalar") != 0) {
+                          diag_error(p->diag, @2,
+                                     "unexpected '%s'; expected 'unknown "
+                                     "NAME, ...' (points) or 'unknown scalar "
+                                     "NAME, ...'",
+                                     $2);
+                          $$ = NULL;
+                      } else {
+                          $$ = stmt_names(p, ST_UNKNOWN, $3, @$);
+                          $$->scalar = 1;
+                      } }
 | OUTPUT names      { $$ = stmt_names(p, ST_OUTPUT, $2, @$); }
 | IDENT '=' expr    { $$ = ast_new_stmt(p->arena, ST_DEF, @$);
                       $$->name = ast_new_namelist(p->arena, $1, @1); $$->expr = $3; }
