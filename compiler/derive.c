@@ -781,17 +781,31 @@ static void derive_def(Deriver *D, Sym *s)
 /* replaces the unknown scalar var by its solution v in every value derived
  * so far (a value whose denominator vanishes then keeps its form: its
  * definition was generic in var, and the outputs are checked later) */
-static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v)
+static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
+                                     const Stmt *st)
 {
     const Ring *r = D->r;
     for (int i = 0; i < D->info->ndefs; i++) {
         Value *d = &D->defs[i];
+        int rc;
         if (D->state[i] != 1)
             continue;
         if (d->is_point)
-            pteq_compose_var(d->p, d->p, var, v, r);
+            rc = pteq_compose_var(d->p, d->p, var, v, r);
         else
-            ratfun_compose_var(d->s, d->s, var, v, r);
+            rc = ratfun_compose_var(d->s, d->s, var, v, r);
+        if (rc != 0) {
+            const Sym *s = D->info->defs[i];
+            char *txt = show(v, r);
+            diag_error(D->diag, s->def->expr->span,
+                       "vanishing denominator: with the solution %s = %s, a "
+                       "denominator of '%s' is identically zero",
+                       r->names[var], txt, s->name);
+            diag_note(D->diag, st->span, "'%s' is solved here",
+                      r->names[var]);
+            flint_free(txt);
+            D->state[i] = -1;
+        }
     }
     for (int k = 0; k < D->info->nunknowns; k++) {
         if (!D->usolved[k])
@@ -1026,7 +1040,7 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
             for (slong m = 0; m < nk; m++) {
                 Sym *u = syms[ksym[m]];
                 D->usolved[u->index] = 1;
-                substitute_solved_scalar(D, kvar[m], D->ssol + u->index);
+                substitute_solved_scalar(D, kvar[m], D->ssol + u->index, st);
             }
             for (slong xi = 0; xi < nx; xi++) {
                 Sym *u = syms[xsym[xi]];
