@@ -37,6 +37,7 @@
 
 #include <flint/flint.h>
 
+#include "bench/bench_util.h"
 #include "compiler/derive.h"
 #include "compiler/format.h"
 
@@ -65,19 +66,6 @@ static const Base baseline[] = {
     {"onerat8", 0.1862}, {"vplane1", 0.0003}, {"vplane2", 0.0054},
     {"vplane3", 0.1075}, {"vplane4", 8.2364}, {"vplane5", -1},
 };
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* the scheme of family fam at depth k (malloc'ed) */
 static char *scheme(const char *fam, int k)
@@ -136,9 +124,9 @@ static void run_case(const char *text, int fd)
     size_t bytes = 0;
     char line[128];
     for (;;) {
-        double t0 = now();
+        double t0 = (bench_now_ms() / 1e3);
         Derived *d = derive_source("chain.pcs", text, strlen(text), NULL, NULL);
-        t[n] = now() - t0;
+        t[n] = (bench_now_ms() / 1e3) - t0;
         if (!d) {
             snprintf(line, sizeof line, "refused %.4f\n", t[n]);
             if (write(fd, line, strlen(line)) < 0)
@@ -157,7 +145,7 @@ static void run_case(const char *text, int fd)
         if (t[0] > 2 || n == 200 || (n >= 3 && total > 0.3))
             break;
     }
-    qsort(t, (size_t)n, sizeof *t, cmp_double);
+    qsort(t, (size_t)n, sizeof *t, bench_cmp_double);
     snprintf(line, sizeof line, "%.6f %.6f %.6f %zu\n", t[n / 2], t[0],
              t[n - 1], bytes);
     if (write(fd, line, strlen(line)) < 0)

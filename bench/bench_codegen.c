@@ -42,6 +42,7 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "bench/bench_util.h"
 #include "compiler/derive.h"
 #include "runtime/eval.h"
 
@@ -59,12 +60,6 @@ static double now(void)
     struct timespec ts;
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /* ---- the contestants ---------------------------------------------------- */
@@ -184,7 +179,7 @@ static void stats(const double *x, int n, double *med, double *lo, double *hi)
 {
     double *s = malloc(sizeof *s * (size_t)n);
     memcpy(s, x, sizeof *s * (size_t)n);
-    qsort(s, (size_t)n, sizeof *s, cmp_double);
+    qsort(s, (size_t)n, sizeof *s, bench_cmp_double);
     *med = s[n / 2];
     *lo = s[0];
     *hi = s[n - 1];

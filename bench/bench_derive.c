@@ -14,20 +14,9 @@
 
 #include <flint/flint.h>
 
+#include "bench/bench_util.h"
+
 #include "compiler/derive.h"
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 static int cmp_str(const void *a, const void *b)
 {
@@ -67,9 +56,9 @@ int main(int argc, char **argv)
         char *buf = malloc(1 << 20);
         size_t len = fread(buf, 1, (1 << 20) - 1, f);
         fclose(f);
-        double t0 = now_ms();
+        double t0 = bench_now_ms();
         Derived *dv = derive_source(path, buf, len, stderr, NULL);
-        double first = now_ms() - t0;
+        double first = bench_now_ms() - t0;
         if (!dv) {
             printf("%-34s %10s\n", names[i], "ERROR");
             bad = 1;
@@ -85,12 +74,12 @@ int main(int argc, char **argv)
             runs = 5000;
         double *t = malloc(sizeof(double) * (size_t)runs);
         for (int k = 0; k < runs; k++) {
-            double s = now_ms();
+            double s = bench_now_ms();
             dv = derive_source(path, buf, len, NULL, NULL);
-            t[k] = now_ms() - s;
+            t[k] = bench_now_ms() - s;
             derived_free(dv);
         }
-        qsort(t, (size_t)runs, sizeof(double), cmp_double);
+        qsort(t, (size_t)runs, sizeof(double), bench_cmp_double);
         printf("%-34s %10.4f %10.4f %8d\n", names[i], first, t[runs / 2],
                runs);
         free(t);

@@ -23,23 +23,12 @@
 
 #include <flint/flint.h>
 
+#include "bench/bench_util.h"
+
 #include "compiler/derive.h"
 
 static const int ORDERS[] = {3, 4, 6, 8, 12, 24, 48};
 enum { NORD = sizeof ORDERS / sizeof ORDERS[0] };
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
 
 static char *read_file(const char *path, size_t *len)
 {
@@ -64,9 +53,9 @@ static double time_derive(const char *path, const char *define,
                          .ndefines = define ? 1 : 0};
     if (!text)
         return -1;
-    double t0 = now_ms();
+    double t0 = bench_now_ms();
     Derived *d = derive_source_ex(path, text, len, stderr, NULL, &opt);
-    double first = now_ms() - t0;
+    double first = bench_now_ms() - t0;
     if (!d) {
         free(text);
         return -1;
@@ -76,12 +65,12 @@ static double time_derive(const char *path, const char *define,
     runs = runs < 7 ? 7 : runs > 2001 ? 2001 : runs;
     double *t = malloc(sizeof(double) * (size_t)runs);
     for (int k = 0; k < runs; k++) {
-        double s = now_ms();
+        double s = bench_now_ms();
         d = derive_source_ex(path, text, len, NULL, NULL, &opt);
-        t[k] = now_ms() - s;
+        t[k] = bench_now_ms() - s;
         derived_free(d);
     }
-    qsort(t, (size_t)runs, sizeof(double), cmp_double);
+    qsort(t, (size_t)runs, sizeof(double), bench_cmp_double);
     double med = t[runs / 2];
     *spread = (t[(3 * runs) / 4] - t[runs / 4]) / med;
     free(t);

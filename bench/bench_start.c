@@ -20,20 +20,9 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench/bench_util.h"
+
 extern char **environ;
-
-static double now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec / 1e6;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
 
 /* one run of argv with stdout and stderr to /dev/null; ms, or -1 */
 static double run(char *const *argv)
@@ -43,14 +32,14 @@ static double run(char *const *argv)
     posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", 1, 0);
     posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", 1, 0);
     pid_t pid;
-    double t0 = now_ms();
+    double t0 = bench_now_ms();
     int rc = posix_spawn(&pid, argv[0], &fa, NULL, argv, environ);
     posix_spawn_file_actions_destroy(&fa);
     if (rc != 0)
         return -1;
     int st;
     waitpid(pid, &st, 0);
-    double t = now_ms() - t0;
+    double t = bench_now_ms() - t0;
     return WIFEXITED(st) && WEXITSTATUS(st) == 0 ? t : -1;
 }
 
@@ -81,7 +70,7 @@ int main(int argc, char **argv)
            RUNS);
     double med[3];
     for (int c = 0; c < 3; c++) {
-        qsort(t[c], RUNS, sizeof(double), cmp_double);
+        qsort(t[c], RUNS, sizeof(double), bench_cmp_double);
         med[c] = t[c][RUNS / 2];
         printf("  %-36s %7.3f [%6.3f..%6.3f]\n", names[c], med[c],
                t[c][RUNS / 10], t[c][RUNS - 1 - RUNS / 10]);

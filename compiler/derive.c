@@ -1240,30 +1240,20 @@ static void derive_solve(Deriver *D, Stmt *st)
     free(eqs);
 }
 
-/* 0, or -1 after reporting that output o (value p) still holds an unknown
- * that no solve determined */
 /* 1 when p depends on ring variable var */
 static int poly_has_var(const fmpz_mpoly_t p, slong var, const Ring *r)
 {
     return fmpz_mpoly_degree_si(p, var, r->ctx) > 0;
 }
 
-static int check_no_unknown(Deriver *D, const Sym *o, const Value *v)
+/* the unknown (point or scalar) that value v of output o still holds, or
+ * NULL */
+static const Sym *unsolved_in(const Deriver *D, const Value *v)
 {
     const Ring *r = D->r;
-    for (slong i = 0; i < (v->is_point ? v->p->len : 0); i++) {
-        slong c = v->p->terms[i].point;
-        if (c < D->ucol0)
-            continue;
-        const Sym *u = D->info->unknowns[c - D->ucol0];
-        diag_error(D->diag, o->span,
-                   "'%s' depends on the unknown '%s', which no solve "
-                   "determines; expected 'solve ... for %s' before the "
-                   "output",
-                   o->name, u->name, u->name);
-        diag_note(D->diag, u->span, "'%s' was declared here", u->name);
-        return -1;
-    }
+    for (slong i = 0; i < (v->is_point ? v->p->len : 0); i++)
+        if (v->p->terms[i].point >= D->ucol0)
+            return D->info->unknowns[v->p->terms[i].point - D->ucol0];
     for (int k = 0; k < D->info->nunknowns; k++) {
         slong var = D->uvar[k];
         int dep = 0;
@@ -1277,18 +1267,25 @@ static int check_no_unknown(Deriver *D, const Sym *o, const Value *v)
             dep = poly_has_var(v->s->num, var, r) ||
                   poly_has_var(v->s->den, var, r);
         }
-        if (!dep)
-            continue;
-        const Sym *u = D->info->unknowns[k];
-        diag_error(D->diag, o->span,
-                   "'%s' depends on the unknown '%s', which no solve "
-                   "determines; expected 'solve ... for %s' before the "
-                   "output",
-                   o->name, u->name, u->name);
-        diag_note(D->diag, u->span, "'%s' was declared here", u->name);
-        return -1;
+        if (dep)
+            return D->info->unknowns[k];
     }
-    return 0;
+    return NULL;
+}
+
+/* 0, or -1 after reporting that output o (value v) still holds an unknown
+ * that no solve determined */
+static int check_no_unknown(Deriver *D, const Sym *o, const Value *v)
+{
+    const Sym *u = unsolved_in(D, v);
+    if (!u)
+        return 0;
+    diag_error(D->diag, o->span,
+               "'%s' depends on the unknown '%s', which no solve "
+               "determines; expected 'solve ... for %s' before the output",
+               o->name, u->name, u->name);
+    diag_note(D->diag, u->span, "'%s' was declared here", u->name);
+    return -1;
 }
 
 static char **copy_names(Sym **syms, int n)

@@ -19,6 +19,7 @@
 
 #include "compiler/pteq.h"
 #include "compiler/ratfun.h"
+#include "compiler/ring.h"
 
 static inline void rand_init(flint_rand_t st)
 {
@@ -26,6 +27,33 @@ static inline void rand_init(flint_rand_t st)
     flint_randinit(st);
     if (s != NULL)
         flint_randseed(st, (ulong)strtoul(s, NULL, 10) + 1, 12345);
+}
+
+/* The fixture of the algebra tests: a ring whose variables are the first
+ * nvars of t, u, v, and the seeded random state.  Each test file defines
+ * setup() as fixture_setup(state, nvars) and uses fixture_teardown. */
+typedef struct Fixture {
+    Ring r;
+    flint_rand_t st;
+} Fixture;
+
+static inline int fixture_setup(void **state, slong nvars)
+{
+    static const char *const names[] = {"t", "u", "v"};
+    Fixture *f = malloc(sizeof *f);
+    ring_init(&f->r, nvars, names);
+    rand_init(f->st);
+    *state = f;
+    return 0;
+}
+
+static inline int fixture_teardown(void **state)
+{
+    Fixture *f = *state;
+    flint_randclear(f->st);
+    ring_clear(&f->r);
+    free(f);
+    return 0;
 }
 
 /* number of iterations: fewer under valgrind (PC_VALGRIND set) */

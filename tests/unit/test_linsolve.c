@@ -22,29 +22,14 @@
 #include "compiler/ring.h"
 #include "tests/unit/rand_algebra.h"
 
-static const char *const NAMES[] = {"t", "u"};
-
-typedef struct Fixture {
-    Ring r;
-    flint_rand_t st;
-} Fixture;
-
 static int setup(void **state)
 {
-    Fixture *f = malloc(sizeof *f);
-    ring_init(&f->r, 2, NAMES);
-    rand_init(f->st);
-    *state = f;
-    return 0;
+    return fixture_setup(state, 2);
 }
 
 static int teardown(void **state)
 {
-    Fixture *f = *state;
-    flint_randclear(f->st);
-    ring_clear(&f->r);
-    free(f);
-    return 0;
+    return fixture_teardown(state);
 }
 
 static RatFunStruct *vec_new(slong len, const Ring *r)

@@ -22,20 +22,9 @@
 
 #define NPTS 6 /* base points 0..NPTS-1 in the random equations */
 
-static const char *const NAMES[] = {"t", "u"};
-
-typedef struct Fixture {
-    Ring r;
-    flint_rand_t st;
-} Fixture;
-
 static int setup(void **state)
 {
-    Fixture *f = malloc(sizeof *f);
-    ring_init(&f->r, 2, NAMES);
-    rand_init(f->st);
-    *state = f;
-    return 0;
+    return fixture_setup(state, 2);
 }
 
 /* pteq_weight(x, point): the reduced weight of point in x, or NULL when it
@@ -64,15 +53,11 @@ static const RatFunStruct *weight_at(const PointEq x, slong point,
 
 static int teardown(void **state)
 {
-    Fixture *f = *state;
     if (wbuf_ring != NULL)
         for (int i = 0; i < NWBUF; i++)
             ratfun_clear(wbuf + i, wbuf_ring);
     wbuf_ring = NULL;
-    flint_randclear(f->st);
-    ring_clear(&f->r);
-    free(f);
-    return 0;
+    return fixture_teardown(state);
 }
 
 static void parse(RatFun x, const char *s, const Ring *r)

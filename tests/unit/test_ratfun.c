@@ -21,30 +21,17 @@
 #include "compiler/ring.h"
 #include "tests/unit/rand_algebra.h"
 
-/* one ring for most tests: t, u, v (the random tests use 2 or 3 of them) */
+/* the names of the fixture's ring, for rings of fewer variables */
 static const char *const NAMES[] = {"t", "u", "v"};
-
-typedef struct Fixture {
-    Ring r;
-    flint_rand_t st;
-} Fixture;
 
 static int setup(void **state)
 {
-    Fixture *f = malloc(sizeof *f);
-    ring_init(&f->r, 3, NAMES);
-    rand_init(f->st);
-    *state = f;
-    return 0;
+    return fixture_setup(state, 3);
 }
 
 static int teardown(void **state)
 {
-    Fixture *f = *state;
-    flint_randclear(f->st);
-    ring_clear(&f->r);
-    free(f);
-    return 0;
+    return fixture_teardown(state);
 }
 
 /* parses s into x, failing the test on any error */
