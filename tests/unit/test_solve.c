@@ -10,8 +10,8 @@
  *    symbolic factor, which forces the general path on a numeric answer).
  *  - Singular and inconsistent systems: the status, the undetermined
  *    unknowns and the dependent equations.
- *  - The order-n interpolation scheme (monograph 4.8) for n = 1..12 and
- *    24: the weights of its curve equal the Lagrange basis polynomials
+ *  - The order-n interpolation scheme (monograph 4.8) for n = 1..12, 24 and
+ *    48: the weights of its curve equal the Lagrange basis polynomials
  *    prod_{j != i} (t - t_j)/(t_i - t_j) built here by hand (a polynomial
  *    of degree n through n+1 nodes is unique), and each solved control
  *    point is a point.
@@ -252,7 +252,7 @@ static void lagrange(RatFun res, slong i, slong n, const Ring *r)
 static void test_family_interpolation_is_lagrange(void **state)
 {
     (void)state;
-    const slong orders[] = {1, 2, 3, 4, 5, 6, 8, 12, 24};
+    const slong orders[] = {1, 2, 3, 4, 5, 6, 8, 12, 24, 48};
     for (size_t o = 0; o < sizeof orders / sizeof orders[0]; o++) {
         slong n = orders[o];
         char def[32];
