@@ -27,6 +27,7 @@
 #include <string.h>
 
 #include "compiler/derive.h"
+#include "compiler/linsolve.h"
 #include "compiler/pteq.h"
 #include "compiler/ratfun.h"
 #include "compiler/ring.h"
@@ -111,7 +112,20 @@ static void test_solve_random_systems(void **state)
         build_equations(eqs, U, (const PointEq *)T, k, r);
         SolveStatus s =
             solve_points(X, (const PointEq *)eqs, k, cols, k, und, dep, r);
-        /* U may be singular by chance: then the status says so */
+        /* U may be singular by chance (randtest draws 0 often): the rank
+         * that linsolve finds for U decides what the status must be */
+        RatFunStruct b[4], x[4];
+        slong rank = 0;
+        for (slong j = 0; j < k; j++) {
+            ratfun_init(b + j, r);
+            ratfun_init(x + j, r);
+        }
+        linsolve(x, &rank, U, b, k, k, r);
+        for (slong j = 0; j < k; j++) {
+            ratfun_clear(b + j, r);
+            ratfun_clear(x + j, r);
+        }
+        assert_int_equal(s == SOLVE_OK, rank == k);
         if (s == SOLVE_OK) {
             solved++;
             for (slong j = 0; j < k; j++) {
@@ -130,8 +144,7 @@ static void test_solve_random_systems(void **state)
         for (slong i = 0; i < k * k; i++)
             ratfun_clear(U + i, r);
     }
-    /* random rational matrices are almost never singular */
-    assert_true(solved > 10 * singular);
+    assert_true(solved > singular);
 }
 
 /* X + Y = 2A, X - Y = B - C, 2X = 2A + B - C: the third equation is the
