@@ -36,7 +36,7 @@ static const char emit_usage[] =
     "\n";
 static const char eval_usage[] =
     "usage: pointcalc eval FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
-    "                      --param t=SPEC ... [--output NAME] "
+    "                      --param t=SPEC ... [--output NAME[,NAME...]] ... "
     "[--format csv|json]\n"
     "       SPEC: a value 0.5, a list 0,0.25,1 or lo:hi:count\n";
 
@@ -232,7 +232,8 @@ typedef struct Assign {
 typedef struct EvalArgs {
     BudgetOptions budget;
     const char *file;
-    const char *output;
+    char **outputs; // --output NAME[,NAME...] (repeatable), owned copies
+    int noutputs;
     OutputFormat format;
     int nat, nset, nparam;
     Assign *at, *set, *param; // owned arrays
@@ -249,6 +250,9 @@ static void eval_args_clear(EvalArgs *a)
     free(a->at);
     free(a->set);
     free(a->param);
+    for (int i = 0; i < a->noutputs; i++)
+        free(a->outputs[i]);
+    free(a->outputs);
 }
 
 /* NAME=TEXT into list; -1 when there is no '=' or no name */
@@ -295,7 +299,25 @@ static int parse_eval_args(EvalArgs *a, int argc, char **argv, FILE *err)
                 return usage_error(err, eval_usage,
                                    "%s expects NAME=VALUE, found '%s'", o, v);
         } else if (strcmp(o, "--output") == 0 && has) {
-            a->output = argv[++i];
+            /* repeatable, and a comma-separated list */
+            const char *v = argv[++i];
+            for (const char *c = v;;) {
+                const char *e = strchr(c, ',');
+                size_t len = e ? (size_t)(e - c) : strlen(c);
+                if (len == 0)
+                    return usage_error(err, eval_usage,
+                                       "--output '%s': expected output names "
+                                       "separated by commas",
+                                       v);
+                a->outputs = pc_xrealloc(a->outputs, sizeof *a->outputs *
+                                                         (size_t)(a->noutputs + 1));
+                a->outputs[a->noutputs] = pc_xmalloc(len + 1);
+                memcpy(a->outputs[a->noutputs], c, len);
+                a->outputs[a->noutputs++][len] = '\0';
+                if (!e)
+                    break;
+                c = e + 1;
+            }
         } else if (strcmp(o, "--format") == 0 && has) {
             const char *f = argv[++i];
             if (strcmp(f, "csv") == 0)
@@ -373,20 +395,28 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
     s->pt = pc_xcalloc((size_t)p->npoints + 1, sizeof *s->pt);
     s->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *s->consts);
     s->specs = pc_xcalloc((size_t)p->nparams + 1, sizeof *s->specs);
-    if (a->output) {
-        int o = plan_find_output(p, a->output);
-        if (o < 0) {
-            char **names = pc_xmalloc(sizeof *names * (size_t)(p->noutputs + 1));
-            for (int i = 0; i < p->noutputs; i++)
-                names[i] = p->outputs[i].name;
-            name_list(names, p->noutputs, list, sizeof list);
-            free(names);
-            return usage_error(err, eval_usage,
-                               "--output '%s' is not an output of the scheme "
-                               "(outputs: %s)",
-                               a->output, list);
+    if (a->noutputs > 0) {
+        for (int i = 0; i < a->noutputs; i++) {
+            int o = plan_find_output(p, a->outputs[i]);
+            if (o < 0) {
+                char **names =
+                    pc_xmalloc(sizeof *names * (size_t)(p->noutputs + 1));
+                for (int k = 0; k < p->noutputs; k++)
+                    names[k] = p->outputs[k].name;
+                name_list(names, p->noutputs, list, sizeof list);
+                free(names);
+                return usage_error(err, eval_usage,
+                                   "--output '%s' is not an output of the "
+                                   "scheme (outputs: %s)",
+                                   a->outputs[i], list);
+            }
+            for (int j = 0; j < s->nsel; j++)
+                if (s->sel[j] == o)
+                    return usage_error(err, eval_usage,
+                                       "--output '%s' is given twice",
+                                       a->outputs[i]);
+            s->sel[s->nsel++] = o;
         }
-        s->sel[s->nsel++] = o;
     } else {
         for (int o = 0; o < p->noutputs; o++)
             s->sel[s->nsel++] = o;

@@ -26,9 +26,9 @@ static const char usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
     "       pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
     "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
-    "                        --param t=SPEC ... [--output NAME] "
+    "                        --param t=SPEC ... [--output NAME[,NAME...]] "
     "[--format csv|json]\n"
-    "       pointcalc --help | --version\n"
+    "       pointcalc help [derive|emit-c|eval] | CMD --help | --version\n"
     "\n"
     "\n"
     "Every command also takes --max-seconds S and --max-memory SIZE (the\n"
@@ -39,6 +39,80 @@ static const char usage[] =
     "Reduces a point-calculus scheme (.pcs) exactly to its final point\n"
     "equations, emits C for them, or evaluates them.  SPEC is a value (0.5),\n"
     "a list (0,0.25,1) or lo:hi:count.  See docs/language.md.\n";
+
+#define COMMON_HELP                                                            \
+    "\nOptions of every command:\n"                                            \
+    "  --max-seconds S     wall-clock budget of the derivation (default 60; "  \
+    "0: none)\n"                                                               \
+    "  --max-memory SIZE   memory budget of the exact arithmetic, bytes or "   \
+    "K, M, G\n"                                                                \
+    "                      (default 2G; 0: none)\n"                            \
+    "  -v, --verbose       the time and size of every definition and solve, "  \
+    "on stderr\n"                                                              \
+    "  -D NAME=INTEGER     overrides the scheme's 'int NAME = ...' (e.g. the " \
+    "order of\n"                                                               \
+    "                      a family scheme)\n"                                 \
+    "  -h, --help          this text\n"                                        \
+    "\nExit status: 0 success, 1 an error in the scheme, 2 a usage error.\n"
+
+static const char derive_help[] =
+    "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
+    "\n"
+    "Reduces the scheme exactly and prints the final point equation of every\n"
+    "output (default: the last definition).\n"
+    "\n"
+    "  --format text       one line per output, as the book writes it "
+    "(default)\n"
+    "  --format latex      the same as display math\n"
+    "  --format json       the contract's JSON: every weight as a reduced "
+    "expression\n"
+    "  --origin POINT      text and LaTeX relative to a base point: (A - C)*f "
+    "+ ... + C\n" COMMON_HELP;
+
+static const char emit_help[] =
+    "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
+    "                      [--functions LIST] [--dump-plan]\n"
+    "\n"
+    "Emits C99 for the outputs: NAME_M (one point), NAME_M_batch (arrays of\n"
+    "parameters) and their _checked forms, which report poles.\n"
+    "\n"
+    "  -o OUT.c            write the C there (default: stdout)\n"
+    "  --header OUT.h      also write the prototypes\n"
+    "  --prefix NAME       the prefix of the function names (default: the "
+    "scheme's name)\n"
+    "  --functions LIST    which forms: plain, checked, batch, batch_checked, "
+    "all\n"
+    "  --dump-plan         print the numeric plan instead (debugging)\n"
+    COMMON_HELP;
+
+static const char eval_help[] =
+    "usage: pointcalc eval FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
+    "                    --param t=SPEC ... [--output NAME[,NAME...]] ... "
+    "[--format csv|json]\n"
+    "\n"
+    "Evaluates the outputs at coordinates of the base points, over parameter\n"
+    "values; several params form a grid, the last varying fastest.\n"
+    "\n"
+    "  --at A=x,y,...      the coordinates of base point A (every point the "
+    "same\n"
+    "                      dimension)\n"
+    "  --set k=VALUE       the value of const k\n"
+    "  --param t=SPEC      the values of param t: 0.5, a list 0,0.25,1, or "
+    "lo:hi:count\n"
+    "  --output NAMES      which outputs, repeatable or comma-separated "
+    "(default: all)\n"
+    "  --format csv|json   CSV with a header (default), or JSON\n"
+    "\nA sample at a pole or not finite is NaN in the output and makes the\n"
+    "exit status 1 (docs/eval.md).\n" COMMON_HELP;
+
+/* the help of command cmd, or NULL */
+static const char *command_help(const char *cmd)
+{
+    return strcmp(cmd, "derive") == 0   ? derive_help
+           : strcmp(cmd, "emit-c") == 0 ? emit_help
+           : strcmp(cmd, "eval") == 0   ? eval_help
+                                        : NULL;
+}
 
 static int derive_main(int argc, char **argv)
 {
@@ -125,6 +199,27 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *cmd = argv[1];
+    /* pointcalc help [CMD], pointcalc CMD --help */
+    if (strcmp(cmd, "help") == 0) {
+        if (argc > 3) {
+            fprintf(stderr, "pointcalc: help takes one command, found '%s'\n",
+                    argv[3]);
+            return 2;
+        }
+        const char *h = argc == 3 ? command_help(argv[2]) : usage;
+        if (!h) {
+            fprintf(stderr,
+                    "pointcalc: no help on '%s'; expected derive, emit-c or "
+                    "eval\n",
+                    argv[2]);
+            return 2;
+        }
+        return fputs(h, stdout) < 0;
+    }
+    if (command_help(cmd))
+        for (int i = 2; i < argc; i++)
+            if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0)
+                return fputs(command_help(cmd), stdout) < 0;
     int help = strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0;
     if ((help || strcmp(cmd, "--version") == 0) && argc > 2) {
         fprintf(stderr, "pointcalc: %s takes no arguments, found '%s'\n", cmd,

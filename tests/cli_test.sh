@@ -315,5 +315,31 @@ check "emit-c -D n=2: members as parameters" grep -q 'const double \*a_M_3, int 
 "$PC" eval "$F" -D n=2 --at M_1=0,0 --at M_2=1,1 --at M_3=2,0 --param t=0,0.5,1 >"$tmp/out"
 check "eval -D n=2: through the nodes" test "$(sed -n 2,4p "$tmp/out" | tr '\n' ' ')" = "0,0,0 0.5,1,1 1,2,0 "
 
+# help: pointcalc help [CMD] and CMD --help, on stdout, exit 0
+for c in derive emit-c eval; do
+    "$PC" help "$c" >"$tmp/out" 2>"$tmp/err"
+    check "help $c: exit 0, on stdout" test $? -eq 0 -a -s "$tmp/out" -a ! -s "$tmp/err"
+    check "help $c: its usage first" grep -q "^usage: pointcalc $c FILE" "$tmp/out"
+    check "help $c: the common options" grep -q '^  -D NAME=INTEGER' "$tmp/out"
+    "$PC" "$c" examples/desargues_arc.pcs --help >"$tmp/out2" 2>"$tmp/err"
+    check "$c --help: the same text" cmp -s "$tmp/out" "$tmp/out2"
+done
+"$PC" help >"$tmp/out"
+check "help: the general usage" grep -q '^usage: pointcalc derive' "$tmp/out"
+"$PC" help frobnicate >"$tmp/out" 2>"$tmp/err"
+check "help of an unknown command: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
+
+# eval --output: repeatable and comma-separated, in the order given
+E="examples/desargues_arc.pcs --at A=0,0 --at B=1,0 --at C=0,1 --at D=1,1 --param t=0.5"
+"$PC" eval $E --output dM,M >"$tmp/out"
+check "--output dM,M: the header in that order" test "$(head -1 "$tmp/out")" = "t,dM.1,dM.2,M.1,M.2"
+"$PC" eval $E --output dM --output M >"$tmp/out2"
+check "--output twice: the same as a list" cmp -s "$tmp/out" "$tmp/out2"
+"$PC" eval $E --output M --output M >"$tmp/out" 2>"$tmp/err"
+check "--output M twice: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
+check "--output M twice: said" grep -q "^pointcalc: --output 'M' is given twice" "$tmp/err"
+"$PC" eval $E --output M, >"$tmp/out" 2>"$tmp/err"
+check "--output with an empty name: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
