@@ -516,10 +516,20 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
                              a->param[i].name, a->param[i].text, msg);
         }
     }
-    for (int k = 0; k < p->nconsts && !rc; k++)
-        if (!seen[k])
+    /* a const the selected outputs do not use need not be given */
+    unsigned char *live = pc_xcalloc((size_t)p->nins + 1, 1);
+    for (int j = 0; j < s->nsel; j++)
+        plan_live(p, s->sel[j], live);
+    for (int k = 0; k < p->nconsts && !rc; k++) {
+        int used = 0;
+        for (int i = 0; i < p->nins && !used; i++)
+            used = live[i] && p->ins[i].op == PLAN_INPUT &&
+                   p->ins[i].a == p->nparams + k;
+        if (!seen[k] && used)
             rc = usage_error(err, eval_usage, "missing --set %s=VALUE",
                              p->consts[k]);
+    }
+    free(live);
     for (int k = 0; k < p->nparams && !rc; k++)
         if (!pseen[k])
             rc = usage_error(err, eval_usage, "missing --param %s=SPEC",

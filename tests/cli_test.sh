@@ -341,5 +341,14 @@ check "--output M twice: said" grep -q "^pointcalc: --output 'M' is given twice"
 "$PC" eval $E --output M, >"$tmp/out" 2>"$tmp/err"
 check "--output with an empty name: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
 
+# eval needs only the consts that the selected outputs use
+printf 'point A, B\nparam t\nconst k, m\nM = along(A, B, t)\nN = along(A, B, k*t)\noutput M, N\n' >"$tmp/c2.pcs"
+"$PC" eval "$tmp/c2.pcs" --at A=0 --at B=1 --param t=0.5 --output M >"$tmp/out" 2>"$tmp/err"
+check "eval M: no --set needed for unused consts" test $? -eq 0 -a "$(tail -1 "$tmp/out")" = "0.5,0.5"
+"$PC" eval "$tmp/c2.pcs" --at A=0 --at B=1 --param t=0.5 --output N >"$tmp/out" 2>"$tmp/err"
+check "eval N: k is used, m is not" grep -q "^pointcalc: missing --set k=VALUE$" "$tmp/err"
+"$PC" eval "$tmp/c2.pcs" --at A=0 --at B=1 --param t=0.5 --output N --set k=2 >"$tmp/out"
+check "eval N with k only" test "$(tail -1 "$tmp/out")" = "0.5,1"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
