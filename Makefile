@@ -77,6 +77,7 @@ check: tests
 	@fail=0; for t in $(TESTS); do \
 	  echo "== $$t"; PC_BIN=$(B)/pointcalc $$t || fail=1; done; \
 	  tests/cli_test.sh $(B)/pointcalc || fail=1; \
+	  tests/tutorial_test.sh $(B)/pointcalc || fail=1; \
 	  echo "== $(B)/examples/api_example"; \
 	  $(B)/examples/api_example > $(B)/examples/api_example.out && \
 	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.out && \
