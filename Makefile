@@ -132,7 +132,7 @@ fuzz:
 	cp examples/*.pcs tests/schemes/*.pcs tests/errors/*.pcs build-fuzz/corpus/
 	cp tests/fuzz/eval_seeds/* build-fuzz/corpus_eval/
 	@# findings of earlier campaigns, replayed first (tests/fuzz/regressions/)
-	build-fuzz/fuzz_derive -timeout=120 tests/fuzz/regressions/*
+	build-fuzz/fuzz_derive -timeout=120 -rss_limit_mb=4096 tests/fuzz/regressions/*
 	build-fuzz/fuzz_derive $(FUZZ_FLAGS) -max_len=4096 build-fuzz/corpus
 	build-fuzz/fuzz_eval_args $(FUZZ_FLAGS) -max_len=512 build-fuzz/corpus_eval
 
