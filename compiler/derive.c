@@ -76,7 +76,7 @@ static double now_seconds(void)
 }
 
 /* 1 (reported at n, once) when the time budget has run out */
-static int out_of_time(Deriver *D, const Node *n)
+static int out_of_time_at(Deriver *D, Span span)
 {
     if (D->expired)
         return 1;
@@ -84,12 +84,17 @@ static int out_of_time(Deriver *D, const Node *n)
         return 0;
     char amount[48];
     budget_format_seconds(amount, sizeof amount, D->max_seconds);
-    diag_error(D->diag, n->span,
+    diag_error(D->diag, span,
                "the time budget of %s ran out while deriving this; raise it "
                "with --max-seconds",
                amount);
     D->expired = 1;
     return 1;
+}
+
+static int out_of_time(Deriver *D, const Node *n)
+{
+    return out_of_time_at(D, n->span);
 }
 
 static void value_init(Value *v, const Ring *r)
@@ -973,6 +978,13 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
     RatFunStruct *A = NULL, *b = NULL, *x = NULL;
     fmpz_mpoly_t c;
     fmpz_mpoly_init(c, r->ctx);
+    if (ok && (ncol > SOLVE_MAX_UNKNOWNS || nrow > 4 * SOLVE_MAX_UNKNOWNS)) {
+        diag_error(D->diag, st->span,
+                   "system too large to solve: %ld scalar unknowns in %ld "
+                   "equations (at most %d unknowns)",
+                   (long)ncol, (long)nrow, SOLVE_MAX_UNKNOWNS);
+        ok = 0;
+    }
     if (ok && ncol > 0) {
         A = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(nrow * ncol, 1));
         b = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(nrow, 1));
@@ -1178,8 +1190,12 @@ static void derive_solve(Deriver *D, Stmt *st)
         free(pe);
     } else if (ok) {
         SolveStatus ss =
-            solve_points(x, (const PointEq *)eqs, neq, cols, nunk,
-                         undetermined, dependent, r);
+            nunk > SOLVE_MAX_UNKNOWNS
+                ? SOLVE_TOO_BIG
+                : solve_points_ex(x, (const PointEq *)eqs, neq, cols, nunk,
+                                  undetermined, dependent, D->deadline, r);
+        if (ss == SOLVE_TIME)
+            out_of_time_at(D, st->span);
         if (ss == SOLVE_OK) {
             for (j = 0; j < nunk; j++) {
                 pteq_swap(D->usol[syms[j]->index], x[j], r);
@@ -1204,7 +1220,11 @@ static void derive_solve(Deriver *D, Stmt *st)
             diag_error(D->diag, eqn[e < neq ? e : 0]->span,
                        "inconsistent system: this equation contradicts the "
                        "others");
-        } else {
+        } else if (ss == SOLVE_TOO_BIG && nunk > SOLVE_MAX_UNKNOWNS) {
+            diag_error(D->diag, st->span,
+                       "system too large to solve: %ld unknowns (at most %d)",
+                       (long)nunk, SOLVE_MAX_UNKNOWNS);
+        } else if (ss == SOLVE_TOO_BIG) {
             diag_error(D->diag, st->span,
                        "expression too large to compute exactly: an "
                        "intermediate product of this solve could need more "

@@ -4,6 +4,7 @@
 #include "compiler/solve.h"
 
 #include <string.h>
+#include <time.h>
 
 #include <flint/fmpz_mat.h>
 
@@ -171,8 +172,18 @@ static int product_too_big(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
 /* Fraction-free Gauss-Jordan (Bareiss): after the step with pivot p (and
  * the previous pivot q), every row i other than the pivot row becomes
  * (p * row_i - row_i[j] * pivot_row) / q, an exact division. */
+static int past(double deadline)
+{
+    struct timespec ts;
+    if (deadline == 0)
+        return 0;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec > deadline;
+}
+
 static SolveStatus solve_general(PointEq *x, System *S, char *undetermined,
-                                 char *dependent, const Ring *r)
+                                 char *dependent, double deadline,
+                                 const Ring *r)
 {
     slong n = S->nunk, w = S->width, rank = 0;
     slong *pivcol = pc_xmalloc(sizeof(slong) * (size_t)FLINT_MAX(S->neq, 1));
@@ -215,6 +226,10 @@ static SolveStatus solve_general(PointEq *x, System *S, char *undetermined,
             fmpz_mpoly_struct *ri = S->row[i], *rp = S->row[rank];
             if (i == rank)
                 continue;
+            if (past(deadline)) {
+                st = SOLVE_TIME;
+                break;
+            }
             for (slong c = 0; c < w; c++) {
                 if (c == bj)
                     continue;
@@ -280,6 +295,14 @@ SolveStatus solve_points(PointEq *x, const PointEq *eqs, slong neq,
                          const slong *cols, slong nunk, char *undetermined,
                          char *dependent, const Ring *r)
 {
+    return solve_points_ex(x, eqs, neq, cols, nunk, undetermined, dependent,
+                           0, r);
+}
+
+SolveStatus solve_points_ex(PointEq *x, const PointEq *eqs, slong neq,
+                            const slong *cols, slong nunk, char *undetermined,
+                            char *dependent, double deadline, const Ring *r)
+{
     System S;
     SolveStatus st;
     int numeric = neq == nunk;
@@ -295,7 +318,7 @@ SolveStatus solve_points(PointEq *x, const PointEq *eqs, slong neq,
         if (dependent)
             memset(dependent, 0, (size_t)neq);
     } else {
-        st = solve_general(x, &S, undetermined, dependent, r);
+        st = solve_general(x, &S, undetermined, dependent, deadline, r);
     }
     system_clear(&S, r);
     return st;

@@ -37,7 +37,12 @@ typedef enum SolveStatus {
     SOLVE_SINGULAR,     // consistent, but some unknowns stay undetermined
     SOLVE_INCONSISTENT, // some equation contradicts the others
     SOLVE_TOO_BIG,      // an intermediate product would pass the size limit
+    SOLVE_TIME,         // the deadline passed (solve_points_ex)
 } SolveStatus;
+
+/* the most unknowns of one system (point unknowns, or scalar unknowns of
+ * the mixed path in derive.c, which counts each point's weights) */
+#define SOLVE_MAX_UNKNOWNS 2000
 
 /* Solves eqs[e] = 0 (e < neq) for the unknown columns cols[0..nunk-1]
  * (distinct point indices).  On SOLVE_OK, x[j] (nunk initialised PointEqs)
@@ -49,5 +54,10 @@ typedef enum SolveStatus {
 SolveStatus solve_points(PointEq *x, const PointEq *eqs, slong neq,
                          const slong *cols, slong nunk, char *undetermined,
                          char *dependent, const Ring *r);
+/* the same with a deadline (CLOCK_MONOTONIC seconds; 0: none), checked at
+ * every row of the elimination: SOLVE_TIME when it has passed */
+SolveStatus solve_points_ex(PointEq *x, const PointEq *eqs, slong neq,
+                            const slong *cols, slong nunk, char *undetermined,
+                            char *dependent, double deadline, const Ring *r);
 
 #endif

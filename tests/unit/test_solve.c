@@ -25,6 +25,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "compiler/derive.h"
 #include "compiler/linsolve.h"
@@ -335,6 +336,45 @@ static void test_contour_arcs_match_the_book(void **state)
     }
 }
 
+/* a symbolic system that takes long stops at the library's own time
+ * budget (no signal: derive_source_ex), located at the solve, and one
+ * with too many unknowns is refused before any work */
+static void test_solve_budgets(void **state)
+{
+    (void)state;
+    static const char slow[] =
+        "point A, B\nparam t\nunknown X[1..30]\n"
+        "solve bezier(t + i, X[1..30]) = along(A, B, i) for i in 1..30 "
+        "for X[1..30]\nM = X[1]\n";
+    static const char big[] =
+        "point A, B\nunknown X[1..2001]\n"
+        "solve X[i] = along(A, B, 1/2) for i in 1..2001 for X[1..2001]\n"
+        "M = X[1]\n";
+    char *out = NULL;
+    size_t n = 0;
+    FILE *mem = open_memstream(&out, &n);
+    DeriveOptions opt = {.max_seconds = 0.2};
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    Derived *d = derive_source_ex("slow.pcs", slow, sizeof slow - 1, mem,
+                                  NULL, &opt);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double secs = (double)(t1.tv_sec - t0.tv_sec) +
+                  1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    assert_null(d);
+    opt.max_seconds = 60;
+    d = derive_source_ex("big.pcs", big, sizeof big - 1, mem, NULL, &opt);
+    assert_null(d);
+    fclose(mem);
+    assert_non_null(strstr(out, "slow.pcs:4:1: error: the time budget of "
+                                "0.2 s ran out while deriving this"));
+    assert_non_null(strstr(out, "big.pcs:3:1: error: system too large to "
+                                "solve: 2001 unknowns (at most 2000)"));
+    /* the budget is checked between rows: well within a second of it */
+    assert_true(secs < 5.0);
+    free(out);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -344,6 +384,7 @@ int main(void)
                                         setup, teardown),
         cmocka_unit_test(test_family_interpolation_is_lagrange),
         cmocka_unit_test(test_contour_arcs_match_the_book),
+        cmocka_unit_test(test_solve_budgets),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     flint_cleanup_master();
