@@ -824,17 +824,34 @@ static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
 
 /* replaces unknown column col by its solution x in every value derived so
  * far: the definitions and the unknowns solved earlier in terms of it */
-static void substitute_solved(Deriver *D, slong col, const PointEq x)
+static int has_any(const PointEq p, const slong *cols, slong n)
+{
+    for (slong j = 0; j < n; j++)
+        if (pteq_has_point(p, cols[j]))
+            return 1;
+    return 0;
+}
+
+/* the unknown points syms[0..n-1], just solved (their columns cols),
+ * replaced in every value derived so far, all in one pass */
+static void substitute_solved(Deriver *D, const slong *cols, Sym *const *syms,
+                              slong n)
 {
     const Ring *r = D->r;
+    PointEq *sol = pc_xmalloc(sizeof(PointEq) * (size_t)(n ? n : 1));
+    for (slong j = 0; j < n; j++)
+        sol[j][0] = D->usol[syms[j]->index][0]; /* borrowed, not modified */
     for (int i = 0; i < D->info->ndefs; i++) {
         Value *v = &D->defs[i];
-        if (D->state[i] == 1 && v->is_point && pteq_has_point(v->p, col))
-            pteq_subst_point(v->p, v->p, col, x, r);
+        if (D->state[i] == 1 && v->is_point && has_any(v->p, cols, n))
+            pteq_subst_points(v->p, v->p, cols, (const PointEq *)sol, n, r);
     }
     for (int k = 0; k < D->info->nunknowns; k++)
-        if (D->usolved[k] && pteq_has_point(D->usol[k], col))
-            pteq_subst_point(D->usol[k], D->usol[k], col, x, r);
+        if (D->usolved[k] && D->info->unknowns[k]->is_point &&
+            has_any(D->usol[k], cols, n))
+            pteq_subst_points(D->usol[k], D->usol[k], cols,
+                              (const PointEq *)sol, n, r);
+    free(sol);
 }
 
 /* the names of the unknowns flagged in `which`, "'B', 'C'" (caller frees) */
@@ -1054,11 +1071,13 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
                 D->usolved[u->index] = 1;
                 substitute_solved_scalar(D, kvar[m], D->ssol + u->index, st);
             }
+            Sym **xs = pc_xmalloc(sizeof(Sym *) * (size_t)(nx ? nx : 1));
             for (slong xi = 0; xi < nx; xi++) {
-                Sym *u = syms[xsym[xi]];
-                D->usolved[u->index] = 1;
-                substitute_solved(D, xcol[xi], D->usol[u->index]);
+                xs[xi] = syms[xsym[xi]];
+                D->usolved[xs[xi]->index] = 1;
             }
+            substitute_solved(D, xcol, xs, nx);
+            free(xs);
         }
         for (slong i = 0; i < nrow * ncol; i++)
             ratfun_clear(A + i, r);
@@ -1200,8 +1219,8 @@ static void derive_solve(Deriver *D, Stmt *st)
             for (j = 0; j < nunk; j++) {
                 pteq_swap(D->usol[syms[j]->index], x[j], r);
                 D->usolved[syms[j]->index] = 1;
-                substitute_solved(D, cols[j], D->usol[syms[j]->index]);
             }
+            substitute_solved(D, cols, syms, nunk);
         } else if (ss == SOLVE_SINGULAR) {
             char *list = unknown_list(syms, undetermined, nunk);
             for (j = 0; j < nunk && !undetermined[j]; j++)

@@ -587,6 +587,84 @@ void pteq_subst_point(PointEq res, const PointEq x, slong point,
     ratfun_clear(w, r);
 }
 
+void pteq_subst_points(PointEq res, const PointEq x, const slong *cols,
+                       const PointEq *p, slong k, const Ring *r)
+{
+    slong maxp = -1, *which;
+    fmpz_mpoly_struct *acc;
+    fmpz_mpoly_t L, g, f, t;
+    int any = 0;
+
+    /* which[i]: the replacement of term i of x, or -1 */
+    which = flint_malloc(sizeof(slong) * (size_t)FLINT_MAX(x->len, 1));
+    fmpz_mpoly_init(L, r->ctx);
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_init(f, r->ctx);
+    fmpz_mpoly_init(t, r->ctx);
+    fmpz_mpoly_one(L, r->ctx);
+    for (slong i = 0; i < x->len; i++) {
+        which[i] = -1;
+        for (slong j = 0; j < k; j++)
+            if (cols[j] == x->terms[i].point)
+                which[i] = j;
+        maxp = FLINT_MAX(maxp, x->terms[i].point);
+        if (which[i] < 0)
+            continue;
+        const PointEq *pj = p + which[i];
+        any = 1;
+        /* L = lcm(L, den of the replacement) */
+        ratfun_poly_gcd(g, L, (*pj)->den, r);
+        fmpz_mpoly_divides(t, (*pj)->den, g, r->ctx);
+        fmpz_mpoly_mul(L, L, t, r->ctx);
+        for (slong q = 0; q < (*pj)->len; q++)
+            maxp = FLINT_MAX(maxp, (*pj)->terms[q].point);
+    }
+    if (!any) {
+        pteq_set(res, x, r);
+        goto done;
+    }
+    acc = flint_malloc(sizeof(fmpz_mpoly_struct) * (size_t)(maxp + 1));
+    for (slong q = 0; q <= maxp; q++)
+        fmpz_mpoly_init(acc + q, r->ctx);
+    for (slong i = 0; i < x->len; i++) {
+        if (which[i] < 0) {
+            fmpz_mpoly_mul(t, x->terms[i].num, L, r->ctx);
+            fmpz_mpoly_add(acc + x->terms[i].point, acc + x->terms[i].point,
+                           t, r->ctx);
+            continue;
+        }
+        const PointEq *pj = p + which[i];
+        /* f = n_i * L / den_j: term i's share of every point of p[j] */
+        fmpz_mpoly_divides(f, L, (*pj)->den, r->ctx);
+        fmpz_mpoly_mul(f, f, x->terms[i].num, r->ctx);
+        for (slong q = 0; q < (*pj)->len; q++) {
+            fmpz_mpoly_mul(t, f, (*pj)->terms[q].num, r->ctx);
+            fmpz_mpoly_add(acc + (*pj)->terms[q].point,
+                           acc + (*pj)->terms[q].point, t, r->ctx);
+        }
+    }
+    {
+        PointEq out;
+        pteq_init(out, r);
+        fmpz_mpoly_mul(out->den, x->den, L, r->ctx);
+        for (slong q = 0; q <= maxp; q++)
+            if (!fmpz_mpoly_is_zero(acc + q, r->ctx))
+                fmpz_mpoly_swap(pteq_append(out, q, r), acc + q, r->ctx);
+        pteq_canonicalise(out, r);
+        pteq_swap(res, out, r);
+        pteq_clear(out, r);
+    }
+    for (slong q = 0; q <= maxp; q++)
+        fmpz_mpoly_clear(acc + q, r->ctx);
+    flint_free(acc);
+done:
+    fmpz_mpoly_clear(t, r->ctx);
+    fmpz_mpoly_clear(f, r->ctx);
+    fmpz_mpoly_clear(g, r->ctx);
+    fmpz_mpoly_clear(L, r->ctx);
+    flint_free(which);
+}
+
 /* On the one denominator: with s = a/b, every numerator and the den as
  * b^E * p(a/b), E the largest degree in var among them, then one content
  * reduction.  The den composed to zero is a pole: some weight's reduced

@@ -94,6 +94,11 @@ void pteq_lincomb(PointEq res, const PointEq x, const RatFun s,
  * monograph 4.1): x = sum w_i X_i  ->  sum_{i != point} w_i X_i + w_point*p */
 void pteq_subst_point(PointEq res, const PointEq x, slong point,
                       const PointEq p, const Ring *r);
+/* Replace the points cols[0..k-1] (distinct) by the combinations p[0..k-1]
+ * at once, over the lcm of their denominators (solve: every unknown of one
+ * system in one pass).  The replacements must not hold any of cols. */
+void pteq_subst_points(PointEq res, const PointEq x, const slong *cols,
+                       const PointEq *p, slong k, const Ring *r);
 /* every weight composed with var := s; RATFUN_EPOLE if a weight's
  * denominator vanishes identically (res untouched then) */
 int pteq_compose_var(PointEq res, const PointEq x, slong var, const RatFun s,

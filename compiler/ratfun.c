@@ -755,28 +755,98 @@ void ratfun_derivative_n(RatFun res, const RatFun x, slong var, ulong k,
  *   acc_0 = c_0,  acc_j = acc_{j-1}*a^(e_{j-1}-e_j) + c_j*b^(e_0-e_j),
  *   res = acc_last * a^e_last.
  * Returns 0 if a power overflows FLINT's exponent range. */
+/* ratfun_poly_compose_homog when p has no variable but var and a, b are
+ * numbers (a node at a fixed parameter value: subst(X, t, 1/3)): homogeneous
+ * Horner on integers, without the polynomial machinery */
+static void compose_homog_numeric(fmpz_mpoly_t res, slong *deg,
+                                  const fmpz_mpoly_t p, slong var,
+                                  const fmpz_t a, const fmpz_t b,
+                                  const Ring *r)
+{
+    fmpz_t acc, c, pw, bp;
+    slong prev = 0;
+    fmpz_init(acc);
+    fmpz_init(c);
+    fmpz_init(pw);
+    fmpz_init(bp);
+    fmpz_one(bp);
+    /* the terms of a univariate polynomial come in descending degree */
+    for (slong i = 0; i < p->length; i++) {
+        slong e = (slong)fmpz_mpoly_get_term_var_exp_ui(p, i, var, r->ctx);
+        fmpz_mpoly_get_term_coeff_fmpz(c, p, i, r->ctx);
+        if (i == 0) {
+            *deg = e;
+            fmpz_set(acc, c);
+        } else {
+            fmpz_pow_ui(pw, a, (ulong)(prev - e));
+            fmpz_mul(acc, acc, pw);
+            fmpz_pow_ui(pw, b, (ulong)(prev - e));
+            fmpz_mul(bp, bp, pw);
+            fmpz_addmul(acc, c, bp);
+        }
+        prev = e;
+    }
+    fmpz_pow_ui(pw, a, (ulong)prev);
+    fmpz_mul(acc, acc, pw);
+    fmpz_mpoly_set_fmpz(res, acc, r->ctx);
+    fmpz_clear(bp);
+    fmpz_clear(pw);
+    fmpz_clear(c);
+    fmpz_clear(acc);
+}
+
+/* 1 when p's only variable (if any) is var */
+static int only_var(const fmpz_mpoly_t p, slong var, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    slong *degs = flint_malloc(sizeof(slong) * (size_t)FLINT_MAX(nv, 1));
+    int ok = fmpz_mpoly_degrees_fit_si(p, r->ctx);
+    if (ok) {
+        fmpz_mpoly_degrees_si(degs, p, r->ctx);
+        for (slong v = 0; v < nv && ok; v++)
+            ok = v == var || degs[v] <= 0;
+    }
+    flint_free(degs);
+    return ok;
+}
+
 int ratfun_poly_compose_homog(fmpz_mpoly_t res, slong *deg, const fmpz_mpoly_t p,
                          slong var, const fmpz_mpoly_t a, const fmpz_mpoly_t b,
                          const Ring *r)
 {
+    if (p->length > 0 && fmpz_mpoly_is_fmpz(a, r->ctx) &&
+        fmpz_mpoly_is_fmpz(b, r->ctx) && only_var(p, var, r)) {
+        fmpz_t fa, fb;
+        fmpz_init(fa);
+        fmpz_init(fb);
+        fmpz_mpoly_get_fmpz(fa, a, r->ctx);
+        fmpz_mpoly_get_fmpz(fb, b, r->ctx);
+        compose_homog_numeric(res, deg, p, var, fa, fb, r);
+        fmpz_clear(fb);
+        fmpz_clear(fa);
+        return 1;
+    }
     int ok = 1;
     int b_one = fmpz_mpoly_is_one(b, r->ctx);
     fmpz_mpoly_univar_t U;
-    fmpz_mpoly_t acc, pw;
+    fmpz_mpoly_t acc, pw, bp;
 
     fmpz_mpoly_univar_init(U, r->ctx);
     fmpz_mpoly_init(acc, r->ctx);
     fmpz_mpoly_init(pw, r->ctx);
+    fmpz_mpoly_init(bp, r->ctx);
     *deg = 0;
     fmpz_mpoly_to_univar(U, p, var, r->ctx);
     if (U->length == 0)
         goto done;
     *deg = fmpz_get_si(U->exps + 0);
     fmpz_mpoly_set(acc, U->coeffs + 0, r->ctx);
+    /* Horner in a; bp = b^(deg - e_j) is kept by multiplying by b^(e_(j-1)
+     * - e_j), usually b itself, rather than raised anew at every term */
+    fmpz_mpoly_one(bp, r->ctx);
     for (slong j = 1; j < U->length; j++) {
         ulong da =
             (ulong)(fmpz_get_si(U->exps + j - 1) - fmpz_get_si(U->exps + j));
-        ulong db = (ulong)(*deg - fmpz_get_si(U->exps + j));
         if (!fmpz_mpoly_pow_ui(pw, a, da, r->ctx)) {
             ok = 0;
             goto done;
@@ -785,11 +855,12 @@ int ratfun_poly_compose_homog(fmpz_mpoly_t res, slong *deg, const fmpz_mpoly_t p
         if (b_one) {
             fmpz_mpoly_add(acc, acc, U->coeffs + j, r->ctx);
         } else {
-            if (!fmpz_mpoly_pow_ui(pw, b, db, r->ctx)) {
+            if (!fmpz_mpoly_pow_ui(pw, b, da, r->ctx)) {
                 ok = 0;
                 goto done;
             }
-            fmpz_mpoly_mul(pw, pw, U->coeffs + j, r->ctx);
+            fmpz_mpoly_mul(bp, bp, pw, r->ctx);
+            fmpz_mpoly_mul(pw, bp, U->coeffs + j, r->ctx);
             fmpz_mpoly_add(acc, acc, pw, r->ctx);
         }
     }
@@ -804,6 +875,7 @@ int ratfun_poly_compose_homog(fmpz_mpoly_t res, slong *deg, const fmpz_mpoly_t p
 done:
     if (ok)
         fmpz_mpoly_swap(res, acc, r->ctx);
+    fmpz_mpoly_clear(bp, r->ctx);
     fmpz_mpoly_clear(pw, r->ctx);
     fmpz_mpoly_clear(acc, r->ctx);
     fmpz_mpoly_univar_clear(U, r->ctx);
