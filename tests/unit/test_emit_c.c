@@ -427,11 +427,13 @@ static void test_emit_c_examples_match_exact_and_runtime(void **state)
 }
 
 /* An interpolation scheme passes through its nodes (issue: evaluation at
- * the nodes): output 0 at t = k/n is point k, for k = 0..n, in the
+ * the nodes): output o at the node parameters is the node points, in the
  * generated C (one point and batch) and in the runtime (what `eval` runs),
  * to 1e-12 relative to the largest coordinate, in dims 2, 3 and 7, with
  * random (non-dyadic) points. */
-static void check_nodes(const char *path, const char *define, int n)
+static void check_nodes_ex(const char *path, const char *define, int o,
+                           int nn, const double *tnode, const int *node_pt,
+                           const double *cst)
 {
     const char *defs[1] = {define};
     DeriveOptions opt = {.max_seconds = 60, .defines = defs,
@@ -440,24 +442,26 @@ static void check_nodes(const char *path, const char *define, int n)
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
     assert_non_null(p);
-    assert_int_equal(p->npoints, n + 1);
     assert_int_equal(p->nparams, 1);
     Compiled c;
     compile_plan(&c, p);
-    one_fn one = (one_fn)(uintptr_t)dlsym(c.so, "w1_0");
-    batch_fn batch = (batch_fn)(uintptr_t)dlsym(c.so, "wb_0");
+    char name[32];
+    snprintf(name, sizeof name, "w1_%d", o);
+    one_fn one = (one_fn)(uintptr_t)dlsym(c.so, name);
+    snprintf(name, sizeof name, "wb_%d", o);
+    batch_fn batch = (batch_fn)(uintptr_t)dlsym(c.so, name);
+    assert_non_null(one);
+    assert_non_null(batch);
     static const int dims[] = {2, 3, 7};
-    double ts[64];
-    const double *prm[1] = {ts};
-    for (int k = 0; k <= n; k++)
-        ts[k] = (double)k / n;
+    const double *prm[1] = {tnode};
+    int npt = p->npoints;
     srand(12345);
     for (int di = 0; di < 3; di++) {
         int dim = dims[di];
-        double **pts = malloc(sizeof *pts * (size_t)(n + 1)), big = 0;
-        double *out = malloc(sizeof *out * (size_t)(dim * (n + 1)));
+        double **pts = malloc(sizeof *pts * (size_t)npt), big = 0;
+        double *out = malloc(sizeof *out * (size_t)(dim * nn));
         unsigned char st[64];
-        for (int k = 0; k <= n; k++) {
+        for (int k = 0; k < npt; k++) {
             pts[k] = malloc(sizeof **pts * (size_t)dim);
             for (int cc = 0; cc < dim; cc++) {
                 pts[k][cc] = 10.0 * rand() / RAND_MAX - 5.0;
@@ -466,36 +470,37 @@ static void check_nodes(const char *path, const char *define, int n)
         }
         for (int way = 0; way < 3; way++) {
             if (way == 0)
-                for (int k = 0; k <= n; k++)
-                    assert_int_equal(one(ts + k, NULL,
+                for (int k = 0; k < nn; k++)
+                    assert_int_equal(one(tnode + k, cst,
                                          (const double *const *)pts, dim,
                                          out + k * dim, 1),
                                      0);
             else if (way == 1)
-                assert_int_equal(batch((size_t)n + 1, prm, NULL,
+                assert_int_equal(batch((size_t)nn, prm, cst,
                                        (const double *const *)pts, dim, out,
                                        st, 1),
                                  0);
             else
-                assert_int_equal(plan_eval(p, 0, (size_t)n + 1, prm, NULL,
+                assert_int_equal(plan_eval(p, o, (size_t)nn, prm, cst,
                                            (const double *const *)pts, dim,
                                            out, st),
                                  0);
-            for (int k = 0; k <= n; k++)
+            for (int k = 0; k < nn; k++)
                 for (int cc = 0; cc < dim; cc++) {
-                    double err = fabs(out[k * dim + cc] - pts[k][cc]) / big;
+                    double err =
+                        fabs(out[k * dim + cc] - pts[node_pt[k]][cc]) / big;
                     total_checks++;
                     if (!(err <= REL_TOL))
-                        fail_msg("%s (%s) dim %d, %s: node %d coordinate "
-                                 "%d off by %g relative",
-                                 path, define ? define : "-", dim,
+                        fail_msg("%s (%s) output %d dim %d, %s: node %d "
+                                 "coordinate %d off by %g relative",
+                                 path, define ? define : "-", o, dim,
                                  way == 0   ? "generated"
                                  : way == 1 ? "generated batch"
                                             : "runtime",
                                  k, cc, err);
                 }
         }
-        for (int k = 0; k <= n; k++)
+        for (int k = 0; k < npt; k++)
             free(pts[k]);
         free(pts);
         free(out);
@@ -503,6 +508,18 @@ static void check_nodes(const char *path, const char *define, int n)
     compiled_clear(&c);
     plan_free(p);
     derived_free(d);
+}
+
+/* nodes at t = k/n, k = 0..n, the points in node order, output 0 */
+static void check_nodes(const char *path, const char *define, int n)
+{
+    double ts[64];
+    int pt[64];
+    for (int k = 0; k <= n; k++) {
+        ts[k] = (double)k / n;
+        pt[k] = k;
+    }
+    check_nodes_ex(path, define, 0, n + 1, ts, pt, NULL);
 }
 
 static void test_emit_c_interpolation_passes_through_nodes(void **state)
@@ -516,6 +533,24 @@ static void test_emit_c_interpolation_passes_through_nodes(void **state)
     for (size_t i = 0; i < sizeof orders / sizeof *orders; i++)
         check_nodes("examples/interpolation_bezier.pcs", orders[i],
                     atoi(orders[i] + 2));
+    /* 4.1: A, K, B at u = 0, 1/2, 1, for a const k */
+    const double t3[3] = {0, 0.5, 1}, kc[1] = {0.3};
+    const int p3[3] = {0, 1, 2};
+    check_nodes_ex("examples/interpolation_conic.pcs", NULL, 0, 3, t3, p3, kc);
+    /* 4.9: M through M1..M4 at 0, 1/3, 2/3, 1; N through M1..M3 at 0,
+     * 1/2, 1 (outputs M, C3, C4, N, D3) */
+    const double t4[4] = {0, 1.0 / 3, 2.0 / 3, 1};
+    const int p4[4] = {0, 1, 2, 3};
+    check_nodes_ex("examples/interpolation_tangents.pcs", NULL, 0, 4, t4, p4,
+                   NULL);
+    check_nodes_ex("examples/interpolation_tangents.pcs", NULL, 3, 3, t3, p3,
+                   NULL);
+    /* 4.10: M through M2 at 389/428, M91 at 0.91 (outputs M, C, M91, C91) */
+    const double ta[3] = {0, 389.0 / 428, 1}, tb[3] = {0, 0.91, 1};
+    check_nodes_ex("examples/interpolation_adaptive.pcs", NULL, 0, 3, ta, p3,
+                   NULL);
+    check_nodes_ex("examples/interpolation_adaptive.pcs", NULL, 2, 3, tb, p3,
+                   NULL);
 }
 
 /* the contract's Desargues scheme, inline: at t = 1/2 the centroid */
