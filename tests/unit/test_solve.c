@@ -366,8 +366,11 @@ static void test_solve_budgets(void **state)
     d = derive_source_ex("big.pcs", big, sizeof big - 1, mem, NULL, &opt);
     assert_null(d);
     fclose(mem);
-    assert_non_null(strstr(out, "slow.pcs:4:1: error: the time budget of "
-                                "0.2 s ran out while deriving this"));
+    /* at the solve (line 4), or at an expression of its equations when
+     * the budget runs out before the elimination (valgrind) */
+    assert_non_null(strstr(out, "slow.pcs:4:"));
+    assert_non_null(strstr(out, ": error: the time budget of 0.2 s ran out "
+                                "while deriving this"));
     assert_non_null(strstr(out, "big.pcs:3:1: error: system too large to "
                                 "solve: 2001 unknowns (at most 2000)"));
     /* the budget is checked between rows: well within a second of it */
