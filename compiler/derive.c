@@ -1003,15 +1003,9 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
         ok = 0;
     }
     if (ok && ncol > 0) {
-        A = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(nrow * ncol, 1));
-        b = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(nrow, 1));
-        x = pc_xmalloc(sizeof(RatFunStruct) * (size_t)ncol);
-        for (slong i = 0; i < nrow * ncol; i++)
-            ratfun_init(A + i, r);
-        for (slong i = 0; i < nrow; i++)
-            ratfun_init(b + i, r);
-        for (slong i = 0; i < ncol; i++)
-            ratfun_init(x + i, r);
+        A = ratfun_vec_init(nrow * ncol, r);
+        b = ratfun_vec_init(nrow, r);
+        x = ratfun_vec_init(ncol, r);
         for (slong e = 0; e < npe; e++)
             for (slong i = 0; i < peq[e]->len; i++) {
                 slong col = peq[e]->terms[i].point, xi, bi;
@@ -1079,15 +1073,9 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
             substitute_solved(D, xcol, xs, nx);
             free(xs);
         }
-        for (slong i = 0; i < nrow * ncol; i++)
-            ratfun_clear(A + i, r);
-        for (slong i = 0; i < nrow; i++)
-            ratfun_clear(b + i, r);
-        for (slong i = 0; i < ncol; i++)
-            ratfun_clear(x + i, r);
-        free(A);
-        free(b);
-        free(x);
+        ratfun_vec_clear(A, nrow * ncol, r);
+        ratfun_vec_clear(b, nrow, r);
+        ratfun_vec_clear(x, ncol, r);
     }
     fmpz_mpoly_clear(c, r->ctx);
     free(known);
@@ -1139,7 +1127,7 @@ static void derive_solve(Deriver *D, Stmt *st)
     slong nsc = 0;
     for (j = 0; j < nunk; j++)
         nsc += !syms[j]->is_point;
-    RatFunStruct *seqs = pc_xmalloc(sizeof(RatFunStruct) * (size_t)neq);
+    RatFunStruct *seqs = ratfun_vec_init(neq, r);
     char *scalar_eq = pc_xcalloc((size_t)neq, 1);
     slong e = 0;
     for (Equation *q = st->eqs; q; q = q->next, e++) {
@@ -1147,7 +1135,6 @@ static void derive_solve(Deriver *D, Stmt *st)
         Value lv, rv;
         eqn[e] = q;
         pteq_init(eqs[e], r);
-        ratfun_init(seqs + e, r);
         pteq_init(rhs, r);
         value_init(&lv, r);
         value_init(&rv, r);
@@ -1261,11 +1248,9 @@ static void derive_solve(Deriver *D, Stmt *st)
     }
     ratfun_clear(sr, r);
     ratfun_clear(sl, r);
-    for (e = 0; e < neq; e++) {
+    for (e = 0; e < neq; e++)
         pteq_clear(eqs[e], r);
-        ratfun_clear(seqs + e, r);
-    }
-    free(seqs);
+    ratfun_vec_clear(seqs, neq, r);
     free(scalar_eq);
     for (j = 0; j < nunk; j++)
         pteq_clear(x[j], r);
@@ -1303,8 +1288,7 @@ static const Sym *unsolved_in(const Deriver *D, const Value *v)
             for (slong i = 0; i < v->p->len && !dep; i++)
                 dep = poly_has_var(v->p->terms[i].num, var, r);
         } else {
-            dep = poly_has_var(v->s->num, var, r) ||
-                  poly_has_var(v->s->den, var, r);
+            dep = ratfun_depends_on(v->s, var, r);
         }
         if (dep)
             return D->info->unknowns[k];
@@ -1438,11 +1422,10 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     D.ucol0 = info->npoints;
     D.usol = pc_xmalloc(sizeof(PointEq) * (size_t)(info->nunknowns ? info->nunknowns : 1));
     D.usolved = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1), sizeof(int));
-    D.ssol = pc_xmalloc(sizeof(RatFunStruct) * (size_t)(info->nunknowns ? info->nunknowns : 1));
+    D.ssol = ratfun_vec_init(info->nunknowns, r);
     D.uvar = pc_xmalloc(sizeof(slong) * (size_t)(info->nunknowns ? info->nunknowns : 1));
     for (int k = 0, m = 0; k < info->nunknowns; k++) {
         pteq_init(D.usol[k], r);
-        ratfun_init(D.ssol + k, r);
         D.uvar[k] = info->unknowns[k]->is_point
                         ? -1
                         : d->nparams + d->nconsts + m++;
@@ -1508,12 +1491,10 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     }
     for (int i = 0; i < info->ndefs; i++)
         value_clear(&D.defs[i], r);
-    for (int k = 0; k < info->nunknowns; k++) {
+    for (int k = 0; k < info->nunknowns; k++)
         pteq_clear(D.usol[k], r);
-        ratfun_clear(D.ssol + k, r);
-    }
     free(D.usol);
-    free(D.ssol);
+    ratfun_vec_clear(D.ssol, info->nunknowns, r);
     free(D.uvar);
     free(D.usolved);
     free(D.defs);

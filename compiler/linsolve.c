@@ -20,11 +20,10 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
     LinSolveResult res = LINSOLVE_UNIQUE;
     slong w = n + 1; /* row width: n coefficients and the right-hand side */
     slong rk = 0;
-    RatFunStruct *mat =
-        flint_malloc((size_t)FLINT_MAX(m * w, 1) * sizeof(RatFunStruct));
+    RatFunStruct *mat = ratfun_vec_init(m * w, r);
     RatFunStruct **row =
         flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(RatFunStruct *));
-    RatFunStruct *sol = flint_malloc((size_t)w * sizeof(RatFunStruct));
+    RatFunStruct *sol = ratfun_vec_init(w, r);
     slong *pivcol = flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(slong));
     char *used = flint_calloc((size_t)w, 1);
     RatFun piv, t;
@@ -33,15 +32,10 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
     ratfun_init(t, r);
     for (slong i = 0; i < m; i++) {
         row[i] = mat + i * w;
-        for (slong j = 0; j < n; j++) {
-            ratfun_init(row[i] + j, r);
+        for (slong j = 0; j < n; j++)
             ratfun_set(row[i] + j, a + i * n + j, r);
-        }
-        ratfun_init(row[i] + n, r);
         ratfun_set(row[i] + n, b + i, r);
     }
-    for (slong j = 0; j < w; j++)
-        ratfun_init(sol + j, r);
 
     while (rk < m) {
         slong bi = -1, bj = -1, blen = 0;
@@ -120,16 +114,12 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
 cleanup:
     if (rank != NULL)
         *rank = rk;
-    for (slong j = w - 1; j >= 0; j--)
-        ratfun_clear(sol + j, r);
-    for (slong i = m * w - 1; i >= 0; i--)
-        ratfun_clear(mat + i, r);
+    ratfun_vec_clear(sol, w, r);
+    ratfun_vec_clear(mat, m * w, r);
     ratfun_clear(t, r);
     ratfun_clear(piv, r);
     flint_free(used);
     flint_free(pivcol);
-    flint_free(sol);
     flint_free(row);
-    flint_free(mat);
     return res;
 }

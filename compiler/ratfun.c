@@ -19,6 +19,10 @@
  */
 #include "compiler/ratfun.h"
 
+#include <stdlib.h>
+
+#include "compiler/mem.h"
+
 #include <flint/fmpz_poly.h>
 #include <flint/fmpz_vec.h>
 #include <math.h>
@@ -364,6 +368,21 @@ int ratfun_is_canonical(const RatFun x, const Ring *r)
 cleanup:
     fmpz_mpoly_clear(g, r->ctx);
     return ok;
+}
+
+RatFunStruct *ratfun_vec_init(slong len, const Ring *r)
+{
+    RatFunStruct *v = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(len, 1));
+    for (slong i = 0; i < len; i++)
+        ratfun_init(v + i, r);
+    return v;
+}
+
+void ratfun_vec_clear(RatFunStruct *v, slong len, const Ring *r)
+{
+    for (slong i = 0; i < len; i++)
+        ratfun_clear(v + i, r);
+    free(v);
 }
 
 int ratfun_depends_on(const RatFun x, slong var, const Ring *r)

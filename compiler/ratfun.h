@@ -45,6 +45,9 @@ enum {
 void ratfun_init(RatFun x, const Ring *r); // x = 0
 void ratfun_clear(RatFun x, const Ring *r);
 void ratfun_swap(RatFun x, RatFun y, const Ring *r);
+/* len initialised zeros (never NULL, also for len 0), and their release */
+RatFunStruct *ratfun_vec_init(slong len, const Ring *r);
+void ratfun_vec_clear(RatFunStruct *v, slong len, const Ring *r);
 void ratfun_set(RatFun res, const RatFun x, const Ring *r);
 
 void ratfun_zero(RatFun res, const Ring *r);

@@ -32,21 +32,6 @@ static int teardown(void **state)
     return fixture_teardown(state);
 }
 
-static RatFunStruct *vec_new(slong len, const Ring *r)
-{
-    RatFunStruct *v = flint_malloc((size_t)FLINT_MAX(len, 1) * sizeof *v);
-    for (slong i = 0; i < len; i++)
-        ratfun_init(v + i, r);
-    return v;
-}
-
-static void vec_free(RatFunStruct *v, slong len, const Ring *r)
-{
-    for (slong i = 0; i < len; i++)
-        ratfun_clear(v + i, r);
-    flint_free(v);
-}
-
 static void parse(RatFun x, const char *s, const Ring *r)
 {
     if (ratfun_set_str(x, s, r) != RATFUN_OK)
@@ -83,9 +68,9 @@ static void test_linsolve_random_square_exact(void **state)
     slong unique = 0, total = rand_iters(60);
     for (slong it = 0; it < total; it++) {
         slong n = 1 + (slong)n_randint(f->st, 4);
-        RatFunStruct *a = vec_new(n * n, r), *a0 = vec_new(n * n, r);
-        RatFunStruct *b = vec_new(n, r), *b0 = vec_new(n, r);
-        RatFunStruct *x0 = vec_new(n, r), *x = vec_new(n, r);
+        RatFunStruct *a = ratfun_vec_init(n * n, r), *a0 = ratfun_vec_init(n * n, r);
+        RatFunStruct *b = ratfun_vec_init(n, r), *b0 = ratfun_vec_init(n, r);
+        RatFunStruct *x0 = ratfun_vec_init(n, r), *x = ratfun_vec_init(n, r);
         RatFun t;
         slong rank = -1;
         ratfun_init(t, r);
@@ -119,12 +104,12 @@ static void test_linsolve_random_square_exact(void **state)
         for (slong i = 0; i < n; i++)
             assert_true(ratfun_equal(b + i, b0 + i, r));
         ratfun_clear(t, r);
-        vec_free(x, n, r);
-        vec_free(x0, n, r);
-        vec_free(b0, n, r);
-        vec_free(b, n, r);
-        vec_free(a0, n * n, r);
-        vec_free(a, n * n, r);
+        ratfun_vec_clear(x, n, r);
+        ratfun_vec_clear(x0, n, r);
+        ratfun_vec_clear(b0, n, r);
+        ratfun_vec_clear(b, n, r);
+        ratfun_vec_clear(a0, n * n, r);
+        ratfun_vec_clear(a, n * n, r);
     }
     /* random matrices are almost always regular */
     assert_true(unique >= total / 2);
@@ -139,8 +124,8 @@ static void test_linsolve_overdetermined_consistent(void **state)
     for (slong it = 0; it < total; it++) {
         slong n = 1 + (slong)n_randint(f->st, 3);
         slong m = n + 1 + (slong)n_randint(f->st, 2);
-        RatFunStruct *a = vec_new(m * n, r), *b = vec_new(m, r);
-        RatFunStruct *x0 = vec_new(n, r), *x = vec_new(n, r);
+        RatFunStruct *a = ratfun_vec_init(m * n, r), *b = ratfun_vec_init(m, r);
+        RatFunStruct *x0 = ratfun_vec_init(n, r), *x = ratfun_vec_init(n, r);
         RatFun t;
         slong rank;
         ratfun_init(t, r);
@@ -168,10 +153,10 @@ static void test_linsolve_overdetermined_consistent(void **state)
         else
             assert_true(satisfies(a, x, b, m, n, r));
         ratfun_clear(t, r);
-        vec_free(x, n, r);
-        vec_free(x0, n, r);
-        vec_free(b, m, r);
-        vec_free(a, m * n, r);
+        ratfun_vec_clear(x, n, r);
+        ratfun_vec_clear(x0, n, r);
+        ratfun_vec_clear(b, m, r);
+        ratfun_vec_clear(a, m * n, r);
     }
     assert_true(inconsistent >= total / 2);
 }
@@ -182,7 +167,7 @@ static void test_linsolve_singular_and_inconsistent(void **state)
 {
     Fixture *f = *state;
     const Ring *r = &f->r;
-    RatFunStruct *a = vec_new(4, r), *b = vec_new(2, r), *x = vec_new(2, r);
+    RatFunStruct *a = ratfun_vec_init(4, r), *b = ratfun_vec_init(2, r), *x = ratfun_vec_init(2, r);
     slong rank = -1;
     RatFun e;
     ratfun_init(e, r);
@@ -219,9 +204,9 @@ static void test_linsolve_singular_and_inconsistent(void **state)
                      LINSOLVE_UNDERDETERMINED);
     assert_true(ratfun_is_zero(x + 0, r) && ratfun_is_zero(x + 1, r));
     ratfun_clear(e, r);
-    vec_free(x, 2, r);
-    vec_free(b, 2, r);
-    vec_free(a, 4, r);
+    ratfun_vec_clear(x, 2, r);
+    ratfun_vec_clear(b, 2, r);
+    ratfun_vec_clear(a, 4, r);
 }
 
 /* a zero in the top-left corner needs a pivot elsewhere */
@@ -229,7 +214,7 @@ static void test_linsolve_pivot_off_diagonal(void **state)
 {
     Fixture *f = *state;
     const Ring *r = &f->r;
-    RatFunStruct *a = vec_new(4, r), *b = vec_new(2, r), *x = vec_new(2, r);
+    RatFunStruct *a = ratfun_vec_init(4, r), *b = ratfun_vec_init(2, r), *x = ratfun_vec_init(2, r);
     RatFun e;
     slong rank;
     ratfun_init(e, r);
@@ -245,9 +230,9 @@ static void test_linsolve_pivot_off_diagonal(void **state)
     parse(e, "1/(t^2+u)", r);
     assert_true(ratfun_equal(x + 1, e, r));
     ratfun_clear(e, r);
-    vec_free(x, 2, r);
-    vec_free(b, 2, r);
-    vec_free(a, 4, r);
+    ratfun_vec_clear(x, 2, r);
+    ratfun_vec_clear(b, 2, r);
+    ratfun_vec_clear(a, 4, r);
 }
 
 /* Line AB meets line CD, simplex P0 P1 P2:  A = P0, B = P1, C = P2,
@@ -260,7 +245,7 @@ static void test_linsolve_line_intersection_redundant_row(void **state)
     Fixture *f = *state;
     const Ring *r = &f->r;
     PointEq A, B, C, D, c1, c2, rhs, M1, M2;
-    RatFunStruct *a = vec_new(6, r), *b = vec_new(3, r), *x = vec_new(2, r);
+    RatFunStruct *a = ratfun_vec_init(6, r), *b = ratfun_vec_init(3, r), *x = ratfun_vec_init(2, r);
     RatFun w, e;
     slong rank;
     pteq_init(A, r);
@@ -314,9 +299,9 @@ static void test_linsolve_line_intersection_redundant_row(void **state)
     pteq_clear(C, r);
     pteq_clear(B, r);
     pteq_clear(A, r);
-    vec_free(x, 2, r);
-    vec_free(b, 3, r);
-    vec_free(a, 6, r);
+    ratfun_vec_clear(x, 2, r);
+    ratfun_vec_clear(b, 3, r);
+    ratfun_vec_clear(a, 6, r);
 }
 
 /* parallel lines: the same system shape without a solution */
@@ -325,7 +310,7 @@ static void test_linsolve_parallel_lines_inconsistent(void **state)
     Fixture *f = *state;
     const Ring *r = &f->r;
     /* A = P0, B = P1, C = P2, D = C + (B - A): (B-A)l + (C-D)m = C - A */
-    RatFunStruct *a = vec_new(6, r), *b = vec_new(3, r), *x = vec_new(2, r);
+    RatFunStruct *a = ratfun_vec_init(6, r), *b = ratfun_vec_init(3, r), *x = ratfun_vec_init(2, r);
     slong rank;
     static const char *const A[6] = {"-1", "1", "1", "-1", "0", "0"};
     static const char *const B[3] = {"-1", "0", "1"};
@@ -335,9 +320,9 @@ static void test_linsolve_parallel_lines_inconsistent(void **state)
         parse(b + i, B[i], r);
     assert_int_equal(linsolve(x, &rank, a, b, 3, 2, r), LINSOLVE_INCONSISTENT);
     assert_int_equal(rank, 1);
-    vec_free(x, 2, r);
-    vec_free(b, 3, r);
-    vec_free(a, 6, r);
+    ratfun_vec_clear(x, 2, r);
+    ratfun_vec_clear(b, 3, r);
+    ratfun_vec_clear(a, 6, r);
 }
 
 /* degenerate sizes: no equations, no unknowns */
@@ -345,7 +330,7 @@ static void test_linsolve_empty_sizes(void **state)
 {
     Fixture *f = *state;
     const Ring *r = &f->r;
-    RatFunStruct *x = vec_new(2, r), *b = vec_new(1, r);
+    RatFunStruct *x = ratfun_vec_init(2, r), *b = ratfun_vec_init(1, r);
     slong rank = -1;
     parse(x + 0, "5", r);
     assert_int_equal(linsolve(x, &rank, NULL, NULL, 0, 2, r),
@@ -356,8 +341,8 @@ static void test_linsolve_empty_sizes(void **state)
     parse(b + 0, "t", r);
     assert_int_equal(linsolve(x, &rank, NULL, b, 1, 0, r),
                      LINSOLVE_INCONSISTENT);
-    vec_free(b, 1, r);
-    vec_free(x, 2, r);
+    ratfun_vec_clear(b, 1, r);
+    ratfun_vec_clear(x, 2, r);
 }
 
 int main(void)
