@@ -568,23 +568,7 @@ void pteq_addmul(PointEq res, const PointEq x, const PointEq y, const RatFun s,
 void pteq_subst_point(PointEq res, const PointEq x, slong point,
                       const PointEq p, const Ring *r)
 {
-    RatFun w;
-    PointEq rest;
-    slong k = find(x, point);
-
-    if (!(k < x->len && x->terms[k].point == point)) {
-        pteq_set(res, x, r);
-        return;
-    }
-    ratfun_init(w, r);
-    pteq_init(rest, r);
-    pteq_get_weight(w, x, point, r);
-    pteq_set(rest, x, r);
-    fmpz_mpoly_zero(rest->terms[k].num, r->ctx);
-    pteq_canonicalise(rest, r);
-    lincomb(res, rest, NULL, p, w, r);
-    pteq_clear(rest, r);
-    ratfun_clear(w, r);
+    pteq_subst_points(res, x, &point, (const PointEq *)p, 1, r);
 }
 
 void pteq_subst_points(PointEq res, const PointEq x, const slong *cols,

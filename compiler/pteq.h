@@ -95,8 +95,9 @@ void pteq_lincomb(PointEq res, const PointEq x, const RatFun s,
 void pteq_subst_point(PointEq res, const PointEq x, slong point,
                       const PointEq p, const Ring *r);
 /* Replace the points cols[0..k-1] (distinct) by the combinations p[0..k-1]
- * at once, over the lcm of their denominators (solve: every unknown of one
- * system in one pass).  The replacements must not hold any of cols. */
+ * simultaneously (a replacement that holds one of cols keeps it), over the
+ * lcm of their denominators, with one content reduction: solve replaces
+ * every unknown of a system in one pass; pteq_subst_point is k = 1. */
 void pteq_subst_points(PointEq res, const PointEq x, const slong *cols,
                        const PointEq *p, slong k, const Ring *r);
 /* every weight composed with var := s; RATFUN_EPOLE if a weight's
