@@ -71,27 +71,37 @@ static int find_name(Expander *E, const char *name)
     return -1;
 }
 
+/* 1 when name has the form of a member's name, BASE_k (k without leading
+ * zeros, at most 12 digits): *baselen = strlen(BASE), *k = k */
+static int member_form(const char *name, size_t *baselen, slong *k)
+{
+    const char *us = strrchr(name, '_');
+    if (!us || us == name || !us[1] || strlen(us + 1) > 12 ||
+        strspn(us + 1, "0123456789") != strlen(us + 1) ||
+        (us[1] == '0' && us[2]))
+        return 0;
+    *baselen = (size_t)(us - name);
+    *k = strtol(us + 1, NULL, 10);
+    return 1;
+}
+
+/* 1 when name is the name of member lo..hi of the family called base */
+static int is_member_name(const char *name, const char *base, slong lo,
+                          slong hi, slong *k)
+{
+    size_t bl;
+    return member_form(name, &bl, k) && strlen(base) == bl &&
+           strncmp(base, name, bl) == 0 && *k >= lo && *k <= hi;
+}
+
 /* the family member a plain name would denote ("M_3" with M[1..5]), or
  * NULL */
 static Family *member_of(Expander *E, const char *name, slong *index)
 {
-    const char *us = strrchr(name, '_');
-    if (!us || us == name || !us[1] || strlen(us + 1) > 12)
-        return NULL;
-    for (const char *c = us + 1; *c; c++)
-        if (!isdigit((unsigned char)*c))
-            return NULL;
-    if (us[1] == '0' && us[2]) /* M_03 is no member's name */
-        return NULL;
-    slong k = strtol(us + 1, NULL, 10);
     for (int i = 0; i < E->nfams; i++) {
         Family *f = &E->fams[i];
-        if (strlen(f->name) == (size_t)(us - name) &&
-            strncmp(f->name, name, (size_t)(us - name)) == 0 && k >= f->lo &&
-            k <= f->hi) {
-            *index = k;
+        if (is_member_name(name, f->name, f->lo, f->hi, index))
             return f;
-        }
     }
     return NULL;
 }
@@ -542,23 +552,16 @@ static Name *declare_names(Expander *E, Name *list, const char *what,
         /* no earlier plain name may be one of its members */
         int clash = 0;
         for (int i = 0; i < E->nnames && !clash; i++) {
-            size_t bl = strlen(nm->text);
-            const char *s = E->names[i];
-            if (strncmp(s, nm->text, bl) == 0 && s[bl] == '_' &&
-                isdigit((unsigned char)s[bl + 1]) &&
-                !(s[bl + 1] == '0' && s[bl + 2]) &&
-                strspn(s + bl + 1, "0123456789") == strlen(s + bl + 1) &&
-                strlen(s + bl + 1) <= 12) {
-                slong k = strtol(s + bl + 1, NULL, 10);
-                if (k >= lo && k <= hi) {
-                    diag_error(E->d, nm->span,
-                               "the family member %s[%ld] would be named "
-                               "'%s', which is declared already",
-                               nm->text, (long)k, s);
-                    diag_note(E->d, E->spans[i], "'%s' was declared here", s);
-                    clash = 1;
-                }
-            }
+            slong k;
+            if (!is_member_name(E->names[i], nm->text, lo, hi, &k))
+                continue;
+            diag_error(E->d, nm->span,
+                       "the family member %s[%ld] would be named '%s', which "
+                       "is declared already",
+                       nm->text, (long)k, E->names[i]);
+            diag_note(E->d, E->spans[i], "'%s' was declared here",
+                      E->names[i]);
+            clash = 1;
         }
         if (clash || budget_members(E, nm->span, hi - lo + 1) < 0)
             continue;
