@@ -171,15 +171,13 @@ int emit_c_main(int argc, char **argv, FILE *out, FILE *err)
     if (cpath && hpath && same_file(cpath, hpath))
         return usage_error(err, emit_usage,
                            "-o and --header name the same file '%s'", cpath);
-    DeriveOptions opt = {.max_seconds = bo.max_seconds,
-                         .verbose = bo.verbose ? err : NULL,
-                         .defines = bo.defines,
-                         .ndefines = bo.ndefines};
+    int bad_define = 0;
+    DeriveOptions opt = derive_options_cli(&bo, err, &bad_define);
     budget_arm(bo.max_seconds, bo.max_memory);
     Derived *d = derive_file_ex(file, err, NULL, &opt);
     if (!d) {
         budget_disarm();
-        return 1;
+        return bad_define ? 2 : 1;
     }
     Plan *p = lower_derived(d, err);
     budget_disarm();
@@ -611,16 +609,14 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
         eval_args_clear(&a);
         return rc;
     }
-    DeriveOptions opt = {.max_seconds = a.budget.max_seconds,
-                         .verbose = a.budget.verbose ? err : NULL,
-                         .defines = a.budget.defines,
-                         .ndefines = a.budget.ndefines};
+    int bad_define = 0;
+    DeriveOptions opt = derive_options_cli(&a.budget, err, &bad_define);
     budget_arm(a.budget.max_seconds, a.budget.max_memory);
     Derived *d = derive_file_ex(a.file, err, NULL, &opt);
     if (!d) {
         budget_disarm();
         eval_args_clear(&a);
-        return 1;
+        return bad_define ? 2 : 1;
     }
     Plan *p = lower_derived(d, err);
     budget_disarm(); /* evaluation takes what the grid asks for */
@@ -656,7 +652,7 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
         res[j] = pc_xmalloc(sizeof **res * chunk * (size_t)(nc ? nc : 1));
         st[j] = pc_xmalloc(chunk);
     }
-    size_t npoles = 0, noverflows = 0;
+    size_t npoles = 0, noverflows = 0, ndomain = 0;
     if (a.format == OUTPUT_CSV)
         csv_header(out, p, &s);
     else
@@ -683,9 +679,12 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
                 if (st[j][r] == PLAN_STATUS_OK)
                     continue;
                 int pole = st[j][r] == PLAN_STATUS_POLE;
-                size_t k = npoles + noverflows;
+                int domain = st[j][r] == PLAN_STATUS_DOMAIN;
+                size_t k = npoles + noverflows + ndomain;
                 if (pole)
                     npoles++;
+                else if (domain)
+                    ndomain++;
                 else
                     noverflows++;
                 if (k >= MAX_POLE_MESSAGES)
@@ -695,6 +694,11 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
                 where(err, p, pv, r);
                 fputs(pole ? ": a denominator of its equation vanishes; "
                              "written as nan\n"
+                      : domain
+                          ? " is undefined: a function's argument is "
+                            "outside its domain (sqrt of a negative number, "
+                            "ln of one <= 0, asin or acos beyond [-1, 1]); written "
+                            "as nan\n"
                       : st[j][r] == PLAN_STATUS_OVERFLOW
                           ? " is not finite in double precision (a "
                             "denominator of its equation overflows); "
@@ -736,15 +740,18 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
                     fputc(']', out);
             }
             if (a.format == OUTPUT_JSON) {
-                for (int kind = 0; kind < 2; kind++) {
+                for (int kind = 0; kind < 3; kind++) {
                     int first = 1;
                     for (int j = 0; j < s.nsel; j++) {
-                        int pole = st[j][r] == PLAN_STATUS_POLE;
-                        if (st[j][r] == PLAN_STATUS_OK || pole != !kind)
+                        int sk = st[j][r] == PLAN_STATUS_POLE     ? 0
+                                 : st[j][r] == PLAN_STATUS_DOMAIN ? 2
+                                                                  : 1;
+                        if (st[j][r] == PLAN_STATUS_OK || sk != kind)
                             continue;
                         fputs(!first       ? ", "
                               : kind == 0 ? ", \"poles\": ["
-                                          : ", \"nonfinite\": [",
+                              : kind == 1 ? ", \"nonfinite\": ["
+                                          : ", \"domain\": [",
                               out);
                         output_json_string(out, p->outputs[s.sel[j]].name);
                         first = 0;
@@ -760,12 +767,19 @@ int eval_main(int argc, char **argv, FILE *out, FILE *err)
     }
     if (a.format == OUTPUT_JSON)
         fputs(rows ? "\n]}\n" : "]}\n", out);
-    if (npoles + noverflows > MAX_POLE_MESSAGES)
-        fprintf(err,
-                "pointcalc: eval: ... %zu poles and %zu non-finite "
-                "samples in all\n",
-                npoles, noverflows);
-    if (npoles || noverflows)
+    if (npoles + noverflows + ndomain > MAX_POLE_MESSAGES) {
+        if (ndomain)
+            fprintf(err,
+                    "pointcalc: eval: ... %zu poles, %zu non-finite and %zu "
+                    "undefined samples in all\n",
+                    npoles, noverflows, ndomain);
+        else
+            fprintf(err,
+                    "pointcalc: eval: ... %zu poles and %zu non-finite "
+                    "samples in all\n",
+                    npoles, noverflows);
+    }
+    if (npoles || noverflows || ndomain)
         rc = 1;
 
     for (int i = 0; i < np; i++)

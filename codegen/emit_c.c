@@ -483,6 +483,64 @@ static void instruction(const Ctx *C, int r, const char *indent)
         operand(C, x->a);
         fprintf(out, ", %d.0)", x->b);
         break;
+    case PLAN_FN: {
+        int f = x->b & 255, q = x->b >> 8;
+        static const char *const cfn[PLAN_NFNS] = {
+            [PLAN_FN_SQRT] = "sqrt", [PLAN_FN_SIN] = "sin",
+            [PLAN_FN_COS] = "cos",   [PLAN_FN_SINH] = "sinh",
+            [PLAN_FN_COSH] = "cosh", [PLAN_FN_EXP] = "exp",
+            [PLAN_FN_LOG] = "log",   [PLAN_FN_ASIN] = "asin",
+            [PLAN_FN_ACOS] = "acos", [PLAN_FN_ATAN] = "atan",
+        };
+        if (f == PLAN_FN_SIGN) {
+            fputs("(double)((", out);
+            operand(C, x->a);
+            fputs(" > 0.0) - (", out);
+            operand(C, x->a);
+            fputs(" < 0.0))", out);
+        } else if (f == PLAN_FN_ROOT && q == 3) {
+            fputs("cbrt(", out);
+            operand(C, x->a);
+            fputs(")", out);
+        } else if (f == PLAN_FN_ROOT && q % 2) { /* odd: real root */
+            fputs("(", out);
+            operand(C, x->a);
+            fputs(" < 0.0 ? -pow(-", out);
+            operand(C, x->a);
+            fprintf(out, ", 1.0 / %d.0) : pow(", q);
+            operand(C, x->a);
+            fprintf(out, ", 1.0 / %d.0))", q);
+        } else if (f == PLAN_FN_ROOT) {
+            fputs("pow(", out);
+            operand(C, x->a);
+            fprintf(out, ", 1.0 / %d.0)", q);
+        } else {
+            fprintf(out, "%s(", cfn[f]);
+            operand(C, x->a);
+            fputs(")", out);
+        }
+        break;
+    }
+    case PLAN_ATAN2:
+        fputs("atan2(", out);
+        operand(C, x->a);
+        fputs(", ", out);
+        operand(C, x->b);
+        fputs(")", out);
+        break;
+    case PLAN_DOMAIN: { /* the argument outside the function's domain */
+        int f = x->b & 255;
+        fputs("(double)(", out);
+        if (f == PLAN_FN_ASIN || f == PLAN_FN_ACOS) {
+            fputs("fabs(", out);
+            operand(C, x->a);
+            fputs(") > 1.0)", out);
+        } else {
+            operand(C, x->a);
+            fputs(f == PLAN_FN_LOG ? " <= 0.0)" : " < 0.0)", out);
+        }
+        break;
+    }
     case PLAN_POLE: /* not ?: - gcc does not if-convert that under the
                        default -ftrapping-math, and the loop would stay
                        scalar */
@@ -539,6 +597,15 @@ static void unused_args(const Ctx *C)
         fputs("    (void)dim;\n", C->out);
 }
 
+/* does the output check a function's domain (status 4)? */
+static int uses_domain(const Ctx *C)
+{
+    for (int r = 0; r < C->p->nins; r++)
+        if (C->live[r] && C->p->ins[r].op == PLAN_DOMAIN)
+            return 1;
+    return 0;
+}
+
 /* the weight expression of slot k: its register or an inline operand */
 static void weight(const Ctx *C, int k)
 {
@@ -567,8 +634,13 @@ static void emit_one(const Ctx *C)
                   "            out[c] = (double)NAN;\n",
                   out);
         fputs("        return ", out);
+        if (uses_domain(C)) {
+            operand(C, o->bad);
+            fputs(" >= 1048576.0 ? 4 : ", out);
+        }
         operand(C, o->bad);
-        fputs(" >= 1.0 ? 1 : 2; /* 1 pole, 2 overflow */\n    }\n", out);
+        fputs(" >= 1.0 ? 1 : 2; /* 1 pole, 2 overflow", out);
+        fputs(uses_domain(C) ? ", 4 domain */\n    }\n" : " */\n    }\n", out);
     }
     if (o->kind == PLAN_SCALAR) {
         fputs("    out[0] = ", out);
@@ -840,9 +912,11 @@ static void emit_batch(Ctx *C)
             "            }\n"
             "        if (status != NULL)\n"
             "            for (j = 0; j < m; j++)\n"
-            "                status[i0 + j] = (unsigned char)(fb[j] >= 1.0 ? 1 "
-            ": fb[j] != 0.0 ? 2 : 0);\n",
+            "                status[i0 + j] = (unsigned char)(",
             out);
+        if (uses_domain(C))
+            fputs("fb[j] >= 1048576.0 ? 4 : ", out);
+        fputs("fb[j] >= 1.0 ? 1 : fb[j] != 0.0 ? 2 : 0);\n", out);
     } else
         fputs("        if (status != NULL)\n"
               "            for (j = 0; j < m; j++)\n"

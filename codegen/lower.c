@@ -17,6 +17,7 @@
  * reach the Plan: they are folded into the constant c_i.
  */
 #include "codegen/lower.h"
+#include "compiler/kernel.h"
 #include "compiler/mem.h"
 
 #include <math.h>
@@ -36,7 +37,14 @@ typedef struct Lower {
     slong nparams, nconsts;
     LowerError error; // first unrepresentable coefficient ...
     slong error_exp10; // ... and its decimal exponent (about)
+    const Kernels *K;  // the functions of the ring (kernel.h), or NULL
+    int *kreg;         // per kernel: its register, or -1 not yet lowered
+    int *kbad;         // per kernel: its flags (poles of its argument's
+                       // denominator, domain), or -1: none
+    unsigned char *used; // per kernel: the current output uses it
 } Lower;
+
+static int kernel_reg(Lower *L, slong var);
 
 typedef struct Factor {
     int reg;   // register of the irreducible factor
@@ -193,7 +201,7 @@ static int mul_fmpq(Lower *L, int x, const fmpq_t c)
 /* The main variable of P: a param if P has one (so the coefficients, in the
  * consts, are uniform and computed once per call), the one of highest
  * degree, ties to the first declared. */
-static slong main_var(const Lower *L, const slong *degs)
+static slong main_var(Lower *L, const slong *degs)
 {
     slong best = -1;
     for (slong v = 0; v < L->nparams; v++)
@@ -201,9 +209,25 @@ static slong main_var(const Lower *L, const slong *degs)
             best = v;
     if (best >= 0)
         return best;
+    /* then the functions of params (sin(t)), whose registers vary too */
+    for (slong i = 0; L->K && i < L->K->n; i++) {
+        slong v = L->K->k[i].var;
+        if (degs[v] <= 0)
+            continue;
+        int kr = kernel_reg(L, v); /* may grow (move) L->p->ins */
+        if (!L->p->ins[kr].uniform && (best < 0 || degs[v] > degs[best]))
+            best = v;
+    }
+    if (best >= 0)
+        return best;
     for (slong v = L->nparams; v < L->nparams + L->nconsts; v++)
         if (degs[v] > 0 && (best < 0 || degs[v] > degs[best]))
             best = v;
+    for (slong i = 0; best < 0 && L->K && i < L->K->n; i++) {
+        slong v = L->K->k[i].var;
+        if (degs[v] > 0)
+            best = v;
+    }
     return best;
 }
 
@@ -234,7 +258,8 @@ static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
 
     fmpz_mpoly_t C;
     fmpz_mpoly_init(C, ctx);
-    int x = plan_input(L->p, (int)var);
+    int x = var < L->nparams + L->nconsts ? plan_input(L->p, (int)var)
+                                          : kernel_reg(L, var);
     int acc = -1;
     slong prev = 0;
     for (slong k = deg; k >= 0; k--) {
@@ -366,6 +391,77 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
     free(den);
 }
 
+/* the PlanFn of a kernel */
+static int plan_fn_of(const Kernel *k)
+{
+    switch (k->fn) {
+    case KF_SQRT: return PLAN_FN_SQRT;
+    case KF_ROOT: return PLAN_FN_ROOT | (int)(k->q << 8);
+    case KF_SIN: return PLAN_FN_SIN;
+    case KF_COS: return PLAN_FN_COS;
+    case KF_SINH: return PLAN_FN_SINH;
+    case KF_COSH: return PLAN_FN_COSH;
+    case KF_EXP: return PLAN_FN_EXP;
+    case KF_LN: return PLAN_FN_LOG;
+    case KF_ASIN: return PLAN_FN_ASIN;
+    case KF_ACOS: return PLAN_FN_ACOS;
+    case KF_ATAN: return PLAN_FN_ATAN;
+    case KF_SIGN: return PLAN_FN_SIGN;
+    default: return -1;
+    }
+}
+
+/* the register of kernel variable var: its argument lowered like a
+ * weight, the function applied once (shared by every use); marks it used
+ * by the current output */
+static int kernel_reg(Lower *L, slong var)
+{
+    slong i = var - L->K->first;
+    const Kernel *k = &L->K->k[i];
+    L->used[i] = 1;
+    if (L->kreg[i] >= 0) {
+        /* lowered for an earlier output: the kernels inside its argument
+         * are used by this one too (their flags) */
+        for (slong j = 0; j < i; j++) {
+            slong v = L->K->k[j].var;
+            if (!L->used[j] &&
+                (fmpz_mpoly_degree_si(k->arg->num, v, L->r->ctx) > 0 ||
+                 fmpz_mpoly_degree_si(k->arg->den, v, L->r->ctx) > 0 ||
+                 fmpz_mpoly_degree_si(k->arg2->num, v, L->r->ctx) > 0 ||
+                 fmpz_mpoly_degree_si(k->arg2->den, v, L->r->ctx) > 0))
+                kernel_reg(L, v);
+        }
+        return L->kreg[i];
+    }
+    int reg, bad = -1, abad = -1;
+    if (k->fn == KF_PI) {
+        reg = plan_const(L->p, 3.14159265358979323846);
+    } else {
+        int a, b = -1;
+        const RatFunStruct *w[1] = {k->arg};
+        lower_weights(L, w, 1, &a, &abad);
+        bad = abad;
+        if (k->fn == KF_ATAN2) {
+            w[0] = k->arg2;
+            lower_weights(L, w, 1, &b, &abad);
+            if (abad >= 0)
+                bad = bad < 0 ? abad : plan_add(L->p, bad, abad);
+            reg = plan_atan2(L->p, a, b);
+        } else {
+            int fn = plan_fn_of(k);
+            reg = plan_fn(L->p, fn, a);
+            if (plan_fn_has_domain(fn)) {
+                int dom = plan_mul(L->p, plan_domain(L->p, fn, a),
+                                   plan_const(L->p, PLAN_DOMAIN_FLAG));
+                bad = bad < 0 ? dom : plan_add(L->p, bad, dom);
+            }
+        }
+    }
+    L->kreg[i] = reg;
+    L->kbad[i] = bad;
+    return reg;
+}
+
 /* the highest degree of x's numerator or denominator in any variable, or
  * -1 when it does not even fit a slong */
 static slong max_degree(const Lower *L, const RatFunStruct *x)
@@ -395,6 +491,8 @@ static int uses_atoms(const Lower *L, const RatFunStruct *x)
 {
     const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
     slong nv = ctx->minfo->nvars, first = L->nparams + L->nconsts;
+    if (L->K) /* the kernels' variables are evaluated; not what is before */
+        nv = L->K->first;
     if (first >= nv)
         return 0;
     slong *degs = flint_malloc(sizeof *degs * (size_t)nv);
@@ -406,7 +504,7 @@ static int uses_atoms(const Lower *L, const RatFunStruct *x)
                 found = 1;
     }
     flint_free(degs);
-    return found && first < L->r->nvars;
+    return found;
 }
 
 Plan *lower_derived(const Derived *d, FILE *err)
@@ -417,6 +515,13 @@ Plan *lower_derived(const Derived *d, FILE *err)
     L.nconsts = d->nconsts;
     L.error = LOWER_OK;
     L.error_exp10 = 0;
+    L.K = d->kernels;
+    slong nk = L.K ? L.K->n : 0;
+    L.kreg = pc_xmalloc(sizeof(int) * (size_t)(nk ? nk : 1));
+    L.kbad = pc_xmalloc(sizeof(int) * (size_t)(nk ? nk : 1));
+    L.used = pc_xcalloc((size_t)(nk ? nk : 1), 1);
+    for (slong i = 0; i < nk; i++)
+        L.kreg[i] = L.kbad[i] = -1;
     L.p = plan_new(d->scheme, (int)d->nparams, (const char *const *)d->params,
                    (int)d->nconsts, (const char *const *)d->consts,
                    (int)d->npoints, (const char *const *)d->points);
@@ -457,7 +562,24 @@ Plan *lower_derived(const Derived *d, FILE *err)
                           (int)DEGREE_MAX);
         else {
             L.p->line = out->line;
+            memset(L.used, 0, (size_t)(nk ? nk : 1));
             lower_weights(&L, ws, n, reg, &bad);
+            /* the flags of the functions it uses (poles of their
+             * arguments, domains); lowering a kernel's flags may use
+             * further kernels, so this runs to a fixed point */
+            unsigned char *added = pc_xcalloc((size_t)(nk ? nk : 1), 1);
+            for (int again = 1; again;) {
+                again = 0;
+                for (slong i = 0; i < nk; i++)
+                    if (L.used[i] && !added[i]) {
+                        added[i] = 1;
+                        again = 1;
+                        if (L.kbad[i] >= 0)
+                            bad = bad < 0 ? L.kbad[i]
+                                          : plan_add(L.p, bad, L.kbad[i]);
+                    }
+            }
+            free(added);
             if (L.error != LOWER_OK)
                 derived_error(
                     d, err, out->span,
@@ -477,6 +599,9 @@ Plan *lower_derived(const Derived *d, FILE *err)
             free(point);
             free(reg);
             plan_free(L.p);
+            free(L.kreg);
+            free(L.kbad);
+            free(L.used);
             return NULL;
         }
         PlanKind kind = out->kind == KIND_SCALAR  ? PLAN_SCALAR
@@ -488,6 +613,9 @@ Plan *lower_derived(const Derived *d, FILE *err)
         free(point);
         free(reg);
     }
+    free(L.kreg);
+    free(L.kbad);
+    free(L.used);
     plan_prune(L.p);
     return L.p;
 }

@@ -22,6 +22,7 @@
 #include "compiler/construct.h"
 #include "compiler/diag.h"
 #include "compiler/expand.h"
+#include "compiler/kernel.h"
 #include "compiler/linsolve.h"
 #include "compiler/mem.h"
 #include "compiler/numfmt.h"
@@ -52,6 +53,7 @@ typedef struct Deriver {
     RatFunStruct *ssol; // per unknown scalar: its solution, once solved
     slong *uvar;       // per unknown scalar: its ring variable (else -1)
     int *usolved;      // per unknown: 1 once its solve succeeded
+    Kernels *K;        // functions and pi (kernel.h), or NULL: none used
 } Deriver;
 
 /* the ring variable of a param, a const or an unknown scalar */
@@ -261,6 +263,168 @@ static char *show(const RatFun x, const Ring *r)
     return ratfun_get_str(x, r);
 }
 
+
+/* ---- functions (kernel.h) ------------------------------------------------ */
+
+/* values that kernel operations take: beyond this many terms they are
+ * refused (they work with per-weight gcds, sized for chapter 2's conics) */
+enum { KERNEL_MAX_TERMS = 20000 };
+
+static slong value_terms(const Value *v)
+{
+    if (!v->is_point)
+        return v->s->num->length + v->s->den->length;
+    slong n = v->p->den->length;
+    for (slong i = 0; i < v->p->len; i++)
+        n += v->p->terms[i].num->length;
+    return n;
+}
+
+/* reports a failed kernel operation at n; returns -1 */
+static int kernel_error(Deriver *D, int rc, const Node *n, const Node *arg)
+{
+    switch (rc) {
+    case KERNEL_EFULL:
+        diag_error(D->diag, n->span,
+                   "too many distinct functions in one scheme: at most %ld "
+                   "different function values (kernels) fit; split the "
+                   "scheme",
+                   (long)D->K->cap);
+        break;
+    case KERNEL_EDOMAIN:
+        diag_error(D->diag, (arg ? arg : n)->span, "%s",
+                   D->K->why ? D->K->why : "argument outside the domain");
+        break;
+    case KERNEL_EBIG:
+        diag_error(D->diag, n->span,
+                   "expression too large for the functions' identities "
+                   "(over %d terms)",
+                   KERNEL_MAX_TERMS);
+        break;
+    case RATFUN_EPOLE:
+    case KERNEL_EZERO:
+    default:
+        diag_error(D->diag, n->span,
+                   "vanishing denominator: a denominator of this expression "
+                   "is identically zero by the identities of its functions "
+                   "(sin^2 + cos^2 = 1, sqrt(x)^2 = x, ...)");
+        break;
+    }
+    return -1;
+}
+
+/* the normal form of a value (kernel.h); -1 reported at n */
+static int reduce_value(Deriver *D, Value *v, const Node *n)
+{
+    if (!D->K || D->K->nrel == 0)
+        return 0;
+    if (v->is_point ? !kernel_uses_pteq(D->K, v->p, 0)
+                    : !kernel_uses(D->K, v->s, 0))
+        return 0;
+    if (value_terms(v) > KERNEL_MAX_TERMS)
+        return kernel_error(D, KERNEL_EBIG, n, NULL);
+    int rc = v->is_point ? kernel_reduce_pteq(D->K, v->p)
+                         : kernel_reduce(D->K, v->s);
+    return rc ? kernel_error(D, rc, n, NULL) : 0;
+}
+
+static int is_function(int b)
+{
+    return b == BI_SQRT || b == BI_SIN || b == BI_COS || b == BI_TAN ||
+           b == BI_ASIN || b == BI_ACOS || b == BI_ATAN || b == BI_ATAN2 ||
+           b == BI_SINH || b == BI_COSH || b == BI_TANH || b == BI_EXP ||
+           b == BI_LN || b == BI_ABS || b == BI_SIGN;
+}
+
+/* a scalar function applied: sqrt(x), sin(x), ..., pi */
+static int eval_function(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    Kernels *K = D->K;
+    res->is_point = 0;
+    if (n->builtin == BI_PI) {
+        int rc = kernel_apply(K, res->s, KF_PI, NULL, NULL);
+        return rc ? kernel_error(D, rc, n, NULL) : 0;
+    }
+    RatFun x, y;
+    ratfun_init(x, r);
+    ratfun_init(y, r);
+    int rc = 0, st = 0;
+    if (eval_scalar(D, x, nth(n, 0)) < 0 ||
+        (n->builtin == BI_ATAN2 && eval_scalar(D, y, nth(n, 1)) < 0)) {
+        st = -1;
+        goto done;
+    }
+    if (x->num->length + x->den->length + y->num->length + y->den->length >
+        KERNEL_MAX_TERMS) {
+        st = kernel_error(D, KERNEL_EBIG, n, NULL);
+        goto done;
+    }
+    switch ((Builtin)n->builtin) {
+    case BI_SQRT: rc = kernel_apply(K, res->s, KF_SQRT, x, NULL); break;
+    case BI_SIN: rc = kernel_apply(K, res->s, KF_SIN, x, NULL); break;
+    case BI_COS: rc = kernel_apply(K, res->s, KF_COS, x, NULL); break;
+    case BI_ASIN: rc = kernel_apply(K, res->s, KF_ASIN, x, NULL); break;
+    case BI_ACOS: rc = kernel_apply(K, res->s, KF_ACOS, x, NULL); break;
+    case BI_ATAN: rc = kernel_apply(K, res->s, KF_ATAN, x, NULL); break;
+    case BI_SINH: rc = kernel_apply(K, res->s, KF_SINH, x, NULL); break;
+    case BI_COSH: rc = kernel_apply(K, res->s, KF_COSH, x, NULL); break;
+    case BI_EXP: rc = kernel_apply(K, res->s, KF_EXP, x, NULL); break;
+    case BI_LN: rc = kernel_apply(K, res->s, KF_LN, x, NULL); break;
+    case BI_SIGN: rc = kernel_apply(K, res->s, KF_SIGN, x, NULL); break;
+    case BI_ABS: rc = kernel_abs(K, res->s, x); break;
+    case BI_ATAN2: rc = kernel_apply(K, res->s, KF_ATAN2, x, y); break;
+    case BI_TAN:
+    case BI_TANH: { /* sin/cos, sinh/cosh */
+        int hyp = n->builtin == BI_TANH;
+        rc = kernel_apply(K, y, hyp ? KF_SINH : KF_SIN, x, NULL);
+        if (rc == 0)
+            rc = kernel_apply(K, x, hyp ? KF_COSH : KF_COS, x, NULL);
+        if (rc == 0 && ratfun_div(res->s, y, x, r) != 0) {
+            diag_error(D->diag, nth(n, 0)->span,
+                       "tan() of this argument is infinite: its cosine is "
+                       "identically zero");
+            st = -1;
+        }
+        if (rc == 0 && st == 0)
+            rc = kernel_reduce(K, res->s);
+        break;
+    }
+    default:
+        st = -1;
+        break;
+    }
+    if (rc != 0)
+        st = kernel_error(D, rc, n, nth(n, 0));
+done:
+    ratfun_clear(y, r);
+    ratfun_clear(x, r);
+    return st;
+}
+
+/* counts what may need kernels: function calls and powers that are not
+ * integer literals, subst() and diff(), pi */
+static void count_kernel_uses(const Node *n, slong *calls, slong *ops,
+                              slong *pis)
+{
+    if (!n)
+        return;
+    if (n->kind == ND_CALL) {
+        if (n->builtin == BI_PI)
+            ++*pis;
+        else if (is_function(n->builtin))
+            ++*calls;
+        else if (n->builtin == BI_SUBST || n->builtin == BI_DIFF)
+            ++*ops;
+        for (const Node *a = n->args; a; a = a->next)
+            count_kernel_uses(a, calls, ops, pis);
+    }
+    if (n->kind == ND_POW && n->rhs->kind != ND_NUM)
+        ++*calls;
+    count_kernel_uses(n->lhs, calls, ops, pis);
+    count_kernel_uses(n->rhs, calls, ops, pis);
+}
+
 static int eval_meet(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
@@ -437,8 +601,25 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
         ratfun_clear(sum, r);
     } else {
         slong var = scalar_var(D, x->sym);
-        int rc = ve.is_point ? pteq_compose_var(res->p, ve.p, var, vb.s, r)
+        int rc;
+        if (D->K && (ve.is_point ? kernel_uses_pteq(D->K, ve.p, 1)
+                                 : kernel_uses(D->K, ve.s, 1))) {
+            /* also inside the functions: sin(t) -> sin(s) */
+            if (value_terms(&ve) > KERNEL_MAX_TERMS) {
+                st = kernel_error(D, KERNEL_EBIG, n, NULL);
+                goto done;
+            }
+            rc = ve.is_point
+                     ? kernel_compose_pteq(D->K, res->p, ve.p, var, vb.s)
+                     : kernel_compose(D->K, res->s, ve.s, var, vb.s);
+            if (rc != 0 && rc != RATFUN_EPOLE && rc != KERNEL_EZERO) {
+                st = kernel_error(D, rc, n, by);
+                goto done;
+            }
+        } else {
+            rc = ve.is_point ? pteq_compose_var(res->p, ve.p, var, vb.s, r)
                              : ratfun_compose_var(res->s, ve.s, var, vb.s, r);
+        }
         if (rc != 0) {
             char *s = show(vb.s, r);
             diag_error(D->diag, n->span,
@@ -459,6 +640,8 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
     int st = 0;
+    if (is_function(n->builtin) || n->builtin == BI_PI)
+        return eval_function(D, res, n);
     switch ((Builtin)n->builtin) {
     case BI_ALONG:
     case BI_DIVIDE: {
@@ -511,6 +694,24 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
             bits = ratfun_log2_bits_pow(res->s, k + 1, r);
         if (too_big(D, bits, n) < 0)
             return -1;
+        if (D->K && (res->is_point ? kernel_uses_pteq(D->K, res->p, 1)
+                                   : kernel_uses(D->K, res->s, 1))) {
+            /* the chain rule through the functions, one order at a time */
+            if (value_terms(res) > KERNEL_MAX_TERMS)
+                return kernel_error(D, KERNEL_EBIG, n, NULL);
+            for (long j = 0; j < k; j++) {
+                int rc = res->is_point
+                             ? kernel_derivative_pteq(D->K, res->p, res->p, var)
+                             : kernel_derivative(D->K, res->s, res->s, var);
+                if (rc != 0)
+                    return kernel_error(D, rc, n, NULL);
+                if (value_terms(res) > KERNEL_MAX_TERMS)
+                    return kernel_error(D, KERNEL_EBIG, n, NULL);
+                if (out_of_time(D, n))
+                    return -1;
+            }
+            return 0;
+        }
         if (res->is_point)
             pteq_derivative_n(res->p, res->p, var, (ulong)k, r);
         else
@@ -563,9 +764,31 @@ static int eval_pow(Deriver *D, Value *res, const Node *n)
         goto done;
     }
     if (!fmpz_is_one(fmpq_denref(q))) {
-        diag_error(D->diag, n->rhs->span,
-                   "rational exponents (roots) are not supported yet; "
-                   "expected an integer exponent");
+        /* x^(p/q): a root (kernel.h) */
+        if (!fmpz_fits_si(fmpq_numref(q)) || !fmpz_fits_si(fmpq_denref(q)) ||
+            labs(fmpz_get_si(fmpq_numref(q))) > 1000 ||
+            fmpz_get_si(fmpq_denref(q)) > 1000) {
+            diag_error(D->diag, n->rhs->span,
+                       "exponent too large; expected p/q with |p| and q at "
+                       "most 1000");
+            goto done;
+        }
+        if (!D->K) { /* cannot happen: sema counted this power */
+            diag_error(D->diag, n->span, "internal error: no kernel slots");
+            goto done;
+        }
+        if (res->s->num->length + res->s->den->length > KERNEL_MAX_TERMS) {
+            kernel_error(D, KERNEL_EBIG, n, NULL);
+            goto done;
+        }
+        int rc = kernel_pow_q(D->K, res->s, res->s,
+                              fmpz_get_si(fmpq_numref(q)),
+                              fmpz_get_si(fmpq_denref(q)));
+        if (rc != 0) {
+            kernel_error(D, rc, n, n->lhs);
+            goto done;
+        }
+        st = 0;
         goto done;
     }
     if (!fmpz_fits_si(fmpq_numref(q)) ||
@@ -592,7 +815,18 @@ done:
 }
 
 /* res receives the exact value of n; 0 or -1 (reported) */
+static int eval_node(Deriver *D, Value *res, const Node *n);
+
 static int eval(Deriver *D, Value *res, const Node *n)
+{
+    int st = eval_node(D, res, n);
+    if (st == 0 && n->kind != ND_NUM && n->kind != ND_NAME &&
+        n->kind != ND_NEG)
+        st = reduce_value(D, res, n);
+    return st;
+}
+
+static int eval_node(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
     if (out_of_time(D, n))
@@ -771,8 +1005,20 @@ static void derive_def(Deriver *D, Sym *s)
     RatFun sum;
     ratfun_init(sum, r);
     pteq_weight_sum(sum, v->p, r);
+    if (D->K && kernel_reduce(D->K, sum) != 0)
+        ratfun_zero(sum, r); /* cannot be: the equation's den is not 0 */
     if (!ratfun_is_zero(sum, r) && !ratfun_is_one(sum, r)) {
         char *txt = show(sum, r);
+        if (!ratfun_is_constant(sum, r) && kernel_uses(D->K, sum, 1))
+            diag_error(D->diag, s->def->expr->span,
+                       "the weights of %s could not be proved to sum to 0 "
+                       "(a vector) or 1 (a point): their sum is %s, and the "
+                       "identities pointcalc applies (sin^2 + cos^2 = 1, "
+                       "cosh^2 - sinh^2 = 1, sqrt(x)^2 = x) do not reduce it "
+                       "to a number; write the point as C + (vector), with "
+                       "the weights of the vector summing to 0 term by term",
+                       s->name, txt);
+        else
         diag_error(D->diag, s->def->expr->span,
                    "weights of %s sum to %s, not 0 (a vector) or 1 (a "
                    "point)",
@@ -1331,6 +1577,17 @@ static char *base_name(const char *filename)
     return s;
 }
 
+DeriveOptions derive_options_cli(const BudgetOptions *b, FILE *err,
+                                 int *bad_define)
+{
+    DeriveOptions o = {.max_seconds = b->max_seconds,
+                       .verbose = b->verbose ? err : NULL,
+                       .defines = b->defines,
+                       .ndefines = b->ndefines,
+                       .bad_define = bad_define};
+    return o;
+}
+
 Derived *derive_source(const char *filename, const char *text, size_t len,
                        FILE *err, int *nerrors)
 {
@@ -1343,6 +1600,8 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
 {
     double start = now_seconds();
     Arena arena;
+    if (opt->bad_define)
+        *opt->bad_define = 0;
     Source src;
     Diag diag;
     Derived *d = NULL;
@@ -1358,14 +1617,16 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
         char *used = pc_xcalloc((size_t)(nd ? nd : 1), 1);
         expand_scheme(scheme, &arena, &diag, opt->defines, nd, used);
         for (int k = 0; k < nd; k++)
-            if (!used[k]) { /* not located: it is not in the file */
+            if (!used[k]) { /* a usage error, like --origin of no point */
                 const char *eq = strchr(opt->defines[k], '=');
                 int nlen = eq ? (int)(eq - opt->defines[k]) : 0;
                 if (err)
                     fprintf(err,
-                            "%s: error: -D %s: the scheme declares no "
-                            "'int %.*s'\n",
-                            filename, opt->defines[k], nlen, opt->defines[k]);
+                            "pointcalc: -D %s: %s declares no 'int %.*s'\n",
+                            opt->defines[k], filename, nlen,
+                            opt->defines[k]);
+                if (opt->bad_define)
+                    *opt->bad_define = 1;
                 diag.nerrors++;
             }
         free(used);
@@ -1398,8 +1659,23 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
         for (int k = 0, m = 0; k < info->nunknowns; k++)
             if (!info->unknowns[k]->is_point)
                 d->extra[m++] = pc_xstrdup(info->unknowns[k]->name);
-        slong nv = d->nparams + d->nconsts + d->nextra;
+        /* kernel slots (functions, pi) after the extra variables */
+        slong calls = 0, ops = 0, pis = 0;
+        for (int i = 0; i < info->nsteps; i++) {
+            const Stmt *st = info->steps[i];
+            if (st->kind == ST_DEF)
+                count_kernel_uses(st->expr, &calls, &ops, &pis);
+            for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL;
+                 e; e = e->next) {
+                count_kernel_uses(e->lhs, &calls, &ops, &pis);
+                count_kernel_uses(e->rhs, &calls, &ops, &pis);
+            }
+        }
+        slong nslots = kernels_slots(calls, ops, pis);
+        slong nv = d->nparams + d->nconsts + d->nextra + nslots;
         const char **vars = pc_xmalloc(sizeof(char *) * (size_t)(nv ? nv : 1));
+        for (slong i = nv - nslots; i < nv; i++)
+            vars[i] = "?"; /* named when a kernel takes the slot */
         for (slong i = 0; i < d->nparams; i++)
             vars[i] = d->params[i];
         for (slong i = 0; i < d->nconsts; i++)
@@ -1408,10 +1684,15 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
             vars[d->nparams + d->nconsts + i] = d->extra[i];
         ring_init(&d->ring, nv, vars);
         free(vars);
+        if (nslots > 0) {
+            d->kernels = pc_xcalloc(1, sizeof(Kernels));
+            kernels_init(d->kernels, &d->ring, nv - nslots, nslots);
+        }
     }
     const Ring *r = &d->ring;
 
-    Deriver D = {.diag = &diag, .r = r, .info = info, .src = &src};
+    Deriver D = {.diag = &diag, .r = r, .info = info, .src = &src,
+                 .K = d->kernels};
     D.max_seconds = opt->max_seconds;
     D.deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D.verbose = opt->verbose;
@@ -1606,6 +1887,10 @@ void derived_free(Derived *d)
         free((char *)d->outputs[i].name);
     }
     free(d->outputs);
+    if (d->kernels) {
+        kernels_clear(d->kernels);
+        free(d->kernels);
+    }
     ring_clear(&d->ring);
     for (slong i = 0; i < d->npoints; i++)
         free(d->points[i]);

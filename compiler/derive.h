@@ -50,6 +50,8 @@ typedef struct Derived {
     slong nextra;  // ring variables after the consts (unknown scalars of
     char **extra;  // `solve`, which no output depends on), their names
     Ring ring;
+    struct Kernels *kernels; // the ring variables after the extra ones:
+                             // functions and pi (kernel.h), or NULL
     slong noutputs; // `output` list (default: the last definition)
     DerivedOutput *outputs;
 } Derived;
@@ -63,7 +65,16 @@ typedef struct DeriveOptions {
     FILE *verbose;
     const char *const *defines; // ndefines "NAME=INTEGER" overriding the
     int ndefines;               // scheme's `int NAME = ...` (-D), or NULL
+    int *bad_define; // if not NULL: set to 1 when a define names no int of
+                     // the scheme (a usage error: the command line is
+                     // wrong, not the scheme), else 0
 } DeriveOptions;
+
+/* The options of a command line's derivation: its budget, -v (progress to
+ * err) and -D; *bad_define as above (may be NULL). */
+struct BudgetOptions;
+DeriveOptions derive_options_cli(const struct BudgetOptions *b, FILE *err,
+                                 int *bad_define);
 
 /* Derive a scheme from source text.  Diagnostics (contract section 4 format)
  * go to err, which may be NULL to discard them; *nerrors (if not NULL)

@@ -130,7 +130,9 @@ static void put_poly(Buf *b, const fmpz_mpoly_t p, const Ring *r,
             if (!first)
                 buf_puts(b, st == FMT_LATEX ? " " : "*");
             first = 0;
-            if (st == FMT_LATEX)
+            if (st == FMT_LATEX && r->latex && r->latex[v])
+                buf_puts(b, r->latex[v]);
+            else if (st == FMT_LATEX)
                 latex_name(b, r->names[v]);
             else
                 buf_puts(b, r->names[v]);
@@ -255,6 +257,8 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
             buf_puts(b, st == FMT_LATEX ? " " : "*");
         items++;
         slong v = st == FMT_LATEX ? one_minus_var(fs[i].poly, r) : -1;
+        if (v >= 0 && r->latex && r->latex[v])
+            v = -1; /* 1 - sin(t): no bar over a function */
         int atom = fs[i].len == 1 &&
                    fmpz_mpoly_total_degree_si(fs[i].poly, r->ctx) == 1;
         if (v >= 0) {
@@ -503,6 +507,13 @@ static void put_scalar(Buf *b, const RatFun x, const Ring *r, FormatStyle st)
             put_den(b, x->den, r, st);
     }
     free(n.s);
+}
+
+char *format_scalar(const RatFun x, const Ring *r, FormatStyle st)
+{
+    Buf b = {0};
+    put_scalar(&b, x, r, st);
+    return buf_take(&b);
 }
 
 /* a JSON string: the scheme's name comes from a file name and may hold

@@ -31,4 +31,7 @@ void format_derived(FILE *out, const Derived *d, FormatStyle style,
  * product (the JSON form).  Caller frees with free(). */
 char *format_weight(const RatFun w, const Ring *r);
 
+/* x as derive prints a scalar in style st (malloc'd; caller frees) */
+char *format_scalar(const RatFun x, const Ring *r, FormatStyle st);
+
 #endif

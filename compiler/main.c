@@ -162,16 +162,13 @@ static int derive_main(int argc, char **argv)
         fprintf(stderr, "pointcalc: derive needs a scheme FILE\n%s", usage);
         return 2;
     }
-    int nerrors = 0;
-    DeriveOptions opt = {.max_seconds = bo.max_seconds,
-                         .verbose = bo.verbose ? stderr : NULL,
-                         .defines = bo.defines,
-                         .ndefines = bo.ndefines};
+    int nerrors = 0, bad_define = 0;
+    DeriveOptions opt = derive_options_cli(&bo, stderr, &bad_define);
     budget_arm(bo.max_seconds, bo.max_memory);
     Derived *d = derive_file_ex(file, stderr, &nerrors, &opt);
     budget_disarm(); /* the derivation is budgeted, not the printing */
     if (!d)
-        return 1;
+        return bad_define ? 2 : 1;
     slong o = -1;
     if (origin) {
         o = derived_find_point(d, origin);

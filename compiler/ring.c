@@ -18,6 +18,7 @@ void ring_init(Ring *r, slong nvars, const char *const *names)
     fmpz_mpoly_ctx_init(r->ctx, nvars > 0 ? nvars : 1, ORD_DEGREVLEX);
     r->nvars = nvars;
     r->names = NULL;
+    r->latex = NULL;
     if (nvars > 0) {
         r->names = flint_malloc((size_t)nvars * sizeof(const char *));
         for (slong i = 0; i < nvars; i++)
@@ -28,7 +29,9 @@ void ring_init(Ring *r, slong nvars, const char *const *names)
 void ring_clear(Ring *r)
 {
     flint_free(r->names);
+    flint_free(r->latex);
     r->names = NULL;
+    r->latex = NULL;
     r->nvars = 0;
     fmpz_mpoly_ctx_clear(r->ctx);
 }

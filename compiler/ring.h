@@ -18,6 +18,9 @@ typedef struct Ring {
     fmpz_mpoly_ctx_t ctx; // FLINT context, ORD_DEGREVLEX
     slong nvars;          // number of named variables (may be 0)
     const char **names;   // owned array of borrowed strings, nvars entries
+    const char **latex;   // NULL, or per variable its LaTeX (NULL entries:
+                          // made from the name); owned array, borrowed
+                          // strings (the kernels' names, kernel.h)
 } Ring;
 
 /* Initialise r with nvars variables called names[0..nvars-1].  nvars may be

@@ -8,6 +8,8 @@
  */
 #include "compiler/sema.h"
 
+#include <stdio.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -141,13 +143,16 @@ static void push_step(Sema *S, Stmt *st)
 /* the kind of a name used in an expression: 1 point, 0 scalar, -1 error */
 static int check_name(Sema *S, Node *n)
 {
-    if (strcmp(n->text, "pi") == 0) {
-        diag_error(S->diag, n->span,
-                   "'pi' is transcendental; transcendental scalars are not "
-                   "supported yet (planned with the conics of chapter 2)");
-        return -1;
-    }
     Sym *s = lookup(S, n->text);
+    if (!s && strcmp(n->text, "pi") == 0) {
+        /* the constant pi (a scheme may still declare its own 'pi') */
+        n->kind = ND_CALL;
+        n->builtin = BI_PI;
+        n->args = NULL;
+        n->nargs = 0;
+        n->name_span = n->span;
+        return 0;
+    }
     if (!s) {
         for (int b = 0; b < BI_COUNT; b++)
             if (strcmp(builtins[b].name, n->text) == 0) {
@@ -265,6 +270,12 @@ static int check_call(Sema *S, Node *n)
                        n->text);
         return -1;
     }
+    if (b == BI_PI) {
+        diag_error(S->diag, n->name_span,
+                   "'pi' is a constant, not a function; write pi without "
+                   "parentheses");
+        return -1;
+    }
     n->builtin = b;
     const BuiltinInfo *bi = &builtins[b];
     if (n->nargs < bi->min_args ||
@@ -285,8 +296,8 @@ static int check_call(Sema *S, Node *n)
     }
     if (!bi->implemented) {
         diag_error(S->diag, n->name_span,
-                   "%s() is not supported yet: transcendental and metric "
-                   "scalars are planned with the conics of chapter 2",
+                   "%s() is not supported yet: the metric scalars (dot, "
+                   "dist, angle) are planned with the projective circle",
                    bi->name);
         return -1;
     }
@@ -382,8 +393,15 @@ static int check_call(Sema *S, Node *n)
                 ok = -1;
         return ok < 0 ? -1 : 1;
     }
-    default:
-        break;
+    default: { /* the scalar functions (dot, dist, angle were refused) */
+        char what[64];
+        for (Node *a = n->args; a; a = a->next) {
+            snprintf(what, sizeof what, "the argument of %s()", bi->name);
+            if (expect(S, a, 0, what) < 0)
+                ok = -1;
+        }
+        return ok < 0 ? -1 : 0;
+    }
     }
     return -1;
 }

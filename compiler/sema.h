@@ -30,19 +30,22 @@
     X(BI_DOT, "dot", 2, 2, 0, 0)       /* metric: U . V */                     \
     X(BI_DIST, "dist", 2, 2, 0, 0)     /* metric: |PQ| */                      \
     X(BI_ANGLE, "angle", 3, 3, 0, 0)   /* metric: angle PQR at Q */            \
-    X(BI_SQRT, "sqrt", 1, 1, 0, 0)                                             \
-    X(BI_SIN, "sin", 1, 1, 0, 0)                                               \
-    X(BI_COS, "cos", 1, 1, 0, 0)                                               \
-    X(BI_TAN, "tan", 1, 1, 0, 0)                                               \
-    X(BI_ASIN, "asin", 1, 1, 0, 0)                                             \
-    X(BI_ACOS, "acos", 1, 1, 0, 0)                                             \
-    X(BI_ATAN, "atan", 1, 1, 0, 0)                                             \
-    X(BI_SINH, "sinh", 1, 1, 0, 0)                                             \
-    X(BI_COSH, "cosh", 1, 1, 0, 0)                                             \
-    X(BI_TANH, "tanh", 1, 1, 0, 0)                                             \
-    X(BI_EXP, "exp", 1, 1, 0, 0)                                               \
-    X(BI_LN, "ln", 1, 1, 0, 0)                                                 \
-    X(BI_ABS, "abs", 1, 1, 0, 0)
+    X(BI_SQRT, "sqrt", 1, 1, 0, 1)     /* scalar functions: kernel.h */     \
+    X(BI_SIN, "sin", 1, 1, 0, 1)                                               \
+    X(BI_COS, "cos", 1, 1, 0, 1)                                               \
+    X(BI_TAN, "tan", 1, 1, 0, 1)                                               \
+    X(BI_ASIN, "asin", 1, 1, 0, 1)                                             \
+    X(BI_ACOS, "acos", 1, 1, 0, 1)                                             \
+    X(BI_ATAN, "atan", 1, 1, 0, 1)                                             \
+    X(BI_ATAN2, "atan2", 2, 2, 0, 1)   /* atan2(y, x) */                       \
+    X(BI_SINH, "sinh", 1, 1, 0, 1)                                             \
+    X(BI_COSH, "cosh", 1, 1, 0, 1)                                             \
+    X(BI_TANH, "tanh", 1, 1, 0, 1)                                             \
+    X(BI_EXP, "exp", 1, 1, 0, 1)                                               \
+    X(BI_LN, "ln", 1, 1, 0, 1)                                                 \
+    X(BI_ABS, "abs", 1, 1, 0, 1)                                               \
+    X(BI_SIGN, "sign", 1, 1, 0, 1)                                             \
+    X(BI_PI, "pi", 0, 0, 0, 1) /* the name pi (sema makes it this call) */
 
 typedef enum Builtin {
 #define X(id, name, lo, hi, res, impl) id,

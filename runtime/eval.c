@@ -146,6 +146,12 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
         return pow(val[x->a], (double)x->b);
     case PLAN_POLE:
         return val[x->a] == 0 ? 1.0 : 0.0;
+    case PLAN_FN:
+        return plan_fn_eval(x->b, val[x->a]);
+    case PLAN_ATAN2:
+        return atan2(val[x->a], val[x->b]);
+    case PLAN_DOMAIN:
+        return plan_domain_eval(x->b, val[x->a]);
     default:
         (void)p;
         assert(0 && "not a computing op");
@@ -307,6 +313,24 @@ static void run_block(const Prog *g, const Plan *p, const double *const *params,
         case PLAN_POLE:
             k_pole(d, reg(g, x->a));
             break;
+        case PLAN_FN: {
+            const double *a = reg(g, x->a);
+            for (int j = 0; j < BL; j++)
+                d[j] = plan_fn_eval(x->b, a[j]);
+            break;
+        }
+        case PLAN_ATAN2: {
+            const double *a = reg(g, x->a), *b = reg(g, x->b);
+            for (int j = 0; j < BL; j++)
+                d[j] = atan2(a[j], b[j]);
+            break;
+        }
+        case PLAN_DOMAIN: {
+            const double *a = reg(g, x->a);
+            for (int j = 0; j < BL; j++)
+                d[j] = plan_domain_eval(x->b, a[j]);
+            break;
+        }
         default:
             assert(0 && "uniform op in the varying list");
         }

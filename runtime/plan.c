@@ -246,6 +246,12 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
             return plan_const(p, pow(x, (double)b));
         case PLAN_POLE:
             return plan_const(p, x == 0 ? 1 : 0);
+        case PLAN_FN:
+            return plan_const(p, plan_fn_eval(b, x));
+        case PLAN_ATAN2:
+            return plan_const(p, atan2(x, y));
+        case PLAN_DOMAIN:
+            return plan_const(p, plan_domain_eval(b, x));
         default:
             break;
         }
@@ -323,6 +329,21 @@ int plan_node(Plan *p, PlanOp op, int a, int b)
         break;
     }
     return intern(p, op, a, b);
+}
+
+int plan_fn(Plan *p, int fn, int a)
+{
+    return plan_node(p, PLAN_FN, a, fn);
+}
+
+int plan_atan2(Plan *p, int y, int x)
+{
+    return plan_node(p, PLAN_ATAN2, y, x);
+}
+
+int plan_domain(Plan *p, int fn, int a)
+{
+    return plan_node(p, PLAN_DOMAIN, a, fn);
 }
 
 int plan_neg(Plan *p, int a)
@@ -522,6 +543,10 @@ void plan_dump(FILE *out, const Plan *p)
             break;
         case PLAN_POWI:
             fprintf(out, " r%d %d", x->a, x->b);
+            break;
+        case PLAN_FN:
+        case PLAN_DOMAIN:
+            fprintf(out, " r%d fn%d", x->a, x->b);
             break;
         default:
             fprintf(out, " r%d", x->a);

@@ -27,6 +27,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <math.h>
 #include <stdio.h>
 
 /* X(name, number of register operands, C operator or NULL): one comment of
@@ -40,11 +41,85 @@
     X(MUL, 2, "*")    /* d = r[a] * r[b]                                    */ \
     X(DIV, 2, "/")    /* d = r[a] / r[b]   (b is checked by a POLE first)   */ \
     X(POWI, 1, NULL)  /* d = pow(r[a], b), integer b > PLAN_POW_CHAIN       */  \
-    X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */
+    X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */ \
+    X(FN, 1, NULL)    /* d = f(r[a]), f = b: a PlanFn (sqrt, sin, ...)      */ \
+    X(ATAN2, 2, NULL) /* d = atan2(r[a], r[b])                              */ \
+    X(DOMAIN, 1, NULL) /* d = (r[a] outside the domain of PlanFn b) ? 1 : 0 */
 
 /* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
  * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
 enum { PLAN_POW_CHAIN = 32 };
+
+/* The functions of FN: b = the PlanFn | (q << 8) for the real q-th root.
+ * Their values and domains are defined once, here, for the runtime, the
+ * folding of constants and (as C text) emit_c.c. */
+typedef enum PlanFn {
+    PLAN_FN_SQRT,
+    PLAN_FN_ROOT, // real q-th root (odd q: also of negative numbers)
+    PLAN_FN_SIN,
+    PLAN_FN_COS,
+    PLAN_FN_SINH,
+    PLAN_FN_COSH,
+    PLAN_FN_EXP,
+    PLAN_FN_LOG,
+    PLAN_FN_ASIN,
+    PLAN_FN_ACOS,
+    PLAN_FN_ATAN,
+    PLAN_FN_SIGN,
+    PLAN_NFNS
+} PlanFn;
+
+/* A DOMAIN flag counts this much in an output's bad register (plan.h's
+ * pole flags count 1 each, an overflow 0.5): bad >= PLAN_DOMAIN_FLAG is a
+ * sample where a function's argument is outside its domain. */
+#define PLAN_DOMAIN_FLAG 1048576.0
+
+static inline double plan_fn_eval(int b, double x)
+{
+    int q = b >> 8;
+    switch ((PlanFn)(b & 255)) {
+    case PLAN_FN_SQRT: return sqrt(x);
+    case PLAN_FN_ROOT:
+        if (q == 3)
+            return cbrt(x);
+        if (q % 2 && x < 0)
+            return -pow(-x, 1.0 / q);
+        return pow(x, 1.0 / q);
+    case PLAN_FN_SIN: return sin(x);
+    case PLAN_FN_COS: return cos(x);
+    case PLAN_FN_SINH: return sinh(x);
+    case PLAN_FN_COSH: return cosh(x);
+    case PLAN_FN_EXP: return exp(x);
+    case PLAN_FN_LOG: return log(x);
+    case PLAN_FN_ASIN: return asin(x);
+    case PLAN_FN_ACOS: return acos(x);
+    case PLAN_FN_ATAN: return atan(x);
+    case PLAN_FN_SIGN: return (double)((x > 0) - (x < 0));
+    default: return NAN;
+    }
+}
+
+/* 1 when PlanFn b has a restricted domain (needs a DOMAIN check) */
+static inline int plan_fn_has_domain(int b)
+{
+    int f = b & 255;
+    return f == PLAN_FN_SQRT || (f == PLAN_FN_ROOT && (b >> 8) % 2 == 0) ||
+           f == PLAN_FN_LOG || f == PLAN_FN_ASIN || f == PLAN_FN_ACOS;
+}
+
+/* 1.0 where x is outside the domain of PlanFn b (NaN is not: it shows as
+ * a non-finite value) */
+static inline double plan_domain_eval(int b, double x)
+{
+    switch ((PlanFn)(b & 255)) {
+    case PLAN_FN_SQRT:
+    case PLAN_FN_ROOT: return (double)(x < 0.0);
+    case PLAN_FN_LOG: return (double)(x <= 0.0);
+    case PLAN_FN_ASIN:
+    case PLAN_FN_ACOS: return (double)(fabs(x) > 1.0);
+    default: return 0.0;
+    }
+}
 
 typedef enum PlanOp {
 #define PLAN_ENUM(name, nargs, cop) PLAN_##name,
@@ -103,11 +178,15 @@ typedef enum PlanStatus {
     PLAN_STATUS_OK = 0,
     PLAN_STATUS_POLE = 1,     // a denominator factor is 0
     PLAN_STATUS_OVERFLOW = 2, // a denominator is not finite
+    PLAN_STATUS_DOMAIN = 4,   // a function's argument is outside its
+                              // domain (sqrt of a negative number ...);
+                              // 3 is the _checked functions' "not finite"
 } PlanStatus;
 
 static inline PlanStatus plan_status(double bad)
 {
-    return bad >= 1 ? PLAN_STATUS_POLE
+    return bad >= PLAN_DOMAIN_FLAG ? PLAN_STATUS_DOMAIN
+           : bad >= 1 ? PLAN_STATUS_POLE
            : bad != 0 ? PLAN_STATUS_OVERFLOW
                       : PLAN_STATUS_OK;
 }
@@ -125,6 +204,9 @@ int plan_mul(Plan *p, int a, int b);
 int plan_div(Plan *p, int a, int b);
 int plan_pow(Plan *p, int a, long e); // e >= 0; shares the powers it builds
 int plan_pole(Plan *p, int den);
+int plan_fn(Plan *p, int fn, int a);     // f(a), fn a PlanFn | q << 8
+int plan_atan2(Plan *p, int y, int x);
+int plan_domain(Plan *p, int fn, int a); // the domain flag of f(a)
 /* Appends an output; consumes nothing (arrays are copied). */
 void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
                      int nterms, const int *point, const int *reg, int bad);

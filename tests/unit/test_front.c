@@ -410,7 +410,7 @@ static void test_api_defines(void **state)
     assert_null(s);
     assert_non_null(diag);
     assert_string_equal(diag,
-                        "f.pcs: error: -D m=4: the scheme declares no 'int m'\n");
+                        "pointcalc: -D m=4: f.pcs declares no 'int m'\n");
     free(diag);
 }
 

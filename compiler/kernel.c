@@ -1,0 +1,1380 @@
+/*
+ * kernel.c - transcendental and algebraic atoms (kernel.h).
+ *
+ * Values stay RatFuns of one ring; a kernel only gives a meaning to one of
+ * the ring's reserved variables.  Every operation here works on small
+ * expressions (the conics of chapter 2 have a few dozen terms), so it uses
+ * RatFun arithmetic freely and reduces once at the end.
+ */
+#include "compiler/kernel.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/fmpz_factor.h>
+
+#include "compiler/format.h"
+#include "compiler/mem.h"
+
+enum {
+    MAX_POWER = 1000,  // exponents a kernel rewrite may make
+    FACTOR_BITS = 160, // integers under a sqrt factored up to this size
+};
+
+static const char *const fn_names[] = {
+#define X(id, name, cfn) name,
+    PC_KERNEL_FNS(X)
+#undef X
+};
+
+const char *kernel_fn_name(KernelFn f)
+{
+    return f >= 0 && f < KF_COUNT ? fn_names[f] : "?";
+}
+
+slong kernels_slots(slong calls, slong ops, slong pis)
+{
+    if (calls == 0 && pis == 0)
+        return 0;
+    /* each call can make a pair (sin, cos) and, through its symmetry or
+     * folding, a pi and a few square roots; each subst or diff can make one
+     * more kernel per kernel */
+    slong n = 4 + 3 * calls + (pis > 0);
+    for (slong i = 0; i < ops && n < 192; i++)
+        n *= 2;
+    return n < 192 ? n : 192;
+}
+
+void kernels_init(Kernels *K, Ring *r, slong first, slong cap)
+{
+    K->r = r;
+    K->first = first;
+    K->cap = cap;
+    K->n = 0;
+    K->k = cap ? pc_xcalloc((size_t)cap, sizeof(Kernel)) : NULL;
+    K->nrel = 0;
+    K->why = NULL;
+    if (cap > 0 && !r->latex)
+        r->latex = flint_calloc((size_t)(r->nvars ? r->nvars : 1),
+                                sizeof(const char *));
+}
+
+void kernels_clear(Kernels *K)
+{
+    for (slong i = 0; i < K->n; i++) {
+        Kernel *k = &K->k[i];
+        ratfun_clear(k->arg, K->r);
+        ratfun_clear(k->arg2, K->r);
+        ratfun_clear(k->rel, K->r);
+        free(k->name);
+        free(k->latex);
+    }
+    free(K->k);
+    K->k = NULL;
+    K->n = K->cap = 0;
+}
+
+const Kernel *kernels_of_var(const Kernels *K, slong var)
+{
+    if (!K || var < K->first || var >= K->first + K->n)
+        return NULL;
+    return &K->k[var - K->first];
+}
+
+/* ---- small helpers ------------------------------------------------------ */
+
+static int poly_has(const fmpz_mpoly_t p, slong var, const Ring *r)
+{
+    return fmpz_mpoly_degree_si(p, var, r->ctx) > 0;
+}
+
+static int rf_has(const RatFun x, slong var, const Ring *r)
+{
+    return poly_has(x->num, var, r) || poly_has(x->den, var, r);
+}
+
+/* 1 when x is exactly the variable var */
+static int rf_is_var(const RatFun x, slong *var, const Ring *r)
+{
+    if (!fmpz_mpoly_is_one(x->den, r->ctx) || x->num->length != 1 ||
+        fmpz_mpoly_total_degree_si(x->num, r->ctx) != 1)
+        return 0;
+    fmpz_t c;
+    fmpz_init(c);
+    fmpz_mpoly_get_term_coeff_fmpz(c, x->num, 0, r->ctx);
+    int one = fmpz_is_one(c);
+    fmpz_clear(c);
+    if (!one)
+        return 0;
+    for (slong v = 0; v < r->ctx->minfo->nvars; v++)
+        if (poly_has(x->num, v, r)) {
+            *var = v;
+            return 1;
+        }
+    return 0;
+}
+
+/* sign of the leading coefficient of x's numerator (0 for zero) */
+static int rf_lead_sign(const RatFun x, const Ring *r)
+{
+    if (fmpz_mpoly_is_zero(x->num, r->ctx))
+        return 0;
+    fmpz_t c;
+    fmpz_init(c);
+    fmpz_mpoly_get_term_coeff_fmpz(c, x->num, 0, r->ctx);
+    int s = fmpz_sgn(c);
+    fmpz_clear(c);
+    return s;
+}
+
+static char *cat3(const char *a, const char *b, const char *c)
+{
+    size_t n = strlen(a) + strlen(b) + strlen(c) + 1;
+    char *s = pc_xmalloc(n);
+    snprintf(s, n, "%s%s%s", a, b, c);
+    return s;
+}
+
+/* ---- making kernels ----------------------------------------------------- */
+
+static slong find(const Kernels *K, KernelFn fn, const RatFun a,
+                  const RatFun b, slong q)
+{
+    for (slong i = 0; i < K->n; i++) {
+        const Kernel *k = &K->k[i];
+        if (k->fn != fn || k->q != q)
+            continue;
+        if (fn == KF_PI)
+            return i;
+        if (!ratfun_equal(k->arg, a, K->r))
+            continue;
+        if (fn == KF_ATAN2 && !ratfun_equal(k->arg2, b, K->r))
+            continue;
+        return i;
+    }
+    return -1;
+}
+
+static void set_names(Kernels *K, Kernel *k)
+{
+    const Ring *r = K->r;
+    char *a = k->fn == KF_PI ? NULL : format_scalar(k->arg, r, FMT_TEXT);
+    char *la = k->fn == KF_PI ? NULL : format_scalar(k->arg, r, FMT_LATEX);
+    char buf[48];
+    switch (k->fn) {
+    case KF_PI:
+        k->name = pc_xstrdup("pi");
+        k->latex = pc_xstrdup("\\pi");
+        break;
+    case KF_SQRT:
+        k->name = cat3("sqrt(", a, ")");
+        k->latex = cat3("\\sqrt{", la, "}");
+        break;
+    case KF_ROOT:
+        snprintf(buf, sizeof buf, ", %ld)", (long)k->q);
+        k->name = cat3("root(", a, buf);
+        snprintf(buf, sizeof buf, "\\sqrt[%ld]{", (long)k->q);
+        k->latex = cat3(buf, la, "}");
+        break;
+    case KF_ATAN2: {
+        char *b = format_scalar(k->arg2, r, FMT_TEXT);
+        char *lb = format_scalar(k->arg2, r, FMT_LATEX);
+        char *t = cat3("atan2(", a, ", ");
+        k->name = cat3(t, b, ")");
+        free(t);
+        t = cat3("\\operatorname{atan2}\\left(", la, ", ");
+        k->latex = cat3(t, lb, "\\right)");
+        free(t);
+        free(b);
+        free(lb);
+        break;
+    }
+    case KF_EXP:
+        k->name = cat3("exp(", a, ")");
+        k->latex = cat3("e^{", la, "}");
+        break;
+    default: {
+        static const char *const lx[KF_COUNT] = {
+            [KF_SIN] = "\\sin",         [KF_COS] = "\\cos",
+            [KF_SINH] = "\\sinh",       [KF_COSH] = "\\cosh",
+            [KF_LN] = "\\ln",           [KF_ASIN] = "\\arcsin",
+            [KF_ACOS] = "\\arccos",     [KF_ATAN] = "\\arctan",
+            [KF_SIGN] = "\\operatorname{sign}",
+        };
+        char *t = cat3(fn_names[k->fn], "(", a);
+        k->name = cat3(t, ")", "");
+        free(t);
+        t = cat3(lx[k->fn], "\\left(", la);
+        k->latex = cat3(t, "\\right)", "");
+        free(t);
+        break;
+    }
+    }
+    free(a);
+    free(la);
+    K->r->names[k->var] = k->name;
+    K->r->latex[k->var] = k->latex;
+}
+
+/* a new kernel (slot checked by the caller) */
+static Kernel *add(Kernels *K, KernelFn fn, const RatFun a, const RatFun b,
+                   slong q)
+{
+    Kernel *k = &K->k[K->n];
+    k->fn = fn;
+    k->var = K->first + K->n;
+    k->q = q;
+    ratfun_init(k->arg, K->r);
+    ratfun_init(k->arg2, K->r);
+    ratfun_init(k->rel, K->r);
+    k->deg = 0;
+    if (a)
+        ratfun_set(k->arg, a, K->r);
+    if (b)
+        ratfun_set(k->arg2, b, K->r);
+    K->n++;
+    set_names(K, k);
+    return k;
+}
+
+/* res = the kernel variable of fn(a[, b]) (made if new); pairs are made
+ * together: sin with cos, sinh with cosh */
+static int intern(Kernels *K, RatFun res, KernelFn fn, const RatFun a,
+                  const RatFun b, slong q)
+{
+    const Ring *r = K->r;
+    slong i = find(K, fn, a, b, q);
+    if (i < 0) {
+        int pair = fn == KF_SIN || fn == KF_COS || fn == KF_SINH ||
+                   fn == KF_COSH;
+        if (K->n + (pair ? 2 : 1) > K->cap) {
+            K->why = "too many distinct functions in one scheme";
+            return KERNEL_EFULL;
+        }
+        if (pair) {
+            int hyp = fn == KF_SINH || fn == KF_COSH;
+            Kernel *s = add(K, hyp ? KF_SINH : KF_SIN, a, NULL, 0);
+            slong sv = s->var;
+            Kernel *c = add(K, hyp ? KF_COSH : KF_COS, a, NULL, 0);
+            /* cos^2 = 1 - sin^2, cosh^2 = 1 + sinh^2 */
+            c->deg = 2;
+            ratfun_gen(c->rel, sv, r);
+            ratfun_mul(c->rel, c->rel, c->rel, r);
+            if (!hyp)
+                ratfun_neg(c->rel, c->rel, r);
+            RatFun one;
+            ratfun_init(one, r);
+            ratfun_one(one, r);
+            ratfun_add(c->rel, c->rel, one, r);
+            ratfun_clear(one, r);
+            K->nrel++;
+            i = find(K, fn, a, b, q);
+        } else {
+            Kernel *k = add(K, fn, a, b, q);
+            if (fn == KF_SQRT || fn == KF_ROOT) {
+                k->deg = fn == KF_SQRT ? 2 : q;
+                ratfun_set(k->rel, a, r);
+                K->nrel++;
+            } else if (fn == KF_SIGN) {
+                k->deg = 2;
+                ratfun_one(k->rel, r);
+                K->nrel++;
+            }
+            i = K->n - 1;
+        }
+    }
+    ratfun_gen(res, K->k[i].var, r);
+    return 0;
+}
+
+static int pi_times(Kernels *K, RatFun res, slong num, slong den)
+{
+    int rc = intern(K, res, KF_PI, NULL, NULL, 0);
+    if (rc == 0) {
+        RatFun c;
+        ratfun_init(c, K->r);
+        fmpq_t q;
+        fmpq_init(q);
+        fmpq_set_si(q, num, (ulong)den);
+        ratfun_set_fmpq(c, q, K->r);
+        ratfun_mul(res, res, c, K->r);
+        fmpq_clear(q);
+        ratfun_clear(c, K->r);
+    }
+    return rc;
+}
+
+/* x = c * pi with c rational?  (c returned) */
+static int is_pi_multiple(const Kernels *K, const RatFun x, fmpq_t c)
+{
+    const Ring *r = K->r;
+    if (!fmpz_mpoly_is_fmpz(x->den, r->ctx) || x->num->length != 1 ||
+        fmpz_mpoly_total_degree_si(x->num, r->ctx) != 1)
+        return 0;
+    slong pi = find(K, KF_PI, NULL, NULL, 0);
+    if (pi < 0 || !poly_has(x->num, K->k[pi].var, r))
+        return 0;
+    fmpz_t a, b;
+    fmpz_init(a);
+    fmpz_init(b);
+    fmpz_mpoly_get_term_coeff_fmpz(a, x->num, 0, r->ctx);
+    fmpz_mpoly_get_fmpz(b, x->den, r->ctx);
+    fmpq_set_fmpz_frac(c, a, b);
+    fmpz_clear(a);
+    fmpz_clear(b);
+    return 1;
+}
+
+static int sqrt_num(Kernels *K, RatFun res, const fmpq_t q);
+
+/* sin(k*pi/12) for k in 0..23 where it is a simple surd: 1 and res set */
+static int sin_pi12(Kernels *K, RatFun res, slong k)
+{
+    /* value for k in 0..6: 0, -, 1/2, sqrt2/2, sqrt3/2, -, 1 (-: not simple) */
+    slong m = k % 12, sgn = k >= 12 ? -1 : 1;
+    if (m > 6)
+        m = 12 - m;
+    fmpq_t q;
+    fmpq_init(q);
+    int ok = 1;
+    switch (m) {
+    case 0:
+        ratfun_zero(res, K->r);
+        break;
+    case 2:
+        fmpq_set_si(q, 1, 2);
+        ratfun_set_fmpq(res, q, K->r);
+        break;
+    case 3:
+    case 4:
+        fmpq_set_si(q, m == 3 ? 2 : 3, 1);
+        if (sqrt_num(K, res, q) != 0) {
+            ok = -1;
+            break;
+        }
+        fmpq_set_si(q, 1, 2);
+        {
+            RatFun h;
+            ratfun_init(h, K->r);
+            ratfun_set_fmpq(h, q, K->r);
+            ratfun_mul(res, res, h, K->r);
+            ratfun_clear(h, K->r);
+        }
+        break;
+    case 6:
+        ratfun_one(res, K->r);
+        break;
+    default:
+        ok = 0;
+    }
+    fmpq_clear(q);
+    if (ok == 1 && sgn < 0)
+        ratfun_neg(res, res, K->r);
+    return ok;
+}
+
+/* sqrt of a number q >= 0: s/d * prod sqrt(p) over the primes p of the
+ * square-free part of num*den (beyond FACTOR_BITS: one kernel) */
+static int sqrt_num(Kernels *K, RatFun res, const fmpq_t q)
+{
+    const Ring *r = K->r;
+    if (fmpq_is_zero(q)) {
+        ratfun_zero(res, r);
+        return 0;
+    }
+    fmpz_t m, s, f;
+    fmpz_init(m);
+    fmpz_init(s);
+    fmpz_init(f);
+    fmpz_mul(m, fmpq_numref(q), fmpq_denref(q));
+    fmpz_one(s);
+    fmpz_one(f);
+    RatFun acc, t;
+    ratfun_init(acc, r);
+    ratfun_init(t, r);
+    ratfun_one(acc, r);
+    int rc = 0;
+    if (fmpz_bits(m) <= FACTOR_BITS) {
+        fmpz_factor_t fac;
+        fmpz_factor_init(fac);
+        fmpz_factor(fac, m);
+        for (slong i = 0; i < fac->num && rc == 0; i++) {
+            ulong e = fac->exp[i];
+            fmpz_t pw;
+            fmpz_init(pw);
+            fmpz_pow_ui(pw, fac->p + i, e / 2);
+            fmpz_mul(s, s, pw);
+            fmpz_clear(pw);
+            if (e % 2) {
+                fmpz_mpoly_set_fmpz(t->num, fac->p + i, r->ctx);
+                fmpz_mpoly_one(t->den, r->ctx);
+                rc = intern(K, t, KF_SQRT, t, NULL, 0);
+                if (rc == 0)
+                    ratfun_mul(acc, acc, t, r);
+            }
+        }
+        fmpz_factor_clear(fac);
+    } else {
+        fmpz_t rem;
+        fmpz_init(rem);
+        fmpz_sqrtrem(s, rem, m);
+        if (!fmpz_is_zero(rem)) {
+            fmpz_one(s);
+            fmpq_t mq;
+            fmpq_init(mq);
+            fmpq_set_fmpz_frac(mq, m, s);
+            ratfun_set_fmpq(t, mq, r);
+            fmpq_clear(mq);
+            rc = intern(K, t, KF_SQRT, t, NULL, 0);
+            if (rc == 0)
+                ratfun_mul(acc, acc, t, r);
+        }
+        fmpz_clear(rem);
+    }
+    if (rc == 0) {
+        fmpq_t c;
+        fmpq_init(c);
+        fmpq_set_fmpz_frac(c, s, fmpq_denref(q));
+        ratfun_set_fmpq(t, c, r);
+        ratfun_mul(res, acc, t, r);
+        fmpq_clear(c);
+    }
+    ratfun_clear(t, r);
+    ratfun_clear(acc, r);
+    fmpz_clear(f);
+    fmpz_clear(s);
+    fmpz_clear(m);
+    return rc;
+}
+
+/* res *= P^e (e may be negative), P a polynomial */
+static void mul_poly_pow(RatFun res, const fmpz_mpoly_t P, slong e,
+                         const Ring *r)
+{
+    RatFun t;
+    ratfun_init(t, r);
+    fmpz_mpoly_set(t->num, P, r->ctx);
+    fmpz_mpoly_one(t->den, r->ctx);
+    ratfun_canonicalise(t, r);
+    ratfun_pow_si(t, t, e, r);
+    ratfun_mul(res, res, t, r);
+    ratfun_clear(t, r);
+}
+
+/* sqrt(x) for a non-constant x = n/d: squares pulled out as |f|^k =
+ * f^k sign(f)^k, the positive numeric content as a surd */
+static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
+{
+    const Ring *r = K->r;
+    RatFun acc, rest, t;
+    ratfun_init(acc, r);
+    ratfun_init(rest, r);
+    ratfun_init(t, r);
+    ratfun_one(acc, r);
+    ratfun_one(rest, r);
+    fmpq_t content;
+    fmpq_init(content);
+    fmpq_one(content);
+    int rc = 0;
+    for (int part = 0; part < 2 && rc == 0; part++) {
+        const fmpz_mpoly_struct *P = part ? x->den : x->num;
+        fmpz_mpoly_factor_t f;
+        fmpz_mpoly_factor_init(f, r->ctx);
+        if (!fmpz_mpoly_factor_squarefree(f, P, r->ctx)) {
+            /* cannot split: keep the polynomial whole */
+            fmpz_mpoly_factor_clear(f, r->ctx);
+            mul_poly_pow(rest, P, part ? -1 : 1, r);
+            continue;
+        }
+        fmpq_t k;
+        fmpq_init(k);
+        fmpq_set_fmpz_frac(k, f->constant, f->constant_den);
+        if (part)
+            fmpq_div(content, content, k);
+        else
+            fmpq_mul(content, content, k);
+        fmpq_clear(k);
+        for (slong i = 0; i < f->num && rc == 0; i++) {
+            slong e = fmpz_get_si(f->exp + i), h = e / 2;
+            if (e % 2)
+                mul_poly_pow(rest, f->poly + i, part ? -1 : 1, r);
+            if (h == 0)
+                continue;
+            /* |f|^h = f^h * sign(f)^h */
+            mul_poly_pow(acc, f->poly + i, part ? -h : h, r);
+            if (h % 2) {
+                fmpz_mpoly_set(t->num, f->poly + i, r->ctx);
+                fmpz_mpoly_one(t->den, r->ctx);
+                ratfun_canonicalise(t, r);
+                rc = kernel_apply(K, t, KF_SIGN, t, NULL);
+                if (rc == 0)
+                    ratfun_mul(acc, acc, t, r);
+            }
+        }
+        fmpz_mpoly_factor_clear(f, r->ctx);
+    }
+    if (rc == 0) {
+        /* the numeric content: sqrt(|c|), its sign stays under the root */
+        if (fmpq_sgn(content) < 0) {
+            fmpq_neg(content, content);
+            ratfun_neg(rest, rest, r);
+        }
+        rc = sqrt_num(K, t, content);
+        if (rc == 0)
+            ratfun_mul(acc, acc, t, r);
+    }
+    if (rc == 0) {
+        fmpq_t c;
+        fmpq_init(c);
+        if (ratfun_get_fmpq(c, rest, r)) {
+            /* only -1 can remain: sqrt of a negative number */
+            if (fmpq_sgn(c) < 0) {
+                K->why = "square root of a negative number";
+                rc = KERNEL_EDOMAIN;
+            }
+        } else {
+            rc = intern(K, t, KF_SQRT, rest, NULL, 0);
+            if (rc == 0)
+                ratfun_mul(acc, acc, t, r);
+        }
+        fmpq_clear(c);
+    }
+    if (rc == 0)
+        ratfun_swap(res, acc, r);
+    fmpq_clear(content);
+    ratfun_clear(t, r);
+    ratfun_clear(rest, r);
+    ratfun_clear(acc, r);
+    return rc;
+}
+
+/* exp of x: a sum over a constant denominator splits into a product of
+ * exp(monomial/q)^p; exp(k*ln(y)) = y^k */
+static int exp_split(Kernels *K, RatFun res, const RatFun x)
+{
+    const Ring *r = K->r;
+    if (!fmpz_mpoly_is_fmpz(x->den, r->ctx))
+        return intern(K, res, KF_EXP, x, NULL, 0);
+    fmpz_t d, c;
+    fmpz_init(d);
+    fmpz_init(c);
+    fmpz_mpoly_get_fmpz(d, x->den, r->ctx);
+    RatFun acc, t;
+    ratfun_init(acc, r);
+    ratfun_init(t, r);
+    ratfun_one(acc, r);
+    fmpz_mpoly_t m;
+    fmpz_mpoly_init(m, r->ctx);
+    int rc = 0;
+    for (slong i = 0; i < x->num->length && rc == 0; i++) {
+        fmpz_mpoly_get_term_coeff_fmpz(c, x->num, i, r->ctx);
+        fmpz_mpoly_get_term_monomial(m, x->num, i, r->ctx);
+        fmpq_t pq;
+        fmpq_init(pq);
+        fmpq_set_fmpz_frac(pq, c, d);
+        if (!fmpz_fits_si(fmpq_numref(pq)) ||
+            fmpz_bits(fmpq_numref(pq)) > 10 /* |p| >= 1024 */) {
+            /* a huge multiple: keep it inside the exponential */
+            fmpz_mpoly_scalar_mul_fmpz(t->num, m, fmpq_numref(pq), r->ctx);
+            fmpz_mpoly_set_fmpz(t->den, fmpq_denref(pq), r->ctx);
+            ratfun_canonicalise(t, r);
+            rc = intern(K, t, KF_EXP, t, NULL, 0);
+            if (rc == 0)
+                ratfun_mul(acc, acc, t, r);
+            fmpq_clear(pq);
+            continue;
+        }
+        slong p = fmpz_get_si(fmpq_numref(pq));
+        fmpz_mpoly_set(t->num, m, r->ctx);
+        fmpz_mpoly_set_fmpz(t->den, fmpq_denref(pq), r->ctx);
+        fmpq_clear(pq);
+        ratfun_canonicalise(t, r);
+        slong v;
+        const Kernel *lk;
+        if (rf_is_var(t, &v, r) && (lk = kernels_of_var(K, v)) &&
+            lk->fn == KF_LN) {
+            ratfun_set(t, lk->arg, r); /* exp(p*ln(y)) = y^p */
+        } else {
+            rc = intern(K, t, KF_EXP, t, NULL, 0);
+        }
+        if (rc == 0) {
+            if (ratfun_pow_si(t, t, p, r) != 0) {
+                K->why = "exp() of a logarithm of zero";
+                rc = KERNEL_EDOMAIN;
+            } else {
+                ratfun_mul(acc, acc, t, r);
+            }
+        }
+    }
+    if (rc == 0)
+        ratfun_swap(res, acc, r);
+    fmpz_mpoly_clear(m, r->ctx);
+    ratfun_clear(t, r);
+    ratfun_clear(acc, r);
+    fmpz_clear(c);
+    fmpz_clear(d);
+    return rc;
+}
+
+/* the value of a function at a number, where it is exact: 1 (res set),
+ * 0 (not exact: make a kernel), or an error */
+static int fold_number(Kernels *K, RatFun res, KernelFn f, const fmpq_t q)
+{
+    const Ring *r = K->r;
+    int zero = fmpq_is_zero(q), one = fmpq_is_one(q);
+    fmpq_t h;
+    fmpq_init(h);
+    fmpq_set_si(h, 1, 2);
+    int half = fmpq_equal(h, q);
+    fmpq_clear(h);
+    int cmp1 = fmpz_cmpabs(fmpq_numref(q), fmpq_denref(q)); /* |q| vs 1 */
+    switch (f) {
+    case KF_SQRT:
+        if (fmpq_sgn(q) < 0) {
+            K->why = "square root of a negative number";
+            return KERNEL_EDOMAIN;
+        }
+        return sqrt_num(K, res, q) == 0 ? 1 : KERNEL_EFULL;
+    case KF_SIN:
+    case KF_SINH:
+    case KF_ATAN:
+    case KF_ASIN:
+        if (f == KF_ASIN && cmp1 > 0) {
+            K->why = "asin() of a number outside [-1, 1]";
+            return KERNEL_EDOMAIN;
+        }
+        if (zero) {
+            ratfun_zero(res, r);
+            return 1;
+        }
+        if (f == KF_ASIN && (one || half))
+            return pi_times(K, res, 1, one ? 2 : 6) == 0 ? 1 : KERNEL_EFULL;
+        if (f == KF_ATAN && one)
+            return pi_times(K, res, 1, 4) == 0 ? 1 : KERNEL_EFULL;
+        return 0;
+    case KF_COS:
+    case KF_COSH:
+    case KF_EXP:
+        if (zero) {
+            ratfun_one(res, r);
+            return 1;
+        }
+        return 0;
+    case KF_LN:
+        if (fmpq_sgn(q) <= 0) {
+            K->why = "logarithm of a number that is not positive";
+            return KERNEL_EDOMAIN;
+        }
+        if (one) {
+            ratfun_zero(res, r);
+            return 1;
+        }
+        return 0;
+    case KF_ACOS:
+        if (cmp1 > 0) {
+            K->why = "acos() of a number outside [-1, 1]";
+            return KERNEL_EDOMAIN;
+        }
+        if (one) {
+            ratfun_zero(res, r);
+            return 1;
+        }
+        if (zero || half)
+            return pi_times(K, res, 1, zero ? 2 : 3) == 0 ? 1 : KERNEL_EFULL;
+        return 0;
+    case KF_SIGN:
+        ratfun_set_si(res, fmpq_sgn(q), r);
+        return 1;
+    default:
+        return 0;
+    }
+}
+
+static int is_odd(KernelFn f)
+{
+    return f == KF_SIN || f == KF_SINH || f == KF_ASIN || f == KF_ATAN ||
+           f == KF_SIGN;
+}
+
+static int is_even(KernelFn f)
+{
+    return f == KF_COS || f == KF_COSH;
+}
+
+int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
+                 const RatFun y)
+{
+    const Ring *r = K->r;
+    int rc;
+    if (f == KF_PI)
+        return intern(K, res, KF_PI, NULL, NULL, 0);
+    RatFun a;
+    ratfun_init(a, r);
+    ratfun_set(a, x, r);
+    fmpq_t q;
+    fmpq_init(q);
+    if (f == KF_ATAN2) {
+        fmpq_t qx;
+        fmpq_init(qx);
+        if (ratfun_is_zero(a, r) && ratfun_get_fmpq(qx, y, r) &&
+            fmpq_sgn(qx) > 0) {
+            ratfun_zero(res, r);
+            rc = 0;
+        } else if (ratfun_is_zero(a, r) && ratfun_is_zero(y, r)) {
+            K->why = "atan2(0, 0) is undefined";
+            rc = KERNEL_EDOMAIN;
+        } else {
+            rc = intern(K, res, KF_ATAN2, a, y, 0);
+        }
+        fmpq_clear(qx);
+        goto done;
+    }
+    if (ratfun_get_fmpq(q, a, r)) {
+        rc = fold_number(K, res, f, q);
+        if (rc != 0) {
+            rc = rc == 1 ? 0 : rc;
+            goto done;
+        }
+    }
+    /* sin, cos at multiples of pi/12 where the value is a simple surd */
+    if (f == KF_SIN || f == KF_COS) {
+        fmpq_t c;
+        fmpq_init(c);
+        if (is_pi_multiple(K, a, c)) {
+            fmpz_t k12;
+            fmpz_init(k12);
+            fmpz_mul_ui(k12, fmpq_numref(c), 12);
+            if (fmpz_divisible(k12, fmpq_denref(c))) {
+                fmpz_divexact(k12, k12, fmpq_denref(c));
+                fmpz_fdiv_r(k12, k12, (fmpz[]){24});
+                slong k = fmpz_get_si(k12);
+                if (f == KF_COS)
+                    k = (k + 6) % 24;
+                int ok = sin_pi12(K, res, k);
+                if (ok != 0) {
+                    fmpz_clear(k12);
+                    fmpq_clear(c);
+                    rc = ok < 0 ? KERNEL_EFULL : 0;
+                    goto done;
+                }
+            }
+            fmpz_clear(k12);
+        }
+        fmpq_clear(c);
+    }
+    slong v;
+    const Kernel *in = rf_is_var(a, &v, r) ? kernels_of_var(K, v) : NULL;
+    switch (f) {
+    case KF_SQRT:
+        rc = sqrt_poly(K, res, a);
+        goto done;
+    case KF_EXP:
+        rc = exp_split(K, res, a);
+        goto done;
+    case KF_LN:
+        if (in && in->fn == KF_EXP) { /* ln(exp(y)) = y */
+            ratfun_set(res, in->arg, r);
+            rc = 0;
+            goto done;
+        }
+        break;
+    default:
+        break;
+    }
+    int neg = rf_lead_sign(a, r) < 0;
+    if (neg && (is_odd(f) || is_even(f) || f == KF_ACOS))
+        ratfun_neg(a, a, r);
+    rc = intern(K, res, f, a, NULL, 0);
+    if (rc == 0 && neg && is_odd(f))
+        ratfun_neg(res, res, r);
+    if (rc == 0 && neg && f == KF_ACOS) { /* acos(-y) = pi - acos(y) */
+        RatFun p;
+        ratfun_init(p, r);
+        rc = intern(K, p, KF_PI, NULL, NULL, 0);
+        if (rc == 0)
+            ratfun_sub(res, p, res, r);
+        ratfun_clear(p, r);
+    }
+done:
+    fmpq_clear(q);
+    ratfun_clear(a, r);
+    if (rc == 0)
+        rc = kernel_reduce(K, res);
+    return rc;
+}
+
+int kernel_pow_q(Kernels *K, RatFun res, const RatFun x, slong p, slong q)
+{
+    const Ring *r = K->r;
+    RatFun t;
+    ratfun_init(t, r);
+    int rc;
+    if (q == 2) {
+        rc = kernel_apply(K, t, KF_SQRT, x, NULL);
+    } else {
+        fmpq_t c;
+        fmpq_init(c);
+        rc = 0;
+        if (ratfun_get_fmpq(c, x, r)) {
+            /* an exact root of a number folds */
+            fmpz_t a, b;
+            fmpz_init(a);
+            fmpz_init(b);
+            if (fmpq_sgn(c) < 0 && q % 2 == 0) {
+                K->why = "even root of a negative number";
+                rc = KERNEL_EDOMAIN;
+            } else if (fmpz_root(a, fmpq_numref(c), q) &&
+                       fmpz_root(b, fmpq_denref(c), q)) {
+                fmpq_t v;
+                fmpq_init(v);
+                fmpq_set_fmpz_frac(v, a, b);
+                ratfun_set_fmpq(t, v, r);
+                fmpq_clear(v);
+                rc = 1;
+            }
+            fmpz_clear(a);
+            fmpz_clear(b);
+        }
+        fmpq_clear(c);
+        if (rc == 0)
+            rc = intern(K, t, KF_ROOT, x, NULL, q);
+        else if (rc == 1)
+            rc = 0;
+    }
+    if (rc == 0 && ratfun_pow_si(t, t, p, r) != 0) {
+        K->why = "negative power of zero";
+        rc = KERNEL_EDOMAIN;
+    }
+    if (rc == 0) {
+        ratfun_swap(res, t, r);
+        rc = kernel_reduce(K, res);
+    }
+    ratfun_clear(t, r);
+    return rc;
+}
+
+int kernel_abs(Kernels *K, RatFun res, const RatFun x)
+{
+    RatFun s;
+    ratfun_init(s, K->r);
+    int rc = kernel_apply(K, s, KF_SIGN, x, NULL);
+    if (rc == 0) {
+        ratfun_mul(res, x, s, K->r);
+        rc = kernel_reduce(K, res);
+    }
+    ratfun_clear(s, K->r);
+    return rc;
+}
+
+/* ---- normal form -------------------------------------------------------- */
+
+/* res = P with var^k (k >= q) rewritten by var^q = rel, as a RatFun */
+static void reduce_poly(RatFun res, const fmpz_mpoly_t P, const Kernel *k,
+                        const Ring *r)
+{
+    slong d = fmpz_mpoly_degree_si(P, k->var, r->ctx);
+    if (d < k->deg) {
+        fmpz_mpoly_set(res->num, P, r->ctx);
+        fmpz_mpoly_one(res->den, r->ctx);
+        return;
+    }
+    RatFun acc, term, relp;
+    fmpz_mpoly_t C;
+    ratfun_init(acc, r);
+    ratfun_init(term, r);
+    ratfun_init(relp, r);
+    fmpz_mpoly_init(C, r->ctx);
+    slong var = k->var;
+    for (slong j = 0; j <= d; j++) {
+        ulong ju = (ulong)j;
+        fmpz_mpoly_get_coeff_vars_ui(C, P, &var, &ju, 1, r->ctx);
+        if (fmpz_mpoly_is_zero(C, r->ctx))
+            continue;
+        /* C * rel^(j / q) * var^(j % q) */
+        fmpz_mpoly_gen(term->num, var, r->ctx);
+        fmpz_mpoly_pow_ui(term->num, term->num, (ulong)(j % k->deg), r->ctx);
+        fmpz_mpoly_mul(term->num, term->num, C, r->ctx);
+        fmpz_mpoly_one(term->den, r->ctx);
+        ratfun_canonicalise(term, r);
+        if (j >= k->deg) {
+            ratfun_pow_si(relp, k->rel, j / k->deg, r);
+            ratfun_mul(term, term, relp, r);
+        }
+        ratfun_add(acc, acc, term, r);
+    }
+    ratfun_swap(res, acc, r);
+    fmpz_mpoly_clear(C, r->ctx);
+    ratfun_clear(relp, r);
+    ratfun_clear(term, r);
+    ratfun_clear(acc, r);
+}
+
+int kernel_uses(const Kernels *K, const RatFun x, int any)
+{
+    if (!K)
+        return 0;
+    for (slong i = 0; i < K->n; i++)
+        if ((any || K->k[i].deg) && rf_has(x, K->k[i].var, K->r))
+            return 1;
+    return 0;
+}
+
+int kernel_uses_pteq(const Kernels *K, const PointEq x, int any)
+{
+    if (!K)
+        return 0;
+    for (slong i = 0; i < K->n; i++) {
+        if (!any && !K->k[i].deg)
+            continue;
+        if (poly_has(x->den, K->k[i].var, K->r))
+            return 1;
+        for (slong j = 0; j < x->len; j++)
+            if (poly_has(x->terms[j].num, K->k[i].var, K->r))
+                return 1;
+    }
+    return 0;
+}
+
+int kernel_reduce(Kernels *K, RatFun x)
+{
+    if (!K || K->nrel == 0)
+        return 0;
+    const Ring *r = K->r;
+    RatFun n, d, A, B;
+    ratfun_init(n, r);
+    ratfun_init(d, r);
+    ratfun_init(A, r);
+    ratfun_init(B, r);
+    int rc = 0;
+    for (slong i = K->n - 1; i >= 0 && rc == 0; i--) {
+        const Kernel *k = &K->k[i];
+        if (!k->deg || !rf_has(x, k->var, r))
+            continue;
+        reduce_poly(n, x->num, k, r);
+        reduce_poly(d, x->den, k, r);
+        if (ratfun_div(x, n, d, r) != 0) {
+            rc = KERNEL_EZERO;
+            break;
+        }
+        if (k->deg != 2 || !poly_has(x->den, k->var, r))
+            continue;
+        /* den = A + B v: multiply by A - B v; den becomes A^2 - B^2 rel */
+        slong var = k->var;
+        ulong e0 = 0, e1 = 1;
+        fmpz_mpoly_get_coeff_vars_ui(A->num, x->den, &var, &e0, 1, r->ctx);
+        fmpz_mpoly_one(A->den, r->ctx);
+        fmpz_mpoly_get_coeff_vars_ui(B->num, x->den, &var, &e1, 1, r->ctx);
+        fmpz_mpoly_one(B->den, r->ctx);
+        ratfun_canonicalise(A, r);
+        ratfun_canonicalise(B, r);
+        RatFun conj, v;
+        ratfun_init(conj, r);
+        ratfun_init(v, r);
+        ratfun_gen(v, var, r);
+        ratfun_mul(conj, B, v, r);
+        ratfun_sub(conj, A, conj, r);
+        /* new numerator: num * conj (a polynomial), reduced */
+        fmpz_mpoly_set(n->num, x->num, r->ctx);
+        fmpz_mpoly_one(n->den, r->ctx);
+        ratfun_canonicalise(n, r);
+        ratfun_mul(n, n, conj, r);
+        {
+            RatFun red;
+            ratfun_init(red, r);
+            reduce_poly(red, n->num, k, r);
+            ratfun_swap(n, red, r);
+            ratfun_clear(red, r);
+        }
+        /* new denominator: A^2 - B^2 rel */
+        ratfun_mul(A, A, A, r);
+        ratfun_mul(B, B, B, r);
+        ratfun_mul(B, B, k->rel, r);
+        ratfun_sub(d, A, B, r);
+        ratfun_clear(v, r);
+        ratfun_clear(conj, r);
+        if (ratfun_div(x, n, d, r) != 0)
+            rc = KERNEL_EZERO;
+    }
+    ratfun_clear(B, r);
+    ratfun_clear(A, r);
+    ratfun_clear(d, r);
+    ratfun_clear(n, r);
+    if (rc)
+        K->why = "a denominator vanishes identically by the functions' "
+                 "identities";
+    return rc;
+}
+
+/* applies f to every weight of x and rebuilds x over one denominator */
+typedef int (*WeightFn)(Kernels *K, RatFun w, void *ctx);
+
+static int map_weights(Kernels *K, PointEq res, const PointEq x, WeightFn f,
+                       void *ctx)
+{
+    const Ring *r = K->r;
+    slong n = x->len;
+    RatFunStruct *w = ratfun_vec_init(n, r);
+    slong *pts = pc_xmalloc(sizeof(slong) * (size_t)(n ? n : 1));
+    pteq_get_weights(w, x, r);
+    int rc = 0;
+    for (slong i = 0; i < n && rc == 0; i++) {
+        pts[i] = x->terms[i].point;
+        rc = f(K, w + i, ctx);
+    }
+    if (rc == 0)
+        pteq_set_weights(res, pts, w, n, r);
+    free(pts);
+    ratfun_vec_clear(w, n, r);
+    return rc;
+}
+
+static int reduce_one(Kernels *K, RatFun w, void *ctx)
+{
+    (void)ctx;
+    return kernel_reduce(K, w);
+}
+
+int kernel_reduce_pteq(Kernels *K, PointEq x)
+{
+    if (!K || K->nrel == 0 || !kernel_uses_pteq(K, x, 0))
+        return 0;
+    return map_weights(K, x, x, reduce_one, NULL);
+}
+
+/* ---- dependence, derivatives ------------------------------------------- */
+
+static int kernel_arg_depends(const Kernels *K, const Kernel *k, slong var)
+{
+    if (k->fn == KF_PI)
+        return 0;
+    return kernel_depends(K, k->arg, var) ||
+           (k->fn == KF_ATAN2 && kernel_depends(K, k->arg2, var));
+}
+
+int kernel_depends(const Kernels *K, const RatFun x, slong var)
+{
+    if (rf_has(x, var, K ? K->r : NULL))
+        return 1;
+    if (!K)
+        return 0;
+    for (slong i = 0; i < K->n; i++)
+        if (rf_has(x, K->k[i].var, K->r) &&
+            kernel_arg_depends(K, &K->k[i], var))
+            return 1;
+    return 0;
+}
+
+int kernel_depends_pteq(const Kernels *K, const PointEq x, slong var)
+{
+    RatFunStruct v;
+    for (slong j = 0; j < x->len; j++) {
+        fmpz_mpoly_struct num = *x->terms[j].num, den = *x->den;
+        v.num[0] = num;
+        v.den[0] = den;
+        if (kernel_depends(K, &v, var))
+            return 1;
+    }
+    return 0;
+}
+
+/* res = d k / d var for kernel k whose argument depends on var */
+static int kernel_dk(Kernels *K, RatFun res, const Kernel *k0, slong var)
+{
+    const Ring *r = K->r;
+    /* K->k never moves (cap slots allocated at once), but the values are
+     * copied: kernel_apply below adds kernels */
+    KernelFn fn = k0->fn;
+    slong kv = k0->var, q = k0->q;
+    RatFun a, b, da, db, t, u;
+    ratfun_init(a, r);
+    ratfun_init(b, r);
+    ratfun_init(da, r);
+    ratfun_init(db, r);
+    ratfun_init(t, r);
+    ratfun_init(u, r);
+    ratfun_set(a, k0->arg, r);
+    ratfun_set(b, k0->arg2, r);
+    int rc = kernel_derivative(K, da, a, var);
+    if (rc == 0 && fn == KF_ATAN2)
+        rc = kernel_derivative(K, db, b, var);
+    if (rc != 0)
+        goto done;
+    ratfun_gen(t, kv, r); /* the kernel itself */
+    switch (fn) {
+    case KF_SIN:
+    case KF_SINH:
+        rc = kernel_apply(K, u, fn == KF_SIN ? KF_COS : KF_COSH, a, NULL);
+        ratfun_mul(res, u, da, r);
+        break;
+    case KF_COS:
+    case KF_COSH:
+        rc = kernel_apply(K, u, fn == KF_COS ? KF_SIN : KF_SINH, a, NULL);
+        if (fn == KF_COS)
+            ratfun_neg(u, u, r);
+        ratfun_mul(res, u, da, r);
+        break;
+    case KF_EXP:
+        ratfun_mul(res, t, da, r);
+        break;
+    case KF_LN:
+        ratfun_div(res, da, a, r);
+        break;
+    case KF_SQRT:
+    case KF_ROOT: /* v' = v a' / (q a) */
+        ratfun_mul(res, t, da, r);
+        ratfun_div(res, res, a, r);
+        ratfun_set_si(u, fn == KF_SQRT ? 2 : q, r);
+        ratfun_div(res, res, u, r);
+        break;
+    case KF_ASIN:
+    case KF_ACOS: /* +-a' / sqrt(1 - a^2) */
+        ratfun_mul(u, a, a, r);
+        ratfun_neg(u, u, r);
+        ratfun_set_si(t, 1, r);
+        ratfun_add(u, u, t, r);
+        rc = kernel_apply(K, u, KF_SQRT, u, NULL);
+        if (rc == 0 && ratfun_div(res, da, u, r) != 0)
+            rc = KERNEL_EZERO;
+        if (fn == KF_ACOS)
+            ratfun_neg(res, res, r);
+        break;
+    case KF_ATAN: /* a' / (1 + a^2) */
+        ratfun_mul(u, a, a, r);
+        ratfun_set_si(t, 1, r);
+        ratfun_add(u, u, t, r);
+        ratfun_div(res, da, u, r);
+        break;
+    case KF_ATAN2: /* (x y' - y x') / (x^2 + y^2), y = a, x = b */
+        ratfun_mul(t, b, da, r);
+        ratfun_mul(u, a, db, r);
+        ratfun_sub(t, t, u, r);
+        ratfun_mul(u, a, a, r);
+        ratfun_mul(da, b, b, r);
+        ratfun_add(u, u, da, r);
+        if (ratfun_div(res, t, u, r) != 0)
+            rc = KERNEL_EZERO;
+        break;
+    case KF_SIGN:
+    case KF_PI:
+    default:
+        ratfun_zero(res, r);
+        break;
+    }
+done:
+    ratfun_clear(u, r);
+    ratfun_clear(t, r);
+    ratfun_clear(db, r);
+    ratfun_clear(da, r);
+    ratfun_clear(b, r);
+    ratfun_clear(a, r);
+    return rc;
+}
+
+int kernel_derivative(Kernels *K, RatFun res, const RatFun x, slong var)
+{
+    const Ring *r = K->r;
+    RatFun acc, part, dk;
+    ratfun_init(acc, r);
+    ratfun_init(part, r);
+    ratfun_init(dk, r);
+    ratfun_derivative(acc, x, var, r);
+    int rc = 0;
+    slong n = K->n; /* kernels made while deriving do not occur in x */
+    for (slong i = 0; i < n && rc == 0; i++) {
+        slong kv = K->k[i].var;
+        if (!rf_has(x, kv, r) || !kernel_arg_depends(K, &K->k[i], var))
+            continue;
+        rc = kernel_dk(K, dk, &K->k[i], var);
+        if (rc != 0)
+            break;
+        ratfun_derivative(part, x, kv, r);
+        ratfun_mul(part, part, dk, r);
+        ratfun_add(acc, acc, part, r);
+    }
+    if (rc == 0) {
+        ratfun_swap(res, acc, r);
+        rc = kernel_reduce(K, res);
+    }
+    ratfun_clear(dk, r);
+    ratfun_clear(part, r);
+    ratfun_clear(acc, r);
+    return rc;
+}
+
+typedef struct DerivCtx {
+    slong var;
+} DerivCtx;
+
+static int derive_one(Kernels *K, RatFun w, void *ctx)
+{
+    return kernel_derivative(K, w, w, ((DerivCtx *)ctx)->var);
+}
+
+int kernel_derivative_pteq(Kernels *K, PointEq res, const PointEq x,
+                           slong var)
+{
+    DerivCtx c = {var};
+    return map_weights(K, res, x, derive_one, &c);
+}
+
+/* ---- substitution ------------------------------------------------------- */
+
+/* res = P with the variables v where img[v] != NULL replaced by img[v],
+ * simultaneously (over the product of the images' denominators) */
+static void compose_poly(RatFun res, const fmpz_mpoly_t P,
+                         RatFunStruct *const *img, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    slong *deg = flint_malloc(sizeof(slong) * (size_t)nv);
+    ulong *e = flint_malloc(sizeof(ulong) * (size_t)nv);
+    fmpz_mpoly_degrees_si(deg, P, r->ctx);
+    fmpz_mpoly_t sum, term, pw, L;
+    fmpz_mpoly_init(sum, r->ctx);
+    fmpz_mpoly_init(term, r->ctx);
+    fmpz_mpoly_init(pw, r->ctx);
+    fmpz_mpoly_init(L, r->ctx);
+    fmpz_mpoly_one(L, r->ctx);
+    for (slong v = 0; v < nv; v++)
+        if (img[v] && deg[v] > 0) {
+            fmpz_mpoly_pow_ui(pw, img[v]->den, (ulong)deg[v], r->ctx);
+            fmpz_mpoly_mul(L, L, pw, r->ctx);
+        }
+    fmpz_t c;
+    fmpz_init(c);
+    for (slong i = 0; i < P->length; i++) {
+        fmpz_mpoly_get_term_coeff_fmpz(c, P, i, r->ctx);
+        fmpz_mpoly_get_term_exp_ui(e, P, i, r->ctx);
+        fmpz_mpoly_set_fmpz(term, c, r->ctx);
+        for (slong v = 0; v < nv; v++) {
+            if (!img[v]) {
+                if (e[v]) {
+                    fmpz_mpoly_gen(pw, v, r->ctx);
+                    fmpz_mpoly_pow_ui(pw, pw, e[v], r->ctx);
+                    fmpz_mpoly_mul(term, term, pw, r->ctx);
+                }
+                continue;
+            }
+            if (deg[v] <= 0)
+                continue;
+            if (e[v]) {
+                fmpz_mpoly_pow_ui(pw, img[v]->num, e[v], r->ctx);
+                fmpz_mpoly_mul(term, term, pw, r->ctx);
+            }
+            if ((ulong)deg[v] > e[v]) {
+                fmpz_mpoly_pow_ui(pw, img[v]->den, (ulong)deg[v] - e[v],
+                                  r->ctx);
+                fmpz_mpoly_mul(term, term, pw, r->ctx);
+            }
+        }
+        fmpz_mpoly_add(sum, sum, term, r->ctx);
+    }
+    fmpz_clear(c);
+    fmpz_mpoly_swap(res->num, sum, r->ctx);
+    fmpz_mpoly_swap(res->den, L, r->ctx);
+    ratfun_canonicalise(res, r);
+    fmpz_mpoly_clear(L, r->ctx);
+    fmpz_mpoly_clear(pw, r->ctx);
+    fmpz_mpoly_clear(term, r->ctx);
+    fmpz_mpoly_clear(sum, r->ctx);
+    flint_free(e);
+    flint_free(deg);
+}
+
+static int compose_img(RatFun res, const RatFun x, RatFunStruct *const *img,
+                       const Ring *r)
+{
+    RatFun n, d;
+    ratfun_init(n, r);
+    ratfun_init(d, r);
+    compose_poly(n, x->num, img, r);
+    compose_poly(d, x->den, img, r);
+    int rc = ratfun_div(res, n, d, r) == 0 ? 0 : RATFUN_EPOLE;
+    ratfun_clear(d, r);
+    ratfun_clear(n, r);
+    return rc;
+}
+
+/* the images of var := s and of every kernel depending on var; NULL
+ * entries stay */
+static int build_images(Kernels *K, RatFunStruct **img, slong var,
+                        const RatFun s)
+{
+    const Ring *r = K->r;
+    img[var] = ratfun_vec_init(1, r);
+    ratfun_set(img[var], s, r);
+    slong n = K->n;
+    int rc = 0;
+    RatFun a, b;
+    ratfun_init(a, r);
+    ratfun_init(b, r);
+    for (slong i = 0; i < n && rc == 0; i++) {
+        if (!kernel_arg_depends(K, &K->k[i], var))
+            continue;
+        KernelFn fn = K->k[i].fn;
+        slong q = K->k[i].q, kv = K->k[i].var;
+        rc = compose_img(a, K->k[i].arg, img, r);
+        if (rc == 0 && fn == KF_ATAN2)
+            rc = compose_img(b, K->k[i].arg2, img, r);
+        if (rc == 0)
+            rc = kernel_reduce(K, a);
+        if (rc != 0)
+            break;
+        RatFunStruct *v = ratfun_vec_init(1, r);
+        if (fn == KF_ROOT)
+            rc = kernel_pow_q(K, v, a, 1, q);
+        else
+            rc = kernel_apply(K, v, fn, a, fn == KF_ATAN2 ? b : NULL);
+        img[kv] = v;
+    }
+    ratfun_clear(b, r);
+    ratfun_clear(a, r);
+    return rc;
+}
+
+static void free_images(RatFunStruct **img, slong nv, const Ring *r)
+{
+    for (slong v = 0; v < nv; v++)
+        if (img[v])
+            ratfun_vec_clear(img[v], 1, r);
+    free(img);
+}
+
+int kernel_compose(Kernels *K, RatFun res, const RatFun x, slong var,
+                   const RatFun s)
+{
+    const Ring *r = K->r;
+    slong nv = r->ctx->minfo->nvars;
+    RatFunStruct **img = pc_xcalloc((size_t)nv, sizeof *img);
+    int rc = build_images(K, img, var, s);
+    if (rc == 0)
+        rc = compose_img(res, x, img, r);
+    if (rc == 0)
+        rc = kernel_reduce(K, res);
+    free_images(img, nv, r);
+    return rc;
+}
+
+typedef struct ComposeCtx {
+    RatFunStruct **img;
+} ComposeCtx;
+
+static int compose_one(Kernels *K, RatFun w, void *ctx)
+{
+    int rc = compose_img(w, w, ((ComposeCtx *)ctx)->img, K->r);
+    return rc ? rc : kernel_reduce(K, w);
+}
+
+int kernel_compose_pteq(Kernels *K, PointEq res, const PointEq x, slong var,
+                        const RatFun s)
+{
+    const Ring *r = K->r;
+    slong nv = r->ctx->minfo->nvars;
+    RatFunStruct **img = pc_xcalloc((size_t)nv, sizeof *img);
+    int rc = build_images(K, img, var, s);
+    ComposeCtx c = {img};
+    if (rc == 0)
+        rc = map_weights(K, res, x, compose_one, &c);
+    free_images(img, nv, r);
+    return rc;
+}

@@ -1,0 +1,147 @@
+/*
+ * kernel.h - transcendental and algebraic atoms as ring variables.
+ *
+ * A kernel is a variable of the compilation's ring that stands for f(arg):
+ * sin(phi), sqrt(a^2 - b^2), exp(t), pi.  Its argument is kept canonical
+ * (a reduced RatFun over the variables before it), so equal kernels are one
+ * variable whatever the spelling: sin(2*t) and sin(t + t) are the same
+ * kernel, sin(-t) is -sin(t).  The ring reserves the kernel slots when it is
+ * built (kernels_slots estimates how many a scheme can need); a scheme that
+ * asks for more gets a located error, never a crash.
+ *
+ * Identities are applied by a normal form: some kernels carry a relation
+ * v^q = rel (rel a RatFun of earlier variables):
+ *
+ *   cos(a)^2  = 1 - sin(a)^2     (cos is created with sin, right after it)
+ *   cosh(a)^2 = 1 + sinh(a)^2
+ *   sqrt(a)^2 = a,   root(a, q)^q = a,   sign(a)^2 = 1
+ *
+ * kernel_reduce rewrites every power v^k (k >= q) with the relation and
+ * rationalises denominators that are linear in a quadratic kernel (multiply
+ * by the conjugate).  With squares pulled out of square roots
+ * (sqrt(x^2*y) = abs(x)*sqrt(y), abs(x) = x*sign(x)), the relations form a
+ * triangular set of irreducible polynomials, so a reduced numerator is zero
+ * exactly when the value is zero: weight sums and degenerate geometry are
+ * decided exactly where these identities decide them.  Identities beyond
+ * them (sin(2a) = 2 sin(a) cos(a), sqrt(x)*sqrt(y) = sqrt(x*y)) are not
+ * applied: such a value is kept as written.
+ *
+ * Rewrites applied when a kernel is made: tan = sin/cos, tanh = sinh/cosh,
+ * abs(x) = x*sign(x), exp(a + b) = exp(a)*exp(b), exp(k*a) = exp(a)^k,
+ * exp(ln(x)) = x, ln(exp(x)) = x, odd and even symmetry (sin(-a) =
+ * -sin(a), cos(-a) = cos(a), acos(-a) = pi - acos(a) ...), and exact values
+ * at numbers (sin(0) = 0, cos(pi) = -1, sin(pi/6) = 1/2, sqrt(8) =
+ * 2*sqrt(2), asin(1) = pi/2 ...).
+ */
+#ifndef PC_KERNEL_H
+#define PC_KERNEL_H
+
+#include "compiler/pteq.h"
+#include "compiler/ratfun.h"
+#include "compiler/ring.h"
+
+/* X(id, name, C function): the functions a kernel can stand for */
+#define PC_KERNEL_FNS(X)                                                       \
+    X(KF_PI, "pi", NULL)                                                       \
+    X(KF_SQRT, "sqrt", "sqrt")                                                 \
+    X(KF_ROOT, "root", "cbrt") /* real q-th root, q >= 3 (emit: pow) */        \
+    X(KF_SIN, "sin", "sin")                                                    \
+    X(KF_COS, "cos", "cos")                                                    \
+    X(KF_SINH, "sinh", "sinh")                                                 \
+    X(KF_COSH, "cosh", "cosh")                                                 \
+    X(KF_EXP, "exp", "exp")                                                    \
+    X(KF_LN, "ln", "log")                                                      \
+    X(KF_ASIN, "asin", "asin")                                                 \
+    X(KF_ACOS, "acos", "acos")                                                 \
+    X(KF_ATAN, "atan", "atan")                                                 \
+    X(KF_ATAN2, "atan2", "atan2")                                              \
+    X(KF_SIGN, "sign", NULL)
+
+typedef enum KernelFn {
+#define X(id, name, cfn) id,
+    PC_KERNEL_FNS(X)
+#undef X
+        KF_COUNT
+} KernelFn;
+
+/* the function's name in a scheme ("sin") */
+const char *kernel_fn_name(KernelFn f);
+
+typedef struct Kernel {
+    KernelFn fn;
+    slong var;   // its ring variable
+    slong q;     // KF_ROOT: the index of the root (>= 3); else 0
+    RatFun arg;  // the canonical argument (KF_ATAN2: y); 0 for pi
+    RatFun arg2; // KF_ATAN2: x
+    slong deg;   // the relation var^deg = rel, or 0: none
+    RatFun rel;
+    char *name;  // text, as printed ("sin(phi)")
+    char *latex; // LaTeX
+} Kernel;
+
+typedef struct Kernels {
+    Ring *r;
+    slong first; // the first kernel variable
+    slong cap;   // kernel slots in the ring
+    slong n;     // kernels made: variables first .. first+n-1
+    Kernel *k;
+    int nrel;    // kernels with a relation
+    /* an error message of the last failed call (static storage) */
+    const char *why;
+} Kernels;
+
+/* Errors of the calls below (0 is success). */
+enum {
+    KERNEL_EFULL = -10,   // no kernel slot left
+    KERNEL_EDOMAIN = -11, // a number outside the function's domain: why
+    KERNEL_EZERO = -12,   // a denominator vanishes by the identities
+    KERNEL_EBIG = -13,    // a power or an argument beyond the size limits
+};
+
+/* The number of kernel slots a scheme may need, from its count of
+ * function calls and rational powers (calls), of subst() and diff() uses
+ * (ops) and of uses of pi: 0 when it has none. */
+slong kernels_slots(slong calls, slong ops, slong pis);
+
+/* K manages the ring variables first .. first+cap-1 of r (r's names of
+ * those variables are set as kernels are made). */
+void kernels_init(Kernels *K, Ring *r, slong first, slong cap);
+void kernels_clear(Kernels *K);
+
+/* the kernel of ring variable var, or NULL (a param, a const ...) */
+const Kernel *kernels_of_var(const Kernels *K, slong var);
+
+/* res = f(x) (res = atan2(x, y) for KF_ATAN2; y NULL otherwise), reduced.
+ * KF_PI ignores x. */
+int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
+                 const RatFun y);
+/* res = x^(p/q), q > 1, gcd(p, q) = 1, |p| and q at most 1000 */
+int kernel_pow_q(Kernels *K, RatFun res, const RatFun x, slong p, slong q);
+/* res = |x| = x*sign(x) */
+int kernel_abs(Kernels *K, RatFun res, const RatFun x);
+
+/* Normal form modulo the relations (in place); KERNEL_EZERO when the
+ * denominator reduces to zero. */
+int kernel_reduce(Kernels *K, RatFun x);
+int kernel_reduce_pteq(Kernels *K, PointEq x);
+/* 1 when x uses a kernel variable with a relation (reduction can change
+ * it), or any kernel at all (any = 1) */
+int kernel_uses(const Kernels *K, const RatFun x, int any);
+int kernel_uses_pteq(const Kernels *K, const PointEq x, int any);
+
+/* 1 when x depends on variable var, directly or through a kernel */
+int kernel_depends(const Kernels *K, const RatFun x, slong var);
+int kernel_depends_pteq(const Kernels *K, const PointEq x, slong var);
+
+/* the total derivative d x / d var (the chain rule through kernels) */
+int kernel_derivative(Kernels *K, RatFun res, const RatFun x, slong var);
+int kernel_derivative_pteq(Kernels *K, PointEq res, const PointEq x,
+                           slong var);
+/* x with var replaced by s, also inside kernels (sin(t) -> sin(s));
+ * KERNEL_EZERO / RATFUN_EPOLE when a denominator vanishes */
+int kernel_compose(Kernels *K, RatFun res, const RatFun x, slong var,
+                   const RatFun s);
+int kernel_compose_pteq(Kernels *K, PointEq res, const PointEq x, slong var,
+                        const RatFun s);
+
+#endif
