@@ -411,6 +411,44 @@ static int plan_fn_of(const Kernel *k)
     }
 }
 
+/* is x exactly an exp() kernel? */
+static int is_exp_kernel(const Lower *L, const RatFunStruct *x)
+{
+    for (slong i = 0; i < L->K->n; i++) {
+        const Kernel *k = &L->K->k[i];
+        if (k->fn != KF_EXP || !fmpz_mpoly_is_one(x->den, L->r->ctx) ||
+            x->num->length != 1 ||
+            fmpz_mpoly_total_degree_si(x->num, L->r->ctx) != 1 ||
+            fmpz_mpoly_degree_si(x->num, k->var, L->r->ctx) != 1)
+            continue;
+        fmpz_t c;
+        fmpz_init(c);
+        fmpz_mpoly_get_term_coeff_fmpz(c, x->num, 0, L->r->ctx);
+        int one = fmpz_is_one(c);
+        fmpz_clear(c);
+        if (one)
+            return 1;
+    }
+    return 0;
+}
+
+static int kernel_reg(Lower *L, slong var);
+
+/* the register of the argument of the exp() kernel x */
+static int plan_fn_arg(Lower *L, const RatFunStruct *x)
+{
+    for (slong i = 0; i < L->K->n; i++)
+        if (L->K->k[i].fn == KF_EXP &&
+            fmpz_mpoly_degree_si(x->num, L->K->k[i].var, L->r->ctx) == 1) {
+            kernel_reg(L, L->K->k[i].var); /* marks it used, flags */
+            int a, bad = -1;
+            const RatFunStruct *w[1] = {L->K->k[i].arg};
+            lower_weights(L, w, 1, &a, &bad);
+            return a;
+        }
+    return plan_const(L->p, 0);
+}
+
 /* the register of kernel variable var: its argument lowered like a
  * weight, the function applied once (shared by every use); marks it used
  * by the current output */
@@ -447,6 +485,11 @@ static int kernel_reg(Lower *L, slong var)
             if (abad >= 0)
                 bad = bad < 0 ? abad : plan_add(L->p, bad, abad);
             reg = plan_atan2(L->p, a, b);
+        } else if (k->fn == KF_ROOT && is_exp_kernel(L, k->arg)) {
+            /* exp(m)^(1/q) is computed as exp(m/q): no overflow of exp(m) */
+            reg = plan_fn(L->p, PLAN_FN_EXP,
+                          plan_mul(L->p, plan_fn_arg(L, k->arg),
+                                   plan_const(L->p, 1.0 / (double)k->q)));
         } else {
             int fn = plan_fn_of(k);
             reg = plan_fn(L->p, fn, a);

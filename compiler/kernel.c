@@ -156,11 +156,53 @@ static slong find(const Kernels *K, KernelFn fn, const RatFun a,
     return -1;
 }
 
+/* s without one pair of parentheses around the whole of it */
+static char *unwrap(char *s)
+{
+    size_t n = strlen(s);
+    if (n < 2 || s[0] != '(' || s[n - 1] != ')')
+        return s;
+    int depth = 0;
+    for (size_t i = 0; i < n; i++) {
+        depth += s[i] == '(' ? 1 : s[i] == ')' ? -1 : 0;
+        if (depth == 0 && i < n - 1)
+            return s; /* "(a)*(b)" */
+    }
+    memmove(s, s + 1, n - 2);
+    s[n - 2] = '\0';
+    return s;
+}
+
+static char *arg_text(const RatFun x, const Ring *r, FormatStyle st)
+{
+    char *s = format_scalar(x, r, st);
+    if (st == FMT_LATEX && strncmp(s, "\\left(", 6) == 0) {
+        size_t n = strlen(s);
+        if (n > 13 && strcmp(s + n - 7, "\\right)") == 0) {
+            /* a LaTeX group around everything: drop it when it is one */
+            int depth = 0, whole = 1;
+            for (size_t i = 0; i < n; i++) {
+                if (strncmp(s + i, "\\left(", 6) == 0)
+                    depth++;
+                else if (strncmp(s + i, "\\right)", 7) == 0 &&
+                         --depth == 0 && i + 7 < n)
+                    whole = 0;
+            }
+            if (whole) {
+                memmove(s, s + 6, n - 13);
+                s[n - 13] = '\0';
+            }
+        }
+        return s;
+    }
+    return st == FMT_TEXT ? unwrap(s) : s;
+}
+
 static void set_names(Kernels *K, Kernel *k)
 {
     const Ring *r = K->r;
-    char *a = k->fn == KF_PI ? NULL : format_scalar(k->arg, r, FMT_TEXT);
-    char *la = k->fn == KF_PI ? NULL : format_scalar(k->arg, r, FMT_LATEX);
+    char *a = k->fn == KF_PI ? NULL : arg_text(k->arg, r, FMT_TEXT);
+    char *la = k->fn == KF_PI ? NULL : arg_text(k->arg, r, FMT_LATEX);
     char buf[48];
     switch (k->fn) {
     case KF_PI:
@@ -171,15 +213,33 @@ static void set_names(Kernels *K, Kernel *k)
         k->name = cat3("sqrt(", a, ")");
         k->latex = cat3("\\sqrt{", la, "}");
         break;
-    case KF_ROOT:
+    case KF_ROOT: {
+        slong v;
+        const Kernel *e = rf_is_var(k->arg, &v, r) ? kernels_of_var(K, v)
+                                                   : NULL;
+        if (e && e->fn == KF_EXP) { /* the q-th root of exp(m): exp(m/q) */
+            RatFun m;
+            ratfun_init(m, r);
+            ratfun_set_si(m, k->q, r);
+            ratfun_div(m, e->arg, m, r);
+            char *ma = arg_text(m, r, FMT_TEXT);
+            char *ml = arg_text(m, r, FMT_LATEX);
+            k->name = cat3("exp(", ma, ")");
+            k->latex = cat3("e^{", ml, "}");
+            free(ma);
+            free(ml);
+            ratfun_clear(m, r);
+            break;
+        }
         snprintf(buf, sizeof buf, ", %ld)", (long)k->q);
         k->name = cat3("root(", a, buf);
         snprintf(buf, sizeof buf, "\\sqrt[%ld]{", (long)k->q);
         k->latex = cat3(buf, la, "}");
         break;
+    }
     case KF_ATAN2: {
-        char *b = format_scalar(k->arg2, r, FMT_TEXT);
-        char *lb = format_scalar(k->arg2, r, FMT_LATEX);
+        char *b = arg_text(k->arg2, r, FMT_TEXT);
+        char *lb = arg_text(k->arg2, r, FMT_LATEX);
         char *t = cat3("atan2(", a, ", ");
         k->name = cat3(t, b, ")");
         free(t);
@@ -596,7 +656,25 @@ static int exp_split(Kernels *K, RatFun res, const RatFun x)
             lk->fn == KF_LN) {
             ratfun_set(t, lk->arg, r); /* exp(p*ln(y)) = y^p */
         } else {
-            rc = intern(K, t, KF_EXP, t, NULL, 0);
+            /* exp(m*p/q) = exp(m/q)^p, and exp(m/q) is the q-th root of
+             * exp(m) (one kernel for every q: exp(t/2)^2 = exp(t)) */
+            slong q = 1;
+            if (!fmpz_mpoly_is_one(t->den, r->ctx)) {
+                fmpz_t qq;
+                fmpz_init(qq);
+                fmpz_mpoly_get_fmpz(qq, t->den, r->ctx);
+                q = fmpz_fits_si(qq) ? fmpz_get_si(qq) : 0;
+                fmpz_clear(qq);
+                fmpz_mpoly_one(t->den, r->ctx);
+            }
+            if (q <= 0 || q > MAX_POWER) {
+                K->why = "exp() of a number with a denominator over 1000";
+                rc = KERNEL_EBIG;
+            } else {
+                rc = intern(K, t, KF_EXP, t, NULL, 0);
+                if (rc == 0 && q > 1)
+                    rc = intern(K, t, KF_ROOT, t, NULL, q);
+            }
         }
         if (rc == 0) {
             if (ratfun_pow_si(t, t, p, r) != 0) {

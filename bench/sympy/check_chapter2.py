@@ -33,10 +33,12 @@ given, the conic is fitted through sample points and its foci computed.
 
 Prints one line per check: "OK ..." or "MISPRINT ..." (a misprint that was
 expected, i.e. confirmed) and exits non-zero if any check FAILs, that is, if
-a result differs from what is recorded in /tmp/ch2/findings.md (a derived
-formula that does not satisfy its defining property, or a printed formula
-whose verdict changed).  Used for the expectations of the chapter 2.1
-schemes.
+a result differs from the verdicts recorded here (a derived formula that
+does not satisfy its defining property, a stated correction that does not
+equal the derivation, or a printed formula whose verdict changed).  Lines
+starting with REMARK are comments on the text, not checks.  Used for the
+expectations of the chapter 2.1 schemes (ellipse_*.pcs, hyperbola_*.pcs,
+circle_*.pcs).  Runs in about 10 s.
 """
 import random
 import sys
@@ -347,9 +349,10 @@ w_217 = decompose(M_fa, F2e, Ae, Be)                    # simplex A B F2
 printed_216 = [a * sp.sin(sp.acos(e_) - phi) / ((1 - e_ * sp.cos(phi)) * (a * b + ce * b)),
                p_ * sp.sin(phi) / ((1 - e_ * sp.cos(phi)) * b)]
 compare("(2.16) M in simplex A B F2", printed_216, w_217, ell_samples, expect_ok=False,
-        why="the (A - F2) weight lacks the factor p = b^2/a (as printed it has the dimension "
-            "1/length): correct p a sin(arccos e - phi)/((1 - e cos phi)(ab + cb)); "
-            "the (B - F2) weight agrees",
+        why="printed (A - F2) weight a sin(arccos e - phi)/((1 - e cos phi)(ab + cb)) lacks the "
+            "factor p = b^2/a (as printed it has the dimension 1/length; the (B - F2) weight has its p): "
+            "correct p a sin(arccos e - phi)/((1 - e cos phi)(ab + cb)) = "
+            "b(b cos phi - c sin phi)/(a(1 - e cos phi)(a + c)), which is (2.17)",
         correct=[p_ * a * sp.sin(sp.acos(e_) - phi) / ((1 - e_ * sp.cos(phi)) * (a * b + ce * b)), printed_216[1]])
 printed_217 = [b * (b * sp.cos(phi) - ce * sp.sin(phi)) / (a * (1 - e_ * sp.cos(phi)) * (a + ce)),
                b * sp.sin(phi) / (a * (1 - e_ * sp.cos(phi)))]

@@ -1,0 +1,364 @@
+/*
+ * test_kernel.c - the scalar functions (compiler/kernel.h) through the
+ * library API:
+ *
+ *   - identities: expressions that are zero by sin^2 + cos^2 = 1,
+ *     sqrt(x)^2 = x, exp(a)exp(b) = exp(a + b), the symmetries and the exact
+ *     values must derive to exactly 0; expressions that are not zero must not;
+ *   - values: every function, derivative and substitution is evaluated by
+ *     the runtime and compared with the same quantity written by hand with
+ *     <math.h> (independent of the algebra), at several parameter values;
+ *   - derivatives: diff() of assorted expressions against central finite
+ *     differences of the runtime's values of the expression itself;
+ *   - domains: samples outside a function's domain have status 4 and NaN.
+ */
+/* cmocka.h needs these first, in this order */
+// clang-format off
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+// clang-format on
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "libpointcalc.h"
+
+/* derives "param t, u / const a, b / NAME = EXPR" and returns the scheme */
+static pc_scheme *scheme_of(const char *defs)
+{
+    char text[8192];
+    snprintf(text, sizeof text,
+             "point A, B\nparam t, u\nconst a, b\n%s\n", defs);
+    char *diag = NULL;
+    pc_scheme *s = pc_scheme_parse("k.pcs", text, strlen(text), &diag);
+    if (!s)
+        fprintf(stderr, "%s\n%s", text, diag ? diag : "");
+    free(diag);
+    assert_non_null(s);
+    return s;
+}
+
+/* the value of scalar output o as text */
+static char *value_str(const pc_scheme *s, const char *name)
+{
+    int o = pc_find_output(s, name);
+    assert_true(o >= 0);
+    return pc_weight_str(s, o, -1);
+}
+
+static void test_identities_reduce_to_zero(void **state)
+{
+    (void)state;
+    static const char *const zero[] = {
+        "sin(t)^2 + cos(t)^2 - 1",
+        "sin(t)^4 + 2*sin(t)^2*cos(t)^2 + cos(t)^4 - 1",
+        "cos(t)^3 - cos(t)*(1 - sin(t)^2)",
+        "cosh(u)^2 - sinh(u)^2 - 1",
+        "tan(t) - sin(t)/cos(t)",
+        "tanh(t)*cosh(t) - sinh(t)",
+        "sqrt(t)^2 - t",
+        "sqrt(a^2 - b^2)^2 - a^2 + b^2",
+        "t^(2/3)*t^(1/3) - t",
+        "(t^(1/3))^3 - t",
+        "1/(1 + sqrt(t))*(1 + sqrt(t)) - 1",
+        "1/(1 + sqrt(t)) - (1 - sqrt(t))/(1 - t)",
+        "sqrt(8) - 2*sqrt(2)",
+        "sqrt(6) - sqrt(2)*sqrt(3)",
+        "sqrt(12/5) - 2*sqrt(15)/5",
+        "sqrt(t^2*u) - abs(t)*sqrt(u)",
+        "abs(t)^2 - t^2",
+        "abs(-3) - 3",
+        "sign(t)^2 - 1",
+        "exp(t)*exp(u) - exp(t + u)",
+        "exp(2*t)/exp(t)^2 - 1",
+        "exp(t/2)^2 - exp(t)",
+        "exp(ln(t)) - t",
+        "exp(3*ln(t)) - t^3",
+        "ln(exp(u)) - u",
+        "sin(-t) + sin(t)",
+        "cos(-t) - cos(t)",
+        "asin(-t) + asin(t)",
+        "acos(-t) + acos(t) - pi",
+        "sin(2*t) - sin(t + t)",
+        "sin(0) + cos(pi) + 1",
+        "sin(pi/6) - 1/2",
+        "cos(pi/4) - sqrt(2)/2",
+        "sin(2*pi/3) - sqrt(3)/2",
+        "cos(7*pi/6) + sqrt(3)/2",
+        "sin(-pi/2) + 1",
+        "asin(1/2) - pi/6",
+        "acos(0) - pi/2",
+        "atan(1) - pi/4",
+        "8^(1/3) - 2",
+        "(1/27)^(-2/3) - 9",
+        "subst(cos(t)^2, t, pi/3) - 1/4",
+        "subst(sin(t)*sqrt(t), t, u^2) - abs(u)*sin(u^2)",
+        "subst(exp(t), t, ln(u)) - u",
+        "diff(sin(t), t) - cos(t)",
+        "diff(sqrt(t), t) - 1/(2*sqrt(t))",
+        "diff(asin(t), t) - 1/sqrt(1 - t^2)",
+        "diff(exp(t)*sin(t), t, 2) - 2*exp(t)*cos(t)",
+        "diff(atan2(u, t), t) + u/(t^2 + u^2)",
+        "diff(tan(t), t) - 1/cos(t)^2",
+        "diff(ln(t), t) - 1/t",
+        "diff(sign(t), t)",
+    };
+    size_t n = sizeof zero / sizeof zero[0];
+    for (size_t i = 0; i < n; i++) {
+        char defs[512];
+        snprintf(defs, sizeof defs, "z = %s\noutput z", zero[i]);
+        pc_scheme *s = scheme_of(defs);
+        char *v = value_str(s, "z");
+        if (strcmp(v, "0") != 0)
+            fprintf(stderr, "not reduced to 0: %s  ->  %s\n", zero[i], v);
+        assert_string_equal(v, "0");
+        free(v);
+        pc_scheme_free(s);
+    }
+}
+
+/* values that are not zero must not be claimed so (the identities not
+ * applied are documented: the double angle, products of roots of
+ * polynomials) */
+static void test_non_identities_stay(void **state)
+{
+    (void)state;
+    static const char *const nonzero[] = {
+        "sin(t) + cos(t) - 1",
+        "sin(2*t) - 2*sin(t)*cos(t)",
+        "sqrt(t)*sqrt(u) - sqrt(t*u)",
+        "exp(t) - 1",
+        "sqrt(t^2) - t",
+        "sqrt(2) + sqrt(3) - sqrt(5)",
+        "sin(1) - 1",
+        "cosh(t)^2 + sinh(t)^2 - 1",
+        "pi - 3",
+    };
+    for (size_t i = 0; i < sizeof nonzero / sizeof nonzero[0]; i++) {
+        char defs[512];
+        snprintf(defs, sizeof defs, "z = %s\noutput z", nonzero[i]);
+        pc_scheme *s = scheme_of(defs);
+        char *v = value_str(s, "z");
+        if (strcmp(v, "0") == 0)
+            fprintf(stderr, "wrongly 0: %s\n", nonzero[i]);
+        assert_string_not_equal(v, "0");
+        free(v);
+        pc_scheme_free(s);
+    }
+}
+
+/* ---- values against <math.h> -------------------------------------------- */
+
+typedef double (*Ref)(double t, double u, double a, double b);
+
+static double r_sin2(double t, double u, double a, double b)
+{
+    (void)u, (void)a, (void)b;
+    return sin(2 * t) + cos(t / 3);
+}
+static double r_roots(double t, double u, double a, double b)
+{
+    (void)u, (void)b;
+    return sqrt(a * a - b * b) + cbrt(t - 1) + pow(u, 2.0 / 5.0);
+}
+static double r_inv(double t, double u, double a, double b)
+{
+    (void)a, (void)b;
+    return asin(t / 2) + acos(u / 3) + atan(t * u) + atan2(u, t);
+}
+static double r_hyp(double t, double u, double a, double b)
+{
+    (void)a, (void)b;
+    return sinh(t) * cosh(u) + tanh(t - u) + exp(-t) * log(u);
+}
+static double r_abs(double t, double u, double a, double b)
+{
+    (void)a, (void)b;
+    return fabs(t - u) + (t > u ? 1.0 : t < u ? -1.0 : 0.0) + 3.14159265358979323846 * t;
+}
+static double r_dellipse(double t, double u, double a, double b)
+{
+    /* d/dt of a b / sqrt(a^2 sin^2 t + b^2 cos^2 t)  (2.10), by hand */
+    (void)u;
+    double s = sin(t), c = cos(t), q = a * a * s * s + b * b * c * c;
+    return -a * b * (a * a - b * b) * s * c / (q * sqrt(q));
+}
+static double r_subst(double t, double u, double a, double b)
+{
+    (void)a, (void)b;
+    /* subst(sin(t)*sqrt(t) + exp(t*u), t, u^2 + t) */
+    double s = u * u + t;
+    return sin(s) * sqrt(s) + exp(s * u);
+}
+static double r_d2(double t, double u, double a, double b)
+{
+    (void)u, (void)a, (void)b;
+    /* d2/dt2 of sqrt(1 + t^2) = (1 + t^2)^(-3/2) */
+    return pow(1 + t * t, -1.5);
+}
+static double r_tan(double t, double u, double a, double b)
+{
+    (void)u, (void)a, (void)b;
+    return tan(t) / (1 + tan(t) * tan(t)) + tan(t / 2);
+}
+
+static void test_values_match_libm(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *expr;
+        Ref ref;
+    } cases[] = {
+        {"sin(2*t) + cos(t/3)", r_sin2},
+        {"sqrt(a^2 - b^2) + (t - 1)^(1/3) + u^(2/5)", r_roots},
+        {"asin(t/2) + acos(u/3) + atan(t*u) + atan2(u, t)", r_inv},
+        {"sinh(t)*cosh(u) + tanh(t - u) + exp(-t)*ln(u)", r_hyp},
+        {"abs(t - u) + sign(t - u) + pi*t", r_abs},
+        {"diff(a*b/sqrt(a^2*sin(t)^2 + b^2*cos(t)^2), t)", r_dellipse},
+        {"subst(sin(t)*sqrt(t) + exp(t*u), t, u^2 + t)", r_subst},
+        {"diff(sqrt(1 + t^2), t, 2)", r_d2},
+        {"tan(t)/(1 + tan(t)^2) + tan(t/2)", r_tan},
+    };
+    const double ts[] = {0.3, 0.71, 1.37, -0.45};
+    const double us[] = {0.9, 1.7, 0.25, 2.3};
+    const double ab[2] = {3.0, 1.25};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char defs[512];
+        snprintf(defs, sizeof defs, "z = %s\noutput z", cases[i].expr);
+        pc_scheme *s = scheme_of(defs);
+        char *diag = NULL;
+        pc_plan *p = pc_compile(s, &diag);
+        if (!p)
+            fprintf(stderr, "%s: %s\n", cases[i].expr, diag ? diag : "");
+        free(diag);
+        assert_non_null(p);
+        const double *params[2] = {ts, us};
+        double out[4];
+        unsigned char st[4];
+        assert_int_equal(pc_eval(p, 0, 4, params, ab, NULL, 1, out, st, NULL),
+                         PC_OK);
+        for (int k = 0; k < 4; k++) {
+            double want = cases[i].ref(ts[k], us[k], ab[0], ab[1]);
+            double err = fabs(out[k] - want) / fmax(1.0, fabs(want));
+            if (!(err < 1e-12))
+                fprintf(stderr, "%s at t=%g u=%g: %.17g, want %.17g\n",
+                        cases[i].expr, ts[k], us[k], out[k], want);
+            assert_true(err < 1e-12);
+            assert_int_equal(st[k], 0);
+        }
+        pc_plan_free(p);
+        pc_scheme_free(s);
+    }
+}
+
+/* diff(f) against central differences of f, both through the runtime */
+static void test_derivatives_match_differences(void **state)
+{
+    (void)state;
+    static const char *const fs[] = {
+        "sin(t)*cos(u*t)",
+        "sqrt(1 + t^2)*exp(-t^2)",
+        "atan2(t^2 + 1, u - t)",
+        "acos(t/3)*ln(2 + t)",
+        "(t^2 + 2)^(1/3)*tanh(t)",
+        "a*b/sqrt(a^2*sin(t)^2 + b^2*cos(t)^2)",
+        "subst(sin(u)^2, u, t^2)",
+        "asin(sin(t)/2)",
+    };
+    const double t0[] = {0.2, 0.8, 1.3};
+    const double us[] = {0.7, 0.7, 0.7};
+    const double ab[2] = {2.0, 0.5};
+    const double h = 1e-5;
+    for (size_t i = 0; i < sizeof fs / sizeof fs[0]; i++) {
+        char defs[512];
+        snprintf(defs, sizeof defs, "f = %s\ndf = diff(f, t)\noutput f, df",
+                 fs[i]);
+        pc_scheme *s = scheme_of(defs);
+        pc_plan *p = pc_compile(s, NULL);
+        assert_non_null(p);
+        double tp[3], tm[3], fp[3], fm[3], df[3];
+        for (int k = 0; k < 3; k++) {
+            tp[k] = t0[k] + h;
+            tm[k] = t0[k] - h;
+        }
+        const double *pp[2] = {tp, us}, *pm[2] = {tm, us}, *p0[2] = {t0, us};
+        assert_int_equal(pc_eval(p, 0, 3, pp, ab, NULL, 1, fp, NULL, NULL),
+                         PC_OK);
+        assert_int_equal(pc_eval(p, 0, 3, pm, ab, NULL, 1, fm, NULL, NULL),
+                         PC_OK);
+        assert_int_equal(pc_eval(p, 1, 3, p0, ab, NULL, 1, df, NULL, NULL),
+                         PC_OK);
+        for (int k = 0; k < 3; k++) {
+            double fd = (fp[k] - fm[k]) / (2 * h);
+            double err = fabs(fd - df[k]) / fmax(1.0, fabs(df[k]));
+            if (!(err < 1e-7))
+                fprintf(stderr, "diff(%s) at t=%g: %.12g, differences %.12g\n",
+                        fs[i], t0[k], df[k], fd);
+            assert_true(err < 1e-7);
+        }
+        pc_plan_free(p);
+        pc_scheme_free(s);
+    }
+}
+
+/* a point whose weights are functions: sum 1 by sin^2 + cos^2 = 1 */
+static void test_point_with_function_weights(void **state)
+{
+    (void)state;
+    pc_scheme *s = scheme_of("M = A*cos(t)^2 + B*sin(t)^2\n"
+                             "V = diff(M, t)\noutput M, V");
+    assert_int_equal(pc_output_kind(s, pc_find_output(s, "M")), PC_POINT);
+    assert_int_equal(pc_output_kind(s, pc_find_output(s, "V")), PC_VECTOR);
+    char *w = pc_weight_str(s, pc_find_output(s, "M"), 0);
+    /* cos^2 is written through sin: 1 - sin(t)^2 */
+    assert_string_equal(w, "-sin(t)^2+1");
+    free(w);
+    pc_scheme_free(s);
+}
+
+static void test_domain_status(void **state)
+{
+    (void)state;
+    pc_scheme *s = scheme_of("w = sqrt(t) + ln(u) + asin(t - u)\noutput w");
+    pc_plan *p = pc_compile(s, NULL);
+    assert_non_null(p);
+    const double ts[] = {-1.0, 0.5, 0.5, 0.5};
+    const double us[] = {0.5, 0.0, 2.0, 0.25};
+    const double *params[2] = {ts, us};
+    double out[4];
+    unsigned char st[4];
+    size_t nbad = 0;
+    assert_int_equal(
+        pc_eval(p, 0, 4, params, (const double[]){1, 1}, NULL, 1, out, st,
+                &nbad),
+        PC_OK);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(st[k], 4);
+        assert_true(isnan(out[k]));
+    }
+    assert_int_equal(st[3], 0);
+    assert_true(fabs(out[3] - (sqrt(0.5) + log(0.25) + asin(0.25))) < 1e-14);
+    assert_int_equal(nbad, 3);
+    pc_plan_free(p);
+    pc_scheme_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_identities_reduce_to_zero),
+        cmocka_unit_test(test_non_identities_stay),
+        cmocka_unit_test(test_values_match_libm),
+        cmocka_unit_test(test_derivatives_match_differences),
+        cmocka_unit_test(test_point_with_function_weights),
+        cmocka_unit_test(test_domain_status),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    pc_cleanup();
+    return rc;
+}
