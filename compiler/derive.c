@@ -1711,6 +1711,26 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
                         ? -1
                         : d->nparams + d->nconsts + m++;
     }
+    /* what is known of the signs: `const a > 0`, param ranges with a
+     * lower end >= 0 (abs() and sqrt() of squares use it, kernel.h) */
+    for (int i = 0; D.K && i < info->nconsts; i++)
+        if (info->consts[i]->decl && info->consts[i]->decl->lo)
+            kernels_set_sign(D.K, d->nparams + i, KSIGN_POS);
+    for (int i = 0; D.K && i < info->nparams; i++) {
+        const Stmt *st = info->params[i]->decl;
+        RatFun lo;
+        ratfun_init(lo, r);
+        if (st && st->lo && eval_scalar(&D, lo, st->lo) == 0) {
+            fmpq_t q;
+            fmpq_init(q);
+            int sg = ratfun_get_fmpq(q, lo, r) ? 2 * fmpq_sgn(q) + !fmpq_sgn(q)
+                                               : kernel_sign(D.K, lo);
+            fmpq_clear(q);
+            if (sg > 0)
+                kernels_set_sign(D.K, i, sg == 2 ? KSIGN_POS : KSIGN_NONNEG);
+        }
+        ratfun_clear(lo, r);
+    }
     for (int i = 0; i < info->nsteps; i++) {
         if (info->steps[i]->kind == ST_SOLVE)
             derive_solve(&D, info->steps[i]);

@@ -55,6 +55,7 @@ void kernels_init(Kernels *K, Ring *r, slong first, slong cap)
     K->k = cap ? pc_xcalloc((size_t)cap, sizeof(Kernel)) : NULL;
     K->nrel = 0;
     K->why = NULL;
+    K->sign = pc_xcalloc((size_t)(first > 0 ? first : 1), 1);
     if (cap > 0 && !r->latex)
         r->latex = flint_calloc((size_t)(r->nvars ? r->nvars : 1),
                                 sizeof(const char *));
@@ -71,6 +72,8 @@ void kernels_clear(Kernels *K)
         free(k->latex);
     }
     free(K->k);
+    free(K->sign);
+    K->sign = NULL;
     K->k = NULL;
     K->n = K->cap = 0;
 }
@@ -134,6 +137,91 @@ static char *cat3(const char *a, const char *b, const char *c)
     char *s = pc_xmalloc(n);
     snprintf(s, n, "%s%s%s", a, b, c);
     return s;
+}
+
+/* ---- signs --------------------------------------------------------------- */
+
+void kernels_set_sign(Kernels *K, slong var, int sign)
+{
+    if (var >= 0 && var < K->first)
+        K->sign[var] = (unsigned char)sign;
+}
+
+/* KSIGN_* of a variable */
+static int var_sign(const Kernels *K, slong v)
+{
+    if (v < K->first)
+        return K->sign[v];
+    const Kernel *k = kernels_of_var(K, v);
+    if (!k)
+        return KSIGN_UNKNOWN;
+    switch (k->fn) {
+    case KF_PI:
+    case KF_EXP:
+    case KF_COSH:
+        return KSIGN_POS;
+    case KF_SQRT:
+    case KF_ACOS:
+        return KSIGN_NONNEG;
+    case KF_ROOT:
+        return k->q % 2 == 0 ? KSIGN_NONNEG : KSIGN_UNKNOWN;
+    default:
+        return KSIGN_UNKNOWN;
+    }
+}
+
+/* the sign of a polynomial as kernel_sign says it */
+static int poly_sign(const Kernels *K, const fmpz_mpoly_t P)
+{
+    const Ring *r = K->r;
+    slong nv = r->ctx->minfo->nvars;
+    if (P->length == 0)
+        return 0;
+    ulong *e = flint_malloc(sizeof(ulong) * (size_t)nv);
+    fmpz_t c;
+    fmpz_init(c);
+    int s = 0, strict = 0;
+    for (slong i = 0; i < P->length; i++) {
+        fmpz_mpoly_get_term_coeff_fmpz(c, P, i, r->ctx);
+        fmpz_mpoly_get_term_exp_ui(e, P, i, r->ctx);
+        int cs = fmpz_sgn(c);
+        if (s == 0)
+            s = cs;
+        if (cs != s) {
+            s = 0;
+            break;
+        }
+        int pos = 1, ok = 1;
+        for (slong v = 0; v < nv && ok; v++) {
+            if (!e[v])
+                continue;
+            int vs = var_sign(K, v);
+            if (vs != KSIGN_POS)
+                pos = 0;
+            if (e[v] % 2 && vs == KSIGN_UNKNOWN)
+                ok = 0;
+        }
+        if (!ok) {
+            s = 0;
+            break;
+        }
+        strict |= pos;
+    }
+    fmpz_clear(c);
+    flint_free(e);
+    return s * (strict ? 2 : 1);
+}
+
+int kernel_sign(const Kernels *K, const RatFun x)
+{
+    if (!K || ratfun_is_zero(x, K->r))
+        return 0;
+    int n = poly_sign(K, x->num), d = poly_sign(K, x->den);
+    if (n == 0 || d == 0)
+        return 0;
+    int s = (n > 0) == (d > 0) ? 1 : -1;
+    /* strict when both are: n/d > 0 needs n != 0; d is never 0 */
+    return s * (abs(n) == 2 ? 2 : 1);
 }
 
 /* ---- making kernels ----------------------------------------------------- */
@@ -561,9 +649,12 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
                 mul_poly_pow(rest, f->poly + i, part ? -1 : 1, r);
             if (h == 0)
                 continue;
-            /* |f|^h = f^h * sign(f)^h */
+            /* |f|^h = f^h * sign(f)^h, sign(f) = +-1 where it is known */
             mul_poly_pow(acc, f->poly + i, part ? -h : h, r);
-            if (h % 2) {
+            int fs = poly_sign(K, f->poly + i);
+            if (h % 2 && fs < 0)
+                ratfun_neg(acc, acc, r);
+            if (h % 2 && fs == 0) {
                 fmpz_mpoly_set(t->num, f->poly + i, r->ctx);
                 fmpz_mpoly_one(t->den, r->ctx);
                 ratfun_canonicalise(t, r);
@@ -841,8 +932,105 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
         }
         fmpq_clear(c);
     }
+    /* sin, cos of x + k*pi/2: +-sin(x), +-cos(x) */
+    if ((f == KF_SIN || f == KF_COS) && fmpz_mpoly_is_fmpz(a->den, r->ctx)) {
+        slong pi = find(K, KF_PI, NULL, NULL, 0);
+        fmpz_t c, dd;
+        fmpz_init(c);
+        fmpz_init(dd);
+        fmpz_mpoly_get_fmpz(dd, a->den, r->ctx);
+        if (pi >= 0) {
+            fmpz_mpoly_t m;
+            fmpz_mpoly_init(m, r->ctx);
+            fmpz_mpoly_gen(m, K->k[pi].var, r->ctx);
+            fmpz_mpoly_get_coeff_fmpz_monomial(c, a->num, m, r->ctx);
+            fmpz_mpoly_clear(m, r->ctx);
+        }
+        /* the multiple of pi/2: 2c/d */
+        fmpz_mul_ui(c, c, 2);
+        if (!fmpz_is_zero(c) && fmpz_divisible(c, dd)) {
+            fmpz_divexact(c, c, dd);
+            fmpz_fdiv_r(c, c, (fmpz[]){4});
+            slong k = fmpz_get_si(c);
+            RatFun xr, kp;
+            ratfun_init(xr, r);
+            ratfun_init(kp, r);
+            rc = pi_times(K, kp, k, 2); /* k*pi/2 */
+            if (rc == 0) {
+                /* the rest: a minus its multiple of pi (exactly k pi/2
+                 * modulo 2 pi) */
+                fmpq_t cq;
+                fmpq_init(cq);
+                fmpz_t c0;
+                fmpz_init(c0);
+                fmpz_mpoly_t m;
+                fmpz_mpoly_init(m, r->ctx);
+                fmpz_mpoly_gen(m, K->k[pi].var, r->ctx);
+                fmpz_mpoly_get_coeff_fmpz_monomial(c0, a->num, m, r->ctx);
+                fmpz_mpoly_scalar_mul_fmpz(m, m, c0, r->ctx);
+                fmpz_mpoly_sub(xr->num, a->num, m, r->ctx);
+                fmpz_mpoly_set(xr->den, a->den, r->ctx);
+                ratfun_canonicalise(xr, r);
+                fmpz_mpoly_clear(m, r->ctx);
+                fmpz_clear(c0);
+                fmpq_clear(cq);
+                /* sin(xr + k pi/2) = sin, cos, -sin, -cos (k = 0..3);
+                 * cos(xr + k pi/2) = cos, -sin, -cos, sin */
+                int use_cos = (f == KF_SIN) == (k % 2 == 1);
+                int neg = f == KF_SIN ? k >= 2 : (k == 1 || k == 2);
+                if (!ratfun_is_zero(xr, r)) {
+                    rc = kernel_apply(K, res, use_cos ? KF_COS : KF_SIN, xr,
+                                      NULL);
+                    if (rc == 0 && neg)
+                        ratfun_neg(res, res, r);
+                    ratfun_clear(kp, r);
+                    ratfun_clear(xr, r);
+                    fmpz_clear(dd);
+                    fmpz_clear(c);
+                    goto done;
+                }
+            }
+            ratfun_clear(kp, r);
+            ratfun_clear(xr, r);
+        }
+        fmpz_clear(dd);
+        fmpz_clear(c);
+    }
     slong v;
     const Kernel *in = rf_is_var(a, &v, r) ? kernels_of_var(K, v) : NULL;
+    if (f == KF_SIGN && abs(kernel_sign(K, a)) == 2) {
+        ratfun_set_si(res, kernel_sign(K, a) > 0 ? 1 : -1, r);
+        rc = 0;
+        goto done;
+    }
+    /* sin(asin(x)) = x, cos(acos(x)) = x, cos(asin(x)) = sin(acos(x)) =
+     * sqrt(1 - x^2), sin(atan(x)) = x/sqrt(1 + x^2), cos(atan(x)) =
+     * 1/sqrt(1 + x^2) */
+    if ((f == KF_SIN || f == KF_COS) && in &&
+        (in->fn == KF_ASIN || in->fn == KF_ACOS || in->fn == KF_ATAN)) {
+        RatFun yv, w;
+        ratfun_init(yv, r);
+        ratfun_init(w, r);
+        ratfun_set(yv, in->arg, r);
+        ratfun_mul(w, yv, yv, r);
+        if (in->fn == KF_ATAN) {
+            ratfun_set_si(res, 1, r);
+            ratfun_add(w, res, w, r);
+            rc = kernel_apply(K, w, KF_SQRT, w, NULL);
+            if (rc == 0)
+                ratfun_div(res, f == KF_SIN ? yv : res, w, r);
+        } else if ((f == KF_SIN) == (in->fn == KF_ASIN)) {
+            ratfun_set(res, yv, r);
+            rc = 0;
+        } else {
+            ratfun_set_si(res, 1, r);
+            ratfun_sub(w, res, w, r);
+            rc = kernel_apply(K, res, KF_SQRT, w, NULL);
+        }
+        ratfun_clear(w, r);
+        ratfun_clear(yv, r);
+        goto done;
+    }
     switch (f) {
     case KF_SQRT:
         rc = sqrt_poly(K, res, a);
@@ -934,6 +1122,14 @@ int kernel_pow_q(Kernels *K, RatFun res, const RatFun x, slong p, slong q)
 
 int kernel_abs(Kernels *K, RatFun res, const RatFun x)
 {
+    int known = kernel_sign(K, x);
+    if (known) {
+        if (known > 0)
+            ratfun_set(res, x, K->r);
+        else
+            ratfun_neg(res, x, K->r);
+        return 0;
+    }
     RatFun s;
     ratfun_init(s, K->r);
     int rc = kernel_apply(K, s, KF_SIGN, x, NULL);

@@ -86,6 +86,8 @@ typedef struct Kernels {
     slong n;     // kernels made: variables first .. first+n-1
     Kernel *k;
     int nrel;    // kernels with a relation
+    unsigned char *sign; // per ring variable before the kernels: what is
+                         // known of its sign, KSIGN_* (kernels_set_sign)
     /* an error message of the last failed call (static storage) */
     const char *why;
 } Kernels;
@@ -107,6 +109,18 @@ slong kernels_slots(slong calls, slong ops, slong pis);
  * those variables are set as kernels are made). */
 void kernels_init(Kernels *K, Ring *r, slong first, slong cap);
 void kernels_clear(Kernels *K);
+
+/* What is known of a value's sign: declared (`const a > 0`, a param range
+ * with lo >= 0) for variables, proved by kernel_sign for expressions. */
+enum { KSIGN_UNKNOWN = 0, KSIGN_NONNEG = 1, KSIGN_POS = 2 };
+void kernels_set_sign(Kernels *K, slong var, int sign);
+/* +1 when x >= 0 is proved (+2: x > 0), -1 / -2 for x <= 0 / x < 0, 0 when
+ * unknown: every term of the numerator and of the denominator has the
+ * same sign, each variable of odd degree in it being known >= 0
+ * (declared, or a kernel that is: sqrt, exp, pi, cosh, acos, even roots).
+ * abs() and the squares pulled out of sqrt() use it: sqrt(a^2) = a for
+ * `const a > 0`, sign(a)*a otherwise. */
+int kernel_sign(const Kernels *K, const RatFun x);
 
 /* the kernel of ring variable var, or NULL (a param, a const ...) */
 const Kernel *kernels_of_var(const Kernels *K, slong var);

@@ -506,6 +506,7 @@ static void declare_list(Sema *S, Stmt *st, SymKind kind)
         Sym *s = declare(S, nm->text, nm->span, kind);
         if (!s)
             continue;
+        s->decl = st;
         switch (kind) {
         case SYM_POINT:
             s->is_point = 1;
@@ -638,6 +639,18 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
             break;
         case ST_CONST:
             declare_list(&S, st, SYM_CONST);
+            if (st->lo) { /* only `> 0` */
+                int zero = st->lo->kind == ND_NUM;
+                for (const char *c = zero ? st->lo->text : ""; *c; c++)
+                    zero &= *c == '0' || *c == '.';
+                if (!zero) {
+                    diag_error(S.diag, st->lo->span,
+                               "expected 0: a constant can be declared "
+                               "positive ('const a, b > 0'), with no other "
+                               "bound");
+                    st->lo = NULL;
+                }
+            }
             break;
         case ST_UNKNOWN:
             declare_list(&S, st, SYM_UNKNOWN);

@@ -69,6 +69,8 @@ struct Sym {
     int index;     // see SymKind
     int is_point;  // SYM_POINT, SYM_DEF of a combination: 1; scalars: 0
     int bad;       // its definition had an error: uses are not re-reported
+    Stmt *decl;    // SYM_PARAM, SYM_CONST: the declaring statement (its
+                   // range, or the `> 0` of a positive constant)
     Stmt *def;     // SYM_DEF: the statement
     Stmt *solved_by; // SYM_UNKNOWN: the `solve` that determines it, or NULL
     Sym *next;     // in the table's bucket chain

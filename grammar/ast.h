@@ -109,7 +109,8 @@ struct Stmt {
     Name *names;  // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...)
     Name *name;   // ST_SCHEME, ST_DEF: the defined name
     Node *expr;   // ST_DEF
-    Node *lo, *hi; // ST_PARAM range (both NULL when absent)
+    Node *lo, *hi; // ST_PARAM range (both NULL when absent); ST_CONST:
+                   // lo the bound of `const a > 0` (hi NULL)
     Equation *eqs; // ST_SOLVE
 
     // filled by sema

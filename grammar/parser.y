@@ -140,6 +140,8 @@ stmt:
 | PARAM names IN '[' expr ',' expr ']'
                     { $$ = stmt_names(p, ST_PARAM, $2, @$); $$->lo = $5; $$->hi = $7; }
 | CONST names       { $$ = stmt_names(p, ST_CONST, $2, @$); }
+| CONST names '>' expr /* `const a, b > 0`: positive constants */
+                    { $$ = stmt_names(p, ST_CONST, $2, @$); $$->lo = $4; }
 | UNKNOWN names     { $$ = stmt_names(p, ST_UNKNOWN, $2, @$); }
 | UNKNOWN IDENT names /* `unknown scalar k`: scalar is a keyword only here */
                     { if (strcmp($2, "scalar") != 0) {
