@@ -521,6 +521,10 @@ static void instruction(const Ctx *C, int r, const char *indent)
         }
         break;
     }
+    case PLAN_DIST:
+        fprintf(out, "pcdist_%s(%s, %s, dim)", C->N->prefix,
+                C->N->pt[x->a], C->N->pt[x->b]);
+        break;
     case PLAN_ATAN2:
         fputs("atan2(", out);
         operand(C, x->a);
@@ -590,10 +594,18 @@ static void unused_args(const Ctx *C)
         if (!used)
             fprintf(C->out, "    (void)%s;\n", C->N->in[i]);
     }
-    for (int i = 0; i < C->N->npt; i++)
-        if (C->o->kind == PLAN_SCALAR || !uses_point(C->o, i))
+    int dist = 0; /* distances read points and dim (metric atoms) */
+    for (int r = 0; r < p->nins; r++)
+        dist |= C->live[r] && p->ins[r].op == PLAN_DIST;
+    for (int i = 0; i < C->N->npt; i++) {
+        int used = C->o->kind != PLAN_SCALAR && uses_point(C->o, i);
+        for (int r = 0; r < p->nins && !used; r++)
+            used = C->live[r] && p->ins[r].op == PLAN_DIST &&
+                   (p->ins[r].a == i || p->ins[r].b == i);
+        if (!used)
             fprintf(C->out, "    (void)%s;\n", C->N->pt[i]);
-    if (C->o->kind == PLAN_SCALAR)
+    }
+    if (C->o->kind == PLAN_SCALAR && !dist)
         fputs("    (void)dim;\n", C->out);
 }
 
@@ -1112,6 +1124,21 @@ void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
     fputs("#include <math.h>\n#include <stddef.h>\n\n", out);
     prototypes(out, p, &N);
     fputs("\n", out);
+    for (int r = 0; r < p->nins; r++)
+        if (p->ins[r].op == PLAN_DIST) { /* the metric atoms' distances */
+            fprintf(out,
+                    "static inline double pcdist_%s(const double *p, const "
+                    "double *q, int dim)\n"
+                    "{\n"
+                    "    double s = 0.0;\n"
+                    "    int c;\n"
+                    "    for (c = 0; c < dim; c++)\n"
+                    "        s += (p[c] - q[c]) * (p[c] - q[c]);\n"
+                    "    return sqrt(s);\n"
+                    "}\n\n",
+                    N.prefix);
+            break;
+        }
     unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
     const char **role = pc_xcalloc((size_t)p->nins + 1, sizeof *role);
     char **owned = pc_xcalloc((size_t)p->nins + 1, sizeof *owned);

@@ -474,6 +474,8 @@ static int kernel_reg(Lower *L, slong var)
     int reg, bad = -1, abad = -1;
     if (k->fn == KF_PI) {
         reg = plan_const(L->p, 3.14159265358979323846);
+    } else if (k->fn == KF_DIST) {
+        reg = plan_dist(L->p, (int)k->pa, (int)k->pb);
     } else {
         int a, b = -1;
         const RatFunStruct *w[1] = {k->arg};

@@ -336,6 +336,186 @@ static int is_function(int b)
            b == BI_LN || b == BI_ABS || b == BI_SIGN;
 }
 
+/* ---- metric atoms: dot, dist, angle ------------------------------------- */
+
+/* res = U . V for vectors U, V (weights summing to 0) over the base points:
+ * with d_ij = |A_i A_j|,  U . V = -1/2 sum_{i != j} u_i v_j d_ij^2 */
+static int metric_dot(Deriver *D, RatFun res, const PointEq U,
+                      const PointEq V, const Node *n)
+{
+    const Ring *r = D->r;
+    RatFun acc, d, t;
+    ratfun_init(acc, r);
+    ratfun_init(d, r);
+    ratfun_init(t, r);
+    int rc = 0;
+    for (slong i = 0; i < U->len && rc == 0; i++)
+        for (slong j = 0; j < V->len && rc == 0; j++) {
+            slong a = U->terms[i].point, b = V->terms[j].point;
+            if (a == b)
+                continue;
+            rc = kernel_dist(D->K, d, a, b);
+            if (rc != 0)
+                break;
+            ratfun_mul(d, d, d, r);
+            fmpz_mpoly_mul(t->num, U->terms[i].num, V->terms[j].num, r->ctx);
+            fmpz_mpoly_one(t->den, r->ctx);
+            ratfun_canonicalise(t, r);
+            ratfun_mul(t, t, d, r);
+            ratfun_add(acc, acc, t, r);
+        }
+    if (rc == 0) {
+        fmpz_mpoly_mul(t->num, U->den, V->den, r->ctx);
+        fmpz_mpoly_scalar_mul_si(t->num, t->num, -2, r->ctx);
+        fmpz_mpoly_one(t->den, r->ctx);
+        ratfun_canonicalise(t, r);
+        ratfun_div(res, acc, t, r);
+        rc = kernel_reduce(D->K, res);
+    }
+    ratfun_clear(t, r);
+    ratfun_clear(d, r);
+    ratfun_clear(acc, r);
+    return rc ? kernel_error(D, rc, n, NULL) : 0;
+}
+
+/* evaluates argument k of n as a combination of base points: 0, or -1
+ * reported (an unsolved unknown point has no coordinates) */
+static int metric_arg(Deriver *D, PointEq res, const Node *n, int k)
+{
+    if (eval_point(D, res, nth(n, k)) < 0)
+        return -1;
+    for (slong i = 0; i < res->len; i++)
+        if (res->terms[i].point >= D->ucol0) {
+            diag_error(D->diag, nth(n, k)->span,
+                       "%s() of an unknown point: solve it before measuring "
+                       "it",
+                       n->text);
+            return -1;
+        }
+    return 0;
+}
+
+/* diff = P - Q must be a vector; 0 or -1 reported */
+static int metric_difference(Deriver *D, PointEq diff, const PointEq P,
+                             const PointEq Q, const Node *n, const Node *at)
+{
+    const Ring *r = D->r;
+    pteq_sub(diff, P, Q, r);
+    RatFun sum;
+    ratfun_init(sum, r);
+    pteq_weight_sum(sum, diff, r);
+    kernel_reduce(D->K, sum);
+    int ok = ratfun_is_zero(sum, r);
+    if (!ok) {
+        const char *what[2];
+        for (int k = 0; k < 2; k++) {
+            pteq_weight_sum(sum, k ? Q : P, r);
+            kernel_reduce(D->K, sum);
+            what[k] = ratfun_is_one(sum, r)    ? "a point"
+                      : ratfun_is_zero(sum, r) ? "a vector"
+                                               : "a combination of points";
+        }
+        int at_first = at == nth(n, 0);
+        diag_error(D->diag, at->span,
+                   "%s() measures two points (or two vectors), but this "
+                   "argument is %s and the %s %s",
+                   n->text, what[at_first ? 0 : 1],
+                   at_first ? "vertex" : "first", what[at_first ? 1 : 0]);
+    }
+    ratfun_clear(sum, r);
+    return ok ? 0 : -1;
+}
+
+static int eval_metric(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    PointEq P, Q, R, U, V;
+    pteq_init(P, r);
+    pteq_init(Q, r);
+    pteq_init(R, r);
+    pteq_init(U, r);
+    pteq_init(V, r);
+    RatFun uu, vv;
+    ratfun_init(uu, r);
+    ratfun_init(vv, r);
+    res->is_point = 0;
+    int st = -1, rc;
+    switch ((Builtin)n->builtin) {
+    case BI_DOT: {
+        if (metric_arg(D, U, n, 0) < 0 || metric_arg(D, V, n, 1) < 0)
+            break;
+        RatFun sum;
+        ratfun_init(sum, r);
+        int bad = -1;
+        for (int k = 0; k < 2 && bad < 0; k++) {
+            pteq_weight_sum(sum, k ? V : U, r);
+            kernel_reduce(D->K, sum);
+            if (!ratfun_is_zero(sum, r))
+                bad = k;
+        }
+        ratfun_clear(sum, r);
+        if (bad >= 0) {
+            diag_error(D->diag, nth(n, bad)->span,
+                       "dot() takes vectors (weights summing to 0), but this "
+                       "is a point; use a difference of points, e.g. dot(P - "
+                       "Q, R - Q)");
+            break;
+        }
+        st = metric_dot(D, res->s, U, V, n);
+        break;
+    }
+    case BI_DIST:
+        if (metric_arg(D, P, n, 0) < 0 || metric_arg(D, Q, n, 1) < 0 ||
+            metric_difference(D, U, P, Q, n, nth(n, 1)) < 0 ||
+            metric_dot(D, uu, U, U, n) < 0)
+            break;
+        rc = kernel_apply(D->K, res->s, KF_SQRT, uu, NULL);
+        st = rc ? kernel_error(D, rc, n, NULL) : 0;
+        break;
+    case BI_ANGLE:
+        if (metric_arg(D, P, n, 0) < 0 || metric_arg(D, Q, n, 1) < 0 ||
+            metric_arg(D, R, n, 2) < 0 ||
+            metric_difference(D, U, P, Q, n, nth(n, 0)) < 0 ||
+            metric_difference(D, V, R, Q, n, nth(n, 2)) < 0)
+            break;
+        if (pteq_is_zero(U, r) || pteq_is_zero(V, r)) {
+            diag_error(D->diag, nth(n, pteq_is_zero(U, r) ? 0 : 2)->span,
+                       "angle() of coincident points: this point is the "
+                       "vertex %s itself, so the angle is undefined",
+                       "(the second argument)");
+            break;
+        }
+        if (metric_dot(D, res->s, U, V, n) < 0 || metric_dot(D, uu, U, U, n) < 0 ||
+            metric_dot(D, vv, V, V, n) < 0)
+            break;
+        /* acos(U.V / (|U| |V|)) */
+        rc = kernel_apply(D->K, uu, KF_SQRT, uu, NULL);
+        if (rc == 0)
+            rc = kernel_apply(D->K, vv, KF_SQRT, vv, NULL);
+        if (rc == 0) {
+            ratfun_mul(uu, uu, vv, r);
+            if (ratfun_div(res->s, res->s, uu, r) != 0)
+                rc = KERNEL_EZERO;
+        }
+        if (rc == 0)
+            rc = kernel_reduce(D->K, res->s);
+        if (rc == 0)
+            rc = kernel_apply(D->K, res->s, KF_ACOS, res->s, NULL);
+        st = rc ? kernel_error(D, rc, n, NULL) : 0;
+        break;
+    default:
+        break;
+    }
+    ratfun_clear(vv, r);
+    ratfun_clear(uu, r);
+    pteq_clear(V, r);
+    pteq_clear(U, r);
+    pteq_clear(R, r);
+    pteq_clear(Q, r);
+    pteq_clear(P, r);
+    return st;
+}
+
 /* a scalar function applied: sqrt(x), sin(x), ..., pi */
 static int eval_function(Deriver *D, Value *res, const Node *n)
 {
@@ -405,11 +585,14 @@ done:
 /* counts what may need kernels: function calls and powers that are not
  * integer literals, subst() and diff(), pi */
 static void count_kernel_uses(const Node *n, slong *calls, slong *ops,
-                              slong *pis)
+                              slong *pis, slong *metric)
 {
     if (!n)
         return;
     if (n->kind == ND_CALL) {
+        if (n->builtin == BI_DOT || n->builtin == BI_DIST ||
+            n->builtin == BI_ANGLE)
+            ++*metric;
         if (n->builtin == BI_PI)
             ++*pis;
         else if (is_function(n->builtin))
@@ -417,12 +600,12 @@ static void count_kernel_uses(const Node *n, slong *calls, slong *ops,
         else if (n->builtin == BI_SUBST || n->builtin == BI_DIFF)
             ++*ops;
         for (const Node *a = n->args; a; a = a->next)
-            count_kernel_uses(a, calls, ops, pis);
+            count_kernel_uses(a, calls, ops, pis, metric);
     }
     if (n->kind == ND_POW && n->rhs->kind != ND_NUM)
         ++*calls;
-    count_kernel_uses(n->lhs, calls, ops, pis);
-    count_kernel_uses(n->rhs, calls, ops, pis);
+    count_kernel_uses(n->lhs, calls, ops, pis, metric);
+    count_kernel_uses(n->rhs, calls, ops, pis, metric);
 }
 
 static int eval_meet(Deriver *D, Value *res, const Node *n)
@@ -552,6 +735,16 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
     }
     res->is_point = ve.is_point;
     int xpoint = x->sym->kind == SYM_POINT || x->sym->kind == SYM_UNKNOWN;
+    if (xpoint && ve.is_point && x->sym->kind == SYM_POINT &&
+        kernel_measures_point(D->K, ve.p, x->sym->index)) {
+        diag_error(D->diag, x->span,
+                   "subst() cannot replace base point '%s' here: the "
+                   "expression measures distances to it (dist, dot, angle); "
+                   "replace the point before measuring",
+                   x->sym->name);
+        st = -1;
+        goto done;
+    }
     if (xpoint && ve.is_point) {
         RatFun wx;
         ratfun_init(wx, r);
@@ -642,6 +835,9 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
     int st = 0;
     if (is_function(n->builtin) || n->builtin == BI_PI)
         return eval_function(D, res, n);
+    if (n->builtin == BI_DOT || n->builtin == BI_DIST ||
+        n->builtin == BI_ANGLE)
+        return eval_metric(D, res, n);
     switch ((Builtin)n->builtin) {
     case BI_ALONG:
     case BI_DIVIDE: {
@@ -1660,18 +1856,22 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
             if (!info->unknowns[k]->is_point)
                 d->extra[m++] = pc_xstrdup(info->unknowns[k]->name);
         /* kernel slots (functions, pi) after the extra variables */
-        slong calls = 0, ops = 0, pis = 0;
+        slong calls = 0, ops = 0, pis = 0, metric = 0;
         for (int i = 0; i < info->nsteps; i++) {
             const Stmt *st = info->steps[i];
             if (st->kind == ST_DEF)
-                count_kernel_uses(st->expr, &calls, &ops, &pis);
+                count_kernel_uses(st->expr, &calls, &ops, &pis, &metric);
             for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL;
                  e; e = e->next) {
-                count_kernel_uses(e->lhs, &calls, &ops, &pis);
-                count_kernel_uses(e->rhs, &calls, &ops, &pis);
+                count_kernel_uses(e->lhs, &calls, &ops, &pis, &metric);
+                count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
             }
         }
-        slong nslots = kernels_slots(calls, ops, pis);
+        slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
+        if (metric) {
+            nslots += kernels_metric_slots(metric, d->npoints);
+            nslots = FLINT_MIN(nslots, 4096);
+        }
         slong nv = d->nparams + d->nconsts + d->nextra + nslots;
         const char **vars = pc_xmalloc(sizeof(char *) * (size_t)(nv ? nv : 1));
         for (slong i = nv - nslots; i < nv; i++)
@@ -1687,6 +1887,8 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
         if (nslots > 0) {
             d->kernels = pc_xcalloc(1, sizeof(Kernels));
             kernels_init(d->kernels, &d->ring, nv - nslots, nslots);
+            d->kernels->points = (const char *const *)d->points;
+            d->kernels->npoints = d->npoints;
         }
     }
     const Ring *r = &d->ring;
@@ -1720,7 +1922,10 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
         const Stmt *st = info->params[i]->decl;
         RatFun lo;
         ratfun_init(lo, r);
-        if (st && st->lo && eval_scalar(&D, lo, st->lo) == 0) {
+        /* (a range with an error of its own was reported by sema: its
+         * names may be unresolved) */
+        if (st && st->lo && diag.nerrors == 0 &&
+            eval_scalar(&D, lo, st->lo) == 0) {
             fmpq_t q;
             fmpq_init(q);
             int sg = ratfun_get_fmpq(q, lo, r) ? 2 * fmpq_sgn(q) + !fmpq_sgn(q)

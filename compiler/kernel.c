@@ -33,6 +33,14 @@ const char *kernel_fn_name(KernelFn f)
     return f >= 0 && f < KF_COUNT ? fn_names[f] : "?";
 }
 
+slong kernels_metric_slots(slong metric, slong npoints)
+{
+    if (metric == 0)
+        return 0;
+    /* every pair's distance, and per call a sqrt and an acos */
+    return npoints * (npoints - 1) / 2 + 3 * metric;
+}
+
 slong kernels_slots(slong calls, slong ops, slong pis)
 {
     if (calls == 0 && pis == 0)
@@ -56,6 +64,8 @@ void kernels_init(Kernels *K, Ring *r, slong first, slong cap)
     K->nrel = 0;
     K->why = NULL;
     K->sign = pc_xcalloc((size_t)(first > 0 ? first : 1), 1);
+    K->points = NULL;
+    K->npoints = 0;
     if (cap > 0 && !r->latex)
         r->latex = flint_calloc((size_t)(r->nvars ? r->nvars : 1),
                                 sizeof(const char *));
@@ -159,6 +169,7 @@ static int var_sign(const Kernels *K, slong v)
     case KF_PI:
     case KF_EXP:
     case KF_COSH:
+    case KF_DIST:
         return KSIGN_POS;
     case KF_SQRT:
     case KF_ACOS:
@@ -233,7 +244,7 @@ static slong find(const Kernels *K, KernelFn fn, const RatFun a,
         const Kernel *k = &K->k[i];
         if (k->fn != fn || k->q != q)
             continue;
-        if (fn == KF_PI)
+        if (fn == KF_PI || fn == KF_DIST) /* KF_DIST: q is the pair */
             return i;
         if (!ratfun_equal(k->arg, a, K->r))
             continue;
@@ -289,14 +300,25 @@ static char *arg_text(const RatFun x, const Ring *r, FormatStyle st)
 static void set_names(Kernels *K, Kernel *k)
 {
     const Ring *r = K->r;
-    char *a = k->fn == KF_PI ? NULL : arg_text(k->arg, r, FMT_TEXT);
-    char *la = k->fn == KF_PI ? NULL : arg_text(k->arg, r, FMT_LATEX);
+    int noarg = k->fn == KF_PI || k->fn == KF_DIST;
+    char *a = noarg ? NULL : arg_text(k->arg, r, FMT_TEXT);
+    char *la = noarg ? NULL : arg_text(k->arg, r, FMT_LATEX);
     char buf[48];
     switch (k->fn) {
     case KF_PI:
         k->name = pc_xstrdup("pi");
         k->latex = pc_xstrdup("\\pi");
         break;
+    case KF_DIST: {
+        const char *pa = K->points[k->pa], *pb = K->points[k->pb];
+        char *t = cat3("dist(", pa, ", ");
+        k->name = cat3(t, pb, ")");
+        free(t);
+        t = cat3("\\left|", pa, pb);
+        k->latex = cat3(t, "\\right|", "");
+        free(t);
+        break;
+    }
     case KF_SQRT:
         k->name = cat3("sqrt(", a, ")");
         k->latex = cat3("\\sqrt{", la, "}");
@@ -996,12 +1018,17 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
         fmpz_clear(dd);
         fmpz_clear(c);
     }
+    /* odd and even functions see a canonical sign: sin(-a) = -sin(a) */
+    int neg = rf_lead_sign(a, r) < 0 &&
+              (is_odd(f) || is_even(f) || f == KF_ACOS);
+    if (neg)
+        ratfun_neg(a, a, r);
     slong v;
     const Kernel *in = rf_is_var(a, &v, r) ? kernels_of_var(K, v) : NULL;
     if (f == KF_SIGN && abs(kernel_sign(K, a)) == 2) {
         ratfun_set_si(res, kernel_sign(K, a) > 0 ? 1 : -1, r);
         rc = 0;
-        goto done;
+        goto odd;
     }
     /* sin(asin(x)) = x, cos(acos(x)) = x, cos(asin(x)) = sin(acos(x)) =
      * sqrt(1 - x^2), sin(atan(x)) = x/sqrt(1 + x^2), cos(atan(x)) =
@@ -1029,7 +1056,7 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
         }
         ratfun_clear(w, r);
         ratfun_clear(yv, r);
-        goto done;
+        goto odd;
     }
     switch (f) {
     case KF_SQRT:
@@ -1048,10 +1075,8 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
     default:
         break;
     }
-    int neg = rf_lead_sign(a, r) < 0;
-    if (neg && (is_odd(f) || is_even(f) || f == KF_ACOS))
-        ratfun_neg(a, a, r);
     rc = intern(K, res, f, a, NULL, 0);
+odd:
     if (rc == 0 && neg && is_odd(f))
         ratfun_neg(res, res, r);
     if (rc == 0 && neg && f == KF_ACOS) { /* acos(-y) = pi - acos(y) */
@@ -1068,6 +1093,34 @@ done:
     if (rc == 0)
         rc = kernel_reduce(K, res);
     return rc;
+}
+
+int kernel_dist(Kernels *K, RatFun res, slong a, slong b)
+{
+    if (a == b) {
+        ratfun_zero(res, K->r);
+        return 0;
+    }
+    if (a > b) {
+        slong t = a;
+        a = b;
+        b = t;
+    }
+    slong q = a * (K->npoints + 1) + b;
+    slong i = find(K, KF_DIST, NULL, NULL, q);
+    if (i < 0) {
+        if (K->n + 1 > K->cap) {
+            K->why = "too many distinct functions in one scheme";
+            return KERNEL_EFULL;
+        }
+        Kernel *k = &K->k[K->n];
+        k->pa = a; /* set before add() names it */
+        k->pb = b;
+        k = add(K, KF_DIST, NULL, NULL, q);
+        i = K->n - 1;
+    }
+    ratfun_gen(res, K->k[i].var, K->r);
+    return 0;
 }
 
 int kernel_pow_q(Kernels *K, RatFun res, const RatFun x, slong p, slong q)
@@ -1320,7 +1373,7 @@ int kernel_reduce_pteq(Kernels *K, PointEq x)
 
 static int kernel_arg_depends(const Kernels *K, const Kernel *k, slong var)
 {
-    if (k->fn == KF_PI)
+    if (k->fn == KF_PI || k->fn == KF_DIST)
         return 0;
     return kernel_depends(K, k->arg, var) ||
            (k->fn == KF_ATAN2 && kernel_depends(K, k->arg2, var));
@@ -1347,6 +1400,32 @@ int kernel_depends_pteq(const Kernels *K, const PointEq x, slong var)
         v.num[0] = num;
         v.den[0] = den;
         if (kernel_depends(K, &v, var))
+            return 1;
+    }
+    return 0;
+}
+
+/* does kernel i measure base point `point`? */
+static int kernel_measures(const Kernels *K, slong i, slong point)
+{
+    const Kernel *k = &K->k[i];
+    if (k->fn == KF_DIST)
+        return k->pa == point || k->pb == point;
+    for (slong j = 0; j < i; j++)
+        if ((rf_has(k->arg, K->k[j].var, K->r) ||
+             rf_has(k->arg2, K->k[j].var, K->r)) &&
+            kernel_measures(K, j, point))
+            return 1;
+    return 0;
+}
+
+int kernel_measures_point(const Kernels *K, const PointEq x, slong point)
+{
+    for (slong i = 0; K && i < K->n; i++) {
+        int used = poly_has(x->den, K->k[i].var, K->r);
+        for (slong j = 0; j < x->len && !used; j++)
+            used = poly_has(x->terms[j].num, K->k[i].var, K->r);
+        if (used && kernel_measures(K, i, point))
             return 1;
     }
     return 0;

@@ -55,7 +55,8 @@
     X(KF_ACOS, "acos", "acos")                                                 \
     X(KF_ATAN, "atan", "atan")                                                 \
     X(KF_ATAN2, "atan2", "atan2")                                              \
-    X(KF_SIGN, "sign", NULL)
+    X(KF_SIGN, "sign", NULL)                                                   \
+    X(KF_DIST, "dist", NULL) /* |P_a P_b| of two base points: the metric */
 
 typedef enum KernelFn {
 #define X(id, name, cfn) id,
@@ -71,6 +72,7 @@ typedef struct Kernel {
     KernelFn fn;
     slong var;   // its ring variable
     slong q;     // KF_ROOT: the index of the root (>= 3); else 0
+    slong pa, pb; // KF_DIST: the base points, pa < pb
     RatFun arg;  // the canonical argument (KF_ATAN2: y); 0 for pi
     RatFun arg2; // KF_ATAN2: x
     slong deg;   // the relation var^deg = rel, or 0: none
@@ -86,6 +88,8 @@ typedef struct Kernels {
     slong n;     // kernels made: variables first .. first+n-1
     Kernel *k;
     int nrel;    // kernels with a relation
+    const char *const *points; // base point names (for dist names)
+    slong npoints;
     unsigned char *sign; // per ring variable before the kernels: what is
                          // known of its sign, KSIGN_* (kernels_set_sign)
     /* an error message of the last failed call (static storage) */
@@ -104,6 +108,9 @@ enum {
  * function calls and rational powers (calls), of subst() and diff() uses
  * (ops) and of uses of pi: 0 when it has none. */
 slong kernels_slots(slong calls, slong ops, slong pis);
+/* ... and for the metric atoms (dot, dist, angle): the distances of the
+ * npoints base points */
+slong kernels_metric_slots(slong metric, slong npoints);
 
 /* K manages the ring variables first .. first+cap-1 of r (r's names of
  * those variables are set as kernels are made). */
@@ -129,6 +136,10 @@ const Kernel *kernels_of_var(const Kernels *K, slong var);
  * KF_PI ignores x. */
 int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
                  const RatFun y);
+/* res = |P_a P_b|, the distance of base points a and b (named by
+ * K->points); a variable that is > 0 (0 when a == b) */
+int kernel_dist(Kernels *K, RatFun res, slong a, slong b);
+
 /* res = x^(p/q), q > 1, gcd(p, q) = 1, |p| and q at most 1000 */
 int kernel_pow_q(Kernels *K, RatFun res, const RatFun x, slong p, slong q);
 /* res = |x| = x*sign(x) */
@@ -146,6 +157,10 @@ int kernel_uses_pteq(const Kernels *K, const PointEq x, int any);
 /* 1 when x depends on variable var, directly or through a kernel */
 int kernel_depends(const Kernels *K, const RatFun x, slong var);
 int kernel_depends_pteq(const Kernels *K, const PointEq x, slong var);
+
+/* 1 when x uses a distance to base point `point` (directly or inside a
+ * function's argument) */
+int kernel_measures_point(const Kernels *K, const PointEq x, slong point);
 
 /* the total derivative d x / d var (the chain rule through kernels) */
 int kernel_derivative(Kernels *K, RatFun res, const RatFun x, slong var);

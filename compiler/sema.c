@@ -393,7 +393,20 @@ static int check_call(Sema *S, Node *n)
                 ok = -1;
         return ok < 0 ? -1 : 1;
     }
-    default: { /* the scalar functions (dot, dist, angle were refused) */
+    case BI_DOT:
+    case BI_DIST:
+    case BI_ANGLE: { /* metric scalars of points and vectors */
+        char what[64];
+        int i = 0;
+        for (Node *a = n->args; a; a = a->next, i++) {
+            snprintf(what, sizeof what, "argument %d of %s()", i + 1,
+                     bi->name);
+            if (expect(S, a, 1, what) < 0)
+                ok = -1;
+        }
+        return ok < 0 ? -1 : 0;
+    }
+    default: { /* the scalar functions */
         char what[64];
         for (Node *a = n->args; a; a = a->next) {
             snprintf(what, sizeof what, "the argument of %s()", bi->name);

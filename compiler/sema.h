@@ -27,9 +27,9 @@
     X(BI_SUBST, "subst", 3, 3, -1, 1)  /* subst(E, t|A, s|P): kind of E */     \
     X(BI_DIFF, "diff", 2, 3, -1, 1)    /* diff(E, t[, n]) */                   \
     X(BI_BEZIER, "bezier", 3, -1, 1, 1) /* bezier(t, P0, ..., Pn) */           \
-    X(BI_DOT, "dot", 2, 2, 0, 0)       /* metric: U . V */                     \
-    X(BI_DIST, "dist", 2, 2, 0, 0)     /* metric: |PQ| */                      \
-    X(BI_ANGLE, "angle", 3, 3, 0, 0)   /* metric: angle PQR at Q */            \
+    X(BI_DOT, "dot", 2, 2, 0, 1)       /* metric: U . V */                     \
+    X(BI_DIST, "dist", 2, 2, 0, 1)     /* metric: |PQ| */                      \
+    X(BI_ANGLE, "angle", 3, 3, 0, 1)   /* metric: angle PQR at Q */            \
     X(BI_SQRT, "sqrt", 1, 1, 0, 1)     /* scalar functions: kernel.h */     \
     X(BI_SIN, "sin", 1, 1, 0, 1)                                               \
     X(BI_COS, "cos", 1, 1, 0, 1)                                               \

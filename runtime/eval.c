@@ -160,7 +160,8 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
 }
 
 /* Keeps what output o needs, evaluates the uniform part, assigns slots. */
-static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
+static void prog_init(Prog *g, const Plan *p, int o, const double *consts,
+                      const double *const *points, int dim)
 {
     int n = p->nins;
     unsigned char *live = pc_xmalloc((size_t)n);
@@ -192,6 +193,8 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts)
             uval[i] = p->k[x->a];
         else if (x->op == PLAN_INPUT)
             uval[i] = consts[x->a - p->nparams];
+        else if (x->op == PLAN_DIST)
+            uval[i] = plan_dist_eval(points[x->a], points[x->b], dim);
         else
             uval[i] = scalar_op(p, x, uval);
     }
@@ -343,6 +346,21 @@ int plan_output_uses_point(const Plan *p, int o, int point)
     for (int k = 0; k < out->nterms; k++)
         if (out->point[k] == point)
             return 1;
+    /* distances (metric atoms) read the points' coordinates too */
+    int uses_dist = 0;
+    for (int i = 0; i < p->nins && !uses_dist; i++)
+        uses_dist = p->ins[i].op == PLAN_DIST &&
+                    (p->ins[i].a == point || p->ins[i].b == point);
+    if (uses_dist) {
+        unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
+        plan_live(p, o, live);
+        int used = 0;
+        for (int i = 0; i < p->nins && !used; i++)
+            used = live[i] && p->ins[i].op == PLAN_DIST &&
+                   (p->ins[i].a == point || p->ins[i].b == point);
+        free(live);
+        return used;
+    }
     return 0;
 }
 
@@ -355,7 +373,7 @@ size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
     Prog g;
     size_t nbad = 0;
     _Alignas(64) double cols[3][BL]; // dims 2, 3: columns, then interleaved
-    prog_init(&g, p, o, consts);
+    prog_init(&g, p, o, consts, points, dim);
     int scalar = po->kind == PLAN_SCALAR;
     int ncols = scalar ? 1 : dim;
     for (size_t i0 = 0; i0 < n; i0 += BL) {

@@ -177,6 +177,9 @@ static int intern(Plan *p, PlanOp op, int32_t a, int32_t b)
     case PLAN_INPUT:
         x->uniform = a >= p->nparams;
         break;
+    case PLAN_DIST:
+        x->uniform = 1;
+        break;
     default:
         x->uniform =
             p->ins[a].uniform && (plan_op_nargs(op) < 2 || p->ins[b].uniform);
@@ -203,6 +206,12 @@ int plan_input(Plan *p, int index)
 {
     assert(index >= 0 && index < p->nparams + p->nconsts);
     return intern(p, PLAN_INPUT, index, 0);
+}
+
+int plan_dist(Plan *p, int a, int b)
+{
+    assert(a >= 0 && a < b && b < p->npoints);
+    return intern(p, PLAN_DIST, a, b);
 }
 
 static int is_const(const Plan *p, int r, double *v)
@@ -547,6 +556,9 @@ void plan_dump(FILE *out, const Plan *p)
         case PLAN_FN:
         case PLAN_DOMAIN:
             fprintf(out, " r%d fn%d", x->a, x->b);
+            break;
+        case PLAN_DIST:
+            fprintf(out, " %s %s", p->points[x->a], p->points[x->b]);
             break;
         default:
             fprintf(out, " r%d", x->a);

@@ -44,7 +44,8 @@
     X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */ \
     X(FN, 1, NULL)    /* d = f(r[a]), f = b: a PlanFn (sqrt, sin, ...)      */ \
     X(ATAN2, 2, NULL) /* d = atan2(r[a], r[b])                              */ \
-    X(DOMAIN, 1, NULL) /* d = (r[a] outside the domain of PlanFn b) ? 1 : 0 */
+    X(DOMAIN, 1, NULL) /* d = (r[a] outside the domain of PlanFn b) ? 1 : 0 */ \
+    X(DIST, 0, NULL)  /* d = |P_a - P_b|: base points a < b (uniform)     */
 
 /* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
  * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
@@ -207,6 +208,17 @@ int plan_pole(Plan *p, int den);
 int plan_fn(Plan *p, int fn, int a);     // f(a), fn a PlanFn | q << 8
 int plan_atan2(Plan *p, int y, int x);
 int plan_domain(Plan *p, int fn, int a); // the domain flag of f(a)
+int plan_dist(Plan *p, int a, int b);    // |P_a - P_b|, base points a < b
+
+/* |P - Q| in dim coordinates (the metric atoms: the same sum everywhere) */
+static inline double plan_dist_eval(const double *P, const double *Q,
+                                    int dim)
+{
+    double s = 0;
+    for (int c = 0; c < dim; c++)
+        s += (P[c] - Q[c]) * (P[c] - Q[c]);
+    return sqrt(s);
+}
 /* Appends an output; consumes nothing (arrays are copied). */
 void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
                      int nterms, const int *point, const int *reg, int bad);

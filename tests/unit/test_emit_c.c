@@ -228,7 +228,8 @@ static void kernels_used(const Derived *d, int o, unsigned char *used)
     }
 }
 
-static int kernel_values(const Derived *d, int o, fmpq *vals)
+static int kernel_values(const Derived *d, int o, fmpq *vals,
+                         double *const *pts, int dim)
 {
     const Kernels *K = d->kernels;
     int st = 0;
@@ -256,6 +257,14 @@ static int kernel_values(const Derived *d, int o, fmpq *vals)
         }
         switch (k->fn) {
         case KF_PI: v = 3.14159265358979323846; break;
+        case KF_DIST: {
+            double s2 = 0;
+            for (int c = 0; c < dim; c++)
+                s2 += (pts[k->pa][c] - pts[k->pb][c]) *
+                      (pts[k->pa][c] - pts[k->pb][c]);
+            v = sqrt(s2);
+            break;
+        }
         case KF_SQRT:
             if (fmpq_sgn(a) < 0)
                 st = 4;
@@ -409,7 +418,7 @@ static void check_derived(const Derived *d, const Plan *p, const Compiled *c)
                     dyadic(vals + i, prm[i][s]);
                 }
                 /* the expected status: 4 outside a domain, 1 a pole */
-                int kst = kernel_values(d, o, vals);
+                int kst = kernel_values(d, o, vals, pts, dim);
                 pole[s] = exact_weights(d, o, vals, w, nterms);
                 if (kst)
                     pole[s] = kst;

@@ -107,6 +107,14 @@ static void test_identities_reduce_to_zero(void **state)
         "diff(tan(t), t) - 1/cos(t)^2",
         "diff(ln(t), t) - 1/t",
         "diff(sign(t), t)",
+        "dist(A, B) - dist(B, A)",
+        "dist(A, B)^2 - dot(A - B, A - B)",
+        "dot(B - A, B - A) + dot(A - B, B - A)",
+        "sqrt(dist(A, B)^2) - dist(A, B)",
+        "abs(dist(A, B)) - dist(A, B)",
+        "subst(dist(A, along(A, B, t)), t, 1/3) - dist(A, B)/3",
+        "cos(angle(A, B, A + (B - A)*2)) + 1",
+        "angle(B, A, 2*B - A)",
     };
     size_t n = sizeof zero / sizeof zero[0];
     for (size_t i = 0; i < n; i++) {
@@ -321,6 +329,74 @@ static void test_point_with_function_weights(void **state)
     pc_scheme_free(s);
 }
 
+/* dot, dist, angle against the coordinates, in dims 2, 3 and 5, and the
+ * identities of a triangle that hold exactly (law of cosines) */
+static void test_metric_values(void **state)
+{
+    (void)state;
+    char *diag = NULL;
+    static const char src[] =
+        "point A, B, C\nparam t\n"
+        "d = dist(along(A, B, t), C)\n"
+        "g = dot(B - A, C - A)*t\n"
+        "w = angle(B, A, C)\n"
+        "law = dist(B, C)^2 - dist(A, B)^2 - dist(A, C)^2 + "
+        "2*dist(A, B)*dist(A, C)*cos(angle(B, A, C))\n"
+        "I = (A*dist(B, C) + B*dist(C, A) + C*dist(A, B))/(dist(A, B) + "
+        "dist(B, C) + dist(C, A))\n"
+        "output d, g, w, law, I\n";
+    pc_scheme *s = pc_scheme_parse("m.pcs", src, strlen(src), &diag);
+    assert_non_null(s);
+    char *law = pc_weight_str(s, pc_find_output(s, "law"), -1);
+    assert_string_equal(law, "0");
+    free(law);
+    pc_plan *p = pc_compile(s, &diag);
+    assert_non_null(p);
+    const double ts[] = {0.25, -1.5, 2.0};
+    const double *params[1] = {ts};
+    for (int dim = 2; dim <= 5; dim += 3 - (dim == 2)) {
+        double A[5], B[5], C[5];
+        for (int c = 0; c < dim; c++) {
+            A[c] = 0.3 * c - 1.1;
+            B[c] = (c % 2 ? 2.7 : -0.4) + 0.1 * c;
+            C[c] = 1.9 - 0.7 * c * c;
+        }
+        const double *pts[3] = {A, B, C};
+        double out[3 * 5];
+        for (int k = 0; k < 3; k++) {
+            double t = ts[k], d2 = 0, g = 0, ab = 0, ac = 0, bc = 0;
+            for (int c = 0; c < dim; c++) {
+                double m = A[c] + (B[c] - A[c]) * t;
+                d2 += (m - C[c]) * (m - C[c]);
+                g += (B[c] - A[c]) * (C[c] - A[c]);
+                ab += (B[c] - A[c]) * (B[c] - A[c]);
+                ac += (C[c] - A[c]) * (C[c] - A[c]);
+                bc += (C[c] - B[c]) * (C[c] - B[c]);
+            }
+            double want[3] = {sqrt(d2), g * t, acos(g / sqrt(ab * ac))};
+            for (int o = 0; o < 3; o++) {
+                assert_int_equal(pc_eval(p, o, 3, params, NULL, pts, dim,
+                                         out, NULL, NULL),
+                                 PC_OK);
+                assert_true(fabs(out[k] - want[o]) <
+                            1e-12 * fmax(1, fabs(want[o])));
+            }
+            /* the incentre: (a A + b B + c C)/(a + b + c) */
+            assert_int_equal(
+                pc_eval(p, 4, 3, params, NULL, pts, dim, out, NULL, NULL),
+                PC_OK);
+            double a = sqrt(bc), b = sqrt(ac), cc = sqrt(ab);
+            for (int c = 0; c < dim; c++) {
+                double want_c = (a * A[c] + b * B[c] + cc * C[c]) /
+                                (a + b + cc);
+                assert_true(fabs(out[k * dim + c] - want_c) < 1e-12 * 4);
+            }
+        }
+    }
+    pc_plan_free(p);
+    pc_scheme_free(s);
+}
+
 static void test_domain_status(void **state)
 {
     (void)state;
@@ -357,6 +433,7 @@ int main(void)
         cmocka_unit_test(test_derivatives_match_differences),
         cmocka_unit_test(test_point_with_function_weights),
         cmocka_unit_test(test_domain_status),
+        cmocka_unit_test(test_metric_values),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
