@@ -102,7 +102,7 @@ char *pc_weight_str(const pc_scheme *s, int output, int point);
 
 /* Lowers every output to one numeric plan.  NULL when an output cannot be
  * evaluated in double precision (a coefficient beyond the double range, a
- * degree above 2^24, symbolic atoms); then, when diagnostics is not NULL,
+ * degree above 2^24, an unsolved unknown scalar); then, when diagnostics is not NULL,
  * *diagnostics receives the error (FILE:LINE:COL: error: ...; free() it;
  * set to NULL on success). */
 pc_plan *pc_compile(const pc_scheme *s, char **diagnostics);
@@ -119,8 +119,11 @@ char *pc_plan_dump(const pc_plan *p);
  *              not overlap the params or the points
  *   status     NULL, or n codes: 0 ok, 1 a pole (a denominator of the
  *              reduced equation is 0), 2 an overflow (a denominator is
- *              not finite in double precision)
- * At a pole or an overflow the sample's coordinates are NaN.  Returns PC_OK
+ *              not finite in double precision), 4 a function's argument
+ *              outside its domain (sqrt of a negative number, ...)
+ * At a pole, an overflow or outside a domain the sample's coordinates are
+ * NaN; a scalar output that measures points (dist, dot, angle) reads the
+ * points and dim too.  Returns PC_OK
  * or PC_EINVAL; *npoles (if not NULL) receives the number of such samples. */
 int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
             const double *consts, const double *const *points, int dim,
