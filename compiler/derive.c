@@ -295,6 +295,11 @@ static int kernel_error(Deriver *D, int rc, const Node *n, const Node *arg)
         diag_error(D->diag, (arg ? arg : n)->span, "%s",
                    D->K->why ? D->K->why : "argument outside the domain");
         break;
+    case KERNEL_ETIME:
+        if (!D->expired && !out_of_time_at(D, n->span))
+            diag_error(D->diag, n->span, "the time budget ran out while "
+                                         "deriving this");
+        break;
     case KERNEL_EBIG:
         diag_error(D->diag, n->span,
                    "expression too large for the functions' identities "
@@ -1201,8 +1206,8 @@ static void derive_def(Deriver *D, Sym *s)
     RatFun sum;
     ratfun_init(sum, r);
     pteq_weight_sum(sum, v->p, r);
-    if (D->K && kernel_reduce(D->K, sum) != 0)
-        ratfun_zero(sum, r); /* cannot be: the equation's den is not 0 */
+    if (D->K) /* (on failure sum keeps an equal, unreduced form) */
+        (void)kernel_reduce(D->K, sum);
     if (!ratfun_is_zero(sum, r) && !ratfun_is_one(sum, r)) {
         char *txt = show(sum, r);
         if (!ratfun_is_constant(sum, r) && kernel_uses(D->K, sum, 1))
@@ -1832,6 +1837,14 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     if (!info)
         goto done;
 
+    /* Kernel slots (functions, pi, distances) are reserved when the ring is
+     * built; every unused slot costs in every monomial, so the first try
+     * reserves what the scheme's calls need at least, and a derivation
+     * that runs out is done again with twice as many (its messages
+     * dropped). */
+    slong nslots_try = 0;
+    int diag_msgs0 = diag.nmsgs, diag_errors0 = diag.nerrors;
+retry:
     d = pc_xcalloc(1, sizeof(Derived));
     d->filename = pc_xstrdup(filename);
     d->text = pc_xmalloc(len ? len : 1);
@@ -1868,10 +1881,11 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
             }
         }
         slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
-        if (metric) {
+        if (metric)
             nslots += kernels_metric_slots(metric, d->npoints);
-            nslots = FLINT_MIN(nslots, 4096);
-        }
+        if (nslots_try > 0)
+            nslots = nslots_try;
+        nslots_try = nslots;
         slong nv = d->nparams + d->nconsts + d->nextra + nslots;
         const char **vars = pc_xmalloc(sizeof(char *) * (size_t)(nv ? nv : 1));
         for (slong i = nv - nslots; i < nv; i++)
@@ -1895,6 +1909,8 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
 
     Deriver D = {.diag = &diag, .r = r, .info = info, .src = &src,
                  .K = d->kernels};
+    if (D.K)
+        D.K->deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D.max_seconds = opt->max_seconds;
     D.deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D.verbose = opt->verbose;
@@ -2006,8 +2022,15 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     free(D.defs);
     free(D.state);
     if (diag.nerrors) {
+        int again = d->kernels && d->kernels->full &&
+                    nslots_try < KERNELS_MAX_SLOTS;
         derived_free(d);
         d = NULL;
+        if (again) {
+            diag_rollback(&diag, diag_msgs0, diag_errors0);
+            nslots_try = FLINT_MIN(2 * nslots_try, KERNELS_MAX_SLOTS);
+            goto retry;
+        }
     }
 done:
     budget_statement(NULL, (Span){0, 0});

@@ -29,6 +29,15 @@ static int msg_cmp(const void *x, const void *y)
     return (a->seq > b->seq) - (a->seq < b->seq);
 }
 
+void diag_rollback(Diag *d, int nmsgs, int nerrors)
+{
+    for (int i = nmsgs; i < d->nmsgs; i++)
+        free(d->msgs[i].text);
+    if (nmsgs < d->nmsgs)
+        d->nmsgs = nmsgs;
+    d->nerrors = nerrors;
+}
+
 void diag_flush(Diag *d)
 {
     if (d->nmsgs > 1)

@@ -36,6 +36,9 @@ void diag_init(Diag *d, const Source *src, FILE *out);
  * (errors of several passes - sema, then derive - read top to bottom; a
  * note stays after its error). */
 void diag_hold(Diag *d);
+/* Drops the held messages after the first nmsgs and sets the error count
+ * back to nerrors (a derivation that is done again). */
+void diag_rollback(Diag *d, int nmsgs, int nerrors);
 /* Writes the held messages in order and releases them. */
 void diag_flush(Diag *d);
 #if defined(__GNUC__)

@@ -509,6 +509,36 @@ static void put_scalar(Buf *b, const RatFun x, const Ring *r, FormatStyle st)
     free(n.s);
 }
 
+char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
+{
+    Buf b = {0};
+    int frac = !fmpz_mpoly_is_one(x->den, r->ctx);
+    int multi = x->num->length > 1;
+    if (st == FMT_LATEX && frac) {
+        buf_puts(&b, "\\frac{");
+        put_poly(&b, x->num, r, st);
+        buf_puts(&b, "}{");
+        put_poly(&b, x->den, r, st);
+        buf_puts(&b, "}");
+        return buf_take(&b);
+    }
+    if (frac && multi)
+        buf_puts(&b, "(");
+    put_poly(&b, x->num, r, st);
+    if (frac && multi)
+        buf_puts(&b, ")");
+    if (frac) {
+        int dmulti = x->den->length > 1 ||
+                     (fmpz_mpoly_total_degree_si(x->den, r->ctx) > 0 &&
+                      !fmpz_mpoly_is_gen(x->den, -1, r->ctx));
+        buf_puts(&b, dmulti ? "/(" : "/");
+        put_poly(&b, x->den, r, st);
+        if (dmulti)
+            buf_puts(&b, ")");
+    }
+    return buf_take(&b);
+}
+
 char *format_scalar(const RatFun x, const Ring *r, FormatStyle st)
 {
     Buf b = {0};

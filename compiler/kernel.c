@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <flint/fmpz_factor.h>
 
@@ -21,6 +22,25 @@ enum {
     MAX_POWER = 1000,  // exponents a kernel rewrite may make
     FACTOR_BITS = 160, // integers under a sqrt factored up to this size
 };
+
+/* 0, or the reason to stop: an intermediate polynomial beyond
+ * KERNEL_MAX_WORK_TERMS terms, or the derivation's time budget spent.
+ * Every loop of the normal form and of substitution asks it, so no input
+ * runs unbounded inside one expression node. */
+static int guard(Kernels *K, const fmpz_mpoly_struct *p)
+{
+    if (p && p->length > KERNEL_MAX_WORK_TERMS) {
+        K->why = "expression too large for the functions' identities";
+        return KERNEL_EBIG;
+    }
+    if (K->deadline > 0) {
+        struct timespec ts;
+        clock_gettime(CLOCK_MONOTONIC, &ts);
+        if ((double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec > K->deadline)
+            return KERNEL_ETIME;
+    }
+    return 0;
+}
 
 static const char *const fn_names[] = {
 #define X(id, name, cfn) name,
@@ -47,11 +67,10 @@ slong kernels_slots(slong calls, slong ops, slong pis)
         return 0;
     /* each call can make a pair (sin, cos) and, through its symmetry or
      * folding, a pi and a few square roots; each subst or diff can make one
-     * more kernel per kernel */
-    slong n = 4 + 3 * calls + (pis > 0);
-    for (slong i = 0; i < ops && n < 192; i++)
-        n *= 2;
-    return n < 192 ? n : 192;
+     * more kernel per kernel, which the first try does not reserve: a
+     * derivation that runs out is done again with twice the slots */
+    slong n = 4 + 2 * calls + (pis > 0) + 2 * ops;
+    return n < KERNELS_MAX_SLOTS ? n : KERNELS_MAX_SLOTS;
 }
 
 void kernels_init(Kernels *K, Ring *r, slong first, slong cap)
@@ -62,6 +81,8 @@ void kernels_init(Kernels *K, Ring *r, slong first, slong cap)
     K->n = 0;
     K->k = cap ? pc_xcalloc((size_t)cap, sizeof(Kernel)) : NULL;
     K->nrel = 0;
+    K->full = 0;
+    K->deadline = 0;
     K->why = NULL;
     K->sign = pc_xcalloc((size_t)(first > 0 ? first : 1), 1);
     K->points = NULL;
@@ -274,7 +295,10 @@ static char *unwrap(char *s)
 
 static char *arg_text(const RatFun x, const Ring *r, FormatStyle st)
 {
-    char *s = format_scalar(x, r, st);
+    /* expanded: factoring every argument (the printer's form) costs more
+     * than the whole derivation of a conic, and reads no better: the book
+     * writes sqrt(a^2 - b^2) */
+    char *s = format_scalar_expanded(x, r, st);
     if (st == FMT_LATEX && strncmp(s, "\\left(", 6) == 0) {
         size_t n = strlen(s);
         if (n > 13 && strcmp(s + n - 7, "\\right)") == 0) {
@@ -420,6 +444,7 @@ static int intern(Kernels *K, RatFun res, KernelFn fn, const RatFun a,
                    fn == KF_COSH;
         if (K->n + (pair ? 2 : 1) > K->cap) {
             K->why = "too many distinct functions in one scheme";
+            K->full = 1;
             return KERNEL_EFULL;
         }
         if (pair) {
@@ -954,69 +979,50 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
         }
         fmpq_clear(c);
     }
-    /* sin, cos of x + k*pi/2: +-sin(x), +-cos(x) */
-    if ((f == KF_SIN || f == KF_COS) && fmpz_mpoly_is_fmpz(a->den, r->ctx)) {
+    /* sin, cos of x + c*pi with 2c an integer: +-sin(x), +-cos(x) */
+    if (f == KF_SIN || f == KF_COS) {
         slong pi = find(K, KF_PI, NULL, NULL, 0);
-        fmpz_t c, dd;
-        fmpz_init(c);
-        fmpz_init(dd);
-        fmpz_mpoly_get_fmpz(dd, a->den, r->ctx);
-        if (pi >= 0) {
-            fmpz_mpoly_t m;
-            fmpz_mpoly_init(m, r->ctx);
-            fmpz_mpoly_gen(m, K->k[pi].var, r->ctx);
-            fmpz_mpoly_get_coeff_fmpz_monomial(c, a->num, m, r->ctx);
-            fmpz_mpoly_clear(m, r->ctx);
-        }
-        /* the multiple of pi/2: 2c/d */
-        fmpz_mul_ui(c, c, 2);
-        if (!fmpz_is_zero(c) && fmpz_divisible(c, dd)) {
-            fmpz_divexact(c, c, dd);
-            fmpz_fdiv_r(c, c, (fmpz[]){4});
-            slong k = fmpz_get_si(c);
-            RatFun xr, kp;
-            ratfun_init(xr, r);
-            ratfun_init(kp, r);
-            rc = pi_times(K, kp, k, 2); /* k*pi/2 */
-            if (rc == 0) {
-                /* the rest: a minus its multiple of pi (exactly k pi/2
-                 * modulo 2 pi) */
-                fmpq_t cq;
-                fmpq_init(cq);
-                fmpz_t c0;
-                fmpz_init(c0);
-                fmpz_mpoly_t m;
-                fmpz_mpoly_init(m, r->ctx);
-                fmpz_mpoly_gen(m, K->k[pi].var, r->ctx);
-                fmpz_mpoly_get_coeff_fmpz_monomial(c0, a->num, m, r->ctx);
-                fmpz_mpoly_scalar_mul_fmpz(m, m, c0, r->ctx);
-                fmpz_mpoly_sub(xr->num, a->num, m, r->ctx);
-                fmpz_mpoly_set(xr->den, a->den, r->ctx);
-                ratfun_canonicalise(xr, r);
-                fmpz_mpoly_clear(m, r->ctx);
-                fmpz_clear(c0);
-                fmpq_clear(cq);
-                /* sin(xr + k pi/2) = sin, cos, -sin, -cos (k = 0..3);
-                 * cos(xr + k pi/2) = cos, -sin, -cos, sin */
-                int use_cos = (f == KF_SIN) == (k % 2 == 1);
-                int neg = f == KF_SIN ? k >= 2 : (k == 1 || k == 2);
-                if (!ratfun_is_zero(xr, r)) {
-                    rc = kernel_apply(K, res, use_cos ? KF_COS : KF_SIN, xr,
-                                      NULL);
-                    if (rc == 0 && neg)
-                        ratfun_neg(res, res, r);
-                    ratfun_clear(kp, r);
-                    ratfun_clear(xr, r);
-                    fmpz_clear(dd);
-                    fmpz_clear(c);
-                    goto done;
+        RatFun c, xr;
+        ratfun_init(c, r);
+        ratfun_init(xr, r);
+        fmpq_t cq;
+        fmpq_init(cq);
+        int done_shift = 0;
+        if (pi >= 0 && rf_has(a, K->k[pi].var, r)) {
+            /* c = d(arg)/d(pi): a number when arg = x + c*pi */
+            ratfun_derivative(c, a, K->k[pi].var, r);
+            fmpz_t k2;
+            fmpz_init(k2);
+            if (ratfun_get_fmpq(cq, c, r)) {
+                fmpz_mul_ui(k2, fmpq_numref(cq), 2);
+                if (fmpz_divisible(k2, fmpq_denref(cq))) {
+                    fmpz_divexact(k2, k2, fmpq_denref(cq));
+                    fmpz_fdiv_r(k2, k2, (fmpz[]){4});
+                    slong k = fmpz_get_si(k2);
+                    /* the rest x = arg - c*pi */
+                    ratfun_gen(xr, K->k[pi].var, r);
+                    ratfun_mul(xr, xr, c, r);
+                    ratfun_sub(xr, a, xr, r);
+                    if (!ratfun_is_zero(xr, r)) {
+                        /* sin(x + k pi/2) = sin, cos, -sin, -cos (k = 0..3);
+                         * cos(x + k pi/2) = cos, -sin, -cos, sin */
+                        int use_cos = (f == KF_SIN) == (k % 2 == 1);
+                        int negr = f == KF_SIN ? k >= 2 : (k == 1 || k == 2);
+                        rc = kernel_apply(K, res, use_cos ? KF_COS : KF_SIN,
+                                          xr, NULL);
+                        if (rc == 0 && negr)
+                            ratfun_neg(res, res, r);
+                        done_shift = 1;
+                    }
                 }
             }
-            ratfun_clear(kp, r);
-            ratfun_clear(xr, r);
+            fmpz_clear(k2);
         }
-        fmpz_clear(dd);
-        fmpz_clear(c);
+        fmpq_clear(cq);
+        ratfun_clear(xr, r);
+        ratfun_clear(c, r);
+        if (done_shift)
+            goto done;
     }
     /* odd and even functions see a canonical sign: sin(-a) = -sin(a) */
     int neg = rf_lead_sign(a, r) < 0 &&
@@ -1111,6 +1117,7 @@ int kernel_dist(Kernels *K, RatFun res, slong a, slong b)
     if (i < 0) {
         if (K->n + 1 > K->cap) {
             K->why = "too many distinct functions in one scheme";
+            K->full = 1;
             return KERNEL_EFULL;
         }
         Kernel *k = &K->k[K->n];
@@ -1197,15 +1204,21 @@ int kernel_abs(Kernels *K, RatFun res, const RatFun x)
 /* ---- normal form -------------------------------------------------------- */
 
 /* res = P with var^k (k >= q) rewritten by var^q = rel, as a RatFun */
-static void reduce_poly(RatFun res, const fmpz_mpoly_t P, const Kernel *k,
-                        const Ring *r)
+static int reduce_poly(Kernels *K, RatFun res, const fmpz_mpoly_t P,
+                       const Kernel *k)
 {
+    const Ring *r = K->r;
     slong d = fmpz_mpoly_degree_si(P, k->var, r->ctx);
     if (d < k->deg) {
         fmpz_mpoly_set(res->num, P, r->ctx);
         fmpz_mpoly_one(res->den, r->ctx);
-        return;
+        return 0;
     }
+    if (ratfun_log2_bits_pow(k->rel, d / k->deg, r) > RATFUN_MAX_LOG2_BITS) {
+        K->why = "expression too large for the functions' identities";
+        return KERNEL_EBIG;
+    }
+    int rc = 0;
     RatFun acc, term, relp;
     fmpz_mpoly_t C;
     ratfun_init(acc, r);
@@ -1213,7 +1226,7 @@ static void reduce_poly(RatFun res, const fmpz_mpoly_t P, const Kernel *k,
     ratfun_init(relp, r);
     fmpz_mpoly_init(C, r->ctx);
     slong var = k->var;
-    for (slong j = 0; j <= d; j++) {
+    for (slong j = 0; j <= d && rc == 0; j++) {
         ulong ju = (ulong)j;
         fmpz_mpoly_get_coeff_vars_ui(C, P, &var, &ju, 1, r->ctx);
         if (fmpz_mpoly_is_zero(C, r->ctx))
@@ -1226,15 +1239,24 @@ static void reduce_poly(RatFun res, const fmpz_mpoly_t P, const Kernel *k,
         ratfun_canonicalise(term, r);
         if (j >= k->deg) {
             ratfun_pow_si(relp, k->rel, j / k->deg, r);
+            if (ratfun_log2_bits_product(term, relp, r) >
+                RATFUN_MAX_LOG2_BITS) {
+                K->why = "expression too large for the functions' identities";
+                rc = KERNEL_EBIG;
+                break;
+            }
             ratfun_mul(term, term, relp, r);
         }
         ratfun_add(acc, acc, term, r);
+        rc = guard(K, acc->num);
     }
-    ratfun_swap(res, acc, r);
+    if (rc == 0)
+        ratfun_swap(res, acc, r);
     fmpz_mpoly_clear(C, r->ctx);
     ratfun_clear(relp, r);
     ratfun_clear(term, r);
     ratfun_clear(acc, r);
+    return rc;
 }
 
 int kernel_uses(const Kernels *K, const RatFun x, int any)
@@ -1278,8 +1300,11 @@ int kernel_reduce(Kernels *K, RatFun x)
         const Kernel *k = &K->k[i];
         if (!k->deg || !rf_has(x, k->var, r))
             continue;
-        reduce_poly(n, x->num, k, r);
-        reduce_poly(d, x->den, k, r);
+        rc = reduce_poly(K, n, x->num, k);
+        if (rc == 0)
+            rc = reduce_poly(K, d, x->den, k);
+        if (rc != 0)
+            break;
         if (ratfun_div(x, n, d, r) != 0) {
             rc = KERNEL_EZERO;
             break;
@@ -1309,7 +1334,7 @@ int kernel_reduce(Kernels *K, RatFun x)
         {
             RatFun red;
             ratfun_init(red, r);
-            reduce_poly(red, n->num, k, r);
+            rc = reduce_poly(K, red, n->num, k);
             ratfun_swap(n, red, r);
             ratfun_clear(red, r);
         }
@@ -1320,14 +1345,16 @@ int kernel_reduce(Kernels *K, RatFun x)
         ratfun_sub(d, A, B, r);
         ratfun_clear(v, r);
         ratfun_clear(conj, r);
-        if (ratfun_div(x, n, d, r) != 0)
+        if (rc == 0 && ratfun_div(x, n, d, r) != 0)
             rc = KERNEL_EZERO;
+        if (rc == 0)
+            rc = guard(K, x->num);
     }
     ratfun_clear(B, r);
     ratfun_clear(A, r);
     ratfun_clear(d, r);
     ratfun_clear(n, r);
-    if (rc)
+    if (rc == KERNEL_EZERO)
         K->why = "a denominator vanishes identically by the functions' "
                  "identities";
     return rc;
@@ -1575,9 +1602,11 @@ int kernel_derivative_pteq(Kernels *K, PointEq res, const PointEq x,
 
 /* res = P with the variables v where img[v] != NULL replaced by img[v],
  * simultaneously (over the product of the images' denominators) */
-static void compose_poly(RatFun res, const fmpz_mpoly_t P,
-                         RatFunStruct *const *img, const Ring *r)
+static int compose_poly(Kernels *K, RatFun res, const fmpz_mpoly_t P,
+                        RatFunStruct *const *img)
 {
+    const Ring *r = K->r;
+    int rc = 0;
     slong nv = r->ctx->minfo->nvars;
     slong *deg = flint_malloc(sizeof(slong) * (size_t)nv);
     ulong *e = flint_malloc(sizeof(ulong) * (size_t)nv);
@@ -1595,7 +1624,16 @@ static void compose_poly(RatFun res, const fmpz_mpoly_t P,
         }
     fmpz_t c;
     fmpz_init(c);
-    for (slong i = 0; i < P->length; i++) {
+    for (slong v = 0; v < nv && rc == 0; v++) /* the size of one term */
+        if (img[v] && deg[v] > 0 &&
+            (ratfun_log2_bits_pow(img[v], deg[v], r) > RATFUN_MAX_LOG2_BITS ||
+             (double)deg[v] * (double)(img[v]->num->length +
+                                       img[v]->den->length) >
+                 (double)KERNEL_MAX_WORK_TERMS)) {
+            K->why = "expression too large for the functions' identities";
+            rc = KERNEL_EBIG;
+        }
+    for (slong i = 0; i < P->length && rc == 0; i++) {
         fmpz_mpoly_get_term_coeff_fmpz(c, P, i, r->ctx);
         fmpz_mpoly_get_term_exp_ui(e, P, i, r->ctx);
         fmpz_mpoly_set_fmpz(term, c, r->ctx);
@@ -1621,28 +1659,37 @@ static void compose_poly(RatFun res, const fmpz_mpoly_t P,
             }
         }
         fmpz_mpoly_add(sum, sum, term, r->ctx);
+        rc = guard(K, sum);
+        if (rc == 0)
+            rc = guard(K, term);
     }
     fmpz_clear(c);
-    fmpz_mpoly_swap(res->num, sum, r->ctx);
-    fmpz_mpoly_swap(res->den, L, r->ctx);
-    ratfun_canonicalise(res, r);
+    if (rc == 0) {
+        fmpz_mpoly_swap(res->num, sum, r->ctx);
+        fmpz_mpoly_swap(res->den, L, r->ctx);
+        ratfun_canonicalise(res, r);
+    }
     fmpz_mpoly_clear(L, r->ctx);
     fmpz_mpoly_clear(pw, r->ctx);
     fmpz_mpoly_clear(term, r->ctx);
     fmpz_mpoly_clear(sum, r->ctx);
     flint_free(e);
     flint_free(deg);
+    return rc;
 }
 
-static int compose_img(RatFun res, const RatFun x, RatFunStruct *const *img,
-                       const Ring *r)
+static int compose_img(Kernels *K, RatFun res, const RatFun x,
+                       RatFunStruct *const *img)
 {
+    const Ring *r = K->r;
     RatFun n, d;
     ratfun_init(n, r);
     ratfun_init(d, r);
-    compose_poly(n, x->num, img, r);
-    compose_poly(d, x->den, img, r);
-    int rc = ratfun_div(res, n, d, r) == 0 ? 0 : RATFUN_EPOLE;
+    int rc = compose_poly(K, n, x->num, img);
+    if (rc == 0)
+        rc = compose_poly(K, d, x->den, img);
+    if (rc == 0)
+        rc = ratfun_div(res, n, d, r) == 0 ? 0 : RATFUN_EPOLE;
     ratfun_clear(d, r);
     ratfun_clear(n, r);
     return rc;
@@ -1666,9 +1713,9 @@ static int build_images(Kernels *K, RatFunStruct **img, slong var,
             continue;
         KernelFn fn = K->k[i].fn;
         slong q = K->k[i].q, kv = K->k[i].var;
-        rc = compose_img(a, K->k[i].arg, img, r);
+        rc = compose_img(K, a, K->k[i].arg, img);
         if (rc == 0 && fn == KF_ATAN2)
-            rc = compose_img(b, K->k[i].arg2, img, r);
+            rc = compose_img(K, b, K->k[i].arg2, img);
         if (rc == 0)
             rc = kernel_reduce(K, a);
         if (rc != 0)
@@ -1701,7 +1748,7 @@ int kernel_compose(Kernels *K, RatFun res, const RatFun x, slong var,
     RatFunStruct **img = pc_xcalloc((size_t)nv, sizeof *img);
     int rc = build_images(K, img, var, s);
     if (rc == 0)
-        rc = compose_img(res, x, img, r);
+        rc = compose_img(K, res, x, img);
     if (rc == 0)
         rc = kernel_reduce(K, res);
     free_images(img, nv, r);
@@ -1714,7 +1761,7 @@ typedef struct ComposeCtx {
 
 static int compose_one(Kernels *K, RatFun w, void *ctx)
 {
-    int rc = compose_img(w, w, ((ComposeCtx *)ctx)->img, K->r);
+    int rc = compose_img(K, w, w, ((ComposeCtx *)ctx)->img);
     return rc ? rc : kernel_reduce(K, w);
 }
 

@@ -88,6 +88,9 @@ typedef struct Kernels {
     slong n;     // kernels made: variables first .. first+n-1
     Kernel *k;
     int nrel;    // kernels with a relation
+    int full;    // a kernel was refused: no slot left (KERNEL_EFULL)
+    double deadline; // CLOCK_MONOTONIC seconds (the derivation's time
+                     // budget), 0: none; KERNEL_ETIME past it
     const char *const *points; // base point names (for dist names)
     slong npoints;
     unsigned char *sign; // per ring variable before the kernels: what is
@@ -102,12 +105,19 @@ enum {
     KERNEL_EDOMAIN = -11, // a number outside the function's domain: why
     KERNEL_EZERO = -12,   // a denominator vanishes by the identities
     KERNEL_EBIG = -13,    // a power or an argument beyond the size limits
+    KERNEL_ETIME = -14,   // the time budget ran out inside an operation
 };
+
+/* intermediate polynomials of the normal form and of substitution stop
+ * here (KERNEL_EBIG) */
+#define KERNEL_MAX_WORK_TERMS 200000
 
 /* The number of kernel slots a scheme may need, from its count of
  * function calls and rational powers (calls), of subst() and diff() uses
  * (ops) and of uses of pi: 0 when it has none. */
 slong kernels_slots(slong calls, slong ops, slong pis);
+/* the most slots a derivation retries with (derive.c doubles them) */
+#define KERNELS_MAX_SLOTS 1024
 /* ... and for the metric atoms (dot, dist, angle): the distances of the
  * npoints base points */
 slong kernels_metric_slots(slong metric, slong npoints);

@@ -17,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <flint/flint.h>
 
@@ -47,11 +48,19 @@ static const char *const tokens[] = {
 static int probe(const char *name, const char *buf, size_t len)
 {
     int nerr = -1;
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     Derived *d = derive_source(name, buf, len, NULL, &nerr);
     int ok = (d != NULL) == (nerr == 0);
     if (d)
         exercise_backends(d);
     derived_free(d);
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    double sec = (double)(t1.tv_sec - t0.tv_sec) +
+                 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    if (sec > 0.5 && getenv("PC_FUZZ_TIMES")) /* the slow inputs, to study */
+        fprintf(stderr, "%s: %.2f s for\n%.*s\n----\n", name, sec, (int)len,
+                buf);
     if (!ok)
         fprintf(stderr, "%s: inconsistent result (nerrors=%d)\n", name,
                 nerr);
@@ -134,12 +143,19 @@ static int fuzz_dir(const char *dir, int mutations)
             assert_true(probe(path, text, cut));
         /* seeded random mutations */
         rng_state = 0x9e3779b97f4a7c15ULL ^ (uint64_t)len;
+        struct timespec t0, t1;
+        clock_gettime(CLOCK_MONOTONIC, &t0);
         for (int m = 0; m < mutations; m++) {
             size_t ml;
             char *mut = mutate(text, len, &ml);
             assert_true(probe(path, mut, ml));
             free(mut);
         }
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        double sec = (double)(t1.tv_sec - t0.tv_sec) +
+                     1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+        if (getenv("PC_FUZZ_TIMES"))
+            printf("  %s: %d mutations in %.2f s\n", path, mutations, sec);
         free(text);
     }
     closedir(d);
