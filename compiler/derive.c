@@ -1940,8 +1940,7 @@ retry:
         ratfun_init(lo, r);
         /* (a range with an error of its own was reported by sema: its
          * names may be unresolved) */
-        if (st && st->lo && diag.nerrors == 0 &&
-            eval_scalar(&D, lo, st->lo) == 0) {
+        if (st && st->lo && !st->bad && eval_scalar(&D, lo, st->lo) == 0) {
             fmpq_t q;
             fmpq_init(q);
             int sg = ratfun_get_fmpq(q, lo, r) ? 2 * fmpq_sgn(q) + !fmpq_sgn(q)

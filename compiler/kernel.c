@@ -1064,6 +1064,21 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
         ratfun_clear(yv, r);
         goto odd;
     }
+    /* arguments that are provably outside the domain on the declared
+     * signs and ranges: -t^2 - 1, or -t with t in [1, 2] */
+    if (f == KF_SQRT || f == KF_LN) {
+        int sg = kernel_sign(K, a);
+        if (sg == -2 || (f == KF_LN && sg < 0)) {
+            K->why = f == KF_SQRT
+                         ? "square root of an expression that is negative "
+                           "for every value of its params and consts (on "
+                           "their declared ranges and signs)"
+                         : "logarithm of an expression that is never "
+                           "positive (on the declared ranges and signs)";
+            rc = KERNEL_EDOMAIN;
+            goto done;
+        }
+    }
     switch (f) {
     case KF_SQRT:
         rc = sqrt_poly(K, res, a);

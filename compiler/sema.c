@@ -645,9 +645,12 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
         case ST_PARAM:
             declare_list(&S, st, SYM_PARAM);
             if (st->lo) {
-                if (expect(&S, st->lo, 0, "the lower end of the range") >= 0 &&
-                    expect(&S, st->hi, 0, "the upper end of the range") < 0)
-                    break;
+                /* bad: derive does not read a range with an error */
+                if (expect(&S, st->lo, 0, "the lower end of the range") < 0)
+                    st->bad = 1;
+                else if (expect(&S, st->hi, 0, "the upper end of the range") <
+                         0)
+                    st->bad = 1;
             }
             break;
         case ST_CONST:

@@ -116,7 +116,8 @@ struct Stmt {
     // filled by sema
     Sym *sym; // ST_DEF: the defined name
     int scalar; // ST_UNKNOWN: `unknown scalar k, ...`
-    int bad;  // ST_SOLVE: an error was reported; derive skips it
+    int bad;  // ST_SOLVE, ST_PARAM (its range): an error was reported;
+              // derive skips it
 };
 
 typedef struct Scheme {

@@ -41,7 +41,8 @@ static const char *const tokens[] = {
     "meet", "line(", "plane(", "along(", "divide(", "subst(", "diff(",
     "bezier(", "point ", "param ", "const ", "output ", "scheme ", "in",
     "sin(", "pi", "unknown ", "solve ", " for ", "\t", "\xff", "\0", "$",
-    "1/0", "t^-3", "A - A", "(t-t)",
+    "1/0", "t^-3", "A - A", "(t-t)", "sqrt(", "cos(", "exp(", "ln(",
+    "^(1/2)", " > 0", "dist(", "dot(", "angle(",
 };
 
 /* checks one input: success XOR errors, nothing else */
