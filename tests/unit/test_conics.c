@@ -28,6 +28,9 @@
 
 #include "libpointcalc.h"
 
+/* the cases' tables leave their optional last field (D) out */
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
 #define PI 3.14159265358979323846
 #define NS 200 /* samples over the range */
 #define MAXD 7
@@ -95,6 +98,7 @@ typedef struct Case {
     double f1[2], f2[2]; // foci (ELLIPSE, HYPERBOLA) or centre f1 (CIRCLE)
     double k;            // 2a, or the radius
     double lo, hi;       // the range of the first param
+    double D[2];         // a fourth point D, where the scheme has one
 } Case;
 
 static void check_case(const Case *c)
@@ -131,6 +135,7 @@ static void check_case(const Case *c)
             const double *xy = strcmp(nm, "A") == 0   ? c->A
                                : strcmp(nm, "B") == 0 ? c->B
                                : strcmp(nm, "C") == 0 ? c->C
+                               : strcmp(nm, "D") == 0 ? c->D
                                                       : NULL;
             if (xy) {
                 put(&f, xy[0], xy[1], pts[i]);
@@ -216,7 +221,31 @@ static void test_circles(void **state)
      * at the origin, C on the axis at |OC| = 2c^2h/(c^2 - 4h^2) */
     const double cc = 4, h = 1, r = (cc * cc / 4 + h * h) / (2 * h);
     const double oc = 2 * cc * cc * h / (cc * cc - 4 * h * h);
+    /* the article's circles: through a triangle (the circumcentre), and
+     * through A, C tangent to AD at A (D on the x axis from A = 0: the
+     * centre on the y axis at (|C|^2)/(2 C_y)) */
+    const double tA[2] = {0.3, -0.2}, tB[2] = {2.9, 0.4}, tC[2] = {1.1, 2.3};
+    double ox, oy;
+    {
+        double d = 2 * (tA[0] * (tB[1] - tC[1]) + tB[0] * (tC[1] - tA[1]) +
+                        tC[0] * (tA[1] - tB[1]));
+        double a2 = tA[0] * tA[0] + tA[1] * tA[1];
+        double b2 = tB[0] * tB[0] + tB[1] * tB[1];
+        double c2 = tC[0] * tC[0] + tC[1] * tC[1];
+        ox = (a2 * (tB[1] - tC[1]) + b2 * (tC[1] - tA[1]) +
+              c2 * (tA[1] - tB[1])) / d;
+        oy = (a2 * (tC[0] - tB[0]) + b2 * (tA[0] - tC[0]) +
+              c2 * (tB[0] - tA[0])) / d;
+    }
+    const double R3 = hypot(tA[0] - ox, tA[1] - oy);
+    const double qC[2] = {1.4, 2.2}, ky = (qC[0] * qC[0] + qC[1] * qC[1]) /
+                                         (2 * qC[1]);
     const Case cases[] = {
+        {"examples/circle_three_points.pcs", {0}, {tA[0], tA[1]},
+         {tB[0], tB[1]}, {tC[0], tC[1]}, CIRCLE, {ox, oy}, {0, 0}, R3, 0,
+         50},
+        {"examples/circle_two_points_tangent.pcs", {0}, {0, 0}, {0, 0},
+         {qC[0], qC[1]}, CIRCLE, {0, ky}, {0, 0}, ky, 0, 50, {1.7, 0}},
         {"examples/circle_angle_2.pcs", {a, b, g, R}, {b, 0},
          {a * cos(g), a * sin(g)}, {0, 0}, CIRCLE, {0, 0}, {0, 0}, R, 0,
          2 * PI},
