@@ -174,33 +174,6 @@ static void cleanup_dir(const char *dir)
         fprintf(stderr, "bench_codegen: could not remove %s\n", dir);
 }
 
-/* median and range of x[0..n) (sorted copy) */
-static void stats(const double *x, int n, double *med, double *lo, double *hi)
-{
-    double *s = malloc(sizeof *s * (size_t)n);
-    memcpy(s, x, sizeof *s * (size_t)n);
-    qsort(s, (size_t)n, sizeof *s, bench_cmp_double);
-    *med = s[n / 2];
-    *lo = s[0];
-    *hi = s[n - 1];
-    free(s);
-}
-
-/* a goal on the per-round ratio a/b: met when every round is within it */
-static void verdict(const char *what, const double *ta, const double *tb,
-                    int rounds, double goal)
-{
-    double r[64], med, lo, hi;
-    for (int k = 0; k < rounds; k++)
-        r[k] = ta[k] / tb[k];
-    stats(r, rounds, &med, &lo, &hi);
-    printf("  %-44s %5.2f [%4.2f..%4.2f] goal <= %.1f: %s\n", what, med, lo,
-           hi, goal,
-           hi <= goal  ? "met"
-           : lo > goal ? "not met"
-                       : "undecided (spread)");
-}
-
 /* runs bench/lambdify.py; prints its lines; returns 0 when it ran */
 static void lambdify(size_t n)
 {
@@ -300,7 +273,7 @@ int main(void)
         printf("\nn = %zu (%d rounds)\n", n, rounds);
         for (int c = 0; c < NC; c++) {
             double med, lo, hi;
-            stats(tm[c], rounds, &med, &lo, &hi);
+            bench_stats(tm[c], rounds, &med, &lo, &hi);
             printf("  %-36s %8.3f [%7.3f..%7.3f]\n", cs[c].name, med, lo, hi);
         }
         for (int set = 0; set < FLAGSETS; set++) {
@@ -308,12 +281,12 @@ int main(void)
             const double *g = tm[set * PER_SET];
             snprintf(what, sizeof what, "generated / hand careful (%s)",
                      flagsets[set]);
-            verdict(what, g, tm[set * PER_SET + 2], rounds, 1.0);
+            bench_verdict(what, g, tm[set * PER_SET + 2], rounds, 1.0);
             snprintf(what, sizeof what, "generated / store floor (%s)",
                      flagsets[set]);
-            verdict(what, g, tm[set * PER_SET + 3], rounds, 2.0);
+            bench_verdict(what, g, tm[set * PER_SET + 3], rounds, 2.0);
         }
-        verdict("runtime / generated (-O2)", tm[NC - 2], tm[0], rounds, 4.0);
+        bench_verdict("runtime / generated (-O2)", tm[NC - 2], tm[0], rounds, 4.0);
         fflush(stdout);
         lambdify(n);
         free(out);

@@ -84,30 +84,6 @@ static double time_one(const Data *d, const Contestant *c, size_t n)
     return bench_now_ms() - t0;
 }
 
-static void stats(const double *x, int n, double *med, double *lo, double *hi)
-{
-    double s[MAXROUNDS];
-    memcpy(s, x, sizeof *s * (size_t)n);
-    qsort(s, (size_t)n, sizeof *s, bench_cmp_double);
-    *med = s[n / 2];
-    *lo = s[0];
-    *hi = s[n - 1];
-}
-
-static void verdict(const char *what, const double *ta, const double *tb,
-                    int rounds, double goal)
-{
-    double r[MAXROUNDS], med, lo, hi;
-    for (int k = 0; k < rounds; k++)
-        r[k] = ta[k] / tb[k];
-    stats(r, rounds, &med, &lo, &hi);
-    printf("  %-46s %5.2f [%4.2f..%4.2f] goal <= %.1f: %s\n", what, med, lo,
-           hi, goal,
-           hi <= goal  ? "met"
-           : lo > goal ? "not met"
-                       : "undecided (spread)");
-}
-
 static Plan *plan_of(const char *path, int *m)
 {
     Derived *d = derive_file(path, stderr, NULL);
@@ -206,7 +182,7 @@ int main(void)
            n, rounds);
     for (int c = 0; c < nc; c++) {
         double med, lo, hi;
-        stats(tm[c], rounds, &med, &lo, &hi);
+        bench_stats(tm[c], rounds, &med, &lo, &hi);
         printf("  %-46s %8.3f [%7.3f..%7.3f]\n", cs[c].name, med, lo, hi);
     }
     for (int s = 0; s < NSCHEMES; s++)
@@ -215,7 +191,7 @@ int main(void)
             char what[96];
             snprintf(what, sizeof what, "%s generated / hand (%s)", labels[s],
                      flagsets[set]);
-            verdict(what, tm[base], tm[base + 1], rounds, 1.2);
+            bench_verdict(what, tm[base], tm[base + 1], rounds, 1.2);
         }
     free(out);
     free(zero);

@@ -38,92 +38,42 @@ import sys
 import mpmath as mp
 import sympy as sp
 
-mp.mp.dps = 40
+from verdicts import (R, compare, decompose, fix, misprint, misprints, failures,
+                      ndist, npt, num, point_from, remark, report, rnd, same,
+                      use_symbols, finish)
+
 random.seed(20240612)
-R = sp.Rational
 
 a, b, c, r_, rho1, m, n = sp.symbols('a b c r rho1 m n', positive=True)
 gam = sp.symbols('gamma', positive=True)
 phi, rho, t, theta, s_ = sp.symbols('phi rho t theta s', real=True)
 SYM = {str(z): z for z in (a, b, c, r_, rho1, m, n, gam, phi, rho, t, theta, s_)}
-
-failures = []
-misprints = []
+use_symbols(SYM)
 
 
-def report(ok, label, msg=''):
-    print(f"{'OK      ' if ok else 'FAIL    '} {label}{(': ' + msg) if msg else ''}")
-    if not ok:
-        failures.append(label)
 
 
-def misprint(label, msg):
-    print(f"MISPRINT {label}: {msg}")
-    misprints.append(label)
 
 
-def remark(msg):
-    print(f"REMARK   {msg}")
 
 
-def fix(s):
-    return {(SYM[k] if isinstance(k, str) else k): v for k, v in s.items()}
 
 
-def num(e, s):
-    z = sp.N(sp.sympify(e).subs(fix(s)), 35)
-    return mp.mpc(mp.mpf(str(sp.re(z))), mp.mpf(str(sp.im(z))))
 
 
-def same(e1, e2, samples, tol=1e-20):
-    for s in samples:
-        d1, d2 = num(e1, s), num(e2, s)
-        if abs(d1 - d2) > tol * max(1.0, abs(d1), abs(d2)):
-            return False
-    return True
 
 
-def rnd(lo, hi):
-    return R(random.randint(int(lo * 1000) + 1, int(hi * 1000) - 1), 1000)
 
 
-def compare(label, printed, derived, samples, expect_ok=True, why='', correct=None):
-    """printed, derived: lists of expressions (weights).  expect_ok False: a
-    known misprint; correct: the corrected form, checked equal to derived."""
-    ok = all(same(p, d, samples) for p, d in zip(printed, derived))
-    if correct is not None and not all(same(p, d, samples) for p, d in zip(correct, derived)):
-        report(False, label, "the stated correction does not equal the derivation")
-        return
-    shown = ', '.join(str(sp.simplify(d)) for d in (correct if correct is not None else derived))
-    if len(shown) > 220:
-        shown = '(long; equal to the ' + ('printed form)' if ok else 'correction above)')
-    if ok and expect_ok:
-        report(True, label, f"agrees; derived {shown}")
-    elif not ok and not expect_ok:
-        misprint(label, f"{why}\n           derived: {shown}")
-    else:
-        report(False, label, f"verdict changed (printed {'agrees' if ok else 'differs'}); derived: {shown}")
 
 
-def decompose(M, O, P1, P2):
-    """p, q with M - O = p (P1 - O) + q (P2 - O) (2D coordinate tuples)."""
-    p, q = sp.symbols('p_ q_')
-    sol = sp.solve([M[i] - O[i] - p * (P1[i] - O[i]) - q * (P2[i] - O[i]) for i in range(2)],
-                   [p, q], dict=True)[0]
-    return sp.simplify(sol[p]), sp.simplify(sol[q])
 
 
-def point_from(weights, O, P1, P2):
-    p, q = weights
-    return tuple(O[i] + p * (P1[i] - O[i]) + q * (P2[i] - O[i]) for i in range(2))
 
 
-def npt(P, s):
-    return tuple(mp.mpf(str(sp.N(sp.sympify(P[i]).subs(fix(s)), 40))) for i in range(2))
 
 
-def ndist(P, Q):
-    return mp.sqrt(sum((mp.mpf(P[i]) - mp.mpf(Q[i])) ** 2 for i in range(2)))
+
 
 
 def nangle(P, Q, Rr):
@@ -671,5 +621,4 @@ remark("point form used by the schemes: M = (A + B v t + C t^2)/(1 + v t + t^2),
        "valid whenever |BA| = |BC| (B the pole of AC); t in [0, oo] is the arc A E C")
 
 # ----------------------------------------------------------------------------
-print(f"\n{len(misprints)} misprints confirmed, {len(failures)} failures")
-sys.exit(1 if failures else 0)
+finish()
