@@ -189,6 +189,38 @@ static void test_ellipses(void **state)
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         check_case(&cases[i]);
+
+    /* the ellipse with its axis at the angle theta to the line AB of a
+     * general triangle (2.1.1.1): centre C, semi-axes m along CK, n; K on
+     * AB with AK = b sin(pi - alpha - theta)/sin(theta) */
+    const double A[2] = {0.2, -0.1}, B[2] = {4.1, 0.6}, C[2] = {1.3, 2.4};
+    const double la = hypot(B[0] - C[0], B[1] - C[1]);
+    const double lb = hypot(A[0] - C[0], A[1] - C[1]);
+    const double lc = hypot(B[0] - A[0], B[1] - A[1]);
+    const double al = acos(((B[0] - A[0]) * (C[0] - A[0]) +
+                            (B[1] - A[1]) * (C[1] - A[1])) / (lc * lb));
+    const double ga = acos(((A[0] - C[0]) * (B[0] - C[0]) +
+                            (A[1] - C[1]) * (B[1] - C[1])) / (lb * la));
+    const double th = 0.7, mm = 3, nn = 1.5;
+    const double ak = lb * sin(PI - al - th) / sin(th);
+    const double K[2] = {A[0] + (B[0] - A[0]) * ak / lc,
+                         A[1] + (B[1] - A[1]) * ak / lc};
+    const double ck = hypot(K[0] - C[0], K[1] - C[1]);
+    const double f = sqrt(mm * mm - nn * nn);
+    const Case tilted = {"examples/ellipse_axis_at_angle.pcs",
+                         {la, lb, lc, al, ga, th, mm, nn},
+                         {A[0], A[1]},
+                         {B[0], B[1]},
+                         {C[0], C[1]},
+                         ELLIPSE,
+                         {C[0] + f * (K[0] - C[0]) / ck,
+                          C[1] + f * (K[1] - C[1]) / ck},
+                         {C[0] - f * (K[0] - C[0]) / ck,
+                          C[1] - f * (K[1] - C[1]) / ck},
+                         2 * mm,
+                         0,
+                         2 * PI};
+    check_case(&tilted);
 }
 
 static void test_hyperbolas(void **state)
