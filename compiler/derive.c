@@ -302,9 +302,10 @@ static int kernel_error(Deriver *D, int rc, const Node *n, const Node *arg)
         break;
     case KERNEL_EBIG:
         diag_error(D->diag, n->span,
-                   "expression too large for the functions' identities "
-                   "(over %d terms)",
-                   KERNEL_MAX_TERMS);
+                   "expression too large for the functions' identities: "
+                   "a value of over %d terms, or an intermediate result of "
+                   "over %d",
+                   KERNEL_MAX_TERMS, KERNEL_MAX_WORK_TERMS);
         break;
     case RATFUN_EPOLE:
     case KERNEL_EZERO:
