@@ -1024,6 +1024,87 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
         if (done_shift)
             goto done;
     }
+    /* sin, cos of x + asin(y), x + acos(y), x + atan(y) (also minus):
+     * the addition formulas, so that angle() results combine
+     * algebraically (cos(acos(y)) = y, sin(acos(y)) = sqrt(1 - y^2)) */
+    if ((f == KF_SIN || f == KF_COS) && fmpz_mpoly_is_fmpz(a->den, r->ctx)) {
+        fmpz_t dd, cc;
+        fmpz_init(dd);
+        fmpz_init(cc);
+        fmpz_mpoly_get_fmpz(dd, a->den, r->ctx);
+        slong iv = -1, sgn = 0;
+        fmpz_mpoly_t cpoly;
+        fmpz_mpoly_init(cpoly, r->ctx);
+        for (slong i = 0; i < K->n && iv < 0; i++) {
+            KernelFn g = K->k[i].fn;
+            slong kv = K->k[i].var;
+            ulong one = 1;
+            if ((g != KF_ASIN && g != KF_ACOS && g != KF_ATAN) ||
+                fmpz_mpoly_degree_si(a->num, kv, r->ctx) != 1)
+                continue;
+            /* the term must be exactly +-d*v: its coefficient a number */
+            fmpz_mpoly_get_coeff_vars_ui(cpoly, a->num, &kv, &one, 1, r->ctx);
+            if (!fmpz_mpoly_is_fmpz(cpoly, r->ctx))
+                continue;
+            fmpz_mpoly_get_fmpz(cc, cpoly, r->ctx);
+            if (fmpz_cmpabs(cc, dd) == 0) {
+                iv = i;
+                sgn = fmpz_sgn(cc);
+            }
+        }
+        fmpz_mpoly_clear(cpoly, r->ctx);
+        /* arg = +-v alone: the rules for sin(asin(y)) ... below apply */
+        if (iv >= 0 && a->num->length == 1)
+            iv = -1;
+        if (iv >= 0) {
+            RatFun xr, v, sx, cx, sv, cv;
+            ratfun_init(xr, r);
+            ratfun_init(v, r);
+            ratfun_init(sx, r);
+            ratfun_init(cx, r);
+            ratfun_init(sv, r);
+            ratfun_init(cv, r);
+            /* x = arg - sgn*v */
+            ratfun_gen(v, K->k[iv].var, r);
+            if (sgn < 0)
+                ratfun_neg(v, v, r);
+            ratfun_sub(xr, a, v, r);
+            ratfun_gen(v, K->k[iv].var, r);
+            rc = kernel_apply(K, sx, KF_SIN, xr, NULL);
+            if (rc == 0)
+                rc = kernel_apply(K, cx, KF_COS, xr, NULL);
+            if (rc == 0)
+                rc = kernel_apply(K, sv, KF_SIN, v, NULL);
+            if (rc == 0)
+                rc = kernel_apply(K, cv, KF_COS, v, NULL);
+            if (rc == 0) {
+                if (sgn < 0)
+                    ratfun_neg(sv, sv, r);
+                /* sin(x + w) = sin x cos w + cos x sin w;
+                 * cos(x + w) = cos x cos w - sin x sin w */
+                if (f == KF_SIN) {
+                    ratfun_mul(sx, sx, cv, r);
+                    ratfun_mul(cx, cx, sv, r);
+                    ratfun_add(res, sx, cx, r);
+                } else {
+                    ratfun_mul(cx, cx, cv, r);
+                    ratfun_mul(sx, sx, sv, r);
+                    ratfun_sub(res, cx, sx, r);
+                }
+            }
+            ratfun_clear(cv, r);
+            ratfun_clear(sv, r);
+            ratfun_clear(cx, r);
+            ratfun_clear(sx, r);
+            ratfun_clear(v, r);
+            ratfun_clear(xr, r);
+            fmpz_clear(cc);
+            fmpz_clear(dd);
+            goto done;
+        }
+        fmpz_clear(cc);
+        fmpz_clear(dd);
+    }
     /* odd and even functions see a canonical sign: sin(-a) = -sin(a) */
     int neg = rf_lead_sign(a, r) < 0 &&
               (is_odd(f) || is_even(f) || f == KF_ACOS);

@@ -107,6 +107,10 @@ static void test_identities_reduce_to_zero(void **state)
         "diff(tan(t), t) - 1/cos(t)^2",
         "diff(ln(t), t) - 1/t",
         "diff(sign(t), t)",
+        "sin(t + acos(u)) - (sin(t)*u + cos(t)*sqrt(1 - u^2))",
+        "cos(t - atan(u)) - (cos(t) + sin(t)*u)/sqrt(1 + u^2)",
+        "cos(angle(A, C, B) - t) - cos(t)*cos(angle(A, C, B)) - "
+        "sin(t)*sin(angle(A, C, B))",
         "dist(A, B) - dist(B, A)",
         "dist(A, B)^2 - dot(A - B, A - B)",
         "dot(B - A, B - A) + dot(A - B, B - A)",
