@@ -33,7 +33,7 @@ static pc_scheme *scheme_of(const char *defs)
 {
     char text[8192];
     snprintf(text, sizeof text,
-             "point A, B\nparam t, u\nconst a, b\n%s\n", defs);
+             "point A, B, C\nparam t, u\nconst a, b\n%s\n", defs);
     char *diag = NULL;
     pc_scheme *s = pc_scheme_parse("k.pcs", text, strlen(text), &diag);
     if (!s)
