@@ -595,8 +595,9 @@ Plan *lower_derived(const Derived *d, FILE *err)
         int bad = -1;
         if (atoms)
             derived_error(d, err, out->span,
-                          "%s uses symbolic atoms that emit-c and eval "
-                          "cannot evaluate yet",
+                          "%s depends on an unknown scalar that no solve "
+                          "determined: emit-c and eval cannot give it a "
+                          "value",
                           out->name);
         else if (degree < 0 || degree > DEGREE_MAX)
             derived_error(d, err, out->span,

@@ -26,8 +26,8 @@
 
 /* Lowers every output of d.  Returns NULL, with an error in the contract's
  * format (FILE:LINE:COL at the output's definition) on err (NULL: none),
- * when an output cannot be evaluated in double precision: symbolic atoms
- * beyond params and consts, a degree above 2^24, or a coefficient that no
+ * when an output cannot be evaluated in double precision: an unsolved
+ * unknown scalar, a degree above 2^24, or a coefficient that no
  * double holds (beyond ~1.8e308, or non-zero below ~4.9e-324). */
 Plan *lower_derived(const Derived *d, FILE *err);
 
