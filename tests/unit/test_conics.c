@@ -241,6 +241,42 @@ static void test_hyperbolas(void **state)
         check_case(&cases[i]);
 }
 
+/* the hyperbola by the central angle runs off along its asymptotes
+ * y = +-(b/a) x as phi nears +-asin(b/c): the direction of M - C there is
+ * (a, +-b)/c (a separate property from the focal difference) */
+static void test_hyperbola_asymptotes(void **state)
+{
+    (void)state;
+    const double a = 2, b = 1.5, c = sqrt(a * a + b * b), w = asin(b / c);
+    char *diag = NULL;
+    pc_scheme *s =
+        pc_scheme_load("examples/hyperbola_central_angle.pcs", &diag);
+    free(diag);
+    assert_non_null(s);
+    pc_plan *p = pc_compile(s, NULL);
+    assert_non_null(p);
+    const double A[2] = {a, 0}, B[2] = {0, b}, C[2] = {0, 0};
+    const double *pts[3];
+    for (int i = 0; i < 3; i++) {
+        const char *nm = pc_point_name(s, i);
+        pts[i] = nm[0] == 'A' ? A : nm[0] == 'B' ? B : C;
+    }
+    const double phis[2] = {w - 1e-7, -w + 1e-7};
+    const double *prm[1] = {phis};
+    double out[4];
+    assert_int_equal(pc_eval(p, pc_find_output(s, "M"), 2, prm,
+                             (const double[]){a, b}, pts, 2, out, NULL, NULL),
+                     PC_OK);
+    for (int k = 0; k < 2; k++) {
+        double len = hypot(out[2 * k], out[2 * k + 1]);
+        assert_true(len > 1e3); /* far out on the branch */
+        assert_true(fabs(out[2 * k] / len - a / c) < 1e-5);
+        assert_true(fabs(out[2 * k + 1] / len - (k ? -b : b) / c) < 1e-5);
+    }
+    pc_plan_free(p);
+    pc_scheme_free(s);
+}
+
 static void test_circles(void **state)
 {
     (void)state;
@@ -298,6 +334,7 @@ int main(void)
         cmocka_unit_test(test_ellipses),
         cmocka_unit_test(test_hyperbolas),
         cmocka_unit_test(test_circles),
+        cmocka_unit_test(test_hyperbola_asymptotes),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
