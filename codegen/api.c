@@ -282,13 +282,14 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
         (pl->nparams && n && !params) || (pl->nconsts && !consts))
         return PC_EINVAL;
     const PlanOutput *o = &pl->outputs[output];
-    if (o->kind != PLAN_SCALAR) {
-        if (dim < 1)
+    if (o->kind != PLAN_SCALAR && dim < 1)
+        return PC_EINVAL;
+    /* the points it reads: its weights' and its distances' (a scalar that
+     * measures points reads them too) */
+    for (int k = 0; k < pl->npoints; k++)
+        if (plan_output_uses_point(pl, output, k) &&
+            (!points || !points[k] || dim < 1))
             return PC_EINVAL;
-        for (int k = 0; k < o->nterms; k++)
-            if (!points || !points[o->point[k]])
-                return PC_EINVAL;
-    }
     for (int i = 0; i < pl->nparams && n; i++)
         if (!params[i])
             return PC_EINVAL;

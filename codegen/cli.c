@@ -445,16 +445,15 @@ static int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p, FILE *err)
                                a->at[i].name, n, s->dim);
         s->dim = (int)n;
     }
-    for (int j = 0; j < s->nsel; j++) {
-        const PlanOutput *o = &p->outputs[s->sel[j]];
-        for (int k = 0; k < o->nterms; k++)
-            if (o->point[k] >= 0 && !s->pt[o->point[k]])
+    /* the points an output reads: its weights' and its distances' */
+    for (int j = 0; j < s->nsel; j++)
+        for (int k = 0; k < p->npoints; k++)
+            if (!s->pt[k] && plan_output_uses_point(p, s->sel[j], k))
                 return usage_error(err, eval_usage,
                                    "missing --at %s=x,y,...: output %s "
                                    "depends on base point %s",
-                                   p->points[o->point[k]], o->name,
-                                   p->points[o->point[k]]);
-    }
+                                   p->points[k], p->outputs[s->sel[j]].name,
+                                   p->points[k]);
     for (int j = 0; j < s->nsel && s->dim == 0; j++) {
         const PlanOutput *o = &p->outputs[s->sel[j]];
         if (o->kind != PLAN_SCALAR)

@@ -358,5 +358,28 @@ check "eval N: k is used, m is not" grep -q "^pointcalc: missing --set k=VALUE$"
 "$PC" eval "$tmp/c2.pcs" --at A=0 --at B=1 --param t=0.5 --output N --set k=2 >"$tmp/out"
 check "eval N with k only" test "$(tail -1 "$tmp/out")" = "0.5,1"
 
+# functions outside their domain: NaN, "domain" in JSON, a message, exit 1
+printf 'point A, B\nparam t\nM = A*(1 - sqrt(t)) + B*sqrt(t)\nL = ln(t)\noutput M, L\n' >"$tmp/fn.pcs"
+"$PC" eval "$tmp/fn.pcs" --at A=0 --at B=1 --param t=-1,4 >"$tmp/out" 2>"$tmp/err"
+check "domain: exit 1" test $? -eq 1
+check "domain: csv nan row" grep -qx -- '-1,nan,nan' "$tmp/out"
+check "domain: csv good row" grep -qx '4,2,1.3862943611198906' "$tmp/out"
+check "domain: message" grep -qx "pointcalc: eval: M at t=-1 is undefined: a function's argument is outside its domain (sqrt of a negative number, ln of one <= 0, asin or acos beyond \[-1, 1\]); written as nan" "$tmp/err"
+"$PC" eval "$tmp/fn.pcs" --at A=0 --at B=1 --param t=-1,4 --format json >"$tmp/out" 2>/dev/null
+check "domain: json lists the outputs" python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+s = d['samples']
+assert s[0]['domain'] == ['M', 'L'] and s[0]['M'] == [None] and s[0]['L'] is None
+assert 'domain' not in s[1] and s[1]['M'] == [2]
+" "$tmp/out"
+
+# a scalar output that measures points reads them (and only those)
+printf 'point A, B, C\nparam t\nd = dist(A, B)*t\noutput d\n' >"$tmp/di.pcs"
+"$PC" eval "$tmp/di.pcs" --at A=0,0 --at B=3,4 --param t=2 >"$tmp/out" 2>"$tmp/err"
+check "dist: eval 2*|AB|" test $? -eq 0 -a "$(tail -1 "$tmp/out")" = "2,10"
+"$PC" eval "$tmp/di.pcs" --at A=0,0 --param t=2 >"$tmp/out" 2>"$tmp/err"
+check "dist: B is needed" grep -q "^pointcalc: missing --at B=" "$tmp/err"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

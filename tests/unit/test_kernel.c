@@ -397,6 +397,11 @@ static void test_metric_values(void **state)
             }
         }
     }
+    /* the distances read the points: without them the call is refused */
+    double one;
+    assert_int_equal(pc_eval(p, 0, 1, params, NULL, NULL, 2, &one, NULL,
+                             NULL),
+                     PC_EINVAL);
     pc_plan_free(p);
     pc_scheme_free(s);
 }
