@@ -26,6 +26,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compiler/derive.h"
+#include "compiler/format.h"
 #include "libpointcalc.h"
 
 /* derives "param t, u / const a, b / NAME = EXPR" and returns the scheme */
@@ -433,6 +435,52 @@ static void test_domain_status(void **state)
     pc_scheme_free(s);
 }
 
+/* How a function reads in derive's text and LaTeX: golden lines, written
+ * by hand from the rules of docs/language.md (arguments expanded, as the
+ * book writes them; pi, roots, exp and distances in their usual notation). */
+static void test_printed_functions(void **state)
+{
+    (void)state;
+    static const char src[] = "point A, B\nparam t in [0, 1]\n"
+                              "const a, b > 0\n"
+                              "s1 = sqrt(a^2 - b^2)\n"
+                              "s2 = exp(t/2)\n"
+                              "s3 = t^(1/5)\n"
+                              "s4 = dist(A, B)\n"
+                              "s5 = sin(t)^2\n"
+                              "s6 = atan2(t, a)\n"
+                              "s7 = pi*acos(t)\n"
+                              "output s1, s2, s3, s4, s5, s6, s7\n";
+    static const char *const text =
+        "s1 = sqrt(a^2 - b^2)\n"
+        "s2 = exp(t/2)\n"
+        "s3 = root(t, 5)\n"
+        "s4 = dist(A, B)\n"
+        "s5 = sin(t)^2\n"
+        "s6 = atan2(t, a)\n"
+        "s7 = pi*acos(t)\n";
+    static const char *const latex =
+        "\\[ s_{1} = \\sqrt{a^{2} - b^{2}} \\]\n"
+        "\\[ s_{2} = e^{\\frac{t}{2}} \\]\n"
+        "\\[ s_{3} = \\sqrt[5]{t} \\]\n"
+        "\\[ s_{4} = \\left|AB\\right| \\]\n"
+        "\\[ s_{5} = \\sin\\left(t\\right)^{2} \\]\n"
+        "\\[ s_{6} = \\operatorname{atan2}\\left(t, a\\right) \\]\n"
+        "\\[ s_{7} = \\pi \\arccos\\left(t\\right) \\]\n";
+    Derived *d = derive_source("p.pcs", src, strlen(src), stderr, NULL);
+    assert_non_null(d);
+    for (int k = 0; k < 2; k++) {
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *f = open_memstream(&buf, &len);
+        format_derived(f, d, k ? FMT_LATEX : FMT_TEXT, -1);
+        fclose(f);
+        assert_string_equal(buf, k ? latex : text);
+        free(buf);
+    }
+    derived_free(d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -443,6 +491,7 @@ int main(void)
         cmocka_unit_test(test_point_with_function_weights),
         cmocka_unit_test(test_domain_status),
         cmocka_unit_test(test_metric_values),
+        cmocka_unit_test(test_printed_functions),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
