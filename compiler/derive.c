@@ -334,12 +334,31 @@ static int reduce_value(Deriver *D, Value *v, const Node *n)
     return rc ? kernel_error(D, rc, n, NULL) : 0;
 }
 
+/* the scalar functions are the builtins BI_SQRT .. BI_SIGN (sema.h) */
 static int is_function(int b)
 {
-    return b == BI_SQRT || b == BI_SIN || b == BI_COS || b == BI_TAN ||
-           b == BI_ASIN || b == BI_ACOS || b == BI_ATAN || b == BI_ATAN2 ||
-           b == BI_SINH || b == BI_COSH || b == BI_TANH || b == BI_EXP ||
-           b == BI_LN || b == BI_ABS || b == BI_SIGN;
+    return b >= BI_SQRT && b <= BI_SIGN;
+}
+
+/* the kernel a function builtin makes directly (tan, tanh and abs are
+ * rewritten, kernel.h), or -1 */
+static int builtin_kernel(int b)
+{
+    switch ((Builtin)b) {
+    case BI_SQRT: return KF_SQRT;
+    case BI_SIN: return KF_SIN;
+    case BI_COS: return KF_COS;
+    case BI_ASIN: return KF_ASIN;
+    case BI_ACOS: return KF_ACOS;
+    case BI_ATAN: return KF_ATAN;
+    case BI_ATAN2: return KF_ATAN2;
+    case BI_SINH: return KF_SINH;
+    case BI_COSH: return KF_COSH;
+    case BI_EXP: return KF_EXP;
+    case BI_LN: return KF_LN;
+    case BI_SIGN: return KF_SIGN;
+    default: return -1;
+    }
 }
 
 /* ---- metric atoms: dot, dist, angle ------------------------------------- */
@@ -547,19 +566,9 @@ static int eval_function(Deriver *D, Value *res, const Node *n)
         goto done;
     }
     switch ((Builtin)n->builtin) {
-    case BI_SQRT: rc = kernel_apply(K, res->s, KF_SQRT, x, NULL); break;
-    case BI_SIN: rc = kernel_apply(K, res->s, KF_SIN, x, NULL); break;
-    case BI_COS: rc = kernel_apply(K, res->s, KF_COS, x, NULL); break;
-    case BI_ASIN: rc = kernel_apply(K, res->s, KF_ASIN, x, NULL); break;
-    case BI_ACOS: rc = kernel_apply(K, res->s, KF_ACOS, x, NULL); break;
-    case BI_ATAN: rc = kernel_apply(K, res->s, KF_ATAN, x, NULL); break;
-    case BI_SINH: rc = kernel_apply(K, res->s, KF_SINH, x, NULL); break;
-    case BI_COSH: rc = kernel_apply(K, res->s, KF_COSH, x, NULL); break;
-    case BI_EXP: rc = kernel_apply(K, res->s, KF_EXP, x, NULL); break;
-    case BI_LN: rc = kernel_apply(K, res->s, KF_LN, x, NULL); break;
-    case BI_SIGN: rc = kernel_apply(K, res->s, KF_SIGN, x, NULL); break;
-    case BI_ABS: rc = kernel_abs(K, res->s, x); break;
-    case BI_ATAN2: rc = kernel_apply(K, res->s, KF_ATAN2, x, y); break;
+    case BI_ABS:
+        rc = kernel_abs(K, res->s, x);
+        break;
     case BI_TAN:
     case BI_TANH: { /* sin/cos, sinh/cosh */
         int hyp = n->builtin == BI_TANH;
@@ -577,7 +586,8 @@ static int eval_function(Deriver *D, Value *res, const Node *n)
         break;
     }
     default:
-        st = -1;
+        rc = kernel_apply(K, res->s, (KernelFn)builtin_kernel(n->builtin), x,
+                          n->builtin == BI_ATAN2 ? y : NULL);
         break;
     }
     if (rc != 0)

@@ -539,13 +539,6 @@ char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
     return buf_take(&b);
 }
 
-char *format_scalar(const RatFun x, const Ring *r, FormatStyle st)
-{
-    Buf b = {0};
-    put_scalar(&b, x, r, st);
-    return buf_take(&b);
-}
-
 /* a JSON string: the scheme's name comes from a file name and may hold
  * anything ("a\"b.pcs"); identifiers and weights need no escapes */
 static void json_string(FILE *out, const char *s)

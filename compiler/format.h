@@ -34,7 +34,5 @@ char *format_weight(const RatFun w, const Ring *r);
 /* x expanded (numerator and denominator as sums of terms, no factoring: as
  * cheap as printing gets), in style st (malloc'd; caller frees) */
 char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st);
-/* x as derive prints a scalar in style st (malloc'd; caller frees) */
-char *format_scalar(const RatFun x, const Ring *r, FormatStyle st);
 
 #endif

@@ -48,11 +48,6 @@ static const char *const fn_names[] = {
 #undef X
 };
 
-const char *kernel_fn_name(KernelFn f)
-{
-    return f >= 0 && f < KF_COUNT ? fn_names[f] : "?";
-}
-
 slong kernels_metric_slots(slong metric, slong npoints)
 {
     if (metric == 0)
@@ -1512,19 +1507,6 @@ int kernel_depends(const Kernels *K, const RatFun x, slong var)
         if (rf_has(x, K->k[i].var, K->r) &&
             kernel_arg_depends(K, &K->k[i], var))
             return 1;
-    return 0;
-}
-
-int kernel_depends_pteq(const Kernels *K, const PointEq x, slong var)
-{
-    RatFunStruct v;
-    for (slong j = 0; j < x->len; j++) {
-        fmpz_mpoly_struct num = *x->terms[j].num, den = *x->den;
-        v.num[0] = num;
-        v.den[0] = den;
-        if (kernel_depends(K, &v, var))
-            return 1;
-    }
     return 0;
 }
 

@@ -65,9 +65,6 @@ typedef enum KernelFn {
         KF_COUNT
 } KernelFn;
 
-/* the function's name in a scheme ("sin") */
-const char *kernel_fn_name(KernelFn f);
-
 typedef struct Kernel {
     KernelFn fn;
     slong var;   // its ring variable
@@ -166,7 +163,6 @@ int kernel_uses_pteq(const Kernels *K, const PointEq x, int any);
 
 /* 1 when x depends on variable var, directly or through a kernel */
 int kernel_depends(const Kernels *K, const RatFun x, slong var);
-int kernel_depends_pteq(const Kernels *K, const PointEq x, slong var);
 
 /* 1 when x uses a distance to base point `point` (directly or inside a
  * function's argument) */
