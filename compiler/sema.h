@@ -30,7 +30,7 @@
     X(BI_DOT, "dot", 2, 2, 0, 1)       /* metric: U . V */                     \
     X(BI_DIST, "dist", 2, 2, 0, 1)     /* metric: |PQ| */                      \
     X(BI_ANGLE, "angle", 3, 3, 0, 1)   /* metric: angle PQR at Q */            \
-    X(BI_SQRT, "sqrt", 1, 1, 0, 1) /* scalar functions (kernel.h), BI_SQRT..BI_SIGN in a row */ \
+    X(BI_SQRT, "sqrt", 1, 1, 0, 1) /* functions: BI_SQRT..BI_SIGN in a row */ \
     X(BI_SIN, "sin", 1, 1, 0, 1)                                               \
     X(BI_COS, "cos", 1, 1, 0, 1)                                               \
     X(BI_TAN, "tan", 1, 1, 0, 1)                                               \
