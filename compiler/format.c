@@ -509,6 +509,17 @@ static void put_scalar(Buf *b, const RatFun x, const Ring *r, FormatStyle st)
     free(n.s);
 }
 
+char *format_output_rhs(const Derived *d, const DerivedOutput *o,
+                        FormatStyle st, slong origin)
+{
+    Buf b = {0};
+    if (o->kind == KIND_SCALAR)
+        put_scalar(&b, o->scalar, &d->ring, st);
+    else
+        put_equation(&b, d, o, st, origin);
+    return buf_take(&b);
+}
+
 char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
 {
     Buf b = {0};

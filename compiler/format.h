@@ -31,6 +31,13 @@ void format_derived(FILE *out, const Derived *d, FormatStyle style,
  * product (the JSON form).  Caller frees with free(). */
 char *format_weight(const RatFun w, const Ring *r);
 
+/* The right-hand side of one output as derive prints it (text or LaTeX;
+ * "(A*(1 - t)^3 + ...)/(2*t^2 - 2*t + 1)"), for a point, vector or scalar;
+ * origin as above.  Used by derive --steps and plot labels.  Caller frees
+ * with free(). */
+char *format_output_rhs(const Derived *d, const DerivedOutput *o,
+                        FormatStyle st, slong origin);
+
 /* x expanded (numerator and denominator as sums of terms, no factoring: as
  * cheap as printing gets), in style st (malloc'd; caller frees) */
 char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st);
