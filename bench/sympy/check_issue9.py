@@ -415,7 +415,7 @@ def check_golden(results):
         for block in blocks[fname]:
             vals = parse_block(block, names)
             last = list(vals)[-1]
-            target = last.split('_book')[0]
+            target = re.sub(r'_(book|derived)$', '', last)
             want = defs[target]
             got = vals[last]
             ok = zero(got - want) if not isinstance(got, list) else eq_weights(got, list(want))
