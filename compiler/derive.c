@@ -1807,6 +1807,31 @@ Derived *derive_source(const char *filename, const char *text, size_t len,
     return derive_source_ex(filename, text, len, err, nerrors, &opt);
 }
 
+/* an output defined as diff(NAME, t[, n]) of a plain name: the printers
+ * write it as dNAME/dt^n */
+static void output_diff_of(DerivedOutput *o, const Sym *s)
+{
+    const Node *e = s->kind == SYM_DEF && s->def ? s->def->expr : NULL;
+    if (!e || e->kind != ND_CALL || e->builtin != BI_DIFF)
+        return;
+    const Node *x = e->args, *t = x ? x->next : NULL;
+    const Node *n = t ? t->next : NULL;
+    if (!x || x->kind != ND_NAME || !t || t->kind != ND_NAME)
+        return;
+    long order = 1;
+    if (n) {
+        if (n->kind != ND_NUM)
+            return;
+        char *end;
+        order = strtol(n->text, &end, 10);
+        if (*end || order < 1 || order > 99)
+            return;
+    }
+    o->diff_of = pc_xstrdup(x->text);
+    o->diff_var = pc_xstrdup(t->text);
+    o->diff_order = (int)order;
+}
+
 Derived *derive_source_ex(const char *filename, const char *text, size_t len,
                           FILE *err, int *nerrors, const DeriveOptions *opt)
 {
@@ -2001,6 +2026,7 @@ retry:
             source_locate(&src, s->span.start, &line, &col);
             o->line = line;
             o->span = s->span;
+            output_diff_of(o, s);
             pteq_init(o->eq, r);
             ratfun_init(o->scalar, r);
             if (v->is_point) {
@@ -2143,6 +2169,8 @@ void derived_free(Derived *d)
         pteq_clear(d->outputs[i].eq, &d->ring);
         ratfun_clear(d->outputs[i].scalar, &d->ring);
         free((char *)d->outputs[i].name);
+        free(d->outputs[i].diff_of);
+        free(d->outputs[i].diff_var);
     }
     free(d->outputs);
     if (d->kernels) {

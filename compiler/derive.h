@@ -34,6 +34,9 @@ typedef struct DerivedOutput {
     RatFun scalar; // KIND_SCALAR: the reduced value
     int line;      // 1-based line of its definition in the scheme
     Span span;     // the defined name in its definition (for diagnostics)
+    char *diff_of;   // defined as diff(NAME, t[, n]) of a name: NAME (owned),
+    char *diff_var;  // t (owned) and n; else both NULL and diff_order 0
+    int diff_order;  // (the printers write dM/dt for it)
 } DerivedOutput;
 
 typedef struct Derived {

@@ -6,6 +6,7 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
+#include "compiler/book.h"
 #include "compiler/mem.h"
 
 /* ---- a growable string ---------------------------------------------- */
@@ -50,38 +51,11 @@ static char *buf_take(Buf *b)
 
 /* ---- names ----------------------------------------------------------- */
 
-static const char *const greek[] = {
-    "alpha", "beta",  "gamma", "delta", "epsilon", "zeta", "eta",
-    "theta", "iota",  "kappa", "lambda", "mu",     "nu",   "xi",
-    "pi",    "rho",   "sigma", "tau",   "upsilon", "phi",  "chi",
-    "psi",   "omega", "Gamma", "Delta", "Theta",   "Lambda", "Xi",
-    "Pi",    "Sigma", "Phi",   "Psi",   "Omega",
-};
-
-/* LaTeX for a name: greek words get a backslash; a lower-case stem followed
- * by upper-case letters or digits is subscripted (pD -> p_{D}, A1 -> A_{1}) */
 static void latex_name(Buf *b, const char *name)
 {
-    size_t n = strlen(name), stem = 0;
-    while (stem < n && isalpha((unsigned char)name[stem]) &&
-           (stem == 0 || islower((unsigned char)name[stem])))
-        stem++;
-    const char *under = strchr(name, '_');
-    if (under && under != name) {
-        stem = (size_t)(under - name);
-    }
-    for (size_t g = 0; g < sizeof greek / sizeof greek[0]; g++)
-        if (strlen(greek[g]) == stem && strncmp(greek[g], name, stem) == 0) {
-            buf_puts(b, "\\");
-            break;
-        }
-    buf_putn(b, name, stem);
-    if (stem < n) {
-        const char *sub = name + stem + (name[stem] == '_');
-        buf_puts(b, "_{");
-        buf_puts(b, sub);
-        buf_puts(b, "}");
-    }
+    char *s = book_latex_name(name);
+    buf_puts(b, s);
+    free(s);
 }
 
 /* ---- polynomials ------------------------------------------------------ */
@@ -335,189 +309,11 @@ char *format_weight(const RatFun w, const Ring *r)
     return buf_take(&b);
 }
 
-/* ---- equations ---------------------------------------------------------- */
-
-/* one "point times numerator" item of a sum, with its sign as an operator:
- * first: "A*t^2", "-3*B*(1-t)";  later: " + A*t^2", " - 3*B*(1-t)".
- * pre/post wrap the point name (used for "(A - C)"). */
-static void put_term(Buf *b, const char *point, const fmpz_mpoly_t num,
-                     const fmpz_mpoly_t den, const Ring *r, FormatStyle st,
-                     int first)
-{
-    Buf n = {0};
-    int neg;
-    put_factored(&n, num, r, st, &neg);
-    char *ns = buf_take(&n);
-    if (first)
-        buf_puts(b, neg ? "-" : "");
-    else
-        buf_puts(b, neg ? " - " : " + ");
-    int unit = strcmp(ns, "1") == 0;
-    int has_den = den && !fmpz_mpoly_is_one(den, r->ctx);
-    if (st == FMT_LATEX && has_den) {
-        buf_puts(b, point);
-        buf_puts(b, " \\frac{");
-        buf_puts(b, ns);
-        buf_puts(b, "}{");
-        int dneg;
-        Buf d = {0};
-        put_factored_ex(&d, den, r, st, &dneg, 1, 1);
-        if (dneg)
-            buf_puts(b, "-");
-        buf_puts(b, d.s);
-        free(d.s);
-        buf_puts(b, "}");
-        free(ns);
-        return;
-    }
-    /* a leading integer coefficient goes before the point: 3*B*t */
-    size_t lead = 0;
-    while (isdigit((unsigned char)ns[lead]))
-        lead++;
-    if (lead > 0 && (ns[lead] == '*' || ns[lead] == ' ')) {
-        buf_putn(b, ns, lead);
-        buf_puts(b, st == FMT_LATEX ? " " : "*");
-        buf_puts(b, point);
-        buf_puts(b, st == FMT_LATEX ? " " : "*");
-        buf_puts(b, ns + lead + 1);
-    } else if (unit) {
-        buf_puts(b, point);
-    } else if (lead > 0 && ns[lead] == '\0') {
-        buf_puts(b, ns);
-        buf_puts(b, st == FMT_LATEX ? " " : "*");
-        buf_puts(b, point);
-    } else {
-        buf_puts(b, point);
-        buf_puts(b, st == FMT_LATEX ? " " : "*");
-        buf_puts(b, ns);
-    }
-    if (has_den)
-        put_den(b, den, r, st);
-    free(ns);
-}
-
-static void point_label(Buf *b, const Derived *d, slong pt, slong origin,
-                        FormatStyle st)
-{
-    if (origin >= 0)
-        buf_puts(b, st == FMT_LATEX ? "\\left(" : "(");
-    if (st == FMT_LATEX)
-        latex_name(b, d->points[pt]);
-    else
-        buf_puts(b, d->points[pt]);
-    if (origin >= 0) {
-        buf_puts(b, " - ");
-        if (st == FMT_LATEX)
-            latex_name(b, d->points[origin]);
-        else
-            buf_puts(b, d->points[origin]);
-        buf_puts(b, st == FMT_LATEX ? "\\right)" : ")");
-    }
-}
-
-/* the right-hand side of a point equation (text or latex) */
-static void put_equation(Buf *b, const Derived *d, const DerivedOutput *o,
-                         FormatStyle st, slong origin)
-{
-    const Ring *r = &d->ring;
-    const PointEq *eq = &o->eq;
-    if ((*eq)->len == 0) {
-        buf_puts(b, "0");
-        return;
-    }
-    /* a denominator shared by every weight is pulled out */
-    int shared = origin < 0;
-    for (slong i = 1; i < (*eq)->len && shared; i++)
-        shared = fmpz_mpoly_equal(o->w[i].den,
-                                  o->w[0].den, r->ctx);
-    if (shared && fmpz_mpoly_is_one(o->w[0].den, r->ctx))
-        shared = 0;
-    if (shared) {
-        Buf n = {0};
-        for (slong i = 0; i < (*eq)->len; i++) {
-            Buf pl = {0};
-            point_label(&pl, d, (*eq)->terms[i].point, -1, st);
-            put_term(&n, pl.s, o->w[i].num, NULL, r, st, i == 0);
-            free(pl.s);
-        }
-        if (st == FMT_LATEX) {
-            buf_puts(b, "\\frac{");
-            buf_puts(b, n.s);
-            buf_puts(b, "}{");
-            int dneg;
-            Buf dd = {0};
-            put_factored_ex(&dd, o->w[0].den, r, st, &dneg, 1, 1);
-            if (dneg)
-                buf_puts(b, "-");
-            buf_puts(b, dd.s);
-            free(dd.s);
-            buf_puts(b, "}");
-        } else {
-            buf_puts(b, (*eq)->len > 1 ? "(" : "");
-            buf_puts(b, n.s);
-            buf_puts(b, (*eq)->len > 1 ? ")" : "");
-            put_den(b, o->w[0].den, r, st);
-        }
-        free(n.s);
-        return;
-    }
-    int first = 1;
-    for (slong i = 0; i < (*eq)->len; i++) {
-        slong pt = (*eq)->terms[i].point;
-        if (pt == origin)
-            continue;
-        Buf pl = {0};
-        point_label(&pl, d, pt, origin, st);
-        put_term(b, pl.s, o->w[i].num, o->w[i].den, r, st,
-                 first);
-        free(pl.s);
-        first = 0;
-    }
-    if (origin >= 0 && o->kind == KIND_POINT) {
-        buf_puts(b, first ? "" : " + ");
-        if (st == FMT_LATEX)
-            latex_name(b, d->points[origin]);
-        else
-            buf_puts(b, d->points[origin]);
-    } else if (first) {
-        buf_puts(b, "0");
-    }
-}
-
-static void put_scalar(Buf *b, const RatFun x, const Ring *r, FormatStyle st)
-{
-    int neg;
-    Buf n = {0};
-    put_factored(&n, x->num, r, st, &neg);
-    if (st == FMT_LATEX && !fmpz_mpoly_is_one(x->den, r->ctx)) {
-        Buf dd = {0};
-        int dneg;
-        put_factored_ex(&dd, x->den, r, st, &dneg, 1, 1);
-        buf_puts(b, neg != dneg ? "-\\frac{" : "\\frac{");
-        buf_puts(b, n.s);
-        buf_puts(b, "}{");
-        buf_puts(b, dd.s);
-        buf_puts(b, "}");
-        free(dd.s);
-    } else {
-        if (neg)
-            buf_puts(b, "-");
-        buf_puts(b, n.s);
-        if (!fmpz_mpoly_is_one(x->den, r->ctx))
-            put_den(b, x->den, r, st);
-    }
-    free(n.s);
-}
-
 char *format_output_rhs(const Derived *d, const DerivedOutput *o,
                         FormatStyle st, slong origin)
 {
-    Buf b = {0};
-    if (o->kind == KIND_SCALAR)
-        put_scalar(&b, o->scalar, &d->ring, st);
-    else
-        put_equation(&b, d, o, st, origin);
-    return buf_take(&b);
+    BookOptions opt = {st == FMT_LATEX, 0, origin};
+    return book_rhs(d, o, &opt);
 }
 
 char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
@@ -616,23 +412,10 @@ void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)
         fputs("]}\n", out);
         return;
     }
+    BookOptions opt = {st == FMT_LATEX, 0, origin};
     for (slong i = 0; i < d->noutputs; i++) {
-        const DerivedOutput *o = &d->outputs[i];
-        Buf b = {0};
-        if (st == FMT_LATEX)
-            latex_name(&b, o->name);
-        else
-            buf_puts(&b, o->name);
-        buf_puts(&b, " = ");
-        if (o->kind == KIND_SCALAR)
-            put_scalar(&b, o->scalar, r, st);
-        else
-            put_equation(&b, d, o, st, origin);
-        if (st == FMT_LATEX)
-            fprintf(out, "\\[ %s \\]\n", b.s);
-        else
-            fprintf(out, "%s%s\n", b.s,
-                    o->kind == KIND_VECTOR ? "    (vector)" : "");
-        free(b.s);
+        char *line = book_output(d, &d->outputs[i], &opt);
+        fputs(line, out);
+        free(line);
     }
 }

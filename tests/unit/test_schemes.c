@@ -29,6 +29,7 @@
 #include <flint/flint.h>
 
 #include "compiler/derive.h"
+#include "compiler/format.h"
 
 static char *read_all(const char *path, size_t *len)
 {
@@ -364,6 +365,155 @@ static void run_dir(const char *dir, void (*fn)(const char *), int min)
     free(names);
 }
 
+/* ---- the printed form read back ------------------------------------------ */
+
+static int is_ident_char(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+           (c >= '0' && c <= '9') || c == '_';
+}
+
+/* appends rhs to buf with every whole word `from` written `to` */
+static void put_renamed(char **buf, size_t *len, size_t *cap, const char *rhs,
+                        char *const *from, char *const *to, int n)
+{
+    for (const char *p = rhs; *p;) {
+        int hit = -1;
+        size_t fl = 0;
+        if (is_ident_char(*p) && (p == rhs || !is_ident_char(p[-1])))
+            for (int i = 0; i < n && hit < 0; i++) {
+                fl = strlen(from[i]);
+                if (strncmp(p, from[i], fl) == 0 && !is_ident_char(p[fl]))
+                    hit = i;
+            }
+        const char *piece = hit >= 0 ? to[hit] : p;
+        size_t pl = hit >= 0 ? strlen(to[hit]) : 1;
+        if (*len + pl + 1 > *cap) {
+            *cap = 2 * (*len + pl + 1);
+            *buf = realloc(*buf, *cap);
+        }
+        memcpy(*buf + *len, piece, pl);
+        *len += pl;
+        (*buf)[*len] = '\0';
+        p += hit >= 0 ? fl : 1;
+    }
+}
+
+/* The text derive prints, read back by pointcalc's own front end: for every
+ * output NAME = RHS, the scheme with `pb__K = (RHS) - (NAME)` added must
+ * derive pb__K to exactly 0.  (Family members print as M_1 and are read as
+ * M[1].) */
+static void check_print_back(const char *path)
+{
+    size_t len;
+    char *text = read_all(path, &len);
+    assert_non_null(text);
+    Derived *d = derive_source(path, text, len, stderr, NULL);
+    CHECK(d != NULL, "%s: does not derive", path);
+    if (!d) {
+        free(text);
+        return;
+    }
+    char *out = NULL;
+    size_t outlen = 0;
+    FILE *mem = open_memstream(&out, &outlen);
+    format_derived(mem, d, FMT_TEXT, -1);
+    fclose(mem);
+    /* member names that the source spells NAME[k] */
+    int nren = 0;
+    char **from = calloc((size_t)d->npoints + 1, sizeof(char *));
+    char **to = calloc((size_t)d->npoints + 1, sizeof(char *));
+    for (slong i = 0; i < d->npoints; i++) {
+        const char *u = strrchr(d->points[i], '_');
+        if (!u || strstr(text, d->points[i]))
+            continue;
+        from[nren] = strdup(d->points[i]);
+        to[nren] = malloc(strlen(d->points[i]) + 3);
+        sprintf(to[nren], "%.*s[%s]", (int)(u - d->points[i]), d->points[i],
+                u + 1);
+        nren++;
+    }
+    size_t cap = len + 2 * outlen + 256, k = 0;
+    char *copy = malloc(cap);
+    for (size_t i = 0; i < len; i++) { /* comment out the output line */
+        if ((i == 0 || text[i - 1] == '\n') &&
+            strncmp(text + i, "output", 6) == 0 &&
+            (text[i + 6] == ' ' || text[i + 6] == '\t'))
+            copy[k++] = '#';
+        copy[k++] = text[i];
+    }
+    copy[k] = '\0';
+    int nout = 0;
+    char *outs = strdup("");
+    for (char *save = NULL, *ln = strtok_r(out, "\n", &save); ln;
+         ln = strtok_r(NULL, "\n", &save)) {
+        char *eq = strstr(ln, " = ");
+        CHECK(eq != NULL, "%s: printed line without ' = ': %s", path, ln);
+        if (!eq)
+            continue;
+        *eq = '\0';
+        char *rhs = eq + 3;
+        char *vec = strstr(rhs, "    (vector)");
+        if (vec)
+            *vec = '\0';
+        if (strcmp(rhs, "0") == 0 && vec) {
+            /* a zero vector: no expression of the language spells it */
+            slong oi = derived_find_output(d, ln);
+            CHECK(oi >= 0 && d->outputs[oi].eq->len == 0,
+                  "%s: %s printed as 0 but is not", path, ln);
+            continue;
+        }
+        char head[64];
+        snprintf(head, sizeof head, "\npb__%d = (", ++nout);
+        put_renamed(&copy, &k, &cap, head, NULL, NULL, 0);
+        put_renamed(&copy, &k, &cap, rhs, from, to, nren);
+        put_renamed(&copy, &k, &cap, ") - (", NULL, NULL, 0);
+        put_renamed(&copy, &k, &cap, ln, NULL, NULL, 0);
+        put_renamed(&copy, &k, &cap, ")", NULL, NULL, 0);
+        size_t ol = strlen(outs);
+        outs = realloc(outs, ol + 32);
+        sprintf(outs + ol, "%spb__%d", nout > 1 ? ", " : "", nout);
+    }
+    put_renamed(&copy, &k, &cap, "\noutput ", NULL, NULL, 0);
+    put_renamed(&copy, &k, &cap, outs, NULL, NULL, 0);
+    put_renamed(&copy, &k, &cap, "\n", NULL, NULL, 0);
+    Derived *b = derive_source(path, copy, k, stderr, NULL);
+    CHECK(b != NULL, "%s: the printed form does not read back:\n%s", path,
+          copy);
+    int f0 = failures;
+    for (slong i = 0; b && i < b->noutputs; i++) {
+        const DerivedOutput *o = &b->outputs[i];
+        int zero = o->kind == KIND_SCALAR
+                       ? fmpz_mpoly_is_zero(o->scalar->num, b->ring.ctx)
+                       : o->eq->len == 0;
+        CHECK(zero, "%s: output %ld printed is not what was derived", path,
+              (long)i + 1);
+    }
+    if (b && failures == f0)
+        printf("  ok   %s (%d outputs read back)\n", path, nout);
+    derived_free(b);
+    derived_free(d);
+    for (int i = 0; i < nren; i++) {
+        free(from[i]);
+        free(to[i]);
+    }
+    free(from);
+    free(to);
+    free(outs);
+    free(copy);
+    free(out);
+    free(text);
+}
+
+static void test_printed_text_reads_back(void **state)
+{
+    (void)state;
+    failures = 0;
+    run_dir("examples", check_print_back, 10);
+    run_dir("tests/schemes", check_print_back, 1);
+    assert_int_equal(failures, 0);
+}
+
 static void test_examples_derive_to_expected(void **state)
 {
     (void)state;
@@ -392,6 +542,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_examples_derive_to_expected),
+        cmocka_unit_test(test_printed_text_reads_back),
         cmocka_unit_test(test_schemes_derive_to_expected),
         cmocka_unit_test(test_errors_are_reported_exactly),
     };

@@ -1,0 +1,1233 @@
+#include "compiler/book.h"
+
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/fmpz_mpoly_factor.h>
+
+#include "compiler/mem.h"
+
+/* ---- a growable string ------------------------------------------------ */
+
+typedef struct Str {
+    char *s;
+    size_t len, cap;
+} Str;
+
+static void str_putn(Str *b, const char *s, size_t n)
+{
+    if (b->len + n + 1 > b->cap) {
+        b->cap = 2 * (b->len + n + 1) + 32;
+        b->s = pc_xrealloc(b->s, b->cap);
+    }
+    memcpy(b->s + b->len, s, n);
+    b->len += n;
+    b->s[b->len] = '\0';
+}
+
+static void str_puts(Str *b, const char *s)
+{
+    str_putn(b, s, strlen(s));
+}
+
+static void str_ulong(Str *b, ulong u)
+{
+    char num[32];
+    snprintf(num, sizeof num, "%lu", u);
+    str_puts(b, num);
+}
+
+static void str_fmpz(Str *b, const fmpz_t c)
+{
+    char *s = fmpz_get_str(NULL, 10, c);
+    str_puts(b, s);
+    flint_free(s);
+}
+
+static char *str_take(Str *b)
+{
+    if (!b->s)
+        str_puts(b, "");
+    char *s = b->s;
+    b->s = NULL;
+    b->len = b->cap = 0;
+    return s;
+}
+
+/* ---- names ------------------------------------------------------------ */
+
+static const char *const greek[] = {
+    "alpha", "beta",   "gamma", "delta", "epsilon", "zeta",   "eta",
+    "theta", "iota",   "kappa", "lambda", "mu",     "nu",     "xi",
+    "pi",    "rho",    "sigma", "tau",   "upsilon", "phi",    "chi",
+    "psi",   "omega",  "Gamma", "Delta", "Theta",   "Lambda", "Xi",
+    "Pi",    "Sigma",  "Phi",   "Psi",   "Omega",
+};
+
+static int all_digits(const char *s)
+{
+    if (!*s)
+        return 0;
+    for (; *s; s++)
+        if (!isdigit((unsigned char)*s))
+            return 0;
+    return 1;
+}
+
+static void latex_name(Str *b, const char *name)
+{
+    size_t n = strlen(name);
+    const char *under = strchr(name, '_');
+    if (under && under != name && under[1]) {
+        char *stem = pc_xstrndup(name, (size_t)(under - name));
+        latex_name(b, stem);
+        free(stem);
+        str_puts(b, "_{");
+        str_puts(b, under + 1);
+        str_puts(b, "}");
+        return;
+    }
+    size_t alpha = 0;
+    while (alpha < n && isalpha((unsigned char)name[alpha]))
+        alpha++;
+    for (size_t g = 0; g < sizeof greek / sizeof greek[0]; g++) {
+        size_t gl = strlen(greek[g]);
+        if (gl == alpha && strncmp(greek[g], name, gl) == 0 &&
+            (name[gl] == '\0' || all_digits(name + gl))) {
+            str_puts(b, "\\");
+            str_puts(b, greek[g]);
+            if (name[gl]) {
+                str_puts(b, "_{");
+                str_puts(b, name + gl);
+                str_puts(b, "}");
+            }
+            return;
+        }
+    }
+    if (n == 1) {
+        str_puts(b, name);
+        return;
+    }
+    /* one-letter stem, then capitals or digits: A1, fP, pD, d2M */
+    int sub = isalpha((unsigned char)name[0]);
+    for (size_t i = 1; i < n && sub; i++)
+        sub = isupper((unsigned char)name[i]) ||
+              isdigit((unsigned char)name[i]);
+    if (sub) {
+        str_putn(b, name, 1);
+        str_puts(b, "_{");
+        str_puts(b, name + 1);
+        str_puts(b, "}");
+        return;
+    }
+    str_puts(b, "\\mathit{");
+    str_puts(b, name);
+    str_puts(b, "}");
+}
+
+char *book_latex_name(const char *name)
+{
+    Str b = {0};
+    latex_name(&b, name);
+    return str_take(&b);
+}
+
+/* ---- the print model: sums of products of atoms ------------------------ */
+
+typedef enum AtomKind {
+    AT_VAR,   // a ring variable: param, const, function
+    AT_BAR,   // 1 - x of a param or const
+    AT_SUM,   // a parenthesised sum
+    AT_POINT, // a point name, or a difference of two (point2)
+} AtomKind;
+
+typedef struct PSum PSum;
+
+typedef struct Atom {
+    AtomKind kind;
+    slong var;         // AT_VAR, AT_BAR
+    PSum *sum;         // AT_SUM (owned)
+    const char *point; // AT_POINT (borrowed)
+    const char *point2; // AT_POINT: point - point2, or NULL
+    ulong exp;
+} Atom;
+
+typedef struct PTerm {
+    int neg;
+    fmpz_t coeff; // >= 1
+    slong n;
+    Atom *a;
+} PTerm;
+
+struct PSum {
+    slong n;
+    PTerm *t;
+    fmpz_mpoly_t poly; // what the sum is, up to sign (for the total order)
+    int has_param;     // it involves a param
+};
+
+typedef struct Ctx {
+    const Ring *r;
+    slong nparams, nconsts; // vars < nparams are params; < nparams+nconsts
+                            // consts; the rest functions and extras
+    int latex;
+    long *work; // the printing work spent on this output (RENDER_WORK)
+} Ctx;
+
+enum {
+    MAX_DEPTH = 2,          // levels of collection (factors and coefficients)
+    MAX_COLLECT_TERMS = 60, // larger polynomials: expanded or factored only
+    RENDER_WORK = 20000,    // per output, in terms looked at (a factoring
+                            // counts 50 per term): beyond it, polynomials
+                            // are written expanded or factored only
+};
+
+static void sum_free(PSum *s, const Ctx *c);
+
+static void term_init(PTerm *t)
+{
+    t->neg = 0;
+    fmpz_init_set_ui(t->coeff, 1);
+    t->n = 0;
+    t->a = NULL;
+}
+
+static void term_clear(PTerm *t, const Ctx *c)
+{
+    for (slong i = 0; i < t->n; i++)
+        if (t->a[i].kind == AT_SUM)
+            sum_free(t->a[i].sum, c);
+    free(t->a);
+    fmpz_clear(t->coeff);
+}
+
+static PSum *sum_new(const Ctx *c)
+{
+    PSum *s = pc_xcalloc(1, sizeof *s);
+    fmpz_mpoly_init(s->poly, c->r->ctx);
+    return s;
+}
+
+static void sum_free(PSum *s, const Ctx *c)
+{
+    if (!s)
+        return;
+    for (slong i = 0; i < s->n; i++)
+        term_clear(&s->t[i], c);
+    free(s->t);
+    fmpz_mpoly_clear(s->poly, c->r->ctx);
+    free(s);
+}
+
+static PTerm *sum_push(PSum *s)
+{
+    s->t = pc_xrealloc(s->t, sizeof(PTerm) * (size_t)(s->n + 1));
+    term_init(&s->t[s->n]);
+    return &s->t[s->n++];
+}
+
+static void term_push(PTerm *t, Atom a)
+{
+    /* x^a * x^b = x^(a+b) */
+    if (a.kind == AT_VAR || a.kind == AT_BAR)
+        for (slong i = 0; i < t->n; i++)
+            if (t->a[i].kind == a.kind && t->a[i].var == a.var) {
+                t->a[i].exp += a.exp;
+                return;
+            }
+    t->a = pc_xrealloc(t->a, sizeof(Atom) * (size_t)(t->n + 1));
+    t->a[t->n++] = a;
+}
+
+static int is_param(const Ctx *c, slong v)
+{
+    return v < c->nparams;
+}
+
+/* the place of an atom in a product: consts (x and 1 - x), the point,
+ * params, functions, then parenthesised sums (those free of params
+ * first) */
+static int atom_class(const Ctx *c, const Atom *a)
+{
+    switch (a->kind) {
+    case AT_VAR:
+    case AT_BAR:
+        if (is_param(c, a->var))
+            return 2;
+        return a->var < c->nparams + c->nconsts ? 0 : 3;
+    case AT_POINT:
+        return 1;
+    case AT_SUM:
+        return a->sum->has_param ? 5 : 4;
+    }
+    return 6;
+}
+
+static const Ctx *sort_ctx;
+
+static int atom_cmp(const void *x, const void *y)
+{
+    const Atom *a = x, *b = y;
+    const Ctx *c = sort_ctx;
+    int ka = atom_class(c, a), kb = atom_class(c, b);
+    if (ka != kb)
+        return ka < kb ? -1 : 1;
+    if (a->kind == AT_VAR || a->kind == AT_BAR) {
+        if (a->var != b->var)
+            return a->var < b->var ? -1 : 1;
+        if (a->kind != b->kind)
+            return a->kind == AT_VAR ? -1 : 1;
+        return 0;
+    }
+    if (a->kind == AT_SUM) {
+        slong da = fmpz_mpoly_total_degree_si(a->sum->poly, c->r->ctx);
+        slong db = fmpz_mpoly_total_degree_si(b->sum->poly, c->r->ctx);
+        if (da != db)
+            return da < db ? -1 : 1;
+        slong la = fmpz_mpoly_length(a->sum->poly, c->r->ctx);
+        slong lb = fmpz_mpoly_length(b->sum->poly, c->r->ctx);
+        if (la != lb)
+            return la < lb ? -1 : 1;
+        int k = fmpz_mpoly_cmp(a->sum->poly, b->sum->poly, c->r->ctx);
+        if (k)
+            return k;
+        return a->exp < b->exp ? -1 : a->exp > b->exp;
+    }
+    return 0;
+}
+
+/* a total order: equal keys are equal atoms, so qsort's instability does
+ * not show */
+static void term_sort(PTerm *t, const Ctx *c)
+{
+    sort_ctx = c;
+    qsort(t->a, (size_t)t->n, sizeof(Atom), atom_cmp);
+    sort_ctx = NULL;
+}
+
+/* moves every atom and the coefficient of src into dst (src is left
+ * empty) */
+static void term_absorb(PTerm *dst, PTerm *src)
+{
+    fmpz_mul(dst->coeff, dst->coeff, src->coeff);
+    dst->neg ^= src->neg;
+    for (slong i = 0; i < src->n; i++)
+        term_push(dst, src->a[i]);
+    free(src->a);
+    src->a = NULL;
+    src->n = 0;
+}
+
+/* ---- measuring --------------------------------------------------------- */
+
+static slong sum_leaves(const PSum *s);
+
+static slong term_leaves(const PTerm *t)
+{
+    slong n = 1;
+    for (slong i = 0; i < t->n; i++)
+        if (t->a[i].kind == AT_SUM)
+            n += sum_leaves(t->a[i].sum) - 1;
+    return n;
+}
+
+static slong sum_leaves(const PSum *s)
+{
+    slong n = 0;
+    for (slong i = 0; i < s->n; i++)
+        n += term_leaves(&s->t[i]);
+    return n ? n : 1;
+}
+
+/* ---- writing ------------------------------------------------------------ */
+
+static void put_sum(Str *b, const PSum *s, const Ctx *c);
+
+static void put_var(Str *b, slong v, const Ctx *c)
+{
+    const Ring *r = c->r;
+    if (c->latex && r->latex && r->latex[v])
+        str_puts(b, r->latex[v]);
+    else if (c->latex)
+        latex_name(b, r->names[v]);
+    else
+        str_puts(b, r->names[v]);
+}
+
+static void put_point(Str *b, const char *p, const Ctx *c)
+{
+    if (c->latex)
+        latex_name(b, p);
+    else
+        str_puts(b, p);
+}
+
+static void put_exp(Str *b, ulong e, const Ctx *c)
+{
+    if (e <= 1)
+        return;
+    str_puts(b, c->latex ? "^{" : "^");
+    str_ulong(b, e);
+    if (c->latex)
+        str_puts(b, "}");
+}
+
+static void put_atom(Str *b, const Atom *a, const Ctx *c)
+{
+    const char *open = c->latex ? "\\left(" : "(";
+    const char *close = c->latex ? "\\right)" : ")";
+    switch (a->kind) {
+    case AT_VAR:
+        put_var(b, a->var, c);
+        break;
+    case AT_BAR:
+        if (c->latex) {
+            str_puts(b, "\\bar{");
+            put_var(b, a->var, c);
+            str_puts(b, "}");
+        } else {
+            str_puts(b, "(1 - ");
+            put_var(b, a->var, c);
+            str_puts(b, ")");
+        }
+        break;
+    case AT_SUM:
+        str_puts(b, open);
+        put_sum(b, a->sum, c);
+        str_puts(b, close);
+        break;
+    case AT_POINT:
+        if (a->point2) {
+            str_puts(b, open);
+            put_point(b, a->point, c);
+            str_puts(b, " - ");
+            put_point(b, a->point2, c);
+            str_puts(b, close);
+        } else {
+            put_point(b, a->point, c);
+        }
+        break;
+    }
+    put_exp(b, a->exp, c);
+}
+
+/* the term without its sign */
+static void put_term(Str *b, const PTerm *t, const Ctx *c)
+{
+    int any = 0;
+    if (!fmpz_is_one(t->coeff) || t->n == 0) {
+        str_fmpz(b, t->coeff);
+        any = 1;
+    }
+    for (slong i = 0; i < t->n; i++) {
+        if (any)
+            str_puts(b, c->latex ? " " : "*");
+        put_atom(b, &t->a[i], c);
+        any = 1;
+    }
+}
+
+static void put_sum(Str *b, const PSum *s, const Ctx *c)
+{
+    if (s->n == 0) {
+        str_puts(b, "0");
+        return;
+    }
+    for (slong i = 0; i < s->n; i++) {
+        if (i == 0)
+            str_puts(b, s->t[i].neg ? "-" : "");
+        else
+            str_puts(b, s->t[i].neg ? " - " : " + ");
+        put_term(b, &s->t[i], c);
+    }
+}
+
+static size_t sum_text_len(const PSum *s, const Ctx *c)
+{
+    Str b = {0};
+    put_sum(&b, s, c);
+    size_t n = b.len;
+    free(b.s);
+    return n;
+}
+
+/* ---- the forms of a polynomial ------------------------------------------ */
+
+static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+/* negates every term of s (and its poly) */
+static void sum_neg(PSum *s, const Ctx *c)
+{
+    for (slong i = 0; i < s->n; i++)
+        s->t[i].neg ^= 1;
+    fmpz_mpoly_neg(s->poly, s->poly, c->r->ctx);
+}
+
+static void sum_finish(PSum *s, const fmpz_mpoly_t p, const Ctx *c)
+{
+    fmpz_mpoly_set(s->poly, p, c->r->ctx);
+    s->has_param = 0;
+    for (slong v = 0; v < c->nparams && !s->has_param; v++)
+        s->has_param = fmpz_mpoly_degree_si(p, v, c->r->ctx) > 0;
+    for (slong i = 0; i < s->n; i++)
+        term_sort(&s->t[i], c);
+}
+
+/* expanded, ascending (the reverse of FLINT's degrevlex) */
+static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c)
+{
+    const Ring *r = c->r;
+    PSum *s = sum_new(c);
+    slong len = fmpz_mpoly_length(p, r->ctx);
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    for (slong k = len - 1; k >= 0; k--) {
+        PTerm *t = sum_push(s);
+        fmpz_mpoly_get_term_coeff_fmpz(t->coeff, p, k, r->ctx);
+        t->neg = fmpz_sgn(t->coeff) < 0;
+        fmpz_abs(t->coeff, t->coeff);
+        fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
+        for (slong v = 0; v < r->nvars; v++)
+            if (e[v])
+                term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, e[v]});
+    }
+    free(e);
+    sum_finish(s, p, c);
+    return s;
+}
+
+/* is p = s*(1 - x) for a param or const x and a sign s?  returns x or -1 */
+static slong bar_var(const fmpz_mpoly_t p, const Ctx *c, int *sign)
+{
+    const Ring *r = c->r;
+    if (fmpz_mpoly_length(p, r->ctx) != 2 ||
+        fmpz_mpoly_total_degree_si(p, r->ctx) != 1)
+        return -1;
+    for (slong v = 0; v < c->nparams + c->nconsts && v < r->nvars; v++) {
+        if (fmpz_mpoly_degree_si(p, v, r->ctx) != 1)
+            continue;
+        fmpz_mpoly_t q;
+        fmpz_mpoly_init(q, r->ctx);
+        fmpz_mpoly_gen(q, v, r->ctx);
+        fmpz_mpoly_neg(q, q, r->ctx);
+        fmpz_mpoly_add_si(q, q, 1, r->ctx);
+        int s = fmpz_mpoly_equal(p, q, r->ctx) ? 1 : 0;
+        if (!s) {
+            fmpz_mpoly_neg(q, q, r->ctx);
+            s = fmpz_mpoly_equal(p, q, r->ctx) ? -1 : 0;
+        }
+        fmpz_mpoly_clear(q, r->ctx);
+        if (s) {
+            *sign = s;
+            return v;
+        }
+    }
+    return -1;
+}
+
+/* p as one factor raised to e, appended to t: an atom x, 1 - x, or a
+ * parenthesised sum with its first term positive (the sign goes to t) */
+static void push_factor(PTerm *t, const fmpz_mpoly_t p, ulong e, int depth,
+                        const Ctx *c)
+{
+    const Ring *r = c->r;
+    int sign = 1;
+    slong v = bar_var(p, c, &sign);
+    if (v >= 0) {
+        if (sign < 0 && (e & 1))
+            t->neg ^= 1;
+        term_push(t, (Atom){AT_BAR, v, NULL, NULL, NULL, e});
+        return;
+    }
+    PSum *s = render(p, depth, c);
+    if (s->n == 1) {
+        /* a monomial (or a constant): its pieces, to the power e */
+        PTerm *u = &s->t[0];
+        if (u->neg && (e & 1))
+            t->neg ^= 1;
+        fmpz_t pw;
+        fmpz_init(pw);
+        fmpz_pow_ui(pw, u->coeff, e);
+        fmpz_mul(t->coeff, t->coeff, pw);
+        fmpz_clear(pw);
+        for (slong i = 0; i < u->n; i++) {
+            Atom a = u->a[i];
+            a.exp *= e;
+            term_push(t, a);
+        }
+        free(u->a);
+        u->a = NULL;
+        u->n = 0;
+        sum_free(s, c);
+        return;
+    }
+    if (s->t[0].neg) {
+        sum_neg(s, c);
+        if (e & 1)
+            t->neg ^= 1;
+    }
+    (void)r;
+    term_push(t, (Atom){AT_SUM, -1, s, NULL, NULL, e});
+}
+
+static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    const Ring *r = c->r;
+    fmpz_mpoly_factor_t f;
+    fmpz_mpoly_factor_init(f, r->ctx);
+    if (!ring_factor(f, p, r)) {
+        fmpz_mpoly_factor_clear(f, r->ctx);
+        return NULL;
+    }
+    /* trivial: p itself, irreducible and primitive */
+    if (f->num == 0 || (f->num == 1 && fmpz_is_pm1(f->constant) &&
+                        fmpz_is_one(f->exp))) {
+        fmpz_mpoly_factor_clear(f, r->ctx);
+        return NULL;
+    }
+    PSum *s = sum_new(c);
+    PTerm *t = sum_push(s);
+    t->neg = fmpz_sgn(f->constant) < 0;
+    fmpz_abs(t->coeff, f->constant);
+    for (slong i = 0; i < f->num; i++)
+        push_factor(t, f->poly + i, fmpz_get_ui(f->exp + i), depth + 1, c);
+    fmpz_mpoly_factor_clear(f, r->ctx);
+    sum_finish(s, p, c);
+    return s;
+}
+
+/* appends coefficient k (a polynomial free of x) times the atoms of x to
+ * s: the coefficient's best form, merged when it is one term */
+static void push_collected(PSum *s, const fmpz_mpoly_t coef, Atom *xs,
+                           int nx, int depth, const Ctx *c)
+{
+    PSum *cs = render(coef, depth + 1, c);
+    int bare = 1;
+    for (int i = 0; i < nx; i++)
+        bare &= xs[i].exp == 0;
+    if (bare && cs->n > 1) {
+        /* x^0: the coefficient's terms join the sum */
+        for (slong i = 0; i < cs->n; i++) {
+            PTerm *t = sum_push(s);
+            term_absorb(t, &cs->t[i]);
+        }
+        sum_free(cs, c);
+        return;
+    }
+    PTerm *t = sum_push(s);
+    if (cs->n == 1) {
+        term_absorb(t, &cs->t[0]);
+        sum_free(cs, c);
+    } else {
+        if (cs->t[0].neg) {
+            sum_neg(cs, c);
+            t->neg ^= 1;
+        }
+        term_push(t, (Atom){AT_SUM, -1, cs, NULL, NULL, 1});
+    }
+    for (int i = 0; i < nx; i++)
+        if (xs[i].exp)
+            term_push(t, xs[i]);
+}
+
+/* the coefficients a[0..n] of p in powers of x (caller clears) */
+static fmpz_mpoly_struct *coeffs_in(const fmpz_mpoly_t p, slong x, slong n,
+                                    const Ctx *c)
+{
+    fmpz_mpoly_struct *a = pc_xmalloc(sizeof(fmpz_mpoly_struct) *
+                                      (size_t)(n + 1));
+    for (slong i = 0; i <= n; i++) {
+        fmpz_mpoly_init(a + i, c->r->ctx);
+        fmpz_mpoly_get_coeff_vars_ui(a + i, p, &x, (ulong *)&i, 1,
+                                     c->r->ctx);
+    }
+    return a;
+}
+
+static void coeffs_clear(fmpz_mpoly_struct *a, slong n, const Ctx *c)
+{
+    for (slong i = 0; i <= n; i++)
+        fmpz_mpoly_clear(a + i, c->r->ctx);
+    free(a);
+}
+
+/* p = sum_k c_k x^k, ascending */
+static PSum *form_powers(const fmpz_mpoly_t p, slong x, int depth,
+                         const Ctx *c)
+{
+    slong n = fmpz_mpoly_degree_si(p, x, c->r->ctx);
+    fmpz_mpoly_struct *a = coeffs_in(p, x, n, c);
+    PSum *s = sum_new(c);
+    for (slong k = 0; k <= n; k++) {
+        if (fmpz_mpoly_is_zero(a + k, c->r->ctx))
+            continue;
+        Atom xa = {AT_VAR, x, NULL, NULL, NULL, (ulong)k};
+        push_collected(s, a + k, &xa, 1, depth, c);
+    }
+    coeffs_clear(a, n, c);
+    sum_finish(s, p, c);
+    return s;
+}
+
+/* p = sum_k b_k x^k (1 - x)^(n-k), n = deg_x p: the Bernstein basis of
+ * the param x (without binomials), b_k = sum_{i<=k} a_i C(n-i, k-i) */
+static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
+                            const Ctx *c)
+{
+    const Ring *r = c->r;
+    slong n = fmpz_mpoly_degree_si(p, x, r->ctx);
+    fmpz_mpoly_struct *a = coeffs_in(p, x, n, c);
+    PSum *s = sum_new(c);
+    fmpz_mpoly_t bk, tmp;
+    fmpz_mpoly_init(bk, r->ctx);
+    fmpz_mpoly_init(tmp, r->ctx);
+    fmpz_t bin;
+    fmpz_init(bin);
+    for (slong k = 0; k <= n; k++) {
+        fmpz_mpoly_zero(bk, r->ctx);
+        for (slong i = 0; i <= k; i++) {
+            fmpz_bin_uiui(bin, (ulong)(n - i), (ulong)(k - i));
+            fmpz_mpoly_scalar_mul_fmpz(tmp, a + i, bin, r->ctx);
+            fmpz_mpoly_add(bk, bk, tmp, r->ctx);
+        }
+        if (fmpz_mpoly_is_zero(bk, r->ctx))
+            continue;
+        Atom xs[2] = {{AT_VAR, x, NULL, NULL, NULL, (ulong)k},
+                      {AT_BAR, x, NULL, NULL, NULL, (ulong)(n - k)}};
+        push_collected(s, bk, xs, 2, depth, c);
+    }
+    fmpz_clear(bin);
+    fmpz_mpoly_clear(tmp, r->ctx);
+    fmpz_mpoly_clear(bk, r->ctx);
+    coeffs_clear(a, n, c);
+    sum_finish(s, p, c);
+    return s;
+}
+
+/* keeps the better of *best and cand: fewer leaves; then factored before
+ * expanded before collected; among collected forms the shorter text, then
+ * Bernstein before powers; then the earlier candidate.  Lengths are those
+ * of the text form whatever the style, so text and LaTeX agree. */
+static void keep_better(PSum **best, int *best_rank, size_t *best_len,
+                        PSum *cand, int rank, const Ctx *c)
+{
+    if (!cand)
+        return;
+    Ctx text = *c;
+    text.latex = 0;
+    size_t len = sum_text_len(cand, &text);
+    if (*best) {
+        slong lb = sum_leaves(*best), lc = sum_leaves(cand);
+        int kb = *best_rank < 2 ? *best_rank : 2;
+        int kc = rank < 2 ? rank : 2;
+        int better = lc < lb ||
+                     (lc == lb &&
+                      (kc < kb ||
+                       (kc == kb && kc == 2 &&
+                        (len < *best_len ||
+                         (len == *best_len && rank < *best_rank)))));
+        if (!better) {
+            sum_free(cand, c);
+            return;
+        }
+        sum_free(*best, c);
+    }
+    *best = cand;
+    *best_rank = rank;
+    *best_len = len;
+}
+
+/* p in its best form (see book.h) */
+static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    enum { R_FACTORED, R_EXPANDED, R_BERNSTEIN, R_POWERS };
+    const Ring *r = c->r;
+    slong len = fmpz_mpoly_length(p, r->ctx);
+    PSum *best = form_expanded(p, c);
+    if (len == 0 || fmpz_mpoly_is_fmpz(p, r->ctx))
+        return best;
+    int rank = R_EXPANDED;
+    Ctx text = *c;
+    text.latex = 0;
+    size_t blen = sum_text_len(best, &text);
+    if (depth == 0 || *c->work < RENDER_WORK) {
+        *c->work += 50 * len;
+        keep_better(&best, &rank, &blen, form_factored(p, depth, c),
+                    R_FACTORED, c);
+    }
+    if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
+        return best;
+    for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK; v++) {
+        if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
+            continue;
+        *c->work += 2 * len;
+        if (is_param(c, v))
+            keep_better(&best, &rank, &blen, form_bernstein(p, v, depth, c),
+                        R_BERNSTEIN, c);
+        keep_better(&best, &rank, &blen, form_powers(p, v, depth, c),
+                    R_POWERS, c);
+    }
+    return best;
+}
+
+/* ---- equations ------------------------------------------------------------ */
+
+/* A numerator over the denominator: its sum, the item's atoms around the
+ * point (or the point alone) */
+static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt,
+                      const Ctx *c)
+{
+    PSum *s = render(num, 0, c);
+    PTerm *t = sum_push(eq);
+    if (s->n == 1) {
+        term_absorb(t, &s->t[0]);
+        sum_free(s, c);
+    } else {
+        if (s->t[0].neg) {
+            sum_neg(s, c);
+            t->neg = 1;
+        }
+        term_push(t, (Atom){AT_SUM, -1, s, NULL, NULL, 1});
+    }
+    term_push(t, pt);
+    term_sort(t, c);
+}
+
+static void put_frac(Str *b, const char *num, int num_items,
+                     const PSum *den, const Ctx *c)
+{
+    if (c->latex) {
+        str_puts(b, "\\frac{");
+        str_puts(b, num);
+        str_puts(b, "}{");
+        put_sum(b, den, c);
+        str_puts(b, "}");
+        return;
+    }
+    int pn = num_items > 1;
+    if (pn)
+        str_puts(b, "(");
+    str_puts(b, num);
+    if (pn)
+        str_puts(b, ")");
+    int pd = den->n > 1 || den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
+    str_puts(b, pd ? "/(" : "/");
+    put_sum(b, den, c);
+    if (pd)
+        str_puts(b, ")");
+}
+
+/* the denominator's form with its first term positive; *flip = 1 when
+ * that negated it */
+static PSum *render_den(const fmpz_mpoly_t den, const Ctx *c, int *flip)
+{
+    PSum *d = render(den, 0, c);
+    *flip = d->t[0].neg;
+    if (*flip)
+        sum_neg(d, c);
+    return d;
+}
+
+static int all_negative(const PSum *s)
+{
+    for (slong i = 0; i < s->n; i++)
+        if (!s->t[i].neg)
+            return 0;
+    return s->n > 0;
+}
+
+/* writes items / den: an all-minus numerator as -(...)/den */
+static void put_quotient(Str *b, PSum *items, const PSum *den,
+                         const Ctx *c)
+{
+    int minus = all_negative(items);
+    if (minus)
+        for (slong i = 0; i < items->n; i++)
+            items->t[i].neg = 0;
+    Str n = {0};
+    put_sum(&n, items, c);
+    if (minus)
+        str_puts(b, "-");
+    if (!den)
+        str_puts(b, n.s);
+    else
+        put_frac(b, n.s, (int)items->n, den, c);
+    free(n.s);
+}
+
+static void rhs_scalar(Str *b, const RatFun x, const Ctx *c)
+{
+    const Ring *r = c->r;
+    int flip = 0;
+    PSum *den = NULL;
+    fmpz_mpoly_t num;
+    fmpz_mpoly_init(num, r->ctx);
+    fmpz_mpoly_set(num, x->num, r->ctx);
+    if (!fmpz_mpoly_is_one(x->den, r->ctx)) {
+        den = render_den(x->den, c, &flip);
+        if (flip)
+            fmpz_mpoly_neg(num, num, r->ctx);
+    }
+    PSum *s = render(num, 0, c);
+    if (!den)
+        put_sum(b, s, c);
+    else
+        put_quotient(b, s, den, c);
+    sum_free(s, c);
+    sum_free(den, c);
+    fmpz_mpoly_clear(num, r->ctx);
+}
+
+static void rhs_origin(Str *b, const Derived *d, const DerivedOutput *o,
+                       slong origin, const Ctx *c)
+{
+    const Ring *r = c->r;
+    int first = 1;
+    for (slong i = 0; i < o->eq->len; i++) {
+        slong pt = o->eq->terms[i].point;
+        if (pt == origin)
+            continue;
+        const RatFunStruct *w = &o->w[i];
+        int flip = 0;
+        PSum *den = fmpz_mpoly_is_one(w->den, r->ctx)
+                        ? NULL
+                        : render_den(w->den, c, &flip);
+        fmpz_mpoly_t num;
+        fmpz_mpoly_init(num, r->ctx);
+        if (flip)
+            fmpz_mpoly_neg(num, w->num, r->ctx);
+        else
+            fmpz_mpoly_set(num, w->num, r->ctx);
+        PSum *one = sum_new(c);
+        push_item(one, num, (Atom){AT_POINT, -1, NULL, d->points[pt],
+                                   d->points[origin], 1},
+                  c);
+        int neg = one->t[0].neg;
+        one->t[0].neg = 0;
+        str_puts(b, first ? (neg ? "-" : "") : (neg ? " - " : " + "));
+        Str n = {0};
+        put_term(&n, &one->t[0], c);
+        if (den && c->latex) {
+            /* (A - C) \frac{n}{d}: the point outside the fraction */
+            Str m = {0};
+            PSum *s = render(num, 0, c);
+            if (s->t[0].neg)
+                sum_neg(s, c);
+            put_sum(&m, s, c);
+            sum_free(s, c);
+            put_atom(b, &(Atom){AT_POINT, -1, NULL, d->points[pt],
+                                d->points[origin], 1},
+                     c);
+            str_puts(b, " \\frac{");
+            str_puts(b, m.s);
+            str_puts(b, "}{");
+            put_sum(b, den, c);
+            str_puts(b, "}");
+            free(m.s);
+        } else {
+            str_puts(b, n.s);
+            if (den) {
+                int pd = den->n > 1 ||
+                         den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
+                str_puts(b, pd ? "/(" : "/");
+                put_sum(b, den, c);
+                if (pd)
+                    str_puts(b, ")");
+            }
+        }
+        free(n.s);
+        sum_free(one, c);
+        sum_free(den, c);
+        fmpz_mpoly_clear(num, r->ctx);
+        first = 0;
+    }
+    if (o->kind == KIND_POINT) {
+        str_puts(b, first ? "" : " + ");
+        put_point(b, d->points[origin], c);
+    } else if (first) {
+        str_puts(b, "0");
+    }
+}
+
+/* the equation over its one denominator: items (each a point times its
+ * numerator), the denominator (NULL: 1), a common factor of the numerators
+ * (NULL: none) */
+typedef struct EqParts {
+    PSum *items;
+    PSum *den;
+    PSum *common;
+} EqParts;
+
+static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
+                     const Ctx *c)
+{
+    const Ring *r = c->r;
+    const PointEqStruct *eq = o->eq;
+    int flip = 0;
+    P->den = fmpz_mpoly_is_one(eq->den, r->ctx) ? NULL
+                                                 : render_den(eq->den, c, &flip);
+    /* a factor common to every numerator (a vector's: a point's is 1) */
+    fmpz_mpoly_t g, q;
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_init(q, r->ctx);
+    for (slong i = 0; i < eq->len; i++)
+        if (!fmpz_mpoly_gcd(g, g, eq->terms[i].num, r->ctx))
+            fmpz_mpoly_one(g, r->ctx);
+    if (eq->len < 1 || fmpz_mpoly_is_zero(g, r->ctx))
+        fmpz_mpoly_one(g, r->ctx);
+    P->common = NULL;
+    if (!fmpz_mpoly_is_one(g, r->ctx) && eq->len > 1) {
+        P->common = render(g, 0, c);
+        if (P->common->t[0].neg) { /* keep g's first term positive */
+            sum_neg(P->common, c);
+            fmpz_mpoly_neg(g, g, r->ctx);
+        }
+    } else {
+        fmpz_mpoly_one(g, r->ctx);
+    }
+    P->items = sum_new(c);
+    char *used = pc_xcalloc((size_t)eq->len + 1, 1);
+    for (slong i = 0; i < eq->len; i++) {
+        if (used[i])
+            continue;
+        fmpz_mpoly_divides(q, eq->terms[i].num, g, r->ctx);
+        if (flip)
+            fmpz_mpoly_neg(q, q, r->ctx);
+        Atom pt = {AT_POINT, -1, NULL, d->points[eq->terms[i].point], NULL,
+                   1};
+        /* a vector's opposite weights: one difference */
+        for (slong j = i + 1; j < eq->len && o->kind == KIND_VECTOR; j++) {
+            fmpz_mpoly_t s;
+            fmpz_mpoly_init(s, r->ctx);
+            fmpz_mpoly_add(s, eq->terms[i].num, eq->terms[j].num, r->ctx);
+            int opp = !used[j] && fmpz_mpoly_is_zero(s, r->ctx);
+            fmpz_mpoly_clear(s, r->ctx);
+            if (opp) {
+                used[j] = 1;
+                pt.point2 = d->points[eq->terms[j].point];
+                /* the positive one first: (C - A), not -(A - C) */
+                PSum *probe = render(q, 0, c);
+                if (probe->t[0].neg) {
+                    pt.point2 = pt.point;
+                    pt.point = d->points[eq->terms[j].point];
+                    fmpz_mpoly_neg(q, q, r->ctx);
+                }
+                sum_free(probe, c);
+                break;
+            }
+        }
+        push_item(P->items, q, pt, c);
+    }
+    free(used);
+    fmpz_mpoly_clear(q, r->ctx);
+    fmpz_mpoly_clear(g, r->ctx);
+}
+
+static void eq_parts_clear(EqParts *P, const Ctx *c)
+{
+    sum_free(P->items, c);
+    sum_free(P->den, c);
+    sum_free(P->common, c);
+}
+
+static void put_common(Str *b, const PSum *common, const Ctx *c)
+{
+    if (!common)
+        return;
+    if (common->n == 1) {
+        put_term(b, &common->t[0], c);
+    } else {
+        str_puts(b, c->latex ? "\\left(" : "(");
+        put_sum(b, common, c);
+        str_puts(b, c->latex ? "\\right)" : ")");
+    }
+    str_puts(b, c->latex ? " " : "*");
+}
+
+static void rhs_equation(Str *b, const EqParts *P, const Ctx *c)
+{
+    if (P->items->n == 0) {
+        str_puts(b, "0");
+        return;
+    }
+    int minus = all_negative(P->items);
+    if (minus)
+        for (slong i = 0; i < P->items->n; i++)
+            P->items->t[i].neg = 0;
+    if (minus)
+        str_puts(b, "-");
+    Str n = {0};
+    put_sum(&n, P->items, c);
+    if (P->common) {
+        put_common(b, P->common, c);
+        if (!P->den) {
+            int paren = P->items->n > 1;
+            str_puts(b, paren ? (c->latex ? "\\left(" : "(") : "");
+            str_puts(b, n.s);
+            str_puts(b, paren ? (c->latex ? "\\right)" : ")") : "");
+        } else {
+            put_frac(b, n.s, (int)P->items->n, P->den, c);
+        }
+    } else if (!P->den) {
+        str_puts(b, n.s);
+    } else {
+        put_frac(b, n.s, (int)P->items->n, P->den, c);
+    }
+    if (minus)
+        for (slong i = 0; i < P->items->n; i++)
+            P->items->t[i].neg = 1;
+    free(n.s);
+}
+
+static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
+                     long *work)
+{
+    *work = 0;
+    c->work = work;
+    c->r = &d->ring;
+    c->nparams = d->nparams;
+    c->nconsts = d->nconsts;
+    c->latex = opt->latex;
+}
+
+char *book_rhs(const Derived *d, const DerivedOutput *o,
+               const BookOptions *opt)
+{
+    Ctx c;
+    long work;
+    ctx_init(&c, d, opt, &work);
+    Str b = {0};
+    if (o->kind == KIND_SCALAR) {
+        rhs_scalar(&b, o->scalar, &c);
+    } else if (opt->origin >= 0) {
+        rhs_origin(&b, d, o, opt->origin, &c);
+    } else {
+        EqParts P;
+        eq_parts(&P, d, o, &c);
+        rhs_equation(&b, &P, &c);
+        eq_parts_clear(&P, &c);
+    }
+    return str_take(&b);
+}
+
+/* ---- whole outputs --------------------------------------------------------- */
+
+static void put_lhs(Str *b, const DerivedOutput *o, const Ctx *c)
+{
+    if (!c->latex) {
+        str_puts(b, o->name);
+        return;
+    }
+    if (o->diff_of) {
+        str_puts(b, "\\frac{\\mathrm{d}");
+        put_exp(b, (ulong)o->diff_order, c);
+        latex_name(b, o->diff_of);
+        str_puts(b, "}{\\mathrm{d}");
+        latex_name(b, o->diff_var);
+        put_exp(b, (ulong)o->diff_order, c);
+        str_puts(b, "}");
+        return;
+    }
+    latex_name(b, o->name);
+}
+
+/* LaTeX lines of at most width columns: "lhs = \frac{1}{den} \Bigl(" then
+ * the items, broken before a + or -, then "\Bigr)" */
+static void put_multline(Str *b, const Str *lhs, const EqParts *P,
+                         const Ctx *c, int width)
+{
+    str_puts(b, "\\begin{multline*}\n");
+    Str line = {0};
+    str_puts(&line, lhs->s);
+    str_puts(&line, " = ");
+    int minus = all_negative(P->items);
+    if (minus)
+        str_puts(&line, "-");
+    int small = P->common && P->common->n == 1; /* \frac{2}{d} */
+    if (!small)
+        put_common(&line, P->common, c);
+    if (P->den || small) {
+        str_puts(&line, "\\frac{");
+        if (small)
+            put_term(&line, &P->common->t[0], c);
+        else
+            str_puts(&line, "1");
+        str_puts(&line, "}{");
+        if (P->den)
+            put_sum(&line, P->den, c);
+        else
+            str_puts(&line, "1");
+        str_puts(&line, "} ");
+    }
+    str_puts(&line, "\\Bigl(");
+    for (slong i = 0; i < P->items->n; i++) {
+        Str item = {0};
+        int neg = P->items->t[i].neg && !minus;
+        if (i > 0 || neg)
+            str_puts(&item, i == 0 ? "-" : neg ? "- " : "+ ");
+        put_term(&item, &P->items->t[i], c);
+        if (i > 0 && (int)(line.len + item.len + 1) > width) {
+            str_puts(b, line.s);
+            str_puts(b, " \\\\\n");
+            line.len = 0;
+            line.s[0] = '\0';
+        } else if (i > 0) {
+            str_puts(&line, " ");
+        }
+        str_puts(&line, item.s);
+        free(item.s);
+    }
+    str_puts(&line, "\\Bigr)");
+    str_puts(b, line.s);
+    str_puts(b, "\n\\end{multline*}\n");
+    free(line.s);
+}
+
+char *book_output(const Derived *d, const DerivedOutput *o,
+                  const BookOptions *opt)
+{
+    Ctx c;
+    long work;
+    ctx_init(&c, d, opt, &work);
+    Str b = {0}, lhs = {0};
+    put_lhs(&lhs, o, &c);
+    char *rhs = book_rhs(d, o, opt);
+    int width = opt->width > 0 ? opt->width : 80;
+    if (opt->latex && o->kind != KIND_SCALAR && opt->origin < 0) {
+        /* a fraction is as wide as the longer of its two lines */
+        EqParts P;
+        eq_parts(&P, d, o, &c);
+        Str n = {0}, dn = {0}, cm = {0};
+        put_sum(&n, P.items, &c);
+        if (P.den)
+            put_sum(&dn, P.den, &c);
+        put_common(&cm, P.common, &c);
+        size_t wide = lhs.len + 3 + cm.len + (n.len > dn.len ? n.len : dn.len);
+        free(n.s);
+        free(dn.s);
+        free(cm.s);
+        if ((int)wide > width && P.items->n > 1) {
+            put_multline(&b, &lhs, &P, &c, width);
+            eq_parts_clear(&P, &c);
+            free(rhs);
+            free(lhs.s);
+            return str_take(&b);
+        }
+        eq_parts_clear(&P, &c);
+    }
+    if (opt->latex) {
+        str_puts(&b, "\\[ ");
+        str_puts(&b, lhs.s);
+        str_puts(&b, " = ");
+        str_puts(&b, rhs);
+        str_puts(&b, " \\]\n");
+    } else {
+        str_puts(&b, lhs.s);
+        str_puts(&b, " = ");
+        str_puts(&b, rhs);
+        str_puts(&b, o->kind == KIND_VECTOR ? "    (vector)\n" : "\n");
+    }
+    free(rhs);
+    free(lhs.s);
+    return str_take(&b);
+}
