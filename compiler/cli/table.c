@@ -117,6 +117,8 @@ static void json_head(FILE *out, const Plan *p, const EvalSetup *s)
     json_string(out, p->name);
     fputs(", ", out);
     json_axis_names(out, "params", p, s, 1);
+    fputs(", ", out);
+    json_axis_names(out, "consts", p, s, 0);
     fputs(", \"outputs\": [", out);
     for (int j = 0; j < s->nsel; j++) {
         const PlanOutput *o = &p->outputs[s->sel[j]];
@@ -127,6 +129,45 @@ static void json_head(FILE *out, const Plan *p, const EvalSetup *s)
                 table_columns(p, s->sel[j], s->dim));
     }
     fputs("],\n \"samples\": [", out);
+}
+
+/* "key": {NAME: VALUE, ...} for the axes of one sort */
+static void json_axis_values(FILE *out, const char *key, const Plan *p,
+                             const EvalSetup *s, const TableRow *r, int params)
+{
+    const char *sep = "";
+    fprintf(out, "\"%s\": {", key);
+    for (int i = 0; i < s->naxes; i++) {
+        const EvalAxis *x = &s->axes[i];
+        if ((x->param >= 0) != params)
+            continue;
+        fputs(sep, out);
+        json_string(out, axis_name(p, x));
+        fputs(": ", out);
+        json_number(out, axis_value(x, r));
+        sep = ", ";
+    }
+    fputs("}", out);
+}
+
+/* "values": {"M": [x, y], "s": v} */
+static void json_values(FILE *out, const Plan *p, const EvalSetup *s,
+                        const TableRow *r)
+{
+    fputs("\"values\": {", out);
+    for (int j = 0; j < s->nsel; j++) {
+        const PlanOutput *o = &p->outputs[s->sel[j]];
+        int nc = table_columns(p, s->sel[j], s->dim);
+        fputs(j ? ", " : "", out);
+        json_string(out, o->name);
+        fputs(o->kind == PLAN_SCALAR ? ": " : ": [", out);
+        for (int c = 0; c < nc; c++) {
+            fputs(c ? ", " : "", out);
+            json_number(out, r->values[j][c]);
+        }
+        fputs(o->kind == PLAN_SCALAR ? "" : "]", out);
+    }
+    fputs("}", out);
 }
 
 /* the sort of a status in JSON: "poles", "nonfinite" or "domain" */
@@ -163,27 +204,12 @@ static void json_statuses(FILE *out, const Plan *p, const EvalSetup *s,
 static void json_row(FILE *out, const Plan *p, const EvalSetup *s,
                      const TableRow *r, size_t index)
 {
-    const char *sep = "";
     fputs(index ? ",\n  {" : "\n  {", out);
-    for (int i = 0; i < s->naxes; i++, sep = ", ") {
-        const EvalAxis *x = &s->axes[i];
-        fputs(sep, out);
-        json_string(out, axis_name(p, x));
-        fputs(": ", out);
-        json_number(out, axis_value(x, r));
-    }
-    for (int j = 0; j < s->nsel; j++, sep = ", ") {
-        const PlanOutput *o = &p->outputs[s->sel[j]];
-        int nc = table_columns(p, s->sel[j], s->dim);
-        fputs(sep, out);
-        json_string(out, o->name);
-        fputs(o->kind == PLAN_SCALAR ? ": " : ": [", out);
-        for (int c = 0; c < nc; c++) {
-            fputs(c ? ", " : "", out);
-            json_number(out, r->values[j][c]);
-        }
-        fputs(o->kind == PLAN_SCALAR ? "" : "]", out);
-    }
+    json_axis_values(out, "params", p, s, r, 1);
+    fputs(", ", out);
+    json_axis_values(out, "consts", p, s, r, 0);
+    fputs(", ", out);
+    json_values(out, p, s, r);
     json_statuses(out, p, s, r);
     fputc('}', out);
 }
