@@ -495,5 +495,14 @@ assert s[1]['values']['poles'] == [None] and s[1]['poles'] == ['poles']
 assert s[3]['values']['values'] == 0 and s[3]['consts'] == {'consts': 2}
 " "$tmp/out"
 
+# the generated code's banner states the statuses the code returns (and
+# docs/codegen.md the same)
+"$PC" emit-c "$tmp/fn.pcs" -o "$tmp/fnc.c"
+check "banner: the five statuses" grep -q "_checked returns 0 ok, 1 pole,$" "$tmp/fnc.c"
+check "banner: 4 domain" grep -q "4 domain (a function's$" "$tmp/fnc.c"
+check "code: returns 4" grep -q '? 4 :' "$tmp/fnc.c"
+check "docs/codegen.md: the same statuses" grep -q '/\* 0 ok, 1 pole, 2 overflow, 3 not finite, 4 domain \*/' docs/codegen.md
+check "no --dump-ast is promised" test -z "$(grep -rn -- '--dump-ast' README.md docs grammar compiler codegen runtime)"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
