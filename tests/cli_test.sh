@@ -504,5 +504,15 @@ check "code: returns 4" grep -q '? 4 :' "$tmp/fnc.c"
 check "docs/codegen.md: the same statuses" grep -q '/\* 0 ok, 1 pole, 2 overflow, 3 not finite, 4 domain \*/' docs/codegen.md
 check "no --dump-ast is promised" test -z "$(grep -rn -- '--dump-ast' README.md docs grammar compiler codegen runtime)"
 
+# the contract is part of docs/, and the docs point at it
+check "docs/contract.md: the fixed contract" grep -q '^> This is the fixed contract of pointcalc' docs/contract.md
+check "docs/contract.md: its title" test "$(sed -n 3p docs/contract.md)" = "# pointcalc: the contract"
+check "no reference outside the repository" test -z "$(grep -rn 'shared/docs' README.md docs)"
+for f in README.md docs/*.md; do
+    for ref in $(grep -o 'docs/[a-z_]*\.md' "$f" | sort -u); do
+        check "$f: $ref exists" test -f "$ref"
+    done
+done
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
