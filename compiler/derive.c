@@ -1870,7 +1870,23 @@ static int step_arg(Deriver *D, DerivedStep *st, slong k, const Node *a)
     return rc;
 }
 
-/* the construction of a definition: its op, args and scalars */
+/* the operation of a definition's expression */
+static StepOp step_op(const Node *e)
+{
+    if (e->kind != ND_CALL)
+        return STEP_EXPR;
+    switch ((Builtin)e->builtin) {
+    case BI_ALONG: return STEP_ALONG;
+    case BI_DIVIDE: return STEP_DIVIDE;
+    case BI_MEET: return STEP_MEET;
+    case BI_SUBST: return STEP_SUBST;
+    case BI_DIFF: return STEP_DIFF;
+    case BI_BEZIER: return STEP_BEZIER;
+    default: return STEP_EXPR;
+    }
+}
+
+/* the construction of a definition: its args and scalars */
 static void step_construction(Deriver *D, DerivedStep *st, const Node *e)
 {
     const Ring *r = D->r;
@@ -1881,7 +1897,6 @@ static void step_construction(Deriver *D, DerivedStep *st, const Node *e)
     switch ((Builtin)e->builtin) {
     case BI_ALONG:
     case BI_DIVIDE:
-        st->op = e->builtin == BI_ALONG ? STEP_ALONG : STEP_DIVIDE;
         st->nargs = 2;
         st->args = pc_xcalloc(2, sizeof(DerivedOutput));
         for (a = e->args; k < 2; a = a->next, k++)
@@ -1889,7 +1904,6 @@ static void step_construction(Deriver *D, DerivedStep *st, const Node *e)
         eval_scalar(D, st->scalar, nth(e, 2));
         break;
     case BI_BEZIER:
-        st->op = STEP_BEZIER;
         st->nargs = e->nargs - 1;
         st->args = pc_xcalloc((size_t)st->nargs, sizeof(DerivedOutput));
         for (a = e->args->next; a; a = a->next, k++)
@@ -1898,7 +1912,6 @@ static void step_construction(Deriver *D, DerivedStep *st, const Node *e)
         break;
     case BI_SUBST: {
         const Node *x = nth(e, 1);
-        st->op = STEP_SUBST;
         st->var = pc_xstrdup(x->sym->name);
         if (x->sym->kind == SYM_POINT || x->sym->kind == SYM_UNKNOWN) {
             st->nargs = 1;
@@ -1910,14 +1923,12 @@ static void step_construction(Deriver *D, DerivedStep *st, const Node *e)
         break;
     }
     case BI_DIFF:
-        st->op = STEP_DIFF;
         st->var = pc_xstrdup(nth(e, 1)->sym->name);
         st->order = nth(e, 2) ? strtol(nth(e, 2)->text, NULL, 10) : 1;
         break;
     case BI_MEET: {
         const Node *fa = nth(e, 0), *fb = nth(e, 1);
         int ok = 1;
-        st->op = STEP_MEET;
         st->nfirst = fa->nargs;
         st->nargs = fa->nargs + fb->nargs;
         st->args = pc_xcalloc((size_t)st->nargs, sizeof(DerivedOutput));
@@ -2006,7 +2017,7 @@ static void record_steps(Deriver *D, Derived *d, const Source *src)
         const Value *v = &D->defs[s->index];
         ratfun_init(ds->scalar, r);
         ratfun_init(ds->det, r);
-        ds->op = STEP_EXPR;
+        ds->op = step_op(st->expr);
         ds->expr = span_text(src, st->expr->span);
         if (D->state[s->index] != 1 || unsolved_in(D, v)) {
             step_pending(ds, s->name, s->span, src, r);
