@@ -117,8 +117,30 @@ static void scalar_is(const Derived *d, const RatFun x, const char *text)
 
 /* ---- the meet identities ------------------------------------------------- */
 
-/* every meet step: M = P + (Q - P)*lambda = R + (S - R)*mu [+ (U - R)*mu2],
- * lambda = b/(a + b), det = a + b, and W = a*P + b*Q + c*V... */
+/* the first point (not a direction) of args[lo..hi-1] */
+static slong origin_of(const DerivedStep *s, slong lo, slong hi)
+{
+    for (slong j = lo; j < hi; j++)
+        if (s->args[j].kind != KIND_VECTOR)
+            return j;
+    fail_msg("a flat of %s without a point", s->value.name);
+    return lo;
+}
+
+/* res = args[j] as a direction from args[o] (a direction is itself) */
+static void direction(PointEq res, const DerivedStep *s, slong j, slong o,
+                      const Ring *r)
+{
+    if (s->args[j].kind == KIND_VECTOR)
+        pteq_set(res, s->args[j].eq, r);
+    else
+        pteq_sub(res, s->args[j].eq, s->args[o].eq, r);
+}
+
+/* Every meet step: M = O1 + D1*lambda = O2 + sum D2_j*mu_j (O the flat's
+ * first point, D the others' directions from it), det = a + b, lambda =
+ * b/det, and W = a*P + b*Q + c*V... (a direction V stands for O + V).
+ * Returns the number of meets. */
 static int check_meets(const Derived *d)
 {
     const Ring *r = &d->ring;
@@ -130,24 +152,25 @@ static int check_meets(const Derived *d)
     ratfun_init(l, r);
     for (slong i = 0; i < d->nsteps; i++) {
         const DerivedStep *s = &d->steps[i];
-        if (s->op != STEP_MEET)
+        if (s->op != STEP_MEET || s->pending)
             continue;
         nmeets++;
         assert_int_equal(s->nfirst, 2);
         assert_int_equal(s->nparams, s->nargs - s->nfirst);
-        const PointEqStruct *a[5];
-        for (slong k = 0; k < s->nargs; k++)
-            a[k] = s->args[k].eq;
         /* on the first line */
-        pteq_sub(x, a[1], a[0], r);
+        slong o = origin_of(s, 0, 2);
+        direction(x, s, 1 - o, o, r);
         pteq_scalar_mul(x, x, s->params, r);
-        pteq_add(x, x, a[0], r);
+        pteq_add(x, x, s->args[o].eq, r);
         assert_true(pteq_equal(x, s->value.eq, r));
         /* on the second flat */
-        pteq_set(x, a[2], r);
-        for (slong j = 1; j < s->nparams; j++) {
-            pteq_sub(y, a[2 + j], a[2], r);
-            pteq_scalar_mul(y, y, s->params + j, r);
+        o = origin_of(s, 2, s->nargs);
+        pteq_set(x, s->args[o].eq, r);
+        for (slong j = 2, k = 1; j < s->nargs; j++) {
+            if (j == o)
+                continue;
+            direction(y, s, j, o, r);
+            pteq_scalar_mul(y, y, s->params + k++, r);
             pteq_add(x, x, y, r);
         }
         assert_true(pteq_equal(x, s->value.eq, r));
@@ -157,19 +180,57 @@ static int check_meets(const Derived *d)
         assert_true(ratfun_equal(l, s->det, r));
         assert_int_equal(ratfun_div(l, s->sv_coord + 1, s->det, r), 0);
         assert_true(ratfun_equal(l, s->params, r));
+        PointEq v[5];
+        for (slong j = 0; j < s->nargs; j++) {
+            pteq_init(v[j], r);
+            pteq_set(v[j], s->args[j].eq, r);
+            if (s->args[j].kind == KIND_VECTOR)
+                pteq_add(v[j], v[j],
+                         s->args[j < 2 ? origin_of(s, 0, 2)
+                                       : origin_of(s, 2, s->nargs)]
+                             .eq,
+                         r);
+        }
         pteq_zero(x, r);
         for (slong k = 0, j = 0; k <= s->nparams; k++, j++) {
             if (j == s->sv_w)
                 j++;
-            pteq_scalar_mul(y, a[j], s->sv_coord + k, r);
+            pteq_scalar_mul(y, v[j], s->sv_coord + k, r);
             pteq_add(x, x, y, r);
         }
-        assert_true(pteq_equal(x, a[s->sv_w], r));
+        assert_true(pteq_equal(x, v[s->sv_w], r));
+        for (slong j = 0; j < s->nargs; j++)
+            pteq_clear(v[j], r);
     }
     ratfun_clear(l, r);
     pteq_clear(y, r);
     pteq_clear(x, r);
     return nmeets;
+}
+
+/* the identities on the meets of examples: directions, planes, consts,
+ * solves */
+static void test_steps_meet_identities_examples(void **state)
+{
+    (void)state;
+    static const char *const files[] = {
+        "examples/parabola_improper_point.pcs",
+        "examples/curve_3d_one_ratio.pcs",
+        "examples/conic_five_points.pcs",
+        "examples/closed_cubics.pcs",
+        "examples/interpolation_desargues.pcs",
+        "examples/ellipse_conjugate_diameters_2.pcs",
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        DeriveOptions opt = {.max_seconds = 60, .keep_steps = 1};
+        int nerr = 0;
+        Derived *d = derive_file_ex(files[i], stderr, &nerr, &opt);
+        if (!d)
+            fail_msg("%s does not derive", files[i]);
+        if (check_meets(d) == 0)
+            fail_msg("%s: no meet", files[i]);
+        derived_free(d);
+    }
 }
 
 /* ---- the Desargues arc and the article ----------------------------------- */
@@ -638,6 +699,7 @@ int main(void)
         cmocka_unit_test(test_steps_desargues_match_article),
         cmocka_unit_test(test_steps_compare_can_fail),
         cmocka_unit_test(test_steps_v_theorem),
+        cmocka_unit_test(test_steps_meet_identities_examples),
         cmocka_unit_test(test_steps_subst_diff),
         cmocka_unit_test(test_steps_solve),
         cmocka_unit_test(test_steps_pending),
