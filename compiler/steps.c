@@ -237,11 +237,11 @@ static void text_steps(FILE *out, const Derived *d, slong origin)
 static void latex_name(FILE *out, const char *name)
 {
     static const char *const greek[] = {
-        "alpha", "beta",  "gamma", "delta", "epsilon", "zeta",   "eta",
-        "theta", "iota",  "kappa", "lambda", "mu",     "nu",     "xi",
-        "pi",    "rho",   "sigma", "tau",   "upsilon", "phi",    "chi",
-        "psi",   "omega", "Gamma", "Delta", "Theta",   "Lambda", "Xi",
-        "Pi",    "Sigma", "Phi",   "Psi",   "Omega",
+        "alpha", "beta",  "gamma", "delta",  "epsilon", "zeta",   "eta",
+        "theta", "iota",  "kappa", "lambda", "mu",      "nu",     "xi",
+        "pi",    "rho",   "sigma", "tau",    "upsilon", "phi",    "chi",
+        "psi",   "omega", "Gamma", "Delta",  "Theta",   "Lambda", "Xi",
+        "Pi",    "Sigma", "Phi",   "Psi",    "Omega",
     };
     size_t n = strlen(name), stem = 0;
     while (stem < n && isalpha((unsigned char)name[stem]) &&
@@ -266,7 +266,13 @@ static void latex_source(FILE *out, const char *s)
     fputs("\\texttt{", out);
     for (; *s; s++) {
         switch (*s) {
-        case '_': case '#': case '%': case '&': case '$': case '{': case '}':
+        case '_':
+        case '#':
+        case '%':
+        case '&':
+        case '$':
+        case '{':
+        case '}':
             fprintf(out, "\\%c", *s);
             break;
         case '^':
@@ -337,8 +343,7 @@ static void latex_vertex(FILE *out, const DerivedStep *s, slong j)
     }
 }
 
-static void latex_direction(FILE *out, const DerivedStep *s, slong j,
-                            slong o)
+static void latex_direction(FILE *out, const DerivedStep *s, slong j, slong o)
 {
     if (s->args[j].kind == KIND_VECTOR) {
         latex_factor(out, s->args[j].name);
@@ -519,14 +524,22 @@ static void json_value(FILE *out, const Derived *d, const DerivedOutput *o)
 static const char *op_name(StepOp op)
 {
     switch (op) {
-    case STEP_ALONG: return "along";
-    case STEP_DIVIDE: return "divide";
-    case STEP_MEET: return "meet";
-    case STEP_SUBST: return "subst";
-    case STEP_DIFF: return "diff";
-    case STEP_BEZIER: return "bezier";
-    case STEP_SOLVE: return "solve";
-    case STEP_EXPR: break;
+    case STEP_ALONG:
+        return "along";
+    case STEP_DIVIDE:
+        return "divide";
+    case STEP_MEET:
+        return "meet";
+    case STEP_SUBST:
+        return "subst";
+    case STEP_DIFF:
+        return "diff";
+    case STEP_BEZIER:
+        return "bezier";
+    case STEP_SOLVE:
+        return "solve";
+    case STEP_EXPR:
+        break;
     }
     return "expr";
 }

@@ -60,8 +60,7 @@ static Derived *derive_text(const char *text, int keep, char **err)
     char *ebuf = NULL;
     FILE *e = open_memstream(&ebuf, &elen);
     int nerr = 0;
-    Derived *d = derive_source_ex("s.pcs", text, strlen(text), e, &nerr,
-                                  &opt);
+    Derived *d = derive_source_ex("s.pcs", text, strlen(text), e, &nerr, &opt);
     fclose(e);
     if (err)
         *err = ebuf;
@@ -296,8 +295,8 @@ static void test_steps_desargues_match_article(void **state)
     Derived *d = derive_desargues(1);
     const Ring *r = &d->ring;
     /* one step per definition, in source order */
-    static const char *const order[] = {"P", "Q", "K", "N", "J", "T", "S",
-                                        "R", "M", "M_half", "M_CB"};
+    static const char *const order[] = {"P", "Q", "K", "N",      "J",   "T",
+                                        "S", "R", "M", "M_half", "M_CB"};
     for (size_t i = 0; i < sizeof order / sizeof order[0]; i++)
         assert_string_equal(d->steps[i].value.name, order[i]);
     assert_int_equal(d->nsteps, 15 + 20);
@@ -371,8 +370,8 @@ static void test_steps_compare_can_fail(void **state)
                                "T_w = (B*(1-t)^2 - A*t^2)/(1 - 2*t)\n";
     Derived *d = derive_text(text, 1, NULL);
     assert_non_null(d);
-    assert_false(pteq_equal(step(d, "T")->value.eq, step(d, "T_w")->value.eq,
-                            &d->ring));
+    assert_false(
+        pteq_equal(step(d, "T")->value.eq, step(d, "T_w")->value.eq, &d->ring));
     derived_free(d);
 }
 
@@ -380,11 +379,10 @@ static void test_steps_compare_can_fail(void **state)
 static void test_steps_v_theorem(void **state)
 {
     (void)state;
-    static const char text[] =
-        "point A, B, C, D\nparam t\n"
-        "P = along(A, C, t)\nK = along(B, D, 1 - t)\n"
-        "X = meet(line(P, K), plane(A, B, (C + D)/2))\n"
-        "Y = meet(line(A, C), plane(B, D, P))\n";
+    static const char text[] = "point A, B, C, D\nparam t\n"
+                               "P = along(A, C, t)\nK = along(B, D, 1 - t)\n"
+                               "X = meet(line(P, K), plane(A, B, (C + D)/2))\n"
+                               "Y = meet(line(A, C), plane(B, D, P))\n";
     Derived *d = derive_text(text, 1, NULL);
     assert_non_null(d);
     const DerivedStep *x = step(d, "X");
