@@ -247,7 +247,9 @@ static void test_steps_meet_identities_examples(void **state)
  *   |p_j q_j 1-p_j-q_j; 1-lambda lambda 0; 0 0 1| = 0 gives
  *   lambda = q_j/(p_j + q_j) = tb/(2t^2 - 2t + 1);
  *   M = S t(2t - 1)/(2t^2 - 2t + 1) + N tb/(2t^2 - 2t + 1)
- *     = (A tb^3 + B t^2 tb + C tb^2 t + D t^3)/(2t^2 - 2t + 1)  (2). */
+ *     = (A tb^3 + B t^2 tb + C tb^2 t + D t^3)/(2t^2 - 2t + 1)  (2);
+ *   C = B, A = D (the closed arc, 1 - 3t tb = 3t^2 - 3t + 1), t = 1/2 (the
+ *   centroid), dM/dt and d2M/dt2 as printed, expanded numerators. */
 static const char article[] =
     "\n# the article's forms\n"
     "tb = 1 - t\n"
@@ -264,12 +266,24 @@ static const char article[] =
     "p_j = 2*t - 1\n"
     "q_j = tb/t\n"
     "J_snt = (S - T)*p_j + (N - T)*q_j + T\n"
+    "J_p = Q + (S - Q)*p_j\n"
+    "J_q = R + (N - R)*q_j\n"
     "lam = q_j/(p_j + q_j)\n"
     "pq = p_j + q_j\n"
     "mu_T = ABT/(1 + ABT)\n"
     "M_l = S*(1 - lam) + N*lam\n"
     "M_t = S*t*(2*t - 1)/(2*t^2 - 2*t + 1) + N*tb/(2*t^2 - 2*t + 1)\n"
-    "M_a = (A*tb^3 + B*t^2*tb + C*tb^2*t + D*t^3)/(2*t^2 - 2*t + 1)\n";
+    "M_a = (A*tb^3 + B*t^2*tb + C*tb^2*t + D*t^3)/(2*t^2 - 2*t + 1)\n"
+    "M_half_a = (A + B + C + D)/4\n"
+    "M_CB_a = (A*tb^3 + B*t*tb + D*t^3)/(2*t^2 - 2*t + 1)\n"
+    "M_DA_a = (A*(1 - 3*t*tb) + B*t^2*tb + C*tb^2*t)/(2*t^2 - 2*t + 1)\n"
+    "dM_a = ((-2*t^4 + 4*t^3 - 3*t^2 + 2*t - 1)*A"
+    " + (-2*t^4 + 4*t^3 - 5*t^2 + 2*t)*B"
+    " + (2*t^4 - 4*t^3 + 5*t^2 - 4*t + 1)*C"
+    " + (2*t^4 - 4*t^3 + 3*t^2)*D)/(2*t^2 - 2*t + 1)^2\n"
+    "d2M_a = ((-4*t^3 + 6*t - 2)*A + (4*t^3 - 6*t + 2)*B"
+    " + (-4*t^3 + 12*t^2 - 6*t)*C + (4*t^3 - 12*t^2 + 6*t)*D)"
+    "/(2*t^2 - 2*t + 1)^3\n";
 
 static Derived *derive_desargues(int keep)
 {
@@ -299,7 +313,7 @@ static void test_steps_desargues_match_article(void **state)
                                         "S", "R", "M", "M_half", "M_CB"};
     for (size_t i = 0; i < sizeof order / sizeof order[0]; i++)
         assert_string_equal(d->steps[i].value.name, order[i]);
-    assert_int_equal(d->nsteps, 15 + 20);
+    assert_int_equal(d->nsteps, 15 + 27);
     assert_int_equal(step(d, "P")->op, STEP_ALONG);
     assert_int_equal(step(d, "T")->op, STEP_MEET);
     assert_int_equal(step(d, "T")->value.line, 40);
@@ -319,6 +333,19 @@ static void test_steps_desargues_match_article(void **state)
     same_point(d, "M", "M_l");
     same_point(d, "M", "M_t");
     same_point(d, "M", "M_a");
+    /* the article's ratios p_j = (J - Q)/(S - Q), q_j = (J - R)/(N - R) */
+    same_point(d, "J", "J_p");
+    same_point(d, "J", "J_q");
+    /* subst and diff: the special cases and derivatives it prints */
+    same_point(d, "M_half", "M_half_a");
+    same_point(d, "M_CB", "M_CB_a");
+    same_point(d, "M_DA", "M_DA_a");
+    same_point(d, "dM", "dM_a");
+    same_point(d, "d2M", "d2M_a");
+    assert_int_equal(step(d, "dM")->op, STEP_DIFF);
+    assert_int_equal(step(d, "d2M")->order, 2);
+    assert_int_equal(step(d, "M_CB")->op, STEP_SUBST);
+    scalar_is(d, step(d, "M_half")->scalar, "1/2");
 
     /* along: its points and ratio */
     const DerivedStep *n = step(d, "N");
