@@ -625,6 +625,94 @@ static void test_steps_print_desargues(void **state)
     derived_free(d);
 }
 
+/* ---- robustness -----------------------------------------------------------
+ */
+
+static uint64_t rng = 1;
+
+static uint32_t rnd(uint32_t n)
+{
+    rng ^= rng >> 12; /* xorshift64* */
+    rng ^= rng << 25;
+    rng ^= rng >> 27;
+    return (uint32_t)((rng * 2685821657736338717ULL) >> 33) % n;
+}
+
+/* a derivation with steps, printed three ways: success XOR errors */
+static int probe_steps(const char *buf, size_t len)
+{
+    DeriveOptions opt = {.max_seconds = 10, .keep_steps = 1};
+    int nerr = -1;
+    Derived *d = derive_source_ex("m.pcs", buf, len, NULL, &nerr, &opt);
+    int ok = (d != NULL) == (nerr == 0);
+    if (d) {
+        char *out = NULL;
+        size_t n = 0;
+        FILE *f = open_memstream(&out, &n);
+        steps_print(f, d, FMT_TEXT, -1);
+        steps_print(f, d, FMT_LATEX, -1);
+        steps_print(f, d, FMT_JSON, -1);
+        if (d->npoints > 0)
+            steps_print(f, d, FMT_TEXT, 0);
+        fclose(f);
+        free(out);
+        ok = ok && d->nsteps > 0;
+    }
+    derived_free(d);
+    return ok;
+}
+
+/* seeded mutations of schemes with meets, solves, directions, subst and
+ * diff: no crash, no leak, success exactly when there is no error */
+static void test_steps_mutations_never_crash(void **state)
+{
+    (void)state;
+    static const char *const files[] = {
+        "examples/desargues_arc.pcs", "examples/parabola_improper_point.pcs",
+        "examples/curve_3d_one_ratio.pcs", "examples/interpolation_bezier.pcs",
+        "examples/ellipse_central_angle.pcs"};
+    static const char *const tokens[] = {
+        "(",     ")",        ",",      "=",      "+",      "-",       "*",
+        "/",     "^",        "\n",     "0",      "1",      "t",       "A",
+        "B",     "meet(",    "line(",  "plane(", "along(", "divide(", "subst(",
+        "diff(", "unknown ", "solve ", " for ",  "1/2",    "A - B",   "sin("};
+    const char *env = getenv("PC_FUZZ_MUTATIONS");
+    int muts = env ? atoi(env) / 5 + 1 : 300;
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        size_t len;
+        char *text = slurp(files[i], &len);
+        assert_true(probe_steps(text, len));
+        rng = 0x9e3779b97f4a7c15ULL ^ (uint64_t)len;
+        char *b = malloc(len * 2 + 64);
+        for (int m = 0; m < muts; m++) {
+            size_t n = len, cap = len * 2 + 64;
+            memcpy(b, text, len);
+            for (int e = 1 + (int)rnd(3); e > 0; e--) {
+                size_t at = n ? rnd((uint32_t)n) : 0;
+                if (rnd(3) == 0 && n) { /* delete a short range */
+                    size_t l = 1 + rnd(6);
+                    l = at + l > n ? n - at : l;
+                    memmove(b + at, b + at + l, n - at - l);
+                    n -= l;
+                } else { /* insert a token */
+                    const char *t = tokens[rnd(sizeof tokens / sizeof *tokens)];
+                    size_t l = strlen(t);
+                    if (n + l >= cap)
+                        continue;
+                    memmove(b + at + l, b + at, n - at);
+                    memcpy(b + at, t, l);
+                    n += l;
+                }
+            }
+            if (!probe_steps(b, n))
+                fail_msg("%s: inconsistent result for\n%.*s", files[i], (int)n,
+                         b);
+        }
+        free(b);
+        free(text);
+    }
+}
+
 /* ---- the command line ---------------------------------------------------- */
 
 typedef struct Run {
@@ -730,6 +818,7 @@ int main(void)
         cmocka_unit_test(test_steps_pending),
         cmocka_unit_test(test_steps_parallel_error),
         cmocka_unit_test(test_steps_off_changes_nothing),
+        cmocka_unit_test(test_steps_mutations_never_crash),
         cmocka_unit_test(test_steps_print_desargues),
         cmocka_unit_test(test_steps_cli),
     };
