@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compiler/json.h"
 #include "compiler/mem.h"
 
 /* the value x printed like a scalar output (malloc'd) */
@@ -474,21 +475,6 @@ static void latex_steps(FILE *out, const Derived *d, slong origin)
 }
 
 /* ---- JSON ---------------------------------------------------------------- */
-
-static void json_string(FILE *out, const char *s)
-{
-    fputc('"', out);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(out, "\\%c", c);
-        else if (c < 0x20 || c == 0x7f)
-            fprintf(out, "\\u%04x", c);
-        else
-            fputc(c, out);
-    }
-    fputc('"', out);
-}
 
 static void json_ratfun(FILE *out, const Derived *d, const RatFun x)
 {
