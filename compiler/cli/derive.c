@@ -1,6 +1,7 @@
 /*
  * derive.c - `pointcalc derive FILE [--format text|latex|json]
- * [--origin POINT]`: the exact equations of the outputs (format.h).
+ * [--origin POINT] [--steps]`: the exact equations of the outputs
+ * (format.h), after every step of the derivation with --steps (steps.h).
  */
 #include "compiler/cli/cli.h"
 
@@ -8,17 +9,23 @@
 
 #include "compiler/cli/args.h"
 #include "compiler/format.h"
+#include "compiler/steps.h"
 
 typedef struct DeriveArgs {
     FormatStyle style;
     const char *origin; // a base point's name, or NULL
+    int steps;          // --steps
     const char *usage;
 } DeriveArgs;
 
-/* --format text|latex|json, --origin POINT */
+/* --format text|latex|json, --origin POINT, --steps */
 static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
 {
     DeriveArgs *a = ctx;
+    if (strcmp(argv[i], "--steps") == 0) {
+        a->steps = 1;
+        return 1;
+    }
     const char *v = args_value(argc, argv, i);
     if (!v)
         return 0;
@@ -45,14 +52,14 @@ static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
 
 int cli_derive(int argc, char **argv, FILE *out, FILE *err)
 {
-    DeriveArgs a = {FMT_TEXT, NULL, help_usage("derive")};
+    DeriveArgs a = {FMT_TEXT, NULL, 0, help_usage("derive")};
     BudgetOptions bo;
     const char *file;
     int rc =
         args_parse(argc, argv, a.usage, &bo, &file, derive_option, &a, err);
     if (rc)
         return rc;
-    Derived *d = cli_derive_file(file, &bo, err, &rc);
+    Derived *d = cli_derive_file_steps(file, &bo, a.steps, err, &rc);
     if (!d)
         return rc;
     slong origin = a.origin ? derived_find_point(d, a.origin) : -1;
@@ -61,8 +68,15 @@ int cli_derive(int argc, char **argv, FILE *out, FILE *err)
                               "--origin '%s' is not a base point of the "
                               "scheme",
                               a.origin);
-    else
+    else if (a.steps && a.style == FMT_JSON) /* the object with "steps" */
+        steps_print(out, d, a.style, origin);
+    else {
+        if (a.steps) { /* the steps, a blank line, then the outputs */
+            steps_print(out, d, a.style, origin);
+            fputs("\n", out);
+        }
         format_derived(out, d, a.style, origin);
+    }
     derived_free(d);
     return rc;
 }

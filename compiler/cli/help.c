@@ -10,6 +10,7 @@
 
 const char cli_usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
+    "                        [--steps]\n"
     "       pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
     "                        [--output NAME[,NAME...]]\n"
     "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=SPEC ...]\n"
@@ -44,7 +45,8 @@ const char cli_usage[] =
 
 #define DERIVE_USAGE                                                           \
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin "       \
-    "POINT]\n"
+    "POINT]\n"                                                                \
+    "                        [--steps]\n"
 
 #define EMIT_C_USAGE                                                           \
     "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix "      \
@@ -70,7 +72,12 @@ static const char derive_help[] = DERIVE_USAGE
     "  --format json       the contract's JSON: every weight as a reduced "
     "expression\n"
     "  --origin POINT      text and LaTeX relative to a base point: (A - C)*f "
-    "+ ... + C\n" COMMON_HELP;
+    "+ ... + C\n"
+    "  --steps             first every step in source order: each "
+    "definition's point\n"
+    "                      equation, each meet's S/V-theorem determinant and "
+    "line\n"
+    "                      parameters (JSON: a \"steps\" array)\n" COMMON_HELP;
 
 static const char emit_c_help[] = EMIT_C_USAGE
     "\n"

@@ -8,8 +8,15 @@
 Derived *cli_derive_file(const char *file, const BudgetOptions *b, FILE *err,
                          int *rc)
 {
+    return cli_derive_file_steps(file, b, 0, err, rc);
+}
+
+Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
+                               int keep_steps, FILE *err, int *rc)
+{
     int bad_define = 0;
     DeriveOptions opt = derive_options_cli(b, err, &bad_define);
+    opt.keep_steps = keep_steps;
     budget_arm(b->max_seconds, b->max_memory);
     Derived *d = derive_file_ex(file, err, NULL, &opt);
     budget_disarm(); /* the derivation is budgeted, not the output */
