@@ -79,6 +79,10 @@ check: tests
 	  echo "== $$t"; PC_BIN=$(B)/pointcalc $$t || fail=1; done; \
 	  tests/cli_test.sh $(B)/pointcalc || fail=1; \
 	  tests/tutorial_test.sh $(B)/pointcalc || fail=1; \
+	  echo "== tests/printback.py"; \
+	  python3 tests/printback.py $(B)/pointcalc examples/*.pcs tests/schemes/*.pcs || fail=1; \
+	  echo "== tests/latex_test.sh"; \
+	  tests/latex_test.sh $(B)/pointcalc || fail=1; \
 	  echo "== $(B)/examples/api_example"; \
 	  $(B)/examples/api_example > $(B)/examples/api_example.out && \
 	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.out && \

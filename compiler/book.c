@@ -173,14 +173,32 @@ typedef struct Ctx {
                             // consts; the rest functions and extras
     int latex;
     long *work; // the printing work spent on this output (RENDER_WORK)
+    struct Memo *memo; // forms already chosen, for this output
 } Ctx;
+
+/* render() of a polynomial at a depth, kept: the same coefficients and
+ * factors come up in every collection */
+typedef struct MemoEntry {
+    fmpz_mpoly_t poly;
+    int depth;
+    struct PSum *sum;
+} MemoEntry;
+
+typedef struct Memo {
+    MemoEntry *e;
+    slong n, alloc;
+} Memo;
 
 enum {
     MAX_DEPTH = 2,          // levels of collection (factors and coefficients)
     MAX_COLLECT_TERMS = 60, // larger polynomials: expanded or factored only
     RENDER_WORK = 20000,    // per output, in terms looked at (a factoring
-                            // counts 50 per term): beyond it, polynomials
-                            // are written expanded or factored only
+                            // counts FACTOR_WORK + 20 per term): beyond it,
+                            // polynomials are written expanded, or factored
+                            // at the top level only
+    FACTOR_WORK = 200,
+    MAX_FACTOR_TERMS_NESTED = 24, // factors and coefficients factored only
+                                  // when this short
 };
 
 static void sum_free(PSum *s, const Ctx *c);
@@ -225,6 +243,46 @@ static PTerm *sum_push(PSum *s)
     s->t = pc_xrealloc(s->t, sizeof(PTerm) * (size_t)(s->n + 1));
     term_init(&s->t[s->n]);
     return &s->t[s->n++];
+}
+
+static PSum *sum_copy(const PSum *s, const Ctx *c);
+
+static void term_copy(PTerm *dst, const PTerm *src, const Ctx *c)
+{
+    dst->neg = src->neg;
+    fmpz_set(dst->coeff, src->coeff);
+    dst->n = src->n;
+    dst->a = pc_xmalloc(sizeof(Atom) * (size_t)(src->n ? src->n : 1));
+    for (slong i = 0; i < src->n; i++) {
+        dst->a[i] = src->a[i];
+        if (src->a[i].kind == AT_SUM)
+            dst->a[i].sum = sum_copy(src->a[i].sum, c);
+    }
+}
+
+static PSum *sum_copy(const PSum *s, const Ctx *c)
+{
+    PSum *r = sum_new(c);
+    r->t = pc_xmalloc(sizeof(PTerm) * (size_t)(s->n ? s->n : 1));
+    for (slong i = 0; i < s->n; i++) {
+        term_init(&r->t[i]);
+        term_copy(&r->t[i], &s->t[i], c);
+    }
+    r->n = s->n;
+    fmpz_mpoly_set(r->poly, s->poly, c->r->ctx);
+    r->has_param = s->has_param;
+    return r;
+}
+
+static void memo_clear(Memo *m, const Ctx *c)
+{
+    for (slong i = 0; i < m->n; i++) {
+        fmpz_mpoly_clear(m->e[i].poly, c->r->ctx);
+        sum_free(m->e[i].sum, c);
+    }
+    free(m->e);
+    m->e = NULL;
+    m->n = m->alloc = 0;
 }
 
 static void term_push(PTerm *t, Atom a)
@@ -570,12 +628,65 @@ static void push_factor(PTerm *t, const fmpz_mpoly_t p, ulong e, int depth,
     term_push(t, (Atom){AT_SUM, -1, s, NULL, NULL, e});
 }
 
+/* ring_factor(f, p) done in a ring of only the variables p uses: FLINT's
+ * factoring walks every variable of its context, and a scheme's ring has
+ * many (every function's slot) */
+static int factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
+                          const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars, used = 0;
+    if (!fmpz_mpoly_degrees_fit_si(p, r->ctx))
+        return 0;
+    slong *deg = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    slong *to_small = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    slong *to_big = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    fmpz_mpoly_degrees_si(deg, p, r->ctx);
+    for (slong v = 0; v < nv; v++) {
+        to_small[v] = deg[v] > 0 ? used : -1;
+        if (deg[v] > 0)
+            to_big[used++] = v;
+    }
+    int ok;
+    if (used == nv || used == 0) {
+        ok = ring_factor(f, p, r);
+    } else {
+        Ring small;
+        fmpz_mpoly_ctx_init(small.ctx, used, ORD_DEGREVLEX);
+        small.nvars = used;
+        small.names = NULL;
+        small.latex = NULL;
+        fmpz_mpoly_t q;
+        fmpz_mpoly_init(q, small.ctx);
+        fmpz_mpoly_compose_fmpz_mpoly_gen(q, p, to_small, r->ctx, small.ctx);
+        fmpz_mpoly_factor_t g;
+        fmpz_mpoly_factor_init(g, small.ctx);
+        ok = ring_factor(g, q, &small);
+        if (ok) {
+            fmpz_mpoly_factor_fit_length(f, g->num, r->ctx);
+            fmpz_set(f->constant, g->constant);
+            for (slong i = 0; i < g->num; i++) {
+                fmpz_mpoly_compose_fmpz_mpoly_gen(f->poly + i, g->poly + i,
+                                                  to_big, small.ctx, r->ctx);
+                fmpz_set(f->exp + i, g->exp + i);
+            }
+            f->num = g->num;
+        }
+        fmpz_mpoly_factor_clear(g, small.ctx);
+        fmpz_mpoly_clear(q, small.ctx);
+        fmpz_mpoly_ctx_clear(small.ctx);
+    }
+    free(deg);
+    free(to_small);
+    free(to_big);
+    return ok;
+}
+
 static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     const Ring *r = c->r;
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
-    if (!ring_factor(f, p, r)) {
+    if (!factor_compact(f, p, r)) {
         fmpz_mpoly_factor_clear(f, r->ctx);
         return NULL;
     }
@@ -737,8 +848,38 @@ static void keep_better(PSum **best, int *best_rank, size_t *best_len,
     *best_len = len;
 }
 
-/* p in its best form (see book.h) */
+static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+enum { MEMO_MAX = 1024 };
+
+/* p in its best form (see book.h), remembered per output */
 static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    Memo *m = c->memo;
+    slong len = fmpz_mpoly_length(p, c->r->ctx);
+    if (len < 2 || !m)
+        return render_new(p, depth, c);
+    for (slong i = 0; i < m->n; i++)
+        if (m->e[i].depth == depth &&
+            fmpz_mpoly_length(m->e[i].poly, c->r->ctx) == len &&
+            fmpz_mpoly_equal(m->e[i].poly, p, c->r->ctx))
+            return sum_copy(m->e[i].sum, c);
+    PSum *s = render_new(p, depth, c);
+    if (m->n < MEMO_MAX) {
+        if (m->n == m->alloc) {
+            m->alloc = m->alloc ? 2 * m->alloc : 32;
+            m->e = pc_xrealloc(m->e, sizeof(MemoEntry) * (size_t)m->alloc);
+        }
+        MemoEntry *e = &m->e[m->n++];
+        fmpz_mpoly_init(e->poly, c->r->ctx);
+        fmpz_mpoly_set(e->poly, p, c->r->ctx);
+        e->depth = depth;
+        e->sum = sum_copy(s, c);
+    }
+    return s;
+}
+
+static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     enum { R_FACTORED, R_EXPANDED, R_BERNSTEIN, R_POWERS };
     const Ring *r = c->r;
@@ -750,8 +891,12 @@ static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
     Ctx text = *c;
     text.latex = 0;
     size_t blen = sum_text_len(best, &text);
-    if (depth == 0 || *c->work < RENDER_WORK) {
-        *c->work += 50 * len;
+    *c->work += len;
+    if (len < 2)
+        return best; /* a monomial: expanded is factored */
+    if (depth == 0 ||
+        (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED)) {
+        *c->work += FACTOR_WORK + 20 * len;
         keep_better(&best, &rank, &blen, form_factored(p, depth, c),
                     R_FACTORED, c);
     }
@@ -1080,14 +1225,32 @@ static void rhs_equation(Str *b, const EqParts *P, const Ctx *c)
 }
 
 static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
-                     long *work)
+                     long *work, Memo *memo)
 {
     *work = 0;
     c->work = work;
+    memo->e = NULL;
+    memo->n = memo->alloc = 0;
+    c->memo = memo;
     c->r = &d->ring;
     c->nparams = d->nparams;
     c->nconsts = d->nconsts;
     c->latex = opt->latex;
+}
+
+static void rhs_into(Str *b, const Derived *d, const DerivedOutput *o,
+                     const BookOptions *opt, const Ctx *c)
+{
+    if (o->kind == KIND_SCALAR) {
+        rhs_scalar(b, o->scalar, c);
+    } else if (opt->origin >= 0) {
+        rhs_origin(b, d, o, opt->origin, c);
+    } else {
+        EqParts P;
+        eq_parts(&P, d, o, c);
+        rhs_equation(b, &P, c);
+        eq_parts_clear(&P, c);
+    }
 }
 
 char *book_rhs(const Derived *d, const DerivedOutput *o,
@@ -1095,18 +1258,11 @@ char *book_rhs(const Derived *d, const DerivedOutput *o,
 {
     Ctx c;
     long work;
-    ctx_init(&c, d, opt, &work);
+    Memo memo;
+    ctx_init(&c, d, opt, &work, &memo);
     Str b = {0};
-    if (o->kind == KIND_SCALAR) {
-        rhs_scalar(&b, o->scalar, &c);
-    } else if (opt->origin >= 0) {
-        rhs_origin(&b, d, o, opt->origin, &c);
-    } else {
-        EqParts P;
-        eq_parts(&P, d, o, &c);
-        rhs_equation(&b, &P, &c);
-        eq_parts_clear(&P, &c);
-    }
+    rhs_into(&b, d, o, opt, &c);
+    memo_clear(&memo, &c);
     return str_take(&b);
 }
 
@@ -1188,10 +1344,12 @@ char *book_output(const Derived *d, const DerivedOutput *o,
 {
     Ctx c;
     long work;
-    ctx_init(&c, d, opt, &work);
-    Str b = {0}, lhs = {0};
+    Memo memo;
+    ctx_init(&c, d, opt, &work, &memo);
+    Str b = {0}, lhs = {0}, rb = {0};
     put_lhs(&lhs, o, &c);
-    char *rhs = book_rhs(d, o, opt);
+    rhs_into(&rb, d, o, opt, &c);
+    char *rhs = str_take(&rb);
     int width = opt->width > 0 ? opt->width : 80;
     if (opt->latex && o->kind != KIND_SCALAR && opt->origin < 0) {
         /* a fraction is as wide as the longer of its two lines */
@@ -1209,6 +1367,7 @@ char *book_output(const Derived *d, const DerivedOutput *o,
         if ((int)wide > width && P.items->n > 1) {
             put_multline(&b, &lhs, &P, &c, width);
             eq_parts_clear(&P, &c);
+            memo_clear(&memo, &c);
             free(rhs);
             free(lhs.s);
             return str_take(&b);
@@ -1227,6 +1386,7 @@ char *book_output(const Derived *d, const DerivedOutput *o,
         str_puts(&b, rhs);
         str_puts(&b, o->kind == KIND_VECTOR ? "    (vector)\n" : "\n");
     }
+    memo_clear(&memo, &c);
     free(rhs);
     free(lhs.s);
     return str_take(&b);

@@ -349,11 +349,45 @@ char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
 
 void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)
 {
+    format_derived_width(out, d, st, origin, 0);
+}
+
+void format_latex_begin(FILE *out, const Derived *d)
+{
+    fputs("\\documentclass{article}\n"
+          "\\usepackage{amsmath}\n"
+          "\\begin{document}\n"
+          "\\section*{",
+          out);
+    /* the scheme's name as text: escape what LaTeX would read */
+    for (const char *p = d->scheme; *p; p++) {
+        if (*p == '\\')
+            fputs("\\textbackslash{}", out);
+        else if (*p == '^')
+            fputs("\\textasciicircum{}", out);
+        else if (*p == '~')
+            fputs("\\textasciitilde{}", out);
+        else if (strchr("#$%&_{}", *p))
+            fprintf(out, "\\%c", *p);
+        else
+            fputc(*p, out);
+    }
+    fputs("}\n", out);
+}
+
+void format_latex_end(FILE *out)
+{
+    fputs("\\end{document}\n", out);
+}
+
+void format_derived_width(FILE *out, const Derived *d, FormatStyle st,
+                          slong origin, int width)
+{
     if (st == FMT_JSON) {
         format_json(out, d);
         return;
     }
-    BookOptions opt = {st == FMT_LATEX, 0, origin};
+    BookOptions opt = {st == FMT_LATEX, width, origin};
     for (slong i = 0; i < d->noutputs; i++) {
         char *line = book_output(d, &d->outputs[i], &opt);
         fputs(line, out);

@@ -27,6 +27,16 @@ typedef enum FormatStyle {
 void format_derived(FILE *out, const Derived *d, FormatStyle style,
                     slong origin);
 
+/* The same with the LaTeX line width (0: 80 columns of source; see
+ * book.h) */
+void format_derived_width(FILE *out, const Derived *d, FormatStyle style,
+                          slong origin, int width);
+
+/* --standalone: a LaTeX document around what derive prints (article class,
+ * amsmath; compiles with pdflatex) */
+void format_latex_begin(FILE *out, const Derived *d);
+void format_latex_end(FILE *out);
+
 /* One weight as a reduced, re-readable expression with '*' for every
  * product (the JSON form).  Caller frees with free(). */
 char *format_weight(const RatFun w, const Ring *r);

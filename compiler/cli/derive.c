@@ -5,6 +5,7 @@
  */
 #include "compiler/cli/cli.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "compiler/cli/args.h"
@@ -15,6 +16,8 @@ typedef struct DeriveArgs {
     FormatStyle style;
     const char *origin; // a base point's name, or NULL
     int steps;          // --steps
+    int standalone;     // --standalone (LaTeX)
+    int width;          // --width N (LaTeX), 0: the default
     const char *usage;
 } DeriveArgs;
 
@@ -26,9 +29,26 @@ static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
         a->steps = 1;
         return 1;
     }
+    if (strcmp(argv[i], "--standalone") == 0) {
+        a->standalone = 1;
+        return 1;
+    }
     const char *v = args_value(argc, argv, i);
     if (!v)
         return 0;
+    if (strcmp(argv[i], "--width") == 0) {
+        char *end;
+        long w = strtol(v, &end, 10);
+        if (end == v || *end || w < 20 || w > 10000) {
+            args_usage_error(err, a->usage,
+                             "--width '%s': expected a number of columns "
+                             "from 20 to 10000",
+                             v);
+            return -1;
+        }
+        a->width = (int)w;
+        return 2;
+    }
     if (strcmp(argv[i], "--origin") == 0) {
         a->origin = v;
         return 2;
@@ -52,13 +72,17 @@ static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
 
 int cli_derive(int argc, char **argv, FILE *out, FILE *err)
 {
-    DeriveArgs a = {FMT_TEXT, NULL, 0, help_usage("derive")};
+    DeriveArgs a = {FMT_TEXT, NULL, 0, 0, 0, help_usage("derive")};
     BudgetOptions bo;
     const char *file;
     int rc =
         args_parse(argc, argv, a.usage, &bo, &file, derive_option, &a, err);
     if (rc)
         return rc;
+    if ((a.standalone || a.width) && a.style != FMT_LATEX)
+        return args_usage_error(err, a.usage,
+                                "%s is for LaTeX: expected --format latex",
+                                a.standalone ? "--standalone" : "--width");
     Derived *d = cli_derive_file_steps(file, &bo, a.steps, err, &rc);
     if (!d)
         return rc;
@@ -71,11 +95,15 @@ int cli_derive(int argc, char **argv, FILE *out, FILE *err)
     else if (a.steps && a.style == FMT_JSON) /* the object with "steps" */
         steps_print(out, d, a.style, origin);
     else {
+        if (a.standalone)
+            format_latex_begin(out, d);
         if (a.steps) { /* the steps, a blank line, then the outputs */
             steps_print(out, d, a.style, origin);
             fputs("\n", out);
         }
-        format_derived(out, d, a.style, origin);
+        format_derived_width(out, d, a.style, origin, a.width);
+        if (a.standalone)
+            format_latex_end(out);
     }
     derived_free(d);
     return rc;

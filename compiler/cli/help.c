@@ -10,7 +10,7 @@
 
 const char cli_usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
-    "                        [--steps]\n"
+    "                        [--steps] [--standalone] [--width N]\n"
     "       pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
     "                        [--output NAME[,NAME...]]\n"
     "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=SPEC ...]\n"
@@ -46,7 +46,7 @@ const char cli_usage[] =
 #define DERIVE_USAGE                                                           \
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin "       \
     "POINT]\n"                                                                \
-    "                        [--steps]\n"
+    "                        [--steps] [--standalone] [--width N]\n"
 
 #define EMIT_C_USAGE                                                           \
     "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix "      \
@@ -77,7 +77,13 @@ static const char derive_help[] = DERIVE_USAGE
     "definition's point\n"
     "                      equation, each meet's S/V-theorem determinant and "
     "line\n"
-    "                      parameters (JSON: a \"steps\" array)\n" COMMON_HELP;
+    "                      parameters (JSON: a \"steps\" array)\n"
+    "  --standalone        LaTeX: a whole document (article, amsmath) for "
+    "pdflatex\n"
+    "  --width N           LaTeX: equations wider than N columns of source "
+    "are\n"
+    "                      broken between terms (multline*; default 80)\n"
+    COMMON_HELP;
 
 static const char emit_c_help[] = EMIT_C_USAGE
     "\n"

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The LaTeX that `derive --format latex --standalone` writes, for every
+# example, with and without --steps: always checked for balanced braces and
+# environments; compiled with pdflatex where it is installed (the optional
+# dependency texlive-latex-base): every body in one document, which must
+# compile without an error.
+# Usage: tests/latex_test.sh build/pointcalc
+set -u
+pc=${1:-build/pointcalc}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+n=0
+mkdir "$tmp/docs"
+for f in examples/*.pcs; do
+    b=$(basename "$f" .pcs)
+    for steps in "" --steps; do
+        out="$tmp/docs/$b${steps:+_steps}.tex"
+        if ! "$pc" derive "$f" --format latex --standalone $steps > "$out"; then
+            echo "FAIL: derive $f --format latex --standalone $steps"
+            fail=1
+            continue
+        fi
+        n=$((n + 1))
+        sed -e '1,/^\\begin{document}$/d' -e '/^\\end{document}$/d' "$out" \
+            >> "$tmp/all_body.tex"
+    done
+done
+
+# balanced braces (outside \{ \}), \begin/\end pairs, whole documents
+python3 - "$tmp"/docs/*.tex <<'PY' || fail=1
+import re, sys
+bad = 0
+for path in sys.argv[1:]:
+    s = open(path).read()
+    t = s.replace("\\{", "").replace("\\}", "")
+    depth, why = 0, None
+    for ch in t:
+        depth += (ch == "{") - (ch == "}")
+        if depth < 0:
+            why = "a } without its {"
+            break
+    if depth and not why:
+        why = "unbalanced braces"
+    envs = []
+    for m in re.finditer(r"\\(begin|end)\{([^}]*)\}", s):
+        if m.group(1) == "begin":
+            envs.append(m.group(2))
+        elif not envs or envs.pop() != m.group(2):
+            why = why or "\\end{%s} does not close the last \\begin" % m.group(2)
+    if envs:
+        why = why or "unclosed \\begin{%s}" % envs[-1]
+    if not s.startswith("\\documentclass") or "\\end{document}" not in s:
+        why = why or "not a whole document"
+    if why:
+        print("FAIL: %s: %s" % (path, why))
+        bad = 1
+sys.exit(bad)
+PY
+
+if command -v pdflatex >/dev/null 2>&1; then
+    { printf '\\documentclass{article}\n\\usepackage{amsmath}\n\\begin{document}\n'
+      cat "$tmp/all_body.tex"
+      printf '\\end{document}\n'; } > "$tmp/all.tex"
+    if (cd "$tmp" && pdflatex -interaction=nonstopmode -halt-on-error all.tex \
+            > /dev/null 2>&1); then
+        echo "latex: $n documents well-formed, all compiled with pdflatex"
+    else
+        echo "FAIL: pdflatex on the examples' LaTeX:"
+        grep -B2 -A6 '^!' "$tmp/all.log" | head -20
+        fail=1
+    fi
+else
+    echo "latex: $n documents well-formed (pdflatex not installed: not compiled)"
+fi
+exit $fail
