@@ -192,7 +192,7 @@ typedef struct Memo {
 enum {
     MAX_DEPTH = 2,          // levels of collection (factors and coefficients)
     MAX_COLLECT_TERMS = 60, // larger polynomials: expanded or factored only
-    RENDER_WORK = 20000,    // per output, in terms looked at (a factoring
+    RENDER_WORK = 60000,    // per output, in terms looked at (a factoring
                             // counts FACTOR_WORK + 20 per term): beyond it,
                             // polynomials are written expanded, or factored
                             // at the top level only
@@ -303,9 +303,9 @@ static int is_param(const Ctx *c, slong v)
     return v < c->nparams;
 }
 
-/* the place of an atom in a product: consts (x and 1 - x), the point,
- * params, functions, then parenthesised sums (those free of params
- * first) */
+/* the place of an atom in a product: a difference of points, consts (x
+ * and 1 - x), the point, params, functions, then parenthesised sums (those
+ * free of params first) */
 static int atom_class(const Ctx *c, const Atom *a)
 {
     switch (a->kind) {
@@ -315,7 +315,7 @@ static int atom_class(const Ctx *c, const Atom *a)
             return 2;
         return a->var < c->nparams + c->nconsts ? 0 : 3;
     case AT_POINT:
-        return 1;
+        return a->point2 ? -1 : 1; /* (A - C)*kp*..., as the book */
     case AT_SUM:
         return a->sum->has_param ? 5 : 4;
     }

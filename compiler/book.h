@@ -19,10 +19,10 @@
  *     common to every numerator is written once in front;
  *   - the sign is chosen so that the denominator's first term is positive;
  *     a numerator whose every item is negative is written -(...)/d;
- *   - inside a product: the integer, then consts and functions, then the
- *     point, then params (t before 1 - t), then parenthesised sums (those
- *     free of params first), sums ordered by degree, length and then
- *     FLINT's monomial order: a total order;
+ *   - inside a product: the integer, a difference of points ((A - C)*...),
+ *     consts, the point, params (t before 1 - t), functions, then
+ *     parenthesised sums (those free of params first), sums ordered by
+ *     degree, length and then FLINT's monomial order: a total order;
  *   - in a vector, two points with opposite weights are one difference:
  *     2*(C - A).
  *

@@ -232,6 +232,44 @@ static void test_origin(void **state)
     free(got);
 }
 
+/* the conic of the monograph's 2.1.6 (double_contact.pcs, 3.4): the book
+ * prints P = (A - C) kp v̄²/D + (B - C) kp v²/D + C, D = kp(1 - 2v)² + 2vv̄;
+ * over one denominator C's weight is 2(1 - kp)vv̄ (D minus the others), and
+ * D is collected by kp (three terms, shorter than the Bernstein form) */
+static void test_conic_of_2_1_6(void **state)
+{
+    (void)state;
+    static const char src[] =
+        "point A, B, C\nparam v in [0, 1]\nconst kp\n"
+        "T1 = (A + B)/2\nT = along(A, B, v)\nK_P = along(C, T1, kp)\n"
+        "P_a = meet(line(A, K_P), line(C, T))\n"
+        "P_b = meet(line(B, K_P), line(C, T))\n"
+        "P = meet(line(A, P_b), line(B, P_a))\n";
+    expect(src, FMT_TEXT,
+           "P = (kp*A*(1 - v)^2 + kp*B*v^2 + 2*(1 - kp)*C*v*(1 - v))"
+           "/(2*v*(1 - v) + kp*(1 - 2*v)^2)\n");
+    /* its numerator is 79 columns of LaTeX: at 100 one line, at the
+     * default 80 broken after the first term */
+    char *got = printed_ex(src, FMT_LATEX, 100, -1);
+    assert_string_equal(
+        got, "\\[ P = \\frac{\\mathit{kp} A \\bar{v}^{2} + \\mathit{kp} B "
+             "v^{2} + 2 \\bar{\\mathit{kp}} C v \\bar{v}}{2 v \\bar{v} + "
+             "\\mathit{kp} \\left(1 - 2 v\\right)^{2}} \\]\n");
+    free(got);
+    expect(src, FMT_LATEX,
+           "\\begin{multline*}\n"
+           "P = \\frac{1}{2 v \\bar{v} + \\mathit{kp} \\left(1 - 2 "
+           "v\\right)^{2}} \\Bigl(\\mathit{kp} A \\bar{v}^{2} \\\\\n"
+           "+ \\mathit{kp} B v^{2} + 2 \\bar{\\mathit{kp}} C v \\bar{v}"
+           "\\Bigr)\n"
+           "\\end{multline*}\n");
+    got = printed_ex(src, FMT_TEXT, 80, 2);
+    assert_string_equal(
+        got, "P = (A - C)*kp*(1 - v)^2/(2*v*(1 - v) + kp*(1 - 2*v)^2) + "
+             "(B - C)*kp*v^2/(2*v*(1 - v) + kp*(1 - 2*v)^2) + C\n");
+    free(got);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -244,6 +282,7 @@ int main(void)
         cmocka_unit_test(test_latex_names),
         cmocka_unit_test(test_multline),
         cmocka_unit_test(test_origin),
+        cmocka_unit_test(test_conic_of_2_1_6),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
