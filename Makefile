@@ -155,7 +155,7 @@ bench: $(BENCHES) $(B)/pointcalc
 	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
 
 format:
-	clang-format -i $(wildcard */*.c */*.h */*/*.c)
+	clang-format -i $(wildcard */*.c */*.h */*/*.c compiler/cli/*.h)
 
 clean:
 	rm -rf build build-asan build-fuzz

@@ -170,12 +170,10 @@ static void json_values(FILE *out, const Plan *p, const EvalSetup *s,
     fputs("}", out);
 }
 
-/* the sort of a status in JSON: "poles", "nonfinite" or "domain" */
-static const char *status_key(unsigned char st)
+/* the sort of a status in JSON: 0 "poles", 1 "nonfinite", 2 "domain" */
+static int status_sort(unsigned char st)
 {
-    return st == PLAN_STATUS_POLE     ? "poles"
-           : st == PLAN_STATUS_DOMAIN ? "domain"
-                                      : "nonfinite";
+    return st == PLAN_STATUS_POLE ? 0 : st == PLAN_STATUS_DOMAIN ? 2 : 1;
 }
 
 /* , "poles": [..], "nonfinite": [..], "domain": [..], the empty ones left
@@ -188,7 +186,7 @@ static void json_statuses(FILE *out, const Plan *p, const EvalSetup *s,
         const char *sep = NULL;
         for (int j = 0; j < s->nsel; j++) {
             unsigned char st = r->status[j];
-            if (st == PLAN_STATUS_OK || status_key(st) != keys[k])
+            if (st == PLAN_STATUS_OK || status_sort(st) != k)
                 continue;
             if (!sep)
                 fprintf(out, ", \"%s\": [", keys[k]);
