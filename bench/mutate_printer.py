@@ -31,7 +31,6 @@ MUTANTS = [
     ("parentheses of a denominator",
      "int pd = den->n > 1 || den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;",
      "int pd = den->n > 2 || den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;"),
-    ("powers of one atom", "t->a[i].exp += a.exp;", "t->a[i].exp = a.exp;"),
     ("powers collection", "Atom xa = {AT_VAR, x, NULL, NULL, NULL, (ulong)k};",
      "Atom xa = {AT_VAR, x, NULL, NULL, NULL, (ulong)k + 1};"),
     ("d/dt", 'str_puts(b, "\\\\frac{\\\\mathrm{d}");', 'str_puts(b, "\\\\frac{d");'),

@@ -285,15 +285,11 @@ static void memo_clear(Memo *m, const Ctx *c)
     m->n = m->alloc = 0;
 }
 
+/* appends an atom; no path multiplies two powers of one variable (the
+ * factors of a factorisation are distinct, a collected coefficient is free
+ * of its variable), so atoms are not merged */
 static void term_push(PTerm *t, Atom a)
 {
-    /* x^a * x^b = x^(a+b) */
-    if (a.kind == AT_VAR || a.kind == AT_BAR)
-        for (slong i = 0; i < t->n; i++)
-            if (t->a[i].kind == a.kind && t->a[i].var == a.var) {
-                t->a[i].exp += a.exp;
-                return;
-            }
     t->a = pc_xrealloc(t->a, sizeof(Atom) * (size_t)(t->n + 1));
     t->a[t->n++] = a;
 }

@@ -118,9 +118,10 @@ printf 'point A, B\nparam t\nM = along(A, B, t)\n' >"$tmp/3d-arc.pcs"
 "$PC" emit-c "$tmp/3d-arc.pcs" -o "$tmp/3d.c"
 check "3d-arc.pcs makes pc_3d_arc_M" grep -q '^void pc_3d_arc_M(double t' "$tmp/3d.c"
 
-# a denominator is printed positive: t^2/(t - 1), not t^2/(-(1 - t))
+# a denominator's first term is positive, the numerator takes the sign
+# (docs/language.md, "How derive prints"): -t^2/(1 - t), not t^2/(-(1 - t))
 printf 'param t\ns = t^2/(t - 1)\n' >"$tmp/den.pcs"
-check "positive denominator (text)" test "$("$PC" derive "$tmp/den.pcs")" = "s = t^2/(t - 1)"
+check "positive denominator (text)" test "$("$PC" derive "$tmp/den.pcs")" = "s = -t^2/(1 - t)"
 "$PC" derive "$tmp/den.pcs" --format json >"$tmp/den.json"
 check "positive denominator (json)" grep -q '"value": "t^2/(t-1)"' "$tmp/den.json"
 
