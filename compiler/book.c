@@ -7,53 +7,7 @@
 #include <flint/fmpz_mpoly_factor.h>
 
 #include "compiler/mem.h"
-
-/* ---- a growable string ------------------------------------------------ */
-
-typedef struct Str {
-    char *s;
-    size_t len, cap;
-} Str;
-
-static void str_putn(Str *b, const char *s, size_t n)
-{
-    if (b->len + n + 1 > b->cap) {
-        b->cap = 2 * (b->len + n + 1) + 32;
-        b->s = pc_xrealloc(b->s, b->cap);
-    }
-    memcpy(b->s + b->len, s, n);
-    b->len += n;
-    b->s[b->len] = '\0';
-}
-
-static void str_puts(Str *b, const char *s)
-{
-    str_putn(b, s, strlen(s));
-}
-
-static void str_ulong(Str *b, ulong u)
-{
-    char num[32];
-    snprintf(num, sizeof num, "%lu", u);
-    str_puts(b, num);
-}
-
-static void str_fmpz(Str *b, const fmpz_t c)
-{
-    char *s = fmpz_get_str(NULL, 10, c);
-    str_puts(b, s);
-    flint_free(s);
-}
-
-static char *str_take(Str *b)
-{
-    if (!b->s)
-        str_puts(b, "");
-    char *s = b->s;
-    b->s = NULL;
-    b->len = b->cap = 0;
-    return s;
-}
+#include "compiler/strbuf.h"
 
 /* ---- names ------------------------------------------------------------ */
 
@@ -75,7 +29,7 @@ static int all_digits(const char *s)
     return 1;
 }
 
-static void latex_name(Str *b, const char *name)
+static void latex_name(StrBuf *b, const char *name)
 {
     size_t n = strlen(name);
     const char *under = strchr(name, '_');
@@ -83,9 +37,9 @@ static void latex_name(Str *b, const char *name)
         char *stem = pc_xstrndup(name, (size_t)(under - name));
         latex_name(b, stem);
         free(stem);
-        str_puts(b, "_{");
-        str_puts(b, under + 1);
-        str_puts(b, "}");
+        sb_puts(b, "_{");
+        sb_puts(b, under + 1);
+        sb_puts(b, "}");
         return;
     }
     size_t alpha = 0;
@@ -95,18 +49,18 @@ static void latex_name(Str *b, const char *name)
         size_t gl = strlen(greek[g]);
         if (gl == alpha && strncmp(greek[g], name, gl) == 0 &&
             (name[gl] == '\0' || all_digits(name + gl))) {
-            str_puts(b, "\\");
-            str_puts(b, greek[g]);
+            sb_puts(b, "\\");
+            sb_puts(b, greek[g]);
             if (name[gl]) {
-                str_puts(b, "_{");
-                str_puts(b, name + gl);
-                str_puts(b, "}");
+                sb_puts(b, "_{");
+                sb_puts(b, name + gl);
+                sb_puts(b, "}");
             }
             return;
         }
     }
     if (n == 1) {
-        str_puts(b, name);
+        sb_puts(b, name);
         return;
     }
     /* one-letter stem, then capitals or digits: A1, fP, pD, d2M */
@@ -115,22 +69,22 @@ static void latex_name(Str *b, const char *name)
         sub = isupper((unsigned char)name[i]) ||
               isdigit((unsigned char)name[i]);
     if (sub) {
-        str_putn(b, name, 1);
-        str_puts(b, "_{");
-        str_puts(b, name + 1);
-        str_puts(b, "}");
+        sb_putn(b, name, 1);
+        sb_puts(b, "_{");
+        sb_puts(b, name + 1);
+        sb_puts(b, "}");
         return;
     }
-    str_puts(b, "\\mathit{");
-    str_puts(b, name);
-    str_puts(b, "}");
+    sb_puts(b, "\\mathit{");
+    sb_puts(b, name);
+    sb_puts(b, "}");
 }
 
 char *book_latex_name(const char *name)
 {
-    Str b = {0};
+    StrBuf b = {0};
     latex_name(&b, name);
-    return str_take(&b);
+    return sb_take(&b);
 }
 
 /* ---- the print model: sums of products of atoms ------------------------ */
@@ -318,12 +272,8 @@ static int atom_class(const Ctx *c, const Atom *a)
     return 6;
 }
 
-static const Ctx *sort_ctx;
-
-static int atom_cmp(const void *x, const void *y)
+static int atom_cmp(const Ctx *c, const Atom *a, const Atom *b)
 {
-    const Atom *a = x, *b = y;
-    const Ctx *c = sort_ctx;
     int ka = atom_class(c, a), kb = atom_class(c, b);
     if (ka != kb)
         return ka < kb ? -1 : 1;
@@ -351,13 +301,18 @@ static int atom_cmp(const void *x, const void *y)
     return 0;
 }
 
-/* a total order: equal keys are equal atoms, so qsort's instability does
- * not show */
+/* a total order: equal keys are equal atoms, so the result does not depend
+ * on the sort (an insertion sort: products have a few atoms, and no global
+ * state, so printing is thread-safe) */
 static void term_sort(PTerm *t, const Ctx *c)
 {
-    sort_ctx = c;
-    qsort(t->a, (size_t)t->n, sizeof(Atom), atom_cmp);
-    sort_ctx = NULL;
+    for (slong i = 1; i < t->n; i++) {
+        Atom x = t->a[i];
+        slong j = i;
+        for (; j > 0 && atom_cmp(c, &t->a[j - 1], &x) > 0; j--)
+            t->a[j] = t->a[j - 1];
+        t->a[j] = x;
+    }
 }
 
 /* moves every atom and the coefficient of src into dst (src is left
@@ -396,38 +351,38 @@ static slong sum_leaves(const PSum *s)
 
 /* ---- writing ------------------------------------------------------------ */
 
-static void put_sum(Str *b, const PSum *s, const Ctx *c);
+static void put_sum(StrBuf *b, const PSum *s, const Ctx *c);
 
-static void put_var(Str *b, slong v, const Ctx *c)
+static void put_var(StrBuf *b, slong v, const Ctx *c)
 {
     const Ring *r = c->r;
     if (c->latex && r->latex && r->latex[v])
-        str_puts(b, r->latex[v]);
+        sb_puts(b, r->latex[v]);
     else if (c->latex)
         latex_name(b, r->names[v]);
     else
-        str_puts(b, r->names[v]);
+        sb_puts(b, r->names[v]);
 }
 
-static void put_point(Str *b, const char *p, const Ctx *c)
+static void put_point(StrBuf *b, const char *p, const Ctx *c)
 {
     if (c->latex)
         latex_name(b, p);
     else
-        str_puts(b, p);
+        sb_puts(b, p);
 }
 
-static void put_exp(Str *b, ulong e, const Ctx *c)
+static void put_exp(StrBuf *b, ulong e, const Ctx *c)
 {
     if (e <= 1)
         return;
-    str_puts(b, c->latex ? "^{" : "^");
-    str_ulong(b, e);
+    sb_puts(b, c->latex ? "^{" : "^");
+    sb_ulong(b, e);
     if (c->latex)
-        str_puts(b, "}");
+        sb_puts(b, "}");
 }
 
-static void put_atom(Str *b, const Atom *a, const Ctx *c)
+static void put_atom(StrBuf *b, const Atom *a, const Ctx *c)
 {
     const char *open = c->latex ? "\\left(" : "(";
     const char *close = c->latex ? "\\right)" : ")";
@@ -437,27 +392,27 @@ static void put_atom(Str *b, const Atom *a, const Ctx *c)
         break;
     case AT_BAR:
         if (c->latex) {
-            str_puts(b, "\\bar{");
+            sb_puts(b, "\\bar{");
             put_var(b, a->var, c);
-            str_puts(b, "}");
+            sb_puts(b, "}");
         } else {
-            str_puts(b, "(1 - ");
+            sb_puts(b, "(1 - ");
             put_var(b, a->var, c);
-            str_puts(b, ")");
+            sb_puts(b, ")");
         }
         break;
     case AT_SUM:
-        str_puts(b, open);
+        sb_puts(b, open);
         put_sum(b, a->sum, c);
-        str_puts(b, close);
+        sb_puts(b, close);
         break;
     case AT_POINT:
         if (a->point2) {
-            str_puts(b, open);
+            sb_puts(b, open);
             put_point(b, a->point, c);
-            str_puts(b, " - ");
+            sb_puts(b, " - ");
             put_point(b, a->point2, c);
-            str_puts(b, close);
+            sb_puts(b, close);
         } else {
             put_point(b, a->point, c);
         }
@@ -467,39 +422,39 @@ static void put_atom(Str *b, const Atom *a, const Ctx *c)
 }
 
 /* the term without its sign */
-static void put_term(Str *b, const PTerm *t, const Ctx *c)
+static void put_term(StrBuf *b, const PTerm *t, const Ctx *c)
 {
     int any = 0;
     if (!fmpz_is_one(t->coeff) || t->n == 0) {
-        str_fmpz(b, t->coeff);
+        sb_fmpz(b, t->coeff);
         any = 1;
     }
     for (slong i = 0; i < t->n; i++) {
         if (any)
-            str_puts(b, c->latex ? " " : "*");
+            sb_puts(b, c->latex ? " " : "*");
         put_atom(b, &t->a[i], c);
         any = 1;
     }
 }
 
-static void put_sum(Str *b, const PSum *s, const Ctx *c)
+static void put_sum(StrBuf *b, const PSum *s, const Ctx *c)
 {
     if (s->n == 0) {
-        str_puts(b, "0");
+        sb_puts(b, "0");
         return;
     }
     for (slong i = 0; i < s->n; i++) {
         if (i == 0)
-            str_puts(b, s->t[i].neg ? "-" : "");
+            sb_puts(b, s->t[i].neg ? "-" : "");
         else
-            str_puts(b, s->t[i].neg ? " - " : " + ");
+            sb_puts(b, s->t[i].neg ? " - " : " + ");
         put_term(b, &s->t[i], c);
     }
 }
 
 static size_t sum_text_len(const PSum *s, const Ctx *c)
 {
-    Str b = {0};
+    StrBuf b = {0};
     put_sum(&b, s, c);
     size_t n = b.len;
     free(b.s);
@@ -934,28 +889,28 @@ static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt,
     term_sort(t, c);
 }
 
-static void put_frac(Str *b, const char *num, int num_items,
+static void put_frac(StrBuf *b, const char *num, int num_items,
                      const PSum *den, const Ctx *c)
 {
     if (c->latex) {
-        str_puts(b, "\\frac{");
-        str_puts(b, num);
-        str_puts(b, "}{");
+        sb_puts(b, "\\frac{");
+        sb_puts(b, num);
+        sb_puts(b, "}{");
         put_sum(b, den, c);
-        str_puts(b, "}");
+        sb_puts(b, "}");
         return;
     }
     int pn = num_items > 1;
     if (pn)
-        str_puts(b, "(");
-    str_puts(b, num);
+        sb_puts(b, "(");
+    sb_puts(b, num);
     if (pn)
-        str_puts(b, ")");
+        sb_puts(b, ")");
     int pd = den->n > 1 || den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
-    str_puts(b, pd ? "/(" : "/");
+    sb_puts(b, pd ? "/(" : "/");
     put_sum(b, den, c);
     if (pd)
-        str_puts(b, ")");
+        sb_puts(b, ")");
 }
 
 /* the denominator's form with its first term positive; *flip = 1 when
@@ -978,25 +933,25 @@ static int all_negative(const PSum *s)
 }
 
 /* writes items / den: an all-minus numerator as -(...)/den */
-static void put_quotient(Str *b, PSum *items, const PSum *den,
+static void put_quotient(StrBuf *b, PSum *items, const PSum *den,
                          const Ctx *c)
 {
     int minus = all_negative(items);
     if (minus)
         for (slong i = 0; i < items->n; i++)
             items->t[i].neg = 0;
-    Str n = {0};
+    StrBuf n = {0};
     put_sum(&n, items, c);
     if (minus)
-        str_puts(b, "-");
+        sb_puts(b, "-");
     if (!den)
-        str_puts(b, n.s);
+        sb_puts(b, n.s);
     else
         put_frac(b, n.s, (int)items->n, den, c);
     free(n.s);
 }
 
-static void rhs_scalar(Str *b, const RatFun x, const Ctx *c)
+static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c)
 {
     const Ring *r = c->r;
     int flip = 0;
@@ -1019,7 +974,7 @@ static void rhs_scalar(Str *b, const RatFun x, const Ctx *c)
     fmpz_mpoly_clear(num, r->ctx);
 }
 
-static void rhs_origin(Str *b, const Derived *d, const DerivedOutput *o,
+static void rhs_origin(StrBuf *b, const Derived *d, const DerivedOutput *o,
                        slong origin, const Ctx *c)
 {
     const Ring *r = c->r;
@@ -1045,12 +1000,12 @@ static void rhs_origin(Str *b, const Derived *d, const DerivedOutput *o,
                   c);
         int neg = one->t[0].neg;
         one->t[0].neg = 0;
-        str_puts(b, first ? (neg ? "-" : "") : (neg ? " - " : " + "));
-        Str n = {0};
+        sb_puts(b, first ? (neg ? "-" : "") : (neg ? " - " : " + "));
+        StrBuf n = {0};
         put_term(&n, &one->t[0], c);
         if (den && c->latex) {
             /* (A - C) \frac{n}{d}: the point outside the fraction */
-            Str m = {0};
+            StrBuf m = {0};
             PSum *s = render(num, 0, c);
             if (s->t[0].neg)
                 sum_neg(s, c);
@@ -1059,21 +1014,21 @@ static void rhs_origin(Str *b, const Derived *d, const DerivedOutput *o,
             put_atom(b, &(Atom){AT_POINT, -1, NULL, d->points[pt],
                                 d->points[origin], 1},
                      c);
-            str_puts(b, " \\frac{");
-            str_puts(b, m.s);
-            str_puts(b, "}{");
+            sb_puts(b, " \\frac{");
+            sb_puts(b, m.s);
+            sb_puts(b, "}{");
             put_sum(b, den, c);
-            str_puts(b, "}");
+            sb_puts(b, "}");
             free(m.s);
         } else {
-            str_puts(b, n.s);
+            sb_puts(b, n.s);
             if (den) {
                 int pd = den->n > 1 ||
                          den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
-                str_puts(b, pd ? "/(" : "/");
+                sb_puts(b, pd ? "/(" : "/");
                 put_sum(b, den, c);
                 if (pd)
-                    str_puts(b, ")");
+                    sb_puts(b, ")");
             }
         }
         free(n.s);
@@ -1083,10 +1038,10 @@ static void rhs_origin(Str *b, const Derived *d, const DerivedOutput *o,
         first = 0;
     }
     if (o->kind == KIND_POINT) {
-        str_puts(b, first ? "" : " + ");
+        sb_puts(b, first ? "" : " + ");
         put_point(b, d->points[origin], c);
     } else if (first) {
-        str_puts(b, "0");
+        sb_puts(b, "0");
     }
 }
 
@@ -1171,24 +1126,24 @@ static void eq_parts_clear(EqParts *P, const Ctx *c)
     sum_free(P->common, c);
 }
 
-static void put_common(Str *b, const PSum *common, const Ctx *c)
+static void put_common(StrBuf *b, const PSum *common, const Ctx *c)
 {
     if (!common)
         return;
     if (common->n == 1) {
         put_term(b, &common->t[0], c);
     } else {
-        str_puts(b, c->latex ? "\\left(" : "(");
+        sb_puts(b, c->latex ? "\\left(" : "(");
         put_sum(b, common, c);
-        str_puts(b, c->latex ? "\\right)" : ")");
+        sb_puts(b, c->latex ? "\\right)" : ")");
     }
-    str_puts(b, c->latex ? " " : "*");
+    sb_puts(b, c->latex ? " " : "*");
 }
 
-static void rhs_equation(Str *b, const EqParts *P, const Ctx *c)
+static void rhs_equation(StrBuf *b, const EqParts *P, const Ctx *c)
 {
     if (P->items->n == 0) {
-        str_puts(b, "0");
+        sb_puts(b, "0");
         return;
     }
     int minus = all_negative(P->items);
@@ -1196,21 +1151,21 @@ static void rhs_equation(Str *b, const EqParts *P, const Ctx *c)
         for (slong i = 0; i < P->items->n; i++)
             P->items->t[i].neg = 0;
     if (minus)
-        str_puts(b, "-");
-    Str n = {0};
+        sb_puts(b, "-");
+    StrBuf n = {0};
     put_sum(&n, P->items, c);
     if (P->common) {
         put_common(b, P->common, c);
         if (!P->den) {
             int paren = P->items->n > 1;
-            str_puts(b, paren ? (c->latex ? "\\left(" : "(") : "");
-            str_puts(b, n.s);
-            str_puts(b, paren ? (c->latex ? "\\right)" : ")") : "");
+            sb_puts(b, paren ? (c->latex ? "\\left(" : "(") : "");
+            sb_puts(b, n.s);
+            sb_puts(b, paren ? (c->latex ? "\\right)" : ")") : "");
         } else {
             put_frac(b, n.s, (int)P->items->n, P->den, c);
         }
     } else if (!P->den) {
-        str_puts(b, n.s);
+        sb_puts(b, n.s);
     } else {
         put_frac(b, n.s, (int)P->items->n, P->den, c);
     }
@@ -1234,7 +1189,7 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
     c->latex = opt->latex;
 }
 
-static void rhs_into(Str *b, const Derived *d, const DerivedOutput *o,
+static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,
                      const BookOptions *opt, const Ctx *c)
 {
     if (o->kind == KIND_SCALAR) {
@@ -1256,28 +1211,28 @@ char *book_rhs(const Derived *d, const DerivedOutput *o,
     long work;
     Memo memo;
     ctx_init(&c, d, opt, &work, &memo);
-    Str b = {0};
+    StrBuf b = {0};
     rhs_into(&b, d, o, opt, &c);
     memo_clear(&memo, &c);
-    return str_take(&b);
+    return sb_take(&b);
 }
 
 /* ---- whole outputs --------------------------------------------------------- */
 
-static void put_lhs(Str *b, const DerivedOutput *o, const Ctx *c)
+static void put_lhs(StrBuf *b, const DerivedOutput *o, const Ctx *c)
 {
     if (!c->latex) {
-        str_puts(b, o->name);
+        sb_puts(b, o->name);
         return;
     }
     if (o->diff_of) {
-        str_puts(b, "\\frac{\\mathrm{d}");
+        sb_puts(b, "\\frac{\\mathrm{d}");
         put_exp(b, (ulong)o->diff_order, c);
         latex_name(b, o->diff_of);
-        str_puts(b, "}{\\mathrm{d}");
+        sb_puts(b, "}{\\mathrm{d}");
         latex_name(b, o->diff_var);
         put_exp(b, (ulong)o->diff_order, c);
-        str_puts(b, "}");
+        sb_puts(b, "}");
         return;
     }
     latex_name(b, o->name);
@@ -1285,53 +1240,53 @@ static void put_lhs(Str *b, const DerivedOutput *o, const Ctx *c)
 
 /* LaTeX lines of at most width columns: "lhs = \frac{1}{den} \Bigl(" then
  * the items, broken before a + or -, then "\Bigr)" */
-static void put_multline(Str *b, const Str *lhs, const EqParts *P,
+static void put_multline(StrBuf *b, const StrBuf *lhs, const EqParts *P,
                          const Ctx *c, int width)
 {
-    str_puts(b, "\\begin{multline*}\n");
-    Str line = {0};
-    str_puts(&line, lhs->s);
-    str_puts(&line, " = ");
+    sb_puts(b, "\\begin{multline*}\n");
+    StrBuf line = {0};
+    sb_puts(&line, lhs->s);
+    sb_puts(&line, " = ");
     int minus = all_negative(P->items);
     if (minus)
-        str_puts(&line, "-");
+        sb_puts(&line, "-");
     int small = P->common && P->common->n == 1; /* \frac{2}{d} */
     if (!small)
         put_common(&line, P->common, c);
     if (P->den || small) {
-        str_puts(&line, "\\frac{");
+        sb_puts(&line, "\\frac{");
         if (small)
             put_term(&line, &P->common->t[0], c);
         else
-            str_puts(&line, "1");
-        str_puts(&line, "}{");
+            sb_puts(&line, "1");
+        sb_puts(&line, "}{");
         if (P->den)
             put_sum(&line, P->den, c);
         else
-            str_puts(&line, "1");
-        str_puts(&line, "} ");
+            sb_puts(&line, "1");
+        sb_puts(&line, "} ");
     }
-    str_puts(&line, "\\Bigl(");
+    sb_puts(&line, "\\Bigl(");
     for (slong i = 0; i < P->items->n; i++) {
-        Str item = {0};
+        StrBuf item = {0};
         int neg = P->items->t[i].neg && !minus;
         if (i > 0 || neg)
-            str_puts(&item, i == 0 ? "-" : neg ? "- " : "+ ");
+            sb_puts(&item, i == 0 ? "-" : neg ? "- " : "+ ");
         put_term(&item, &P->items->t[i], c);
         if (i > 0 && (int)(line.len + item.len + 1) > width) {
-            str_puts(b, line.s);
-            str_puts(b, " \\\\\n");
+            sb_puts(b, line.s);
+            sb_puts(b, " \\\\\n");
             line.len = 0;
             line.s[0] = '\0';
         } else if (i > 0) {
-            str_puts(&line, " ");
+            sb_puts(&line, " ");
         }
-        str_puts(&line, item.s);
+        sb_puts(&line, item.s);
         free(item.s);
     }
-    str_puts(&line, "\\Bigr)");
-    str_puts(b, line.s);
-    str_puts(b, "\n\\end{multline*}\n");
+    sb_puts(&line, "\\Bigr)");
+    sb_puts(b, line.s);
+    sb_puts(b, "\n\\end{multline*}\n");
     free(line.s);
 }
 
@@ -1342,16 +1297,16 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     long work;
     Memo memo;
     ctx_init(&c, d, opt, &work, &memo);
-    Str b = {0}, lhs = {0}, rb = {0};
+    StrBuf b = {0}, lhs = {0}, rb = {0};
     put_lhs(&lhs, o, &c);
     rhs_into(&rb, d, o, opt, &c);
-    char *rhs = str_take(&rb);
+    char *rhs = sb_take(&rb);
     int width = opt->width > 0 ? opt->width : 80;
     if (opt->latex && o->kind != KIND_SCALAR && opt->origin < 0) {
         /* a fraction is as wide as the longer of its two lines */
         EqParts P;
         eq_parts(&P, d, o, &c);
-        Str n = {0}, dn = {0}, cm = {0};
+        StrBuf n = {0}, dn = {0}, cm = {0};
         put_sum(&n, P.items, &c);
         if (P.den)
             put_sum(&dn, P.den, &c);
@@ -1366,24 +1321,24 @@ char *book_output(const Derived *d, const DerivedOutput *o,
             memo_clear(&memo, &c);
             free(rhs);
             free(lhs.s);
-            return str_take(&b);
+            return sb_take(&b);
         }
         eq_parts_clear(&P, &c);
     }
     if (opt->latex) {
-        str_puts(&b, "\\[ ");
-        str_puts(&b, lhs.s);
-        str_puts(&b, " = ");
-        str_puts(&b, rhs);
-        str_puts(&b, " \\]\n");
+        sb_puts(&b, "\\[ ");
+        sb_puts(&b, lhs.s);
+        sb_puts(&b, " = ");
+        sb_puts(&b, rhs);
+        sb_puts(&b, " \\]\n");
     } else {
-        str_puts(&b, lhs.s);
-        str_puts(&b, " = ");
-        str_puts(&b, rhs);
-        str_puts(&b, o->kind == KIND_VECTOR ? "    (vector)\n" : "\n");
+        sb_puts(&b, lhs.s);
+        sb_puts(&b, " = ");
+        sb_puts(&b, rhs);
+        sb_puts(&b, o->kind == KIND_VECTOR ? "    (vector)\n" : "\n");
     }
     memo_clear(&memo, &c);
     free(rhs);
     free(lhs.s);
-    return str_take(&b);
+    return sb_take(&b);
 }

@@ -9,53 +9,14 @@
 #include "compiler/book.h"
 #include "compiler/format_json.h"
 #include "compiler/mem.h"
-
-/* ---- a growable string ---------------------------------------------- */
-
-typedef struct Buf {
-    char *s;
-    size_t len, cap;
-} Buf;
-
-static void buf_putn(Buf *b, const char *s, size_t n)
-{
-    if (b->len + n + 1 > b->cap) {
-        b->cap = 2 * (b->len + n + 1) + 32;
-        b->s = pc_xrealloc(b->s, b->cap);
-    }
-    memcpy(b->s + b->len, s, n);
-    b->len += n;
-    b->s[b->len] = '\0';
-}
-
-static void buf_puts(Buf *b, const char *s)
-{
-    buf_putn(b, s, strlen(s));
-}
-
-static void buf_fmpz(Buf *b, const fmpz_t c)
-{
-    char *s = fmpz_get_str(NULL, 10, c);
-    buf_puts(b, s);
-    flint_free(s);
-}
-
-static char *buf_take(Buf *b)
-{
-    if (!b->s)
-        buf_puts(b, "");
-    char *s = b->s;
-    b->s = NULL;
-    b->len = b->cap = 0;
-    return s;
-}
+#include "compiler/strbuf.h"
 
 /* ---- names ----------------------------------------------------------- */
 
-static void latex_name(Buf *b, const char *name)
+static void latex_name(StrBuf *b, const char *name)
 {
     char *s = book_latex_name(name);
-    buf_puts(b, s);
+    sb_puts(b, s);
     free(s);
 }
 
@@ -64,12 +25,12 @@ static void latex_name(Buf *b, const char *name)
 /* Writes p expanded.  text: "2*t^2 - 2*t + 1"; json: "2*t^2-2*t+1";
  * latex: "2 t^{2} - 2 t + 1".  A polynomial with a negative leading
  * coefficient is written in ascending order ("1 - t"). */
-static void put_poly(Buf *b, const fmpz_mpoly_t p, const Ring *r,
+static void put_poly(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
                      FormatStyle st)
 {
     slong len = fmpz_mpoly_length(p, r->ctx);
     if (len == 0) {
-        buf_puts(b, "0");
+        sb_puts(b, "0");
         return;
     }
     fmpz_t c;
@@ -84,11 +45,11 @@ static void put_poly(Buf *b, const fmpz_mpoly_t p, const Ring *r,
         int neg = fmpz_sgn(c) < 0;
         if (k == 0) {
             if (neg)
-                buf_puts(b, "-");
+                sb_puts(b, "-");
         } else if (st == FMT_JSON) {
-            buf_puts(b, neg ? "-" : "+");
+            sb_puts(b, neg ? "-" : "+");
         } else {
-            buf_puts(b, neg ? " - " : " + ");
+            sb_puts(b, neg ? " - " : " + ");
         }
         fmpz_abs(c, c);
         int any_var = 0;
@@ -96,26 +57,26 @@ static void put_poly(Buf *b, const fmpz_mpoly_t p, const Ring *r,
             any_var |= e[v] != 0;
         int first = 1;
         if (!fmpz_is_one(c) || !any_var) {
-            buf_fmpz(b, c);
+            sb_fmpz(b, c);
             first = 0;
         }
         for (slong v = 0; v < r->nvars; v++) {
             if (!e[v])
                 continue;
             if (!first)
-                buf_puts(b, st == FMT_LATEX ? " " : "*");
+                sb_puts(b, st == FMT_LATEX ? " " : "*");
             first = 0;
             if (st == FMT_LATEX && r->latex && r->latex[v])
-                buf_puts(b, r->latex[v]);
+                sb_puts(b, r->latex[v]);
             else if (st == FMT_LATEX)
                 latex_name(b, r->names[v]);
             else
-                buf_puts(b, r->names[v]);
+                sb_puts(b, r->names[v]);
             if (e[v] > 1) {
                 char num[32];
                 snprintf(num, sizeof num, st == FMT_LATEX ? "^{%lu}" : "^%lu",
                          e[v]);
-                buf_puts(b, num);
+                sb_puts(b, num);
             }
         }
     }
@@ -165,7 +126,7 @@ static int factor_cmp(const void *x, const void *y)
  * when that is what keeps the whole positive: /(t - 1), not /(-(1 - t)).
  * Returns the number of items written (a constant counts as one), so that
  * callers can decide on parentheses. */
-static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
+static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
                            FormatStyle st, int *negative, int bare,
                            int positive)
 {
@@ -189,10 +150,10 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
         }
         int paren = !bare && fmpz_mpoly_length(p, r->ctx) > 1;
         if (paren)
-            buf_puts(b, st == FMT_LATEX ? "\\left(" : "(");
+            sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");
         put_poly(b, p, r, st);
         if (paren)
-            buf_puts(b, st == FMT_LATEX ? "\\right)" : ")");
+            sb_puts(b, st == FMT_LATEX ? "\\right)" : ")");
         return 1;
     }
     int neg = fmpz_sgn(f->constant) < 0;
@@ -224,12 +185,12 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
     int items = 0;
     fmpz_abs(c, f->constant);
     if (!fmpz_is_one(c) || f->num == 0) {
-        buf_fmpz(b, c);
+        sb_fmpz(b, c);
         items++;
     }
     for (slong i = 0; i < f->num; i++) {
         if (items)
-            buf_puts(b, st == FMT_LATEX ? " " : "*");
+            sb_puts(b, st == FMT_LATEX ? " " : "*");
         items++;
         slong v = st == FMT_LATEX ? one_minus_var(fs[i].poly, r) : -1;
         if (v >= 0 && r->latex && r->latex[v])
@@ -237,22 +198,22 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
         int atom = fs[i].len == 1 &&
                    fmpz_mpoly_total_degree_si(fs[i].poly, r->ctx) == 1;
         if (v >= 0) {
-            buf_puts(b, "\\bar{");
+            sb_puts(b, "\\bar{");
             latex_name(b, r->names[v]);
-            buf_puts(b, "}");
+            sb_puts(b, "}");
         } else if (atom || (bare && f->num == 1 && fs[i].exp == 1 &&
                             fmpz_is_one(c))) {
             put_poly(b, fs[i].poly, r, st);
         } else {
-            buf_puts(b, st == FMT_LATEX ? "\\left(" : "(");
+            sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");
             put_poly(b, fs[i].poly, r, st);
-            buf_puts(b, st == FMT_LATEX ? "\\right)" : ")");
+            sb_puts(b, st == FMT_LATEX ? "\\right)" : ")");
         }
         if (fs[i].exp > 1) {
             char num[32];
             snprintf(num, sizeof num, st == FMT_LATEX ? "^{%lu}" : "^%lu",
                      fs[i].exp);
-            buf_puts(b, num);
+            sb_puts(b, num);
         }
     }
     fmpz_clear(c);
@@ -263,7 +224,7 @@ static int put_factored_ex(Buf *b, const fmpz_mpoly_t p, const Ring *r,
     return items;
 }
 
-static int put_factored(Buf *b, const fmpz_mpoly_t p, const Ring *r,
+static int put_factored(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
                         FormatStyle st, int *negative)
 {
     return put_factored_ex(b, p, r, st, negative, 0, 0);
@@ -271,22 +232,22 @@ static int put_factored(Buf *b, const fmpz_mpoly_t p, const Ring *r,
 
 /* writes a denominator after the fraction bar (text/json): "/2", "/t",
  * "/(2*t^2 - 2*t + 1)", "/(t*(1-t))" */
-static void put_den(Buf *b, const fmpz_mpoly_t den, const Ring *r,
+static void put_den(StrBuf *b, const fmpz_mpoly_t den, const Ring *r,
                     FormatStyle st)
 {
-    Buf d = {0};
+    StrBuf d = {0};
     int neg;
     int items = put_factored_ex(&d, den, r, st, &neg, 0, 1);
-    char *ds = buf_take(&d);
+    char *ds = sb_take(&d);
     int wrap = items > 1 || neg; /* "/(...)^2" and "/t^2" need no more */
-    buf_puts(b, "/");
+    sb_puts(b, "/");
     if (wrap)
-        buf_puts(b, "(");
+        sb_puts(b, "(");
     if (neg)
-        buf_puts(b, "-");
-    buf_puts(b, ds);
+        sb_puts(b, "-");
+    sb_puts(b, ds);
     if (wrap)
-        buf_puts(b, ")");
+        sb_puts(b, ")");
     free(ds);
 }
 
@@ -297,17 +258,17 @@ static int is_den_one(const RatFun w, const Ring *r)
 
 char *format_weight(const RatFun w, const Ring *r)
 {
-    Buf b = {0};
-    Buf n = {0};
+    StrBuf b = {0};
+    StrBuf n = {0};
     int neg;
     put_factored(&n, w->num, r, FMT_JSON, &neg);
     if (neg)
-        buf_puts(&b, "-");
-    buf_puts(&b, n.s);
+        sb_puts(&b, "-");
+    sb_puts(&b, n.s);
     free(n.s);
     if (!is_den_one(w, r))
         put_den(&b, w->den, r, FMT_JSON);
-    return buf_take(&b);
+    return sb_take(&b);
 }
 
 char *format_output_rhs(const Derived *d, const DerivedOutput *o,
@@ -319,32 +280,32 @@ char *format_output_rhs(const Derived *d, const DerivedOutput *o,
 
 char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
 {
-    Buf b = {0};
+    StrBuf b = {0};
     int frac = !fmpz_mpoly_is_one(x->den, r->ctx);
     int multi = x->num->length > 1;
     if (st == FMT_LATEX && frac) {
-        buf_puts(&b, "\\frac{");
+        sb_puts(&b, "\\frac{");
         put_poly(&b, x->num, r, st);
-        buf_puts(&b, "}{");
+        sb_puts(&b, "}{");
         put_poly(&b, x->den, r, st);
-        buf_puts(&b, "}");
-        return buf_take(&b);
+        sb_puts(&b, "}");
+        return sb_take(&b);
     }
     if (frac && multi)
-        buf_puts(&b, "(");
+        sb_puts(&b, "(");
     put_poly(&b, x->num, r, st);
     if (frac && multi)
-        buf_puts(&b, ")");
+        sb_puts(&b, ")");
     if (frac) {
         int dmulti = x->den->length > 1 ||
                      (fmpz_mpoly_total_degree_si(x->den, r->ctx) > 0 &&
                       !fmpz_mpoly_is_gen(x->den, -1, r->ctx));
-        buf_puts(&b, dmulti ? "/(" : "/");
+        sb_puts(&b, dmulti ? "/(" : "/");
         put_poly(&b, x->den, r, st);
         if (dmulti)
-            buf_puts(&b, ")");
+            sb_puts(&b, ")");
     }
-    return buf_take(&b);
+    return sb_take(&b);
 }
 
 void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compiler/book.h"
 #include "compiler/json.h"
 #include "compiler/mem.h"
 
@@ -232,33 +233,12 @@ static void text_steps(FILE *out, const Derived *d, slong origin)
 
 /* ---- LaTeX --------------------------------------------------------------- */
 
-/* LaTeX for a name, by format.c's rule: greek words get a backslash; a
- * lower-case stem followed by upper-case letters or digits, or the part
- * after '_', is subscripted (pD -> p_{D}, A1 -> A_{1}, M_CB -> M_{CB}) */
+/* LaTeX for a name: the printer's rule (book.h) */
 static void latex_name(FILE *out, const char *name)
 {
-    static const char *const greek[] = {
-        "alpha", "beta",  "gamma", "delta",  "epsilon", "zeta",   "eta",
-        "theta", "iota",  "kappa", "lambda", "mu",      "nu",     "xi",
-        "pi",    "rho",   "sigma", "tau",    "upsilon", "phi",    "chi",
-        "psi",   "omega", "Gamma", "Delta",  "Theta",   "Lambda", "Xi",
-        "Pi",    "Sigma", "Phi",   "Psi",    "Omega",
-    };
-    size_t n = strlen(name), stem = 0;
-    while (stem < n && isalpha((unsigned char)name[stem]) &&
-           (stem == 0 || islower((unsigned char)name[stem])))
-        stem++;
-    const char *under = strchr(name, '_');
-    if (under && under != name)
-        stem = (size_t)(under - name);
-    for (size_t g = 0; g < sizeof greek / sizeof greek[0]; g++)
-        if (strlen(greek[g]) == stem && strncmp(greek[g], name, stem) == 0) {
-            fputc('\\', out);
-            break;
-        }
-    fprintf(out, "%.*s", (int)stem, name);
-    if (stem < n)
-        fprintf(out, "_{%s}", name + stem + (name[stem] == '_'));
+    char *s = book_latex_name(name);
+    fputs(s, out);
+    free(s);
 }
 
 /* source text in \texttt{}, with TeX's special characters escaped */
