@@ -1,7 +1,9 @@
 /*
  * bench_derive.c - derivation speed: every example derived many times
  * in-process (read once, then parse + sema + exact reduction each time);
- * prints the median and the first-call time in milliseconds per scheme.
+ * prints the median and the first-call time in milliseconds per scheme,
+ * and the median time to print the result as text (the book's forms,
+ * book.c) and as JSON.
  *
  * Goals (issue #2): Desargues arc <= 0.3 ms, five-point conic <= 2 ms,
  * every example <= 5 ms.
@@ -17,6 +19,7 @@
 #include "bench/bench_util.h"
 
 #include "compiler/derive.h"
+#include "compiler/format.h"
 
 static int cmp_str(const void *a, const void *b)
 {
@@ -44,8 +47,9 @@ int main(int argc, char **argv)
     qsort(names, (size_t)n, sizeof(char *), cmp_str);
 
     printf("derive: median over repeated in-process derivations\n");
-    printf("%-34s %10s %10s %8s\n", "scheme", "first ms", "median ms",
-           "runs");
+    printf("%-34s %10s %10s %8s %10s %10s\n", "scheme", "first ms",
+           "median ms", "runs", "text ms", "json ms");
+    FILE *sink = fopen("/dev/null", "w");
     int bad = 0;
     for (int i = 0; i < n; i++) {
         char path[1024];
@@ -65,6 +69,19 @@ int main(int argc, char **argv)
             free(buf);
             continue;
         }
+        /* printing: the same Derived, many times */
+        double pr[2];
+        for (int st = 0; st < 2; st++) {
+            enum { PRINTS = 41 };
+            double tp[PRINTS];
+            for (int k = 0; k < PRINTS; k++) {
+                double s = bench_now_ms();
+                format_derived(sink, dv, st ? FMT_JSON : FMT_TEXT, -1);
+                tp[k] = bench_now_ms() - s;
+            }
+            qsort(tp, PRINTS, sizeof(double), bench_cmp_double);
+            pr[st] = tp[PRINTS / 2];
+        }
         derived_free(dv);
         /* enough runs for ~0.3 s per scheme, at least 20 */
         int runs = reps > 0 ? reps : (int)(300.0 / (first + 1e-3));
@@ -80,12 +97,13 @@ int main(int argc, char **argv)
             derived_free(dv);
         }
         qsort(t, (size_t)runs, sizeof(double), bench_cmp_double);
-        printf("%-34s %10.4f %10.4f %8d\n", names[i], first, t[runs / 2],
-               runs);
+        printf("%-34s %10.4f %10.4f %8d %10.4f %10.4f\n", names[i], first,
+               t[runs / 2], runs, pr[0], pr[1]);
         free(t);
         free(buf);
         free(names[i]);
     }
+    fclose(sink);
     flint_cleanup_master();
     return bad;
 }

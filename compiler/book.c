@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include <flint/fmpz_mpoly_factor.h>
+#include <flint/fmpz_vec.h>
 
 #include "compiler/mem.h"
 #include "compiler/strbuf.h"
@@ -579,6 +580,32 @@ static void push_factor(PTerm *t, const fmpz_mpoly_t p, ulong e, int depth,
     term_push(t, (Atom){AT_SUM, -1, s, NULL, NULL, e});
 }
 
+/* B's terms with variable v renamed map[v] (each used variable mapped to a
+ * distinct one of A's context): a cheap change of ring */
+static void remap_vars(fmpz_mpoly_t A, const fmpz_mpoly_t B, const slong *map,
+                       const fmpz_mpoly_ctx_t ctxB, const fmpz_mpoly_ctx_t ctxA)
+{
+    slong nb = ctxB->minfo->nvars, na = ctxA->minfo->nvars;
+    ulong *eb = pc_xmalloc(sizeof(ulong) * (size_t)nb);
+    ulong *ea = pc_xmalloc(sizeof(ulong) * (size_t)na);
+    fmpz_t c;
+    fmpz_init(c);
+    fmpz_mpoly_zero(A, ctxA);
+    for (slong k = 0; k < fmpz_mpoly_length(B, ctxB); k++) {
+        fmpz_mpoly_get_term_exp_ui(eb, B, k, ctxB);
+        fmpz_mpoly_get_term_coeff_fmpz(c, B, k, ctxB);
+        memset(ea, 0, sizeof(ulong) * (size_t)na);
+        for (slong v = 0; v < nb; v++)
+            if (eb[v])
+                ea[map[v]] = eb[v];
+        fmpz_mpoly_push_term_fmpz_ui(A, c, ea, ctxA);
+    }
+    fmpz_mpoly_sort_terms(A, ctxA);
+    fmpz_clear(c);
+    free(ea);
+    free(eb);
+}
+
 /* ring_factor(f, p) done in a ring of only the variables p uses: FLINT's
  * factoring walks every variable of its context, and a scheme's ring has
  * many (every function's slot) */
@@ -608,7 +635,7 @@ static int factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
         small.latex = NULL;
         fmpz_mpoly_t q;
         fmpz_mpoly_init(q, small.ctx);
-        fmpz_mpoly_compose_fmpz_mpoly_gen(q, p, to_small, r->ctx, small.ctx);
+        remap_vars(q, p, to_small, r->ctx, small.ctx);
         fmpz_mpoly_factor_t g;
         fmpz_mpoly_factor_init(g, small.ctx);
         ok = ring_factor(g, q, &small);
@@ -616,8 +643,8 @@ static int factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
             fmpz_mpoly_factor_fit_length(f, g->num, r->ctx);
             fmpz_set(f->constant, g->constant);
             for (slong i = 0; i < g->num; i++) {
-                fmpz_mpoly_compose_fmpz_mpoly_gen(f->poly + i, g->poly + i,
-                                                  to_big, small.ctx, r->ctx);
+                remap_vars(f->poly + i, g->poly + i, to_big, small.ctx,
+                           r->ctx);
                 fmpz_set(f->exp + i, g->exp + i);
             }
             f->num = g->num;
@@ -635,6 +662,26 @@ static int factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
 static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     const Ring *r = c->r;
+    if (fmpz_mpoly_total_degree_si(p, r->ctx) <= 1) {
+        /* linear: irreducible but for its integer content */
+        fmpz_t g;
+        fmpz_init(g);
+        _fmpz_vec_content(g, p->coeffs, fmpz_mpoly_length(p, r->ctx));
+        PSum *s = NULL;
+        if (!fmpz_is_one(g)) {
+            fmpz_mpoly_t q;
+            fmpz_mpoly_init(q, r->ctx);
+            fmpz_mpoly_scalar_divexact_fmpz(q, p, g, r->ctx);
+            s = sum_new(c);
+            PTerm *t = sum_push(s);
+            fmpz_set(t->coeff, g);
+            push_factor(t, q, 1, depth + 1, c);
+            sum_finish(s, p, c);
+            fmpz_mpoly_clear(q, r->ctx);
+        }
+        fmpz_clear(g);
+        return s;
+    }
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
     if (!factor_compact(f, p, r)) {
