@@ -15,6 +15,7 @@
 #include <flint/flint.h>
 
 #include "codegen/cli.h"
+#include "codegen/plot_cli.h"
 #include "compiler/budget.h"
 #include "compiler/derive.h"
 #include "compiler/format.h"
@@ -233,6 +234,8 @@ int main(int argc, char **argv)
         rc = emit_c_main(argc - 1, argv + 1, stdout, stderr);
     else if (strcmp(cmd, "eval") == 0)
         rc = eval_main(argc - 1, argv + 1, stdout, stderr);
+    else if (strcmp(cmd, "plot") == 0)
+        rc = plot_main(argc - 1, argv + 1, stdout, stderr);
     else {
         fprintf(stderr, "pointcalc: unknown command '%s'\n%s", cmd, usage);
         rc = 2;

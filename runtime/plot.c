@@ -828,21 +828,49 @@ static void px_of(const Fig *g, double x, double y, double *px, double *py)
     *py = g->ty - g->s * y;
 }
 
-/* " Mx yLx y" of one pixel segment, clipped; pen tracking as in curves */
-static void px_segment(const Fig *g, double x0, double y0, double x1,
-                       double y1)
+/* A pixel polyline: segments clipped to the canvas, joined where one
+ * starts where the last one ended. */
+typedef struct Pen {
+    const Fig *g;
+    int down;     // the pen rests at (x, y)
+    double x, y;
+} Pen;
+
+static void pen_move_to(const Fig *g, double x, double y)
 {
-    int c0, c1;
-    if (!clip(g->clipp, &x0, &y0, &x1, &y1, &c0, &c1))
-        return;
     fputs("M", g->out);
-    put_px(g->out, x0);
+    put_px(g->out, x);
     fputc(' ', g->out);
-    put_px(g->out, y0);
+    put_px(g->out, y);
+}
+
+static void pen_line(Pen *P, double x0, double y0, double x1, double y1)
+{
+    const Fig *g = P->g;
+    int c0, c1;
+    if (!clip(g->clipp, &x0, &y0, &x1, &y1, &c0, &c1)) {
+        P->down = 0;
+        return;
+    }
+    if (!P->down || x0 != P->x || y0 != P->y)
+        pen_move_to(g, x0, y0);
     fputs("L", g->out);
     put_px(g->out, x1);
     fputc(' ', g->out);
     put_px(g->out, y1);
+    P->down = !c1;
+    P->x = x1;
+    P->y = y1;
+}
+
+static void pen_lift(Pen *P) { P->down = 0; }
+
+/* one separate pixel segment, clipped */
+static void px_segment(const Fig *g, double x0, double y0, double x1,
+                       double y1)
+{
+    Pen P = {g, 0, 0, 0};
+    pen_line(&P, x0, y0, x1, y1);
 }
 
 static void write_curve(const Fig *g, const PlotCurve *c, const char *name,
@@ -1028,24 +1056,29 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
         fputs("\"/>\n", out);
         /* the envelope through the teeth's ends, cut where the curve is */
         fprintf(out, "<path stroke=\"%s\" d=\"", col);
+        Pen pen = {g, 0, 0, 0};
         for (int i = 1; i <= n; i++) {
-            if (!ok[i] || !ok[i - 1])
+            if (!ok[i] || !ok[i - 1]) {
+                pen_lift(&pen);
                 continue;
+            }
             int pole = 0;
             for (int f = 0; f < nf && !pole; f++) {
                 double u = fac[(size_t)(i - 1) * (size_t)nf + (size_t)f];
                 double v = fac[(size_t)i * (size_t)nf + (size_t)f];
                 pole = (u < 0 && v > 0) || (u > 0 && v < 0);
             }
-            if (pole)
+            if (pole) {
+                pen_lift(&pen);
                 continue;
+            }
             double ax, ay, bx, by;
             px_of(g, px[4 * (i - 1)] - scale * kap[i - 1] * px[4 * (i - 1) + 2],
                   px[4 * (i - 1) + 1] - scale * kap[i - 1] * px[4 * (i - 1) + 3],
                   &ax, &ay);
             px_of(g, px[4 * i] - scale * kap[i] * px[4 * i + 2],
                   px[4 * i + 1] - scale * kap[i] * px[4 * i + 3], &bx, &by);
-            px_segment(g, ax, ay, bx, by);
+            pen_line(&pen, ax, ay, bx, by);
         }
         fputs("\"/>\n", out);
     }
