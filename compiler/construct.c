@@ -646,3 +646,135 @@ cleanup:
     pteq_clear(oa, r);
     return st;
 }
+
+/* ---- a meet's parameters, for derive --steps ---------------------------- */
+
+/* x[0..n-1] with target = origin + sum x_j dirs_j over every base point:
+ * 1 when that solution exists and is unique (x holds n initialised
+ * entries), else 0 */
+static int affine_coords(RatFunStruct *x, const PointEq target,
+                         const PointEq origin, const PointEq *dirs, slong n,
+                         const Ring *r)
+{
+    slong m;
+    PointEq *all = pc_xmalloc(sizeof(PointEq) * (size_t)(n + 1));
+    for (slong j = 0; j <= n; j++)
+        pteq_init(all[j], r);
+    for (slong j = 0; j < n; j++)
+        pteq_set(all[j], dirs[j], r);
+    pteq_sub(all[n], target, origin, r); /* the right-hand side */
+    slong *rows = support_union(&m, (const PointEq *)all, n + 1);
+    RatFunStruct *a = ratfun_vec_init(m * n, r);
+    RatFunStruct *b = ratfun_vec_init(m, r);
+    for (slong i = 0; i < m; i++) {
+        pteq_get_weight(b + i, all[n], rows[i], r);
+        for (slong j = 0; j < n; j++)
+            pteq_get_weight(a + i * n + j, all[j], rows[i], r);
+    }
+    int ok = linsolve(x, NULL, a, b, m, n, r) == LINSOLVE_UNIQUE;
+    ratfun_vec_clear(b, m, r);
+    ratfun_vec_clear(a, m * n, r);
+    free(rows);
+    for (slong j = 0; j <= n; j++)
+        pteq_clear(all[j], r);
+    free(all);
+    return ok;
+}
+
+int construct_meet_params(RatFunStruct *params, const PointEq m,
+                          const PointEq *a, const PointEq *b, slong nb,
+                          const Ring *r)
+{
+    PointEq origin, dirs[MEET_MAX_COLS];
+    int ok = nb >= 2 && nb <= MEET_MAX_COLS;
+    pteq_init(origin, r);
+    for (slong j = 0; j < MEET_MAX_COLS; j++)
+        pteq_init(dirs[j], r);
+    ok = ok && flat_split(origin, dirs, a, 2, r) == 0 &&
+         affine_coords(params, m, origin, (const PointEq *)dirs, 1, r);
+    ok = ok && flat_split(origin, dirs, b, nb, r) == 0 &&
+         affine_coords(params + 1, m, origin, (const PointEq *)dirs, nb - 1,
+                       r);
+    for (slong j = 0; j < MEET_MAX_COLS; j++)
+        pteq_clear(dirs[j], r);
+    pteq_clear(origin, r);
+    return ok ? 0 : -1;
+}
+
+/* pts[0..n-1] as proper points: a direction d becomes origin + d */
+static int flat_points(PointEq *res, const PointEq *pts, slong n,
+                       const Ring *r)
+{
+    PointEq origin;
+    RatFun sum;
+    int st = 0;
+    pteq_init(origin, r);
+    ratfun_init(sum, r);
+    for (slong i = 0; i < n; i++) {
+        pteq_weight_sum(sum, pts[i], r);
+        if (!ratfun_is_zero(sum, r)) {
+            pteq_set(origin, pts[i], r);
+            break;
+        }
+    }
+    if (pteq_is_zero(origin, r))
+        st = -1;
+    for (slong i = 0; i < n && st == 0; i++) {
+        pteq_weight_sum(sum, pts[i], r);
+        if (ratfun_is_zero(sum, r))
+            pteq_add(res[i], origin, pts[i], r);
+        else
+            pteq_set(res[i], pts[i], r);
+    }
+    ratfun_clear(sum, r);
+    pteq_clear(origin, r);
+    return st;
+}
+
+/* The S- or V-theorem form of a meet (derive.h, DerivedStep): W = b[*w]
+ * written in the simplex a0, a1 and the other points of b,
+ * W = a0*coord[0] + a1*coord[1] + sum coord[2+j]*V_j; det = coord[0] +
+ * coord[1].  The last point of b that works is W.  0, or -1 when none
+ * does (every point of b on line a0 a1, or the flats degenerate). */
+int construct_meet_sv(RatFunStruct *coord, slong *w, RatFun det,
+                      const PointEq *a, const PointEq *b, slong nb,
+                      const Ring *r)
+{
+    PointEq pts[2 + MEET_MAX_COLS], dirs[MEET_MAX_COLS];
+    int found = 0;
+    if (nb < 2 || nb > MEET_MAX_COLS)
+        return -1;
+    for (slong j = 0; j < 2 + nb; j++)
+        pteq_init(pts[j], r);
+    for (slong j = 0; j < nb; j++)
+        pteq_init(dirs[j], r);
+    RatFunStruct *x = ratfun_vec_init(nb, r);
+    if (flat_points(pts, a, 2, r) < 0 || flat_points(pts + 2, b, nb, r) < 0)
+        goto done;
+    for (slong cand = nb - 1; cand >= 0 && !found; cand--) {
+        /* unknowns: x[0] for a1 - a0, x[1..] for the V_j - a0 */
+        pteq_sub(dirs[0], pts[1], pts[0], r);
+        for (slong j = 0, k = 1; j < nb; j++)
+            if (j != cand)
+                pteq_sub(dirs[k++], pts[2 + j], pts[0], r);
+        if (!affine_coords(x, pts[2 + cand], pts[0], (const PointEq *)dirs,
+                           nb, r))
+            continue;
+        /* a = 1 - x[0] - sum x[1..], b = x[0] */
+        ratfun_one(coord, r);
+        for (slong j = 0; j < nb; j++)
+            ratfun_sub(coord, coord, x + j, r);
+        for (slong j = 0; j < nb; j++)
+            ratfun_set(coord + 1 + j, x + j, r);
+        ratfun_add(det, coord, coord + 1, r);
+        *w = cand;
+        found = 1;
+    }
+done:
+    ratfun_vec_clear(x, nb, r);
+    for (slong j = 0; j < nb; j++)
+        pteq_clear(dirs[j], r);
+    for (slong j = 0; j < 2 + nb; j++)
+        pteq_clear(pts[j], r);
+    return found ? 0 : -1;
+}

@@ -49,4 +49,25 @@ MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
 MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
                                   const PointEq *b, slong nb, const Ring *r);
 
+/* For derive --steps: where the meet m of line(a[0], a[1]) and the flat
+ * b[0..nb-1] lies on each flat.  params[0] = lambda with m = a0 + (a1 -
+ * a0)*lambda, params[1..nb-1] = mu_j with m = b0 + sum (bj - b0)*mu_j
+ * (a flat's origin is its first point; a direction argument d enters as
+ * itself, not as d - origin).  params holds nb initialised entries.
+ * 0, or -1 when m is not uniquely on both (degenerate flats). */
+int construct_meet_params(RatFunStruct *params, const PointEq m,
+                          const PointEq *a, const PointEq *b, slong nb,
+                          const Ring *r);
+
+/* The monograph's S-theorem (two lines) or V-theorem (a line and a plane)
+ * form of the same meet, derive.h's DerivedStep: W = b[*w] written in the
+ * simplex a0, a1, the other points of b, W = a0*coord[0] + a1*coord[1] +
+ * sum_j V_j*coord[2 + j]; then lambda = coord[1]/det with det = coord[0]
+ * + coord[1], which vanishes when the flats are parallel.  W is the last
+ * point of b that lies outside the others' span with line a0 a1.  coord
+ * holds nb + 1 initialised entries.  0, or -1 when no point of b works. */
+int construct_meet_sv(RatFunStruct *coord, slong *w, RatFun det,
+                      const PointEq *a, const PointEq *b, slong nb,
+                      const Ring *r);
+
 #endif

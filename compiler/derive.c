@@ -1769,6 +1769,265 @@ static int check_no_unknown(Deriver *D, const Sym *o, const Value *v)
     return -1;
 }
 
+/* ---- outputs and steps -------------------------------------------------- */
+
+/* o = the value v, as derive prints it and codegen lowers it: kind from
+ * the weight sum, each weight reduced on its own (DerivedOutput) */
+static void output_fill(DerivedOutput *o, const char *name, Span span,
+                        const Value *v, const Source *src, const Ring *r)
+{
+    int line, col;
+    o->name = pc_xstrdup(name);
+    source_locate(src, span.start, &line, &col);
+    o->line = line;
+    o->span = span;
+    pteq_init(o->eq, r);
+    ratfun_init(o->scalar, r);
+    o->w = NULL;
+    if (v->is_point) {
+        RatFun sum;
+        ratfun_init(sum, r);
+        pteq_weight_sum(sum, v->p, r);
+        o->kind = ratfun_is_one(sum, r) ? KIND_POINT : KIND_VECTOR;
+        ratfun_clear(sum, r);
+        pteq_set(o->eq, v->p, r);
+        o->w = flint_malloc(sizeof(RatFunStruct) *
+                            (size_t)FLINT_MAX(o->eq->len, 1));
+        for (slong k = 0; k < o->eq->len; k++)
+            ratfun_init(o->w + k, r);
+        pteq_get_weights(o->w, o->eq, r);
+    } else {
+        o->kind = KIND_SCALAR;
+        ratfun_set(o->scalar, v->s, r);
+    }
+}
+
+static void output_clear(DerivedOutput *o, const Ring *r)
+{
+    if (o->w != NULL) {
+        for (slong k = 0; k < o->eq->len; k++)
+            ratfun_clear(o->w + k, r);
+        flint_free(o->w);
+    }
+    pteq_clear(o->eq, r);
+    ratfun_clear(o->scalar, r);
+    free((char *)o->name);
+}
+
+static void step_clear(DerivedStep *st, const Ring *r)
+{
+    output_clear(&st->value, r);
+    for (slong k = 0; k < st->nargs; k++)
+        output_clear(&st->args[k], r);
+    free(st->args);
+    if (st->params)
+        ratfun_vec_clear(st->params, st->nparams, r);
+    if (st->sv_coord)
+        ratfun_vec_clear(st->sv_coord, st->nparams + 1, r);
+    ratfun_clear(st->det, r);
+    ratfun_clear(st->scalar, r);
+    free((char *)st->var);
+    free(st->expr);
+}
+
+/* the source text of span, owned */
+static char *span_text(const Source *src, Span span)
+{
+    size_t n = span.end > span.start ? (size_t)(span.end - span.start) : 0;
+    char *s = pc_xmalloc(n + 1);
+    if (n)
+        memcpy(s, src->text + span.start, n);
+    s[n] = '\0';
+    return s;
+}
+
+/* a zero value of the step's kind, when it is pending */
+static void step_pending(DerivedStep *st, const char *name, Span span,
+                         const Source *src, const Ring *r)
+{
+    Value zero;
+    value_init(&zero, r);
+    st->pending = 1;
+    output_fill(&st->value, name, span, &zero, src, r);
+    value_clear(&zero, r);
+}
+
+/* st->args[k] = the value of argument node a (named by its text); 0, or
+ * -1 when it still holds an unsolved unknown (or failed: reported) */
+static int step_arg(Deriver *D, DerivedStep *st, slong k, const Node *a)
+{
+    Value v;
+    int rc = 0;
+    value_init(&v, D->r);
+    /* (a name as derive knows it: a family member M[2] is "M_2") */
+    char *name = a->kind == ND_NAME && a->sym ? pc_xstrdup(a->sym->name)
+                                              : span_text(D->src, a->span);
+    if (eval(D, &v, a) < 0 || unsolved_in(D, &v))
+        rc = -1;
+    output_fill(&st->args[k], name, a->span, &v, D->src, D->r);
+    free(name);
+    value_clear(&v, D->r);
+    return rc;
+}
+
+/* the operation of a definition's expression */
+static StepOp step_op(const Node *e)
+{
+    if (e->kind != ND_CALL)
+        return STEP_EXPR;
+    switch ((Builtin)e->builtin) {
+    case BI_ALONG: return STEP_ALONG;
+    case BI_DIVIDE: return STEP_DIVIDE;
+    case BI_MEET: return STEP_MEET;
+    case BI_SUBST: return STEP_SUBST;
+    case BI_DIFF: return STEP_DIFF;
+    case BI_BEZIER: return STEP_BEZIER;
+    default: return STEP_EXPR;
+    }
+}
+
+/* the construction of a definition: its args and scalars */
+static void step_construction(Deriver *D, DerivedStep *st, const Node *e)
+{
+    const Ring *r = D->r;
+    const Node *a;
+    slong k = 0;
+    if (e->kind != ND_CALL)
+        return;
+    switch ((Builtin)e->builtin) {
+    case BI_ALONG:
+    case BI_DIVIDE:
+        st->nargs = 2;
+        st->args = pc_xcalloc(2, sizeof(DerivedOutput));
+        for (a = e->args; k < 2; a = a->next, k++)
+            step_arg(D, st, k, a);
+        eval_scalar(D, st->scalar, nth(e, 2));
+        break;
+    case BI_BEZIER:
+        st->nargs = e->nargs - 1;
+        st->args = pc_xcalloc((size_t)st->nargs, sizeof(DerivedOutput));
+        for (a = e->args->next; a; a = a->next, k++)
+            step_arg(D, st, k, a);
+        eval_scalar(D, st->scalar, e->args);
+        break;
+    case BI_SUBST: {
+        const Node *x = nth(e, 1);
+        st->var = pc_xstrdup(x->sym->name);
+        if (x->sym->kind == SYM_POINT || x->sym->kind == SYM_UNKNOWN) {
+            st->nargs = 1;
+            st->args = pc_xcalloc(1, sizeof(DerivedOutput));
+            step_arg(D, st, 0, nth(e, 2));
+        } else {
+            eval_scalar(D, st->scalar, nth(e, 2));
+        }
+        break;
+    }
+    case BI_DIFF:
+        st->var = pc_xstrdup(nth(e, 1)->sym->name);
+        st->order = nth(e, 2) ? strtol(nth(e, 2)->text, NULL, 10) : 1;
+        break;
+    case BI_MEET: {
+        const Node *fa = nth(e, 0), *fb = nth(e, 1);
+        int ok = 1;
+        st->nfirst = fa->nargs;
+        st->nargs = fa->nargs + fb->nargs;
+        st->args = pc_xcalloc((size_t)st->nargs, sizeof(DerivedOutput));
+        for (a = fa->args; a; a = a->next, k++)
+            ok &= step_arg(D, st, k, a) == 0;
+        for (a = fb->args; a; a = a->next, k++)
+            ok &= step_arg(D, st, k, a) == 0;
+        if (!ok || fa->nargs != 2)
+            break;
+        /* the args' equations (borrowed views) */
+        PointEq pa[2], pb[3];
+        for (slong j = 0; j < 2; j++)
+            pa[j][0] = st->args[j].eq[0];
+        for (slong j = 0; j < fb->nargs; j++)
+            pb[j][0] = st->args[2 + j].eq[0];
+        RatFunStruct *par = ratfun_vec_init(fb->nargs, r);
+        if (construct_meet_params(par, st->value.eq, (const PointEq *)pa,
+                                  (const PointEq *)pb, fb->nargs, r) == 0) {
+            st->nparams = fb->nargs;
+            st->params = par;
+        } else {
+            ratfun_vec_clear(par, fb->nargs, r);
+        }
+        RatFunStruct *co = ratfun_vec_init(fb->nargs + 1, r);
+        slong w = 0;
+        if (st->params &&
+            construct_meet_sv(co, &w, st->det, (const PointEq *)pa,
+                              (const PointEq *)pb, fb->nargs, r) == 0) {
+            st->has_sv = 1;
+            st->sv_w = 2 + w;
+            st->sv_coord = co;
+        } else {
+            ratfun_vec_clear(co, fb->nargs + 1, r);
+        }
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+/* Derived.steps (derive.h): after a successful derivation, one step per
+ * definition and per unknown a solve determines, in source order, from the
+ * final values; the arguments of the constructions are evaluated again
+ * (names are memoised: copies) */
+static void record_steps(Deriver *D, Derived *d, const Source *src)
+{
+    const Ring *r = D->r;
+    const SemaInfo *info = D->info;
+    slong n = 0;
+    for (int i = 0; i < info->nsteps; i++) {
+        const Stmt *st = info->steps[i];
+        if (st->kind != ST_SOLVE)
+            n++;
+        else
+            for (Name *nm = st->names; nm; nm = nm->next)
+                n++;
+    }
+    d->steps = pc_xcalloc((size_t)(n ? n : 1), sizeof(DerivedStep));
+    for (int i = 0; i < info->nsteps; i++) {
+        const Stmt *st = info->steps[i];
+        if (st->kind == ST_SOLVE) {
+            for (Name *nm = st->names; nm; nm = nm->next) {
+                DerivedStep *ds = &d->steps[d->nsteps++];
+                Sym *u = NULL;
+                for (int k = 0; k < info->nunknowns && !u; k++)
+                    if (strcmp(info->unknowns[k]->name, nm->text) == 0)
+                        u = info->unknowns[k];
+                ratfun_init(ds->scalar, r);
+                ratfun_init(ds->det, r);
+                ds->op = STEP_SOLVE;
+                ds->expr = span_text(src, st->span);
+                Value uv;
+                uv.is_point = u->is_point;
+                uv.p[0] = D->usol[u->index][0]; /* borrowed */
+                uv.s[0] = D->ssol[u->index];
+                if (!D->usolved[u->index] || unsolved_in(D, &uv))
+                    step_pending(ds, u->name, nm->span, src, r);
+                else
+                    output_fill(&ds->value, u->name, nm->span, &uv, src, r);
+            }
+            continue;
+        }
+        Sym *s = st->sym;
+        DerivedStep *ds = &d->steps[d->nsteps++];
+        const Value *v = &D->defs[s->index];
+        ratfun_init(ds->scalar, r);
+        ratfun_init(ds->det, r);
+        ds->op = step_op(st->expr);
+        ds->expr = span_text(src, st->expr->span);
+        if (D->state[s->index] != 1 || unsolved_in(D, v)) {
+            step_pending(ds, s->name, s->span, src, r);
+            continue;
+        }
+        output_fill(&ds->value, s->name, s->span, v, src, r);
+        step_construction(D, ds, st->expr);
+    }
+}
+
 static char **copy_names(Sym **syms, int n)
 {
     char **names = pc_xcalloc((size_t)(n ? n : 1), sizeof(char *));
@@ -2016,30 +2275,10 @@ retry:
                 uv.s[0] = D.ssol[s->index];
                 v = &uv;
             }
-            int line, col;
-            o->name = pc_xstrdup(s->name);
-            source_locate(&src, s->span.start, &line, &col);
-            o->line = line;
-            o->span = s->span;
-            pteq_init(o->eq, r);
-            ratfun_init(o->scalar, r);
-            if (v->is_point) {
-                RatFun sum;
-                ratfun_init(sum, r);
-                pteq_weight_sum(sum, v->p, r);
-                o->kind = ratfun_is_one(sum, r) ? KIND_POINT : KIND_VECTOR;
-                ratfun_clear(sum, r);
-                pteq_set(o->eq, v->p, r);
-                o->w = flint_malloc(sizeof(RatFunStruct) *
-                                    (size_t)FLINT_MAX(o->eq->len, 1));
-                for (slong k = 0; k < o->eq->len; k++)
-                    ratfun_init(o->w + k, r);
-                pteq_get_weights(o->w, o->eq, r);
-            } else {
-                o->kind = KIND_SCALAR;
-                ratfun_set(o->scalar, v->s, r);
-            }
+            output_fill(o, s->name, s->span, v, &src, r);
         }
+        if (opt->keep_steps)
+            record_steps(&D, d, &src);
     }
     for (int i = 0; i < info->ndefs; i++)
         value_clear(&D.defs[i], r);
@@ -2154,17 +2393,12 @@ void derived_free(Derived *d)
 {
     if (!d)
         return;
-    for (slong i = 0; i < d->noutputs; i++) {
-        if (d->outputs[i].w != NULL) {
-            for (slong k = 0; k < d->outputs[i].eq->len; k++)
-                ratfun_clear(d->outputs[i].w + k, &d->ring);
-            flint_free(d->outputs[i].w);
-        }
-        pteq_clear(d->outputs[i].eq, &d->ring);
-        ratfun_clear(d->outputs[i].scalar, &d->ring);
-        free((char *)d->outputs[i].name);
-    }
+    for (slong i = 0; i < d->noutputs; i++)
+        output_clear(&d->outputs[i], &d->ring);
     free(d->outputs);
+    for (slong i = 0; i < d->nsteps; i++)
+        step_clear(&d->steps[i], &d->ring);
+    free(d->steps);
     if (d->kernels) {
         kernels_clear(d->kernels);
         free(d->kernels);

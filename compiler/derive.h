@@ -36,6 +36,73 @@ typedef struct DerivedOutput {
     Span span;     // the defined name in its definition (for diagnostics)
 } DerivedOutput;
 
+/* What produced a step's value (derive --steps, docs/language.md). */
+typedef enum StepOp {
+    STEP_EXPR,   // any other expression: arithmetic, a name, functions
+    STEP_ALONG,  // along(P, Q, s): args P, Q; scalar s
+    STEP_DIVIDE, // divide(P, Q, k): args P, Q; scalar k
+    STEP_MEET,   // meet(line(P, Q), line(R, S) | plane(R, S, U)): args
+                 // P, Q, R, S[, U]; the meet fields below
+    STEP_SUBST,  // subst(E, x, s|X): var x; scalar s (a param or const
+                 // replaced) or args[0] = X (a base point or unknown)
+    STEP_DIFF,   // diff(E, t[, n]): var t, order n
+    STEP_BEZIER, // bezier(s, P0, ..., Pn): args P0..Pn; scalar s
+    STEP_SOLVE,  // `solve ... for X, ...`: one step per unknown, in the
+                 // `for` list; value = its solution
+} StepOp;
+
+/*
+ * One step of the derivation: a definition (or an unknown a solve
+ * determines), in source order, with its reduced value and, for the
+ * constructions, what they were built from.  Values are final: a
+ * definition that holds an unknown shows it replaced by the solution of
+ * a later `solve` (a value that still holds an unsolved unknown is
+ * `pending` and left zero).
+ *
+ * meet, as the monograph solves it (1.3.5, the S- and V-theorems): the
+ * first line P, Q and the points of the second flat but one, V1[, V2],
+ * form a simplex; the remaining point W of the second flat is written
+ * in it, W = P*a + Q*b + V1*c1 [+ V2*c2] (sv_coord = a, b, c1[, c2]);
+ * the moving point M = P*(1 - lambda) + Q*lambda makes the triangle
+ * M V1 W (the tetrahedron M V1 V2 W) vanish when
+ *     | a          b       c1 .. |
+ *     | 1-lambda   lambda  0  .. |  = 0,  i.e.  (1 - lambda)*b - lambda*a = 0,
+ *     | 0          0       1  .. |
+ * so lambda = b/(a + b), and det = a + b vanishes exactly when the flats
+ * are parallel.  (The article on the Desargues arc writes J in simplex
+ * S, N, T: a = p_j, b = q_j.)
+ */
+typedef struct DerivedStep {
+    StepOp op;
+    DerivedOutput value; // name, kind, the reduced value (format_output_rhs
+                         // prints it), line and span of the definition
+    int pending;         // 1: the value holds an unknown no solve
+                         // determines; value, args and the meet data are
+                         // zero
+    char *expr;          // the right-hand side as written (the solve
+                         // statement for STEP_SOLVE), owned
+    slong nargs;         // along, divide: 2; bezier: n + 1; meet: 2 + nb;
+    DerivedOutput *args; // subst of a point: 1.  Each defining point's
+                         // reduced value, named by its text ("P",
+                         // "A + B"); for the plots of auxiliary lines
+    RatFun scalar;       // along: s; divide: k; bezier: s; subst of a
+                         // param or const: the replacement; else 0
+    const char *var;     // subst, diff: the name replaced or
+                         // differentiated by (owned), else NULL
+    long order;          // diff: n (1 by default)
+    /* meet only (else nparams = 0, has_sv = 0) */
+    slong nfirst;           // args[0..nfirst-1] define the first line (2)
+    slong nparams;          // 1 + (nb - 1)
+    RatFunStruct *params;   // [0]: lambda, M = P + (Q - P)*lambda; [1..]:
+                            // mu_j, M = R + (S - R)*mu_1 [+ (U - R)*mu_2]
+    int has_sv;             // 1: the S/V-theorem data below was found (a
+                            // point of the second flat outside line PQ)
+    slong sv_w;             // args[sv_w] is W; the simplex is args 0, 1
+                            // and the second flat's others, in order
+    RatFunStruct *sv_coord; // nb + 1 coordinates a, b, c1[, c2] of W
+    RatFun det;             // a + b (has_sv), else 0
+} DerivedStep;
+
 typedef struct Derived {
     char *scheme;   // scheme name (`scheme NAME` or the file's base name)
     char *filename; // as given
@@ -56,6 +123,8 @@ typedef struct Derived {
     unsigned char *has_range; // (lo, hi), exact; has_range[i] = 0: none
     slong noutputs; // `output` list (default: the last definition)
     DerivedOutput *outputs;
+    slong nsteps;       // DeriveOptions.keep_steps: the steps in source
+    DerivedStep *steps; // order (above); else 0 and NULL
 } Derived;
 
 /* How a derivation runs (budget.h): a wall-clock budget checked between
@@ -70,6 +139,8 @@ typedef struct DeriveOptions {
     int *bad_define; // if not NULL: set to 1 when a define names no int of
                      // the scheme (a usage error: the command line is
                      // wrong, not the scheme), else 0
+    int keep_steps;  // 1: also record Derived.steps (derive --steps); 0
+                     // costs nothing
 } DeriveOptions;
 
 /* The options of a command line's derivation: its budget, -v (progress to

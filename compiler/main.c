@@ -20,11 +20,13 @@
 #include "compiler/derive.h"
 #include "compiler/format.h"
 #include "compiler/mem.h"
+#include "compiler/steps.h"
 
 #define PC_VERSION "0.1.0"
 
 static const char usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
+    "                        [--steps]\n"
     "       pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
     "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
     "                        --param t=SPEC ... [--output NAME[,NAME...]] "
@@ -58,6 +60,7 @@ static const char usage[] =
 
 static const char derive_help[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
+    "                        [--steps]\n"
     "\n"
     "Reduces the scheme exactly and prints the final point equation of every\n"
     "output (default: the last definition).\n"
@@ -68,7 +71,12 @@ static const char derive_help[] =
     "  --format json       the contract's JSON: every weight as a reduced "
     "expression\n"
     "  --origin POINT      text and LaTeX relative to a base point: (A - C)*f "
-    "+ ... + C\n" COMMON_HELP;
+    "+ ... + C\n"
+    "  --steps             first every step in source order: each definition's "
+    "point\n"
+    "                      equation, each meet's S/V-theorem determinant and "
+    "line\n"
+    "                      parameters (JSON: a \"steps\" array)\n" COMMON_HELP;
 
 static const char emit_help[] =
     "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
@@ -119,6 +127,7 @@ static int derive_main(int argc, char **argv)
 {
     const char *file = NULL, *origin = NULL;
     FormatStyle style = FMT_TEXT;
+    int steps = 0;
     BudgetOptions bo;
     budget_options_default(&bo);
     for (int i = 1; i < argc; i++) {
@@ -147,6 +156,8 @@ static int derive_main(int argc, char **argv)
             }
         } else if (strcmp(a, "--origin") == 0 && i + 1 < argc) {
             origin = argv[++i];
+        } else if (strcmp(a, "--steps") == 0) {
+            steps = 1;
         } else if (a[0] == '-' && a[1] != '\0') {
             fprintf(stderr, "pointcalc: unknown or incomplete option '%s'\n%s",
                     a, usage);
@@ -165,6 +176,7 @@ static int derive_main(int argc, char **argv)
     }
     int nerrors = 0, bad_define = 0;
     DeriveOptions opt = derive_options_cli(&bo, stderr, &bad_define);
+    opt.keep_steps = steps;
     budget_arm(bo.max_seconds, bo.max_memory);
     Derived *d = derive_file_ex(file, stderr, &nerrors, &opt);
     budget_disarm(); /* the derivation is budgeted, not the printing */
@@ -182,7 +194,14 @@ static int derive_main(int argc, char **argv)
             return 2;
         }
     }
-    format_derived(stdout, d, style, o);
+    if (steps && style != FMT_JSON) { /* the steps, then the outputs */
+        steps_print(stdout, d, style, o);
+        fputs("\n", stdout);
+    }
+    if (steps && style == FMT_JSON)
+        steps_print(stdout, d, style, o);
+    else
+        format_derived(stdout, d, style, o);
     derived_free(d);
     return 0;
 }

@@ -1,0 +1,556 @@
+/*
+ * steps.c - `pointcalc derive --steps`: the derivation as the book prints
+ * it, one step per definition in source order.
+ *
+ * Every value is printed by format_output_rhs (format.c), so a step reads
+ * exactly like derive's own output; scalars (a meet's parameters and
+ * determinant, the ratio of along) go through the same printer as scalar
+ * outputs.  A meet is shown the way the monograph solves it (1.3.5, and
+ * the Desargues-arc article): the point W of the second flat written in
+ * the simplex of the first line and the other points, the determinant
+ * that makes the moving triangle (tetrahedron) vanish, the parameter
+ * lambda = b/(a + b) it gives, and a + b, which is zero exactly when the
+ * flats are parallel (derive.h, DerivedStep).
+ */
+#include "compiler/steps.h"
+
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "compiler/mem.h"
+
+/* the value x printed like a scalar output (malloc'd) */
+static char *scalar_str(const Derived *d, const RatFun x, FormatStyle st)
+{
+    DerivedOutput o;
+    memset(&o, 0, sizeof o);
+    o.kind = KIND_SCALAR;
+    o.scalar[0] = x[0]; /* a read-only view */
+    return format_output_rhs(d, &o, st, -1);
+}
+
+/* 1 when s is a plain identifier (no parentheses needed around it) */
+static int is_identifier(const char *s)
+{
+    if (!*s || isdigit((unsigned char)*s))
+        return 0;
+    for (; *s; s++)
+        if (!isalnum((unsigned char)*s) && *s != '_')
+            return 0;
+    return 1;
+}
+
+/* ---- text ---------------------------------------------------------------- */
+
+/* a name in a product: "P", "(A + B)" */
+static void text_factor(FILE *out, const char *name)
+{
+    fprintf(out, is_identifier(name) ? "%s" : "(%s)", name);
+}
+
+static void text_value(FILE *out, const Derived *d, const DerivedOutput *o,
+                       slong origin)
+{
+    char *v = format_output_rhs(d, o, FMT_TEXT, origin);
+    fputs(v, out);
+    free(v);
+    if (o->kind == KIND_VECTOR)
+        fputs("    (vector)", out);
+}
+
+/* the coordinate names: a, b, then c (a line) or c1, c2 (a plane) */
+static void coord_name(char *buf, size_t cap, slong k, slong n)
+{
+    if (k < 2)
+        snprintf(buf, cap, "%c", (int)('a' + k));
+    else if (n == 3)
+        snprintf(buf, cap, "c");
+    else
+        snprintf(buf, cap, "c%ld", (long)(k - 1));
+}
+
+static void text_meet(FILE *out, const Derived *d, const DerivedStep *s)
+{
+    const char *M = s->value.name;
+    const DerivedOutput *a = s->args;
+    slong nb = s->nargs - s->nfirst, n = nb + 1;
+    char cn[32];
+    if (s->has_sv) {
+        const char *thm = nb == 2 ? "S" : "V";
+        fprintf(out, "    %s-theorem in the simplex %s, %s", thm, a[0].name,
+                a[1].name);
+        for (slong j = 2; j < s->nargs; j++)
+            if (j != s->sv_w)
+                fprintf(out, ", %s", a[j].name);
+        fprintf(out, ":  %s = ", a[s->sv_w].name);
+        for (slong k = 0, j = 0; k < n; k++, j++) {
+            if (j == s->sv_w)
+                j++;
+            coord_name(cn, sizeof cn, k, n);
+            fprintf(out, "%s%s*", k ? " + " : "", cn);
+            text_factor(out, a[j].name);
+        }
+        fputs("\n       ", out);
+        for (slong k = 0; k < n; k++) {
+            char *v = scalar_str(d, s->sv_coord + k, FMT_TEXT);
+            coord_name(cn, sizeof cn, k, n);
+            fprintf(out, "%s %s = %s", k ? "," : "", cn, v);
+            free(v);
+        }
+        /* det[a, b, c..; 1 - lambda, lambda, 0..; unit rows] */
+        fputs("\n    det[", out);
+        for (slong k = 0; k < n; k++) {
+            coord_name(cn, sizeof cn, k, n);
+            fprintf(out, "%s%s", k ? ", " : "", cn);
+        }
+        fputs("; 1 - lambda, lambda", out);
+        for (slong k = 2; k < n; k++)
+            fputs(", 0", out);
+        for (slong r = 2; r < n; r++) {
+            fputs(";", out);
+            for (slong k = 0; k < n; k++)
+                fprintf(out, "%s%d", k ? ", " : " ", k == r);
+        }
+        fputs("] = (1 - lambda)*b - lambda*a = 0\n", out);
+        char *det = scalar_str(d, s->det, FMT_TEXT);
+        fprintf(out, "    a + b = %s    (zero: the %s parallel)\n", det,
+                nb == 2 ? "lines are" : "line and the plane are");
+        free(det);
+    }
+    if (s->nparams > 0) {
+        char *l = scalar_str(d, s->params, FMT_TEXT);
+        fprintf(out, "    lambda = %s%s,  %s = ", s->has_sv ? "b/(a + b) = " : "",
+                l, M);
+        free(l);
+        text_factor(out, a[0].name);
+        fputs(" + (", out);
+        fprintf(out, "%s - %s)*lambda\n", a[1].name, a[0].name);
+        for (slong j = 1; j < s->nparams; j++) {
+            char *m = scalar_str(d, s->params + j, FMT_TEXT);
+            fprintf(out, "    mu%s = %s,", s->nparams > 2 ? (j == 1 ? "1" : "2") : "",
+                    m);
+            free(m);
+        }
+        fprintf(out, "  %s = ", M);
+        text_factor(out, a[s->nfirst].name);
+        for (slong j = 1; j < s->nparams; j++)
+            fprintf(out, " + (%s - %s)*mu%s", a[s->nfirst + j].name,
+                    a[s->nfirst].name,
+                    s->nparams > 2 ? (j == 1 ? "1" : "2") : "");
+        fputs("\n", out);
+    }
+}
+
+static void text_steps(FILE *out, const Derived *d, slong origin)
+{
+    const char *solve = NULL;
+    for (slong i = 0; i < d->nsteps; i++) {
+        const DerivedStep *s = &d->steps[i];
+        if (s->op == STEP_SOLVE) {
+            if (!solve || strcmp(solve, s->expr) != 0)
+                fprintf(out, "%s\n", s->expr);
+            solve = s->expr;
+            fprintf(out, "    %s = ", s->value.name);
+            if (s->pending)
+                fputs("(holds an unknown that no solve determines)\n", out);
+            else {
+                text_value(out, d, &s->value, origin);
+                fputs("\n", out);
+            }
+            continue;
+        }
+        solve = NULL;
+        fprintf(out, "%s = %s", s->value.name, s->expr);
+        if (s->pending) {
+            fputs("  =  (holds an unknown that no solve determines)\n", out);
+            continue;
+        }
+        if (s->op == STEP_MEET) {
+            fputs("\n", out);
+            text_meet(out, d, s);
+            fprintf(out, "    %s = ", s->value.name);
+        } else {
+            fputs("  =  ", out);
+        }
+        text_value(out, d, &s->value, origin);
+        fputs("\n", out);
+    }
+}
+
+/* ---- LaTeX --------------------------------------------------------------- */
+
+/* LaTeX for a name, by format.c's rule: greek words get a backslash; a
+ * lower-case stem followed by upper-case letters or digits, or the part
+ * after '_', is subscripted (pD -> p_{D}, A1 -> A_{1}, M_CB -> M_{CB}) */
+static void latex_name(FILE *out, const char *name)
+{
+    static const char *const greek[] = {
+        "alpha", "beta",  "gamma", "delta", "epsilon", "zeta",   "eta",
+        "theta", "iota",  "kappa", "lambda", "mu",     "nu",     "xi",
+        "pi",    "rho",   "sigma", "tau",   "upsilon", "phi",    "chi",
+        "psi",   "omega", "Gamma", "Delta", "Theta",   "Lambda", "Xi",
+        "Pi",    "Sigma", "Phi",   "Psi",   "Omega",
+    };
+    size_t n = strlen(name), stem = 0;
+    while (stem < n && isalpha((unsigned char)name[stem]) &&
+           (stem == 0 || islower((unsigned char)name[stem])))
+        stem++;
+    const char *under = strchr(name, '_');
+    if (under && under != name)
+        stem = (size_t)(under - name);
+    for (size_t g = 0; g < sizeof greek / sizeof greek[0]; g++)
+        if (strlen(greek[g]) == stem && strncmp(greek[g], name, stem) == 0) {
+            fputc('\\', out);
+            break;
+        }
+    fprintf(out, "%.*s", (int)stem, name);
+    if (stem < n)
+        fprintf(out, "_{%s}", name + stem + (name[stem] == '_'));
+}
+
+/* source text in \texttt{}, with TeX's special characters escaped */
+static void latex_source(FILE *out, const char *s)
+{
+    fputs("\\texttt{", out);
+    for (; *s; s++) {
+        switch (*s) {
+        case '_': case '#': case '%': case '&': case '$': case '{': case '}':
+            fprintf(out, "\\%c", *s);
+            break;
+        case '^':
+            fputs("\\^{}", out);
+            break;
+        case '~':
+            fputs("\\~{}", out);
+            break;
+        case '\\':
+            fputs("\\textbackslash{}", out);
+            break;
+        case '\n':
+        case '\r':
+        case '\t':
+            fputc(' ', out);
+            break;
+        default:
+            fputc(*s, out);
+        }
+    }
+    fputs("}", out);
+}
+
+/* an argument in a product: its name, or its source text in parentheses */
+static void latex_factor(FILE *out, const char *name)
+{
+    if (is_identifier(name)) {
+        latex_name(out, name);
+    } else {
+        fputs("\\left(", out);
+        latex_source(out, name);
+        fputs("\\right)", out);
+    }
+}
+
+static void latex_value(FILE *out, const Derived *d, const DerivedOutput *o,
+                        slong origin)
+{
+    char *v = format_output_rhs(d, o, FMT_LATEX, origin);
+    fputs(v, out);
+    free(v);
+    if (o->kind == KIND_VECTOR)
+        fputs(" \\quad \\text{(vector)}", out);
+}
+
+static void latex_coord_name(FILE *out, slong k, slong n)
+{
+    if (k < 2)
+        fputc('a' + (int)k, out);
+    else if (n == 3)
+        fputc('c', out);
+    else
+        fprintf(out, "c_{%ld}", (long)(k - 1));
+}
+
+static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
+{
+    const char *M = s->value.name;
+    const DerivedOutput *a = s->args;
+    slong nb = s->nargs - s->nfirst, n = nb + 1;
+    if (s->has_sv) {
+        fprintf(out, "  &\\quad \\text{%s-theorem in the simplex } ",
+                nb == 2 ? "S" : "V");
+        for (slong j = 0, k = 0; j < s->nargs; j++)
+            if (j != s->sv_w) {
+                fputs(k++ ? ", " : "", out);
+                latex_factor(out, a[j].name);
+            }
+        fputs(":\\quad ", out);
+        latex_factor(out, a[s->sv_w].name);
+        fputs(" = ", out);
+        for (slong k = 0, j = 0; k < n; k++, j++) {
+            if (j == s->sv_w)
+                j++;
+            fputs(k ? " + " : "", out);
+            latex_coord_name(out, k, n);
+            fputs(" ", out);
+            latex_factor(out, a[j].name);
+        }
+        fputs(" \\\\\n", out);
+        for (slong k = 0; k < n; k++) {
+            char *v = scalar_str(d, s->sv_coord + k, FMT_LATEX);
+            fputs(k ? ",\\quad " : "  &\\quad ", out);
+            latex_coord_name(out, k, n);
+            fprintf(out, " = %s", v);
+            free(v);
+        }
+        fputs(" \\\\\n  &\\quad \\begin{vmatrix} ", out);
+        for (slong k = 0; k < n; k++) {
+            fputs(k ? " & " : "", out);
+            latex_coord_name(out, k, n);
+        }
+        fputs(" \\\\ 1 - \\lambda & \\lambda", out);
+        for (slong k = 2; k < n; k++)
+            fputs(" & 0", out);
+        for (slong r = 2; r < n; r++) {
+            fputs(" \\\\ ", out);
+            for (slong k = 0; k < n; k++)
+                fprintf(out, "%s%d", k ? " & " : "", k == r);
+        }
+        char *det = scalar_str(d, s->det, FMT_LATEX);
+        char *l = scalar_str(d, s->params, FMT_LATEX);
+        fprintf(out,
+                " \\end{vmatrix} = 0 \\;\\Rightarrow\\; \\lambda = "
+                "\\frac{b}{a + b} = %s,\\quad a + b = %s \\\\\n",
+                l, det);
+        free(l);
+        free(det);
+    } else if (s->nparams > 0) {
+        char *l = scalar_str(d, s->params, FMT_LATEX);
+        fprintf(out, "  &\\quad \\lambda = %s \\\\\n", l);
+        free(l);
+    }
+    if (s->nparams > 0) {
+        fputs("  &\\quad ", out);
+        latex_name(out, M);
+        fputs(" = ", out);
+        latex_factor(out, a[0].name);
+        fputs(" + \\left(", out);
+        latex_factor(out, a[1].name);
+        fputs(" - ", out);
+        latex_factor(out, a[0].name);
+        fputs("\\right) \\lambda = ", out);
+        latex_factor(out, a[s->nfirst].name);
+        for (slong j = 1; j < s->nparams; j++) {
+            fputs(" + \\left(", out);
+            latex_factor(out, a[s->nfirst + j].name);
+            fputs(" - ", out);
+            latex_factor(out, a[s->nfirst].name);
+            fprintf(out, "\\right) \\mu%s",
+                    s->nparams > 2 ? (j == 1 ? "_1" : "_2") : "");
+        }
+        for (slong j = 1; j < s->nparams; j++) {
+            char *m = scalar_str(d, s->params + j, FMT_LATEX);
+            fprintf(out, ",\\quad \\mu%s = %s",
+                    s->nparams > 2 ? (j == 1 ? "_1" : "_2") : "", m);
+            free(m);
+        }
+        fputs(" \\\\\n", out);
+    }
+}
+
+static void latex_steps(FILE *out, const Derived *d, slong origin)
+{
+    const char *solve = NULL;
+    fputs("\\begin{align*}\n", out);
+    for (slong i = 0; i < d->nsteps; i++) {
+        const DerivedStep *s = &d->steps[i];
+        if (s->op == STEP_SOLVE && (!solve || strcmp(solve, s->expr) != 0)) {
+            fputs("  & ", out);
+            latex_source(out, s->expr);
+            fputs(" \\\\\n", out);
+        }
+        solve = s->op == STEP_SOLVE ? s->expr : NULL;
+        fputs("  ", out);
+        latex_name(out, s->value.name);
+        fputs(" &= ", out);
+        if (s->op != STEP_SOLVE) {
+            latex_source(out, s->expr);
+            if (s->op == STEP_MEET && !s->pending) {
+                fputs(" \\\\\n", out);
+                latex_meet(out, d, s);
+                fputs("  &= ", out);
+            } else {
+                fputs(" = ", out);
+            }
+        }
+        if (s->pending)
+            fputs("\\text{(holds an unknown that no solve determines)}", out);
+        else
+            latex_value(out, d, &s->value, origin);
+        fputs(i + 1 < d->nsteps ? " \\\\\n" : "\n", out);
+    }
+    fputs("\\end{align*}\n", out);
+}
+
+/* ---- JSON ---------------------------------------------------------------- */
+
+static void json_string(FILE *out, const char *s)
+{
+    fputc('"', out);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(out, "\\%c", c);
+        else if (c < 0x20 || c == 0x7f)
+            fprintf(out, "\\u%04x", c);
+        else
+            fputc(c, out);
+    }
+    fputc('"', out);
+}
+
+static void json_ratfun(FILE *out, const Derived *d, const RatFun x)
+{
+    char *s = format_weight(x, &d->ring);
+    json_string(out, s);
+    free(s);
+}
+
+static const char *kind_name(Kind k)
+{
+    return k == KIND_POINT ? "point" : k == KIND_VECTOR ? "vector" : "scalar";
+}
+
+/* "kind": .., "terms": {..} or "value": ".." (contract section 4's form) */
+static void json_value(FILE *out, const Derived *d, const DerivedOutput *o)
+{
+    fprintf(out, "\"kind\": \"%s\", ", kind_name(o->kind));
+    if (o->kind == KIND_SCALAR) {
+        fputs("\"value\": ", out);
+        json_ratfun(out, d, o->scalar);
+        return;
+    }
+    fputs("\"terms\": {", out);
+    for (slong k = 0; k < o->eq->len; k++) {
+        fputs(k ? ", " : "", out);
+        json_string(out, d->points[o->eq->terms[k].point]);
+        fputs(": ", out);
+        json_ratfun(out, d, &o->w[k]);
+    }
+    fputs("}", out);
+}
+
+static const char *op_name(StepOp op)
+{
+    switch (op) {
+    case STEP_ALONG: return "along";
+    case STEP_DIVIDE: return "divide";
+    case STEP_MEET: return "meet";
+    case STEP_SUBST: return "subst";
+    case STEP_DIFF: return "diff";
+    case STEP_BEZIER: return "bezier";
+    case STEP_SOLVE: return "solve";
+    case STEP_EXPR: break;
+    }
+    return "expr";
+}
+
+static void json_step(FILE *out, const Derived *d, const DerivedStep *s)
+{
+    fputs("{\"name\": ", out);
+    json_string(out, s->value.name);
+    fprintf(out, ", \"line\": %d, \"op\": \"%s\", \"expr\": ", s->value.line,
+            op_name(s->op));
+    json_string(out, s->expr);
+    fputs(", ", out);
+    if (s->pending) {
+        fputs("\"pending\": true}", out);
+        return;
+    }
+    json_value(out, d, &s->value);
+    if (s->nargs > 0) {
+        fputs(", \"args\": [", out);
+        for (slong k = 0; k < s->nargs; k++) {
+            fputs(k ? ", {\"name\": " : "{\"name\": ", out);
+            json_string(out, s->args[k].name);
+            fputs(", ", out);
+            json_value(out, d, &s->args[k]);
+            fputs("}", out);
+        }
+        fputs("]", out);
+    }
+    if (s->op == STEP_ALONG || s->op == STEP_DIVIDE || s->op == STEP_BEZIER ||
+        (s->op == STEP_SUBST && s->nargs == 0)) {
+        fputs(s->op == STEP_SUBST ? ", \"by\": " : ", \"ratio\": ", out);
+        json_ratfun(out, d, s->scalar);
+    }
+    if (s->var) {
+        fputs(", \"var\": ", out);
+        json_string(out, s->var);
+    }
+    if (s->op == STEP_DIFF)
+        fprintf(out, ", \"order\": %ld", s->order);
+    if (s->nparams > 0) {
+        fputs(", \"lambda\": ", out);
+        json_ratfun(out, d, s->params);
+        fputs(", \"mu\": [", out);
+        for (slong j = 1; j < s->nparams; j++) {
+            fputs(j > 1 ? ", " : "", out);
+            json_ratfun(out, d, s->params + j);
+        }
+        fputs("]", out);
+    }
+    if (s->has_sv) {
+        fputs(", \"simplex\": [", out);
+        for (slong j = 0, k = 0; j < s->nargs; j++)
+            if (j != s->sv_w) {
+                fputs(k++ ? ", " : "", out);
+                json_string(out, s->args[j].name);
+            }
+        fputs("], \"w\": ", out);
+        json_string(out, s->args[s->sv_w].name);
+        fputs(", \"coords\": [", out);
+        for (slong k = 0; k <= s->nparams; k++) {
+            fputs(k ? ", " : "", out);
+            json_ratfun(out, d, s->sv_coord + k);
+        }
+        fputs("], \"det\": ", out);
+        json_ratfun(out, d, s->det);
+    }
+    fputs("}", out);
+}
+
+/* derive's JSON object (format_derived) with "steps" added before its
+ * closing brace */
+static void json_steps(FILE *out, const Derived *d)
+{
+    char *obj = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&obj, &len);
+    if (!mem)
+        pc_out_of_memory(MEM_SYSTEM);
+    format_derived(mem, d, FMT_JSON, -1);
+    if (fclose(mem) != 0 || !obj)
+        pc_out_of_memory(MEM_SYSTEM);
+    while (len > 0 && (obj[len - 1] == '\n' || obj[len - 1] == '}'))
+        if (obj[--len] == '}')
+            break;
+    fwrite(obj, 1, len, out);
+    free(obj);
+    fputs(",\n \"steps\": [", out);
+    for (slong i = 0; i < d->nsteps; i++) {
+        fputs(i ? ",\n  " : "", out);
+        json_step(out, d, &d->steps[i]);
+    }
+    fputs("]}\n", out);
+}
+
+void steps_print(FILE *out, const Derived *d, FormatStyle st, slong origin)
+{
+    if (st == FMT_JSON)
+        json_steps(out, d);
+    else if (st == FMT_LATEX)
+        latex_steps(out, d, origin);
+    else
+        text_steps(out, d, origin);
+}
