@@ -31,8 +31,10 @@ const char plot_usage[] =
     "usage: pointcalc plot FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
     "                      [--param t=LO:HI[:N] | u=VALUE ...] "
     "[--output NAME[,NAME...]] ...\n"
-    "                      [-o OUT.svg] [--at-param t=VALUE] "
-    "[--view xy|xz|yz|iso|AZ,EL]\n"
+    "                      [-o OUT.svg] [--at-param t=VALUE [--aux "
+    "NAME[,NAME...]]]\n"
+    "                      [--view xy|xz|yz|iso|AZ,EL]"
+    "\n"
     "                      [--tangents SPEC] [--tangent-scale S] [--comb] "
     "[--comb-teeth N]\n"
     "                      [--comb-scale S] [--size W[xH]] "
@@ -64,6 +66,8 @@ typedef struct PlotArgs {
     Assign *at, *set, *param;
     Assign atp; // --at-param (name NULL: none)
     const char *view, *tangents, *window, *size;
+    char **aux; // --aux NAME[,NAME...]: the construction's points drawn
+    int naux, aux_given;
     double tangent_scale, comb_scale;
     int comb, teeth;
     long max_samples;
@@ -84,6 +88,9 @@ static void args_clear(PlotArgs *a)
     for (int i = 0; i < a->noutputs; i++)
         free(a->outputs[i]);
     free(a->outputs);
+    for (int i = 0; i < a->naux; i++)
+        free(a->aux[i]);
+    free(a->aux);
 }
 
 static int split_assign(Assign *x, const char *arg)
@@ -152,23 +159,34 @@ static int parse_args(PlotArgs *a, int argc, char **argv, FILE *err)
                 return usage_error(err,
                                    "--at-param expects PARAM=VALUE, found '%s'",
                                    v);
-        } else if (strcmp(o, "--output") == 0 && has) {
+        } else if ((strcmp(o, "--output") == 0 || strcmp(o, "--aux") == 0) &&
+                   has) {
+            /* repeatable, and comma-separated lists */
             const char *v = argv[++i];
-            for (const char *c = v;;) {
+            int out = o[2] == 'o';
+            char ***list = out ? &a->outputs : &a->aux;
+            int *n = out ? &a->noutputs : &a->naux;
+            a->aux_given |= !out;
+            for (const char *c = v; !out || *v;) {
                 const char *e = strchr(c, ',');
                 size_t len = e ? (size_t)(e - c) : strlen(c);
-                if (len == 0)
+                if (len == 0 && (out || *v))
                     return usage_error(err,
-                                       "--output '%s': expected output names "
-                                       "separated by commas",
-                                       v);
-                a->outputs = pc_xrealloc(a->outputs, sizeof *a->outputs *
-                                                         (size_t)(a->noutputs + 1));
-                a->outputs[a->noutputs++] = pc_xstrndup(c, len);
+                                       "%s '%s': expected names separated "
+                                       "by commas",
+                                       o, v);
+                if (len == 0) // --aux '': none
+                    break;
+                *list = pc_xrealloc(*list, sizeof **list * (size_t)(*n + 1));
+                (*list)[(*n)++] = pc_xstrndup(c, len);
                 if (!e)
                     break;
                 c = e + 1;
             }
+            if (out && !*v)
+                return usage_error(err,
+                                   "--output '': expected names separated "
+                                   "by commas");
         } else if (strcmp(o, "-o") == 0 && has) {
             a->opath = argv[++i];
         } else if (strcmp(o, "--view") == 0 && has) {
@@ -303,6 +321,9 @@ typedef struct Run {
     Plan *p;
     int nout;      // the scheme's outputs: plan outputs 0..nout-1
     int *range_o;  // per param: plan output of lo (hi = lo + 1), or -1
+    int *step_o;   // per step: plan output of its value, or -1
+    int *arg_o;    // per step: plan output of its first arg (the others
+                   // follow), or -1
     int nsel, *sel;
     int dim;
     double **pt;   // per base point (owned) or NULL
@@ -327,6 +348,8 @@ static void run_clear(Run *r)
             free(r->pt[i]);
     free(r->pt);
     free(r->range_o);
+    free(r->step_o);
+    free(r->arg_o);
     free(r->sel);
     free(r->consts);
     free(r->params);
@@ -335,14 +358,16 @@ static void run_clear(Run *r)
     derived_free(r->d);
 }
 
-/* Lowers the scheme's outputs and, as scalar outputs after them, the
- * declared ranges of its params. */
-static Plan *lower_with_ranges(Run *r, FILE *err)
+/* Lowers the scheme's outputs and after them, as further outputs, the
+ * declared ranges of its params (scalars) and the construction: every
+ * step's value and the points it was built from. */
+static Plan *lower_all(Run *r, FILE *err)
 {
     Derived *d = r->d;
-    slong n = d->noutputs;
-    DerivedOutput *all = pc_xcalloc((size_t)(n + 2 * d->nparams + 1),
-                                    sizeof *all);
+    slong n = d->noutputs, cap = n + 2 * d->nparams;
+    for (slong i = 0; i < d->nsteps; i++)
+        cap += 1 + d->steps[i].nargs;
+    DerivedOutput *all = pc_xcalloc((size_t)cap + 1, sizeof *all);
     memcpy(all, d->outputs, sizeof *all * (size_t)n);
     slong m = n;
     r->range_o = pc_xmalloc(sizeof *r->range_o * (size_t)(d->nparams + 1));
@@ -358,6 +383,19 @@ static Plan *lower_with_ranges(Run *r, FILE *err)
             o->scalar[0] = d->range[2 * i + k];
             o->line = 1;
         }
+    }
+    r->step_o = pc_xmalloc(sizeof *r->step_o * (size_t)(d->nsteps + 1));
+    r->arg_o = pc_xmalloc(sizeof *r->arg_o * (size_t)(d->nsteps + 1));
+    for (slong i = 0; i < d->nsteps; i++) {
+        const DerivedStep *st = &d->steps[i];
+        r->step_o[i] = r->arg_o[i] = -1;
+        if (st->pending || st->value.kind != KIND_POINT)
+            continue;
+        r->step_o[i] = (int)m;
+        all[m++] = st->value;
+        r->arg_o[i] = (int)m;
+        for (slong k = 0; k < st->nargs; k++)
+            all[m++] = st->args[k];
     }
     DerivedOutput *keep = d->outputs;
     d->outputs = all;
@@ -683,6 +721,157 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     return 0;
 }
 
+typedef struct Construction {
+    PlotMark *marks;
+    int nmarks;
+    PlotLine *lines;
+    int nlines;
+    double *xyz; // the marks' coordinates, dim each (owned)
+} Construction;
+
+static void construction_clear(Construction *c)
+{
+    free(c->marks);
+    free(c->lines);
+    free(c->xyz);
+}
+
+/* 1 when every base point plan output o reads is given */
+static int points_given(const Run *r, int o)
+{
+    for (int k = 0; k < r->p->npoints; k++)
+        if (!r->pt[k] && plan_output_uses_point(r->p, o, k))
+            return 0;
+    return 1;
+}
+
+static int find_mark(const Construction *c, const char *name)
+{
+    for (int i = 0; i < c->nmarks; i++)
+        if (c->marks[i].name && strcmp(c->marks[i].name, name) == 0)
+            return i;
+    return -1;
+}
+
+/* a mark at plan output o's value at --at-param; -1 when it is not
+ * drawable there */
+static int add_mark(Construction *c, const Run *r, const PlotEnv *env, int o,
+                    const char *name, PlotMarkKind kind, int curve)
+{
+    double *P = c->xyz + (size_t)c->nmarks * (size_t)r->dim;
+    if (!points_given(r, o) || plot_jet(env, o, r->at, P, NULL, NULL) != 0)
+        return -1;
+    PlotMark *m = &c->marks[c->nmarks];
+    m->name = name;
+    m->at = P;
+    m->kind = kind;
+    m->curve = curve;
+    return c->nmarks++;
+}
+
+static int construction(Construction *c, const Run *r, const PlotArgs *a,
+                        const PlotEnv *env, FILE *err)
+{
+    const Plan *p = r->p;
+    const Derived *d = r->d;
+    memset(c, 0, sizeof *c);
+    size_t cap = (size_t)p->npoints + (size_t)r->nsel + 1;
+    for (slong i = 0; i < d->nsteps; i++)
+        cap += 1 + (size_t)d->steps[i].nargs;
+    c->marks = pc_xcalloc(cap, sizeof *c->marks);
+    c->xyz = pc_xcalloc(cap * (size_t)r->dim, sizeof *c->xyz);
+    c->lines = pc_xcalloc(2 * (size_t)d->nsteps + 1, sizeof *c->lines);
+    /* --aux names point definitions */
+    for (int i = 0; i < a->naux; i++) {
+        int found = 0;
+        for (slong k = 0; k < d->nsteps && !found; k++)
+            found = r->step_o[k] >= 0 &&
+                    strcmp(d->steps[k].value.name, a->aux[i]) == 0;
+        if (!found)
+            return usage_error(err,
+                               "--aux '%s' is not a point definition of the "
+                               "scheme",
+                               a->aux[i]);
+    }
+    if (a->aux_given && !r->have_at)
+        return usage_error(err, "--aux needs --at-param %s=VALUE",
+                           p->params[r->sweep]);
+    for (int k = 0; k < p->npoints; k++)
+        if (r->pt[k]) {
+            PlotMark *m = &c->marks[c->nmarks++];
+            m->name = p->points[k];
+            m->at = r->pt[k];
+            m->kind = PLOT_BASE;
+            m->curve = -1;
+        }
+    if (!r->have_at)
+        return 0;
+    for (int j = 0; j < r->nsel; j++)
+        add_mark(c, r, env, r->sel[j], p->outputs[r->sel[j]].name,
+                 PLOT_CURRENT, j);
+    for (slong k = 0; k < d->nsteps; k++) {
+        const char *name = d->steps[k].value.name;
+        int want = !a->aux_given;
+        for (int i = 0; i < a->naux && !want; i++)
+            want = strcmp(a->aux[i], name) == 0;
+        if (r->step_o[k] < 0 || !want || find_mark(c, name) >= 0)
+            continue;
+        if (add_mark(c, r, env, r->step_o[k], name, PLOT_AUX, -1) < 0)
+            fprintf(err,
+                    "pointcalc: plot: %s is not drawn at %s=%.17g (%s)\n",
+                    name, p->params[r->sweep], r->at,
+                    points_given(r, r->step_o[k])
+                        ? "a pole, undefined or not finite there"
+                        : "it needs a base point not given with --at");
+    }
+    /* lines: along and divide (P, Q and the point), meet of two lines
+     * (each line with the point) */
+    for (slong k = 0; k < d->nsteps; k++) {
+        const DerivedStep *st = &d->steps[k];
+        int me = r->step_o[k] >= 0 ? find_mark(c, st->value.name) : -1;
+        if (me < 0)
+            continue;
+        int groups[2][2], ng = 0;
+        if ((st->op == STEP_ALONG || st->op == STEP_DIVIDE) && st->nargs == 2) {
+            groups[0][0] = 0;
+            groups[0][1] = 1;
+            ng = 1;
+        } else if (st->op == STEP_MEET && st->nfirst == 2) {
+            groups[ng][0] = 0;
+            groups[ng++][1] = 1;
+            if (st->nargs == 4) {
+                groups[ng][0] = 2;
+                groups[ng++][1] = 3;
+            }
+        }
+        for (int gi = 0; gi < ng; gi++) {
+            PlotLine *L = &c->lines[c->nlines];
+            L->n = 0;
+            for (int e = 0; e < 2; e++) {
+                const DerivedOutput *arg = &st->args[groups[gi][e]];
+                int mi = find_mark(c, arg->name);
+                if (mi < 0 && derived_find_point(d, arg->name) < 0 &&
+                    derived_find_output(d, arg->name) < 0) {
+                    /* an expression, not a name: an unlabelled point */
+                    int named = 0;
+                    for (slong q = 0; q < d->nsteps && !named; q++)
+                        named = strcmp(d->steps[q].value.name, arg->name) == 0;
+                    if (!named)
+                        mi = add_mark(c, r, env, r->arg_o[k] + groups[gi][e],
+                                      NULL, PLOT_AUX, -1);
+                }
+                if (mi >= 0)
+                    L->m[L->n++] = mi;
+            }
+            if (L->n == 2) {
+                L->m[L->n++] = me;
+                c->nlines++;
+            }
+        }
+    }
+    return 0;
+}
+
 int plot_main(int argc, char **argv, FILE *out, FILE *err)
 {
     PlotArgs a;
@@ -702,6 +891,7 @@ int plot_main(int argc, char **argv, FILE *out, FILE *err)
     memset(&r, 0, sizeof r);
     int bad_define = 0;
     DeriveOptions opt = derive_options_cli(&a.budget, err, &bad_define);
+    opt.keep_steps = a.atp.name != NULL; // the construction
     budget_arm(a.budget.max_seconds, a.budget.max_memory);
     r.d = derive_file_ex(a.file, err, NULL, &opt);
     if (!r.d) {
@@ -709,7 +899,7 @@ int plot_main(int argc, char **argv, FILE *out, FILE *err)
         args_clear(&a);
         return bad_define ? 2 : 1;
     }
-    r.p = lower_with_ranges(&r, err);
+    r.p = lower_all(&r, err);
     budget_disarm();
     if (!r.p) {
         run_clear(&r);
@@ -748,27 +938,19 @@ int plot_main(int argc, char **argv, FILE *out, FILE *err)
     s.width = r.width;
     s.height = r.height;
     s.window = r.has_window ? r.window : NULL;
-    /* marks: the base points given, the curves' points at --at-param */
-    int nm = 0;
-    PlotMark *marks = pc_xcalloc((size_t)(p->npoints + r.nsel) + 1,
-                                 sizeof *marks);
-    double *cur = pc_xcalloc((size_t)r.nsel * (size_t)r.dim + 1, sizeof *cur);
-    for (int k = 0; k < p->npoints; k++)
-        if (r.pt[k]) {
-            marks[nm].name = p->points[k];
-            marks[nm].at = r.pt[k];
-            marks[nm].kind = PLOT_BASE;
-            marks[nm++].curve = -1;
-        }
-    for (int j = 0; r.have_at && j < r.nsel; j++) {
-        double *P = cur + (size_t)j * (size_t)r.dim;
-        if (plot_jet(&s.env, r.sel[j], r.at, P, NULL, NULL) != 0)
-            continue;
-        marks[nm].name = p->outputs[r.sel[j]].name;
-        marks[nm].at = P;
-        marks[nm].kind = PLOT_CURRENT;
-        marks[nm++].curve = j;
+    /* marks: the base points given, the curves' points at --at-param, the
+     * construction's points there; its lines */
+    Construction c;
+    rc = construction(&c, &r, &a, &s.env, err);
+    if (rc) {
+        run_clear(&r);
+        args_clear(&a);
+        return rc;
     }
+    PlotMark *marks = c.marks;
+    int nm = c.nmarks;
+    s.lines = c.lines;
+    s.nlines = c.nlines;
     s.marks = marks;
     s.nmarks = nm;
     char *title = NULL;
@@ -797,8 +979,7 @@ int plot_main(int argc, char **argv, FILE *out, FILE *err)
                      "finite)\n");
     free(svg);
     free(title);
-    free(marks);
-    free(cur);
+    construction_clear(&c);
     run_clear(&r);
     args_clear(&a);
     return rc;

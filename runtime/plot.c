@@ -1148,6 +1148,10 @@ static void write_marks(const Fig *g, const PlotSpec *s, const double *mx,
         put_px(out, y);
         fprintf(out, "\" r=\"%s\" fill=\"%s\" stroke=\"#000\"/>",
                 m->kind == PLOT_BASE ? "3" : "2.5", fill);
+        if (!m->name) { // a point of the construction without a name
+            fputc('\n', out);
+            continue;
+        }
         fputs("<text x=\"", out);
         put_px(out, x + 5);
         fputs("\" y=\"", out);

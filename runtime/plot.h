@@ -115,7 +115,7 @@ int plot_curve_subpaths(const PlotCurve *c);
  * point) with its dim coordinates. */
 typedef enum PlotMarkKind { PLOT_BASE, PLOT_AUX, PLOT_CURRENT } PlotMarkKind;
 typedef struct PlotMark {
-    const char *name;
+    const char *name; // NULL: drawn without a label
     const double *at; // dim coordinates (borrowed)
     PlotMarkKind kind;
     int curve;        // PLOT_CURRENT: index into PlotSpec.curves
