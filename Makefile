@@ -108,6 +108,8 @@ valgrind: tests
 	  echo "== valgrind tests/cli_test.sh"; \
 	  PC_VALGRIND=1 PC_NOLEAK=$(B)/pointcalc-vg-noleak \
 	    tests/cli_test.sh $(B)/pointcalc-vg || fail=1; \
+	  echo "== valgrind tests/plot_test.sh"; \
+	  tests/plot_test.sh $(B)/pointcalc-vg || fail=1; \
 	  echo "== valgrind $(B)/examples/api_example"; \
 	  $(VALGRIND) $(B)/examples/api_example > $(B)/examples/api_example.vg.out && \
 	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.vg.out \

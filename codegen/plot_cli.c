@@ -943,6 +943,7 @@ int plot_main(int argc, char **argv, FILE *out, FILE *err)
     Construction c;
     rc = construction(&c, &r, &a, &s.env, err);
     if (rc) {
+        construction_clear(&c);
         run_clear(&r);
         args_clear(&a);
         return rc;
