@@ -40,6 +40,40 @@ const char plot_usage[] =
     "                      [--comb-scale S] [--size W[xH]] "
     "[--window X0,Y0,X1,Y1] [--max-samples N]\n";
 
+const char plot_help_text[] =
+    "\n"
+    "Draws the curves of the point outputs over the swept param's range as "
+    "SVG,\n"
+    "the base points labelled, and at --at-param the construction.\n"
+    "\n"
+    "  --at A=x,y,...      the coordinates of base point A (every point the "
+    "same\n"
+    "                      dimension; 3 and more are projected, see --view)\n"
+    "  --set k=VALUE       the value of const k\n"
+    "  --param t=LO:HI[:N] the swept param and its range (default: the range "
+    "the\n"
+    "                      scheme declares; N initial segments, default 64)\n"
+    "  --param u=VALUE     the value of a param that is not swept\n"
+    "  --output NAMES      which point outputs, repeatable or comma-separated "
+    "(default:\n"
+    "                      all)\n"
+    "  -o OUT.svg          write the SVG there (default: stdout)\n"
+    "  --at-param t=VALUE  draw the construction there: its points and "
+    "lines\n"
+    "  --aux NAMES         which of its points (default: every point "
+    "definition)\n"
+    "  --view V            xy, xz, yz, iso (default in 3D) or "
+    "AZIMUTH,ELEVATION\n"
+    "  --tangents SPEC     tangent vectors dM/dt at these param values\n"
+    "  --tangent-scale S   drawn as S*dM/dt (default 1)\n"
+    "  --comb              the curvature comb (--comb-teeth N, default 100; "
+    "--comb-scale S)\n"
+    "  --size W[xH]        pixels (default 720 wide)\n"
+    "  --window X0,Y0,X1,Y1  the window in projected coordinates (default: "
+    "fitted)\n"
+    "  --max-samples N     the sample budget per curve (default 4000)\n"
+    "\nPoles are cut, never joined (docs/plot.md).\n";
+
 static int usage_error(FILE *err, const char *fmt, ...) PC_PRINTF(2, 3);
 static int usage_error(FILE *err, const char *fmt, ...)
 {

@@ -10,6 +10,7 @@
 #include <stdio.h>
 
 extern const char plot_usage[];
+extern const char plot_help_text[]; // the options, after the usage
 int plot_main(int argc, char **argv, FILE *out, FILE *err);
 
 #endif

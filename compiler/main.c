@@ -31,7 +31,10 @@ static const char usage[] =
     "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
     "                        --param t=SPEC ... [--output NAME[,NAME...]] "
     "[--format csv|json]\n"
-    "       pointcalc help [derive|emit-c|eval] | CMD --help | --version\n"
+    "       pointcalc plot   FILE --at A=x,y[,z...] ... [--output NAME,...] "
+    "[-o OUT.svg]\n"
+    "                        [--at-param t=VALUE] ...   (pointcalc help plot)\n"
+    "       pointcalc help [derive|emit-c|eval|plot] | CMD --help | --version\n"
     "\n"
     "\n"
     "Every command also takes --max-seconds S and --max-memory SIZE (the\n"
@@ -114,12 +117,23 @@ static const char eval_help[] =
     "\nA sample at a pole or not finite is NaN in the output and makes the\n"
     "exit status 1 (docs/eval.md).\n" COMMON_HELP;
 
+/* plot's: its usage and options (codegen/plot_cli.c), the common ones */
+static const char *plot_help(void)
+{
+    static char buf[8192];
+    if (!buf[0])
+        snprintf(buf, sizeof buf, "%s%s%s", plot_usage, plot_help_text,
+                 COMMON_HELP);
+    return buf;
+}
+
 /* the help of command cmd, or NULL */
 static const char *command_help(const char *cmd)
 {
     return strcmp(cmd, "derive") == 0   ? derive_help
            : strcmp(cmd, "emit-c") == 0 ? emit_help
            : strcmp(cmd, "eval") == 0   ? eval_help
+           : strcmp(cmd, "plot") == 0   ? plot_help()
                                         : NULL;
 }
 
@@ -226,8 +240,8 @@ int main(int argc, char **argv)
         const char *h = argc == 3 ? command_help(argv[2]) : usage;
         if (!h) {
             fprintf(stderr,
-                    "pointcalc: no help on '%s'; expected derive, emit-c or "
-                    "eval\n",
+                    "pointcalc: no help on '%s'; expected derive, emit-c, "
+                    "eval or plot\n",
                     argv[2]);
             return 2;
         }
