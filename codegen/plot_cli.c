@@ -633,17 +633,21 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     }
     if (!rc && r->sweep < 0) {
         /* the one param not given a value */
+        int nfree = 0;
+        char **free_names = pc_xmalloc(sizeof *free_names *
+                                       (size_t)(p->nparams + 1));
         for (int k = 0; k < p->nparams; k++)
             if (!pseen[k]) {
-                if (r->sweep >= 0) {
-                    rc = usage_error(err,
-                                     "missing --param %s: give every param "
-                                     "but the swept one a value",
-                                     p->params[k]);
-                    break;
-                }
+                free_names[nfree++] = p->params[k];
                 r->sweep = k;
             }
+        if (nfree > 1)
+            rc = usage_error(err,
+                             "params %s have no value: one is swept (give "
+                             "it as --param NAME=LO:HI, or leave only it "
+                             "out), the others need --param NAME=VALUE",
+                             name_list(free_names, nfree, list, sizeof list));
+        free(free_names);
         if (!rc && r->sweep < 0)
             rc = usage_error(err,
                              p->nparams == 0
@@ -724,7 +728,8 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     if (a->window) {
         double *v = NULL;
         long n = sample_numbers(a->window, &v);
-        int ok = n == 4 && v[0] < v[2] && v[1] < v[3];
+        int ok = n == 4 && v[0] < v[2] && v[1] < v[3] &&
+                 isfinite(v[2] - v[0]) && isfinite(v[3] - v[1]);
         if (ok)
             memcpy(r->window, v, sizeof r->window);
         free(v);

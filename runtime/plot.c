@@ -344,6 +344,12 @@ static void sampler_run(Sampler *S, const PlotCurve *c, size_t n,
     }
 }
 
+/* lo + (hi - lo) s without overflow for any finite lo, hi */
+static double mix(double lo, double hi, double s)
+{
+    return lo * (1 - s) + hi * s;
+}
+
 static void curve_alloc(PlotCurve *c, size_t n)
 {
     c->t = pc_xrealloc(c->t, sizeof *c->t * (n + 1));
@@ -369,7 +375,7 @@ void plot_curve_init(PlotCurve *c, const PlotEnv *env, int o, double lo,
     for (size_t i = 0; i < n; i++)
         c->t[i] = i == 0       ? lo
                   : i == n - 1 ? hi
-                               : lo + (hi - lo) * ((double)i / (double)n0);
+                               : mix(lo, hi, (double)i / (double)n0);
     sampler_run(&S, c, n, c->t, c->x, c->y, c->ok, c->fac);
     memset(c->cut, 0, n);
     c->n = n;
@@ -467,7 +473,7 @@ void plot_curve_refine(PlotCurve *c, const PlotEnv *env, const PlotView *view,
         size_t m = 0;
         for (size_t i = 0; i + 1 < n; i++)
             if (pend[i]) {
-                double t = c->t[i] + (c->t[i + 1] - c->t[i]) / 2;
+                double t = mix(c->t[i], c->t[i + 1], 0.5);
                 if (m >= budget || !(t > c->t[i] && t < c->t[i + 1]) ||
                     (c->t[i] > c->t[i + 1])) {
                     pend[i] = 0; // no room, or no double in between
@@ -485,7 +491,7 @@ void plot_curve_refine(PlotCurve *c, const PlotEnv *env, const PlotView *view,
         size_t k = 0;
         for (size_t i = 0; i + 1 < n; i++)
             if (pend[i])
-                mt[k++] = c->t[i] + (c->t[i + 1] - c->t[i]) / 2;
+                mt[k++] = mix(c->t[i], c->t[i + 1], 0.5);
         sampler_run(&S, c, m, mt, mx, my, mok, mf);
         budget -= m;
         /* merge */
@@ -698,6 +704,11 @@ static void fit_box(double *box, const PlotSpec *s, const PlotCurve *cv,
         return;
     }
     double dc = box_diag(C), df = box_diag(F);
+    if (!isfinite(dc)) { // coordinates beyond half the double range
+        box[0] = box[1] = -1;
+        box[2] = box[3] = 1;
+        return;
+    }
     if (!(df <= 8 * dc) && dc > 0) {
         double w = C[2] - C[0], h = C[3] - C[1];
         memcpy(box, C, sizeof C);
@@ -725,6 +736,11 @@ static void fit_box(double *box, const PlotSpec *s, const PlotCurve *cv,
     }
     w = box[2] - box[0];
     h = box[3] - box[1];
+    if (!(isfinite(w) && isfinite(h) && w > 0 && h > 0)) {
+        box[0] = box[1] = -1;
+        box[2] = box[3] = 1;
+        return;
+    }
     box[0] -= 0.06 * w;
     box[2] += 0.06 * w;
     box[1] -= 0.06 * h;
@@ -1011,7 +1027,7 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
         double kmax[2] = {0, 0};
         size_t nk = 0;
         for (int i = 0; i <= n; i++) {
-            double t = n == 0 ? s->lo : s->lo + (s->hi - s->lo) * i / n;
+            double t = n == 0 ? s->lo : mix(s->lo, s->hi, (double)i / n);
             double p[3][2];
             ok[i] = (unsigned char)jet_at(J, s->curves[k], t, p);
             for (int f = 0; f < nf; f++)
@@ -1178,18 +1194,32 @@ int plot_svg(FILE *out, const PlotSpec *s, PlotStats *st)
     }
     for (int i = 0; i < s->nmarks; i++)
         plot_project(&s->view, s->marks[i].at, env->dim, &mx[i], &my[i]);
+    /* the budget: per curve, and PLOT_TOTAL_SAMPLES for all of them */
+    PlotLimits lim = s->lim;
+    if (nc > 0 && lim.max_samples > PLOT_TOTAL_SAMPLES / (size_t)nc)
+        lim.max_samples = PLOT_TOTAL_SAMPLES / (size_t)nc;
+    if (lim.max_samples < 2)
+        lim.max_samples = 2;
+    if (lim.initial < 1)
+        lim.initial = 1;
+    if ((size_t)lim.initial + 1 > lim.max_samples)
+        lim.initial = (int)(lim.max_samples - 1);
+    if (lim.max_depth > 60)
+        lim.max_depth = 60;
     for (int k = 0; k < nc; k++)
         plot_curve_init(&cv[k], env, s->curves[k], s->lo, s->hi, &s->view,
-                        &s->lim);
+                        &lim);
     double box[4];
-    if (s->window)
-        memcpy(box, s->window, sizeof box);
+    const double *W = s->window;
+    if (W && W[0] < W[2] && W[1] < W[3] && isfinite(W[2] - W[0]) &&
+        isfinite(W[3] - W[1]))
+        memcpy(box, W, sizeof box);
     else
         fit_box(box, s, cv, mx, my);
     st->evals = 0;
     for (int k = 0; k < nc; k++) {
         st->evals += cv[k].n;
-        plot_curve_refine(&cv[k], env, &s->view, box, &s->lim);
+        plot_curve_refine(&cv[k], env, &s->view, box, &lim);
     }
     /* the canvas */
     Fig g;
@@ -1217,8 +1247,8 @@ int plot_svg(FILE *out, const PlotSpec *s, PlotStats *st)
     double maxabs = fmax(fmax(fabs(g.clipw[0]), fabs(g.clipw[2])),
                          fmax(fabs(g.clipw[1]), fabs(g.clipw[3])));
     double res = 0.02 / g.s; // a fiftieth of a pixel
-    int digits = (int)ceil(log10(maxabs / res));
-    g.digits = digits < 4 ? 4 : digits > 17 ? 17 : digits;
+    double lg = ceil(log10(maxabs / res));
+    g.digits = !(lg >= 4) ? 4 : !(lg <= 17) ? 17 : (int)lg;
     memcpy(st->box, box, sizeof box);
     st->digits = g.digits;
 

@@ -44,6 +44,7 @@ enum {
     PLOT_MAX_DEPTH = 16,      // bisections of one initial segment
     PLOT_MAX_SAMPLES = 4000,  // default budget per curve
     PLOT_SAMPLES_LIMIT = 1000000, // the largest budget accepted
+    PLOT_TOTAL_SAMPLES = 2000000, // all curves of a figure together
     PLOT_MAX_TEETH = 10000,   // comb teeth
     PLOT_MAX_TANGENTS = 1000, // tangent param values
 };
