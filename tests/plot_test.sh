@@ -142,6 +142,11 @@ usage "unknown or incomplete option '--bogus'" examples/desargues_arc.pcs $DES -
 usage "plot needs a scheme FILE" $DES
 printf 'point A, B\nparam t\nM = along(A, B, t)\n' >"$T/norange.pcs"
 usage "missing --param t=LO:HI: the scheme declares no range for t" "$T/norange.pcs" --at A=0,0 --at B=1,1
+usage "params du, dv, t have no value" examples/contour_arc_general.pcs \
+    --at A1=0,0 --at A2=4,0 --at A3=1,3 --param u=0.3 --param v=0.5
+usage "--param u=0.3:0.5: only one param is swept (t is already a range)" \
+    examples/contour_arc_general.pcs --at A1=0,0 --at A2=4,0 --at A3=1,3 \
+    --param t=0:1 --param u=0.3:0.5 --param v=0.5 --param du=0 --param dv=0
 usage "missing --set k=VALUE" examples/conic_engineering_discriminant.pcs --at A=0,0 --at B=6,0 --at C=2,4
 
 # a scheme error: exit 1, nothing written

@@ -451,6 +451,47 @@ static void test_plot_budget(void **state)
     fix_clear(&f);
 }
 
+/* a domain: sqrt(1 - t^2) over [-2, 2] is drawn on [-1, 1] only, its ends
+ * located by bisection; a jump (sign) is cut */
+static void test_plot_domain_and_jump(void **state)
+{
+    (void)state;
+    static const char text[] = "point A, B, C\nparam t in [-2, 2]\n"
+                               "M = A + (B - A)*t + (C - A)*sqrt(1 - t^2)\n"
+                               "N = A + (B - A)*t + (C - A)*sign(t - 1/3)\n"
+                               "output M, N\n";
+    static const double pts[] = {0, 0, 1, 0, 0, 1};
+    Fix f;
+    fix_init(&f, text, 2, pts);
+    PlotLimits lim;
+    plot_limits_default(&lim);
+    PlotView v;
+    plot_view_default(&v, 2);
+    double box[4] = {-2, -1.5, 2, 1.5};
+    PlotCurve c;
+    plot_curve_init(&c, &f.env, 0, -2, 2, &v, &lim);
+    plot_curve_refine(&c, &f.env, &v, box, &lim);
+    assert_int_equal(plot_curve_subpaths(&c), 1);
+    double lo = 2, hi = -2;
+    for (size_t i = 0; i < c.n; i++)
+        if (c.ok[i]) {
+            lo = fmin(lo, c.t[i]);
+            hi = fmax(hi, c.t[i]);
+            assert_true(c.t[i] >= -1 && c.t[i] <= 1);
+            assert_true(fabs(hypot(c.x[i], c.y[i]) - 1) < 1e-12);
+        }
+    assert_true(lo < -1 + 1e-4 && hi > 1 - 1e-4);
+    plot_curve_clear(&c);
+    plot_curve_init(&c, &f.env, 1, -2, 2, &v, &lim);
+    plot_curve_refine(&c, &f.env, &v, box, &lim);
+    assert_int_equal(plot_curve_subpaths(&c), 2);
+    for (size_t i = 1; i < c.n; i++)
+        if (!c.cut[i]) /* no drawn segment joins y = -1 and y = 1 */
+            assert_true(fabs(c.y[i] - c.y[i - 1]) < 0.5);
+    plot_curve_clear(&c);
+    fix_clear(&f);
+}
+
 /* the forward-mode derivatives agree with the scheme's diff() */
 static void test_plot_jet_matches_diff(void **state)
 {
@@ -586,6 +627,7 @@ int main(void)
         cmocka_unit_test(test_plot_desargues_2d_path_is_eval),
         cmocka_unit_test(test_plot_pole_is_cut),
         cmocka_unit_test(test_plot_budget),
+        cmocka_unit_test(test_plot_domain_and_jump),
         cmocka_unit_test(test_plot_jet_matches_diff),
         cmocka_unit_test(test_plot_projection_3d),
         cmocka_unit_test(test_plot_everything_is_wellformed),
