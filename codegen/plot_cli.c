@@ -80,7 +80,7 @@ static int usage_error(FILE *err, const char *fmt, ...)
     va_list ap;
     fputs("pointcalc: ", err);
     va_start(ap, fmt);
-    vfprintf(err, fmt, ap);
+    pc_vfprintf(err, fmt, ap); /* numbers in the C locale */
     va_end(ap);
     fprintf(err, "\n%s", plot_usage);
     return 2;
@@ -856,7 +856,7 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
         if (r->step_o[k] < 0 || !want || find_mark(c, name) >= 0)
             continue;
         if (add_mark(c, r, env, r->step_o[k], name, PLOT_AUX, -1) < 0)
-            fprintf(err,
+            pc_fprintf(err,
                     "pointcalc: plot: %s is not drawn at %s=%.17g (%s)\n",
                     name, p->params[r->sweep], r->at,
                     points_given(r, r->step_o[k])
