@@ -21,7 +21,8 @@ ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) $(CFLAGS) $(SAN) \
 LDLIBS  = -lflint -lgmp -lm
 TEST_LDLIBS = -lcmocka $(LDLIBS)
 
-LIB_SRC = $(filter-out compiler/main.c,$(wildcard compiler/*.c)) \
+LIB_SRC = $(wildcard compiler/*.c) \
+          $(filter-out compiler/cli/main.c,$(wildcard compiler/cli/*.c)) \
           $(wildcard grammar/*.c) $(wildcard codegen/*.c) $(wildcard runtime/*.c)
 GEN_SRC = $(B)/grammar/parser.c $(B)/grammar/lexer.c
 LIB_OBJ = $(LIB_SRC:%.c=$(B)/%.o) $(GEN_SRC:.c=.o)
@@ -40,7 +41,7 @@ $(B)/grammar/lexer.c $(B)/grammar/lexer.h &: grammar/lexer.l $(B)/grammar/parser
 	$(FLEX) --header-file=$(B)/grammar/lexer.h -o $(B)/grammar/lexer.c $<
 
 # every object may include the generated headers
-$(LIB_SRC:%.c=$(B)/%.o) $(B)/compiler/main.o: $(B)/grammar/parser.h $(B)/grammar/lexer.h
+$(LIB_SRC:%.c=$(B)/%.o) $(B)/compiler/cli/main.o: $(B)/grammar/parser.h $(B)/grammar/lexer.h
 
 $(B)/%.o: %.c
 	@mkdir -p $(@D)
@@ -55,7 +56,7 @@ $(B)/libpointcalc.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(B)/pointcalc: $(B)/compiler/main.o $(B)/libpointcalc.a
+$(B)/pointcalc: $(B)/compiler/cli/main.o $(B)/libpointcalc.a
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDLIBS)
 
 $(B)/tests/%: tests/unit/%.c $(B)/libpointcalc.a

@@ -6,6 +6,7 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
+#include "compiler/format_json.h"
 #include "compiler/mem.h"
 
 /* ---- a growable string ---------------------------------------------- */
@@ -550,70 +551,11 @@ char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
     return buf_take(&b);
 }
 
-/* a JSON string: the scheme's name comes from a file name and may hold
- * anything ("a\"b.pcs"); identifiers and weights need no escapes */
-static void json_string(FILE *out, const char *s)
-{
-    fputc('"', out);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(out, "\\%c", c);
-        else if (c < 0x20 || c == 0x7f)
-            fprintf(out, "\\u%04x", c);
-        else
-            fputc(c, out);
-    }
-    fputc('"', out);
-}
-
-static void json_names(FILE *out, const char *key, char *const *names,
-                       slong n)
-{
-    fprintf(out, "\"%s\": [", key);
-    for (slong i = 0; i < n; i++)
-        fprintf(out, "%s\"%s\"", i ? "," : "", names[i]);
-    fputs("]", out);
-}
-
-static const char *kind_name(Kind k)
-{
-    return k == KIND_POINT ? "point" : k == KIND_VECTOR ? "vector" : "scalar";
-}
-
 void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)
 {
     const Ring *r = &d->ring;
     if (st == FMT_JSON) {
-        fputs("{\"scheme\": ", out);
-        json_string(out, d->scheme);
-        fputs(", ", out);
-        json_names(out, "points", d->points, d->npoints);
-        fputs(", ", out);
-        json_names(out, "params", d->params, d->nparams);
-        fputs(", ", out);
-        json_names(out, "consts", d->consts, d->nconsts);
-        fputs(",\n \"outputs\": [", out);
-        for (slong i = 0; i < d->noutputs; i++) {
-            const DerivedOutput *o = &d->outputs[i];
-            fprintf(out, "%s{\"name\": \"%s\", \"kind\": \"%s\", ",
-                    i ? ",\n  " : "", o->name, kind_name(o->kind));
-            if (o->kind == KIND_SCALAR) {
-                char *s = format_weight(o->scalar, r);
-                fprintf(out, "\"value\": \"%s\"}", s);
-                free(s);
-                continue;
-            }
-            fputs("\"terms\": {", out);
-            for (slong k = 0; k < o->eq->len; k++) {
-                char *s = format_weight(&o->w[k], r);
-                fprintf(out, "%s\"%s\": \"%s\"", k ? ", " : "",
-                        d->points[o->eq->terms[k].point], s);
-                free(s);
-            }
-            fputs("}}", out);
-        }
-        fputs("]}\n", out);
+        format_json(out, d);
         return;
     }
     for (slong i = 0; i < d->noutputs; i++) {

@@ -508,6 +508,27 @@ void plan_prune(Plan *p)
     p->hcap = 0;
 }
 
+void plan_keep_outputs(Plan *p, const int *sel, int n)
+{
+    PlanOutput *kept = pc_xcalloc((size_t)n + 1, sizeof *kept);
+    unsigned char *keep = pc_xcalloc((size_t)p->noutputs + 1, 1);
+    for (int i = 0; i < n; i++) {
+        kept[i] = p->outputs[sel[i]]; // its arrays move
+        keep[sel[i]] = 1;
+    }
+    for (int o = 0; o < p->noutputs; o++)
+        if (!keep[o]) {
+            free(p->outputs[o].name);
+            free(p->outputs[o].point);
+            free(p->outputs[o].reg);
+        }
+    free(keep);
+    free(p->outputs);
+    p->outputs = kept;
+    p->noutputs = n;
+    plan_prune(p);
+}
+
 int plan_find_output(const Plan *p, const char *name)
 {
     for (int i = 0; i < p->noutputs; i++)

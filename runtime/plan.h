@@ -232,6 +232,9 @@ int plan_peel(const Plan *p, int w, int *sign);
 
 /* Removes instructions no output needs and renumbers (keeps the order). */
 void plan_prune(Plan *p);
+/* Keeps only outputs sel[0..n-1] (distinct indices), in that order, and
+ * prunes what the others alone needed (emit-c --output). */
+void plan_keep_outputs(Plan *p, const int *sel, int n);
 
 /* live[i] = 1 for every instruction output `o` needs (all outputs: o < 0). */
 void plan_live(const Plan *p, int o, unsigned char *live);

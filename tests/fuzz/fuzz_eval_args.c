@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "codegen/cli.h"
+#include "compiler/cli/cli.h"
 #include "runtime/sample.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
@@ -53,7 +53,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (rows <= 1e4) {
         FILE *out = fopen("/dev/null", "w"), *err = fopen("/dev/null", "w");
         if (out != NULL && err != NULL) {
-            int rc = eval_main(argc, argv, out, err);
+            int rc = cli_eval(argc, argv, out, err);
             if (rc < 0 || rc > 2)
                 abort();
         }

@@ -28,10 +28,10 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "compiler/cli/table.h"
 #include "compiler/budget.h"
 #include "compiler/derive.h"
 #include "compiler/format.h"
-#include "runtime/output.h"
 #include "runtime/plan.h"
 #include "runtime/plot.h"
 #include "runtime/sample.h"
@@ -166,14 +166,14 @@ static char *numbers(void)
     size_t len = 0;
     FILE *m = open_memstream(&text, &len);
     for (size_t i = 0; i < sizeof v / sizeof v[0]; i++) {
-        output_number(m, v[i], OUTPUT_CSV);
+        table_number(m, v[i], TABLE_CSV);
         fputc(' ', m);
     }
     Spec s;
     char msg[128], buf[64];
     if (sample_parse(&s, "0.25:0.75:3", msg, sizeof msg) == 0) {
         for (size_t k = 0; k < s.n; k++)
-            output_number(m, sample_value(&s, k), OUTPUT_JSON);
+            table_number(m, sample_value(&s, k), TABLE_JSON);
         sample_clear(&s);
     } else {
         fputs(msg, m);

@@ -1,107 +1,54 @@
 /*
- * plot_cli.c - `pointcalc plot`: options, the scheme, and runtime/plot.c.
+ * plot.c - `pointcalc plot FILE --at A=x,y ... -o OUT.svg`: the curves of
+ * the point outputs as SVG, with the construction at --at-param
+ * (docs/plot.md; the drawing is runtime/plot.c).
  *
- *   derive_file -> (outputs + param ranges + construction steps) ->
- *   lower_derived -> plot_svg -> OUT.svg
+ *   cli_derive_file_ex (with the steps for --at-param) -> lower the
+ *   outputs, the params' declared ranges and the construction's points
+ *   -> checks against the plan -> plot_svg -> outfile_write
  *
  * Checks happen in eval's order: option syntax (exit 2), the scheme
  * (exit 1), names and values against the scheme (exit 2); only then is the
- * SVG written (atomically, when -o names a file).
+ * SVG written (whole or not at all, when -o names a file).
  */
-#include "codegen/plot_cli.h"
+#include "compiler/cli/cli.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "codegen/lower.h"
-#include "compiler/budget.h"
-#include "compiler/derive.h"
+#include "compiler/cli/args.h"
+#include "compiler/cli/outfile.h"
 #include "compiler/mem.h"
 #include "compiler/numfmt.h"
 #include "runtime/eval.h"
 #include "runtime/plot.h"
 #include "runtime/sample.h"
 
-const char plot_usage[] =
-    "usage: pointcalc plot FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"
-    "                      [--param t=LO:HI[:N] | u=VALUE ...] "
-    "[--output NAME[,NAME...]] ...\n"
-    "                      [-o OUT.svg] [--at-param t=VALUE [--aux "
-    "NAME[,NAME...]]]\n"
-    "                      [--view xy|xz|yz|iso|AZ,EL]"
-    "\n"
-    "                      [--tangents SPEC] [--tangent-scale S] [--comb] "
-    "[--comb-teeth N]\n"
-    "                      [--comb-scale S] [--size W[xH]] "
-    "[--window X0,Y0,X1,Y1] [--max-samples N]\n";
+static const char *usage; // help_usage("plot")
 
-const char plot_help_text[] =
-    "\n"
-    "Draws the curves of the point outputs over the swept param's range as "
-    "SVG,\n"
-    "the base points labelled, and at --at-param the construction.\n"
-    "\n"
-    "  --at A=x,y,...      the coordinates of base point A (every point the "
-    "same\n"
-    "                      dimension; 3 and more are projected, see --view)\n"
-    "  --set k=VALUE       the value of const k\n"
-    "  --param t=LO:HI[:N] the swept param and its range (default: the range "
-    "the\n"
-    "                      scheme declares; N initial segments, default 64)\n"
-    "  --param u=VALUE     the value of a param that is not swept\n"
-    "  --output NAMES      which point outputs, repeatable or comma-separated "
-    "(default:\n"
-    "                      all)\n"
-    "  -o OUT.svg          write the SVG there (default: stdout)\n"
-    "  --at-param t=VALUE  draw the construction there: its points and "
-    "lines\n"
-    "  --aux NAMES         which of its points (default: every point "
-    "definition)\n"
-    "  --view V            xy, xz, yz, iso (default in 3D) or "
-    "AZIMUTH,ELEVATION\n"
-    "  --tangents SPEC     tangent vectors dM/dt at these param values\n"
-    "  --tangent-scale S   drawn as S*dM/dt (default 1)\n"
-    "  --comb              the curvature comb (--comb-teeth N, default 100; "
-    "--comb-scale S)\n"
-    "  --size W[xH]        pixels (default 720 wide)\n"
-    "  --window X0,Y0,X1,Y1  the window in projected coordinates (default: "
-    "fitted)\n"
-    "  --max-samples N     the sample budget per curve (default 4000)\n"
-    "\nPoles are cut, never joined (docs/plot.md).\n";
-
+/* args_usage_error with the message formatted in the C locale */
 static int usage_error(FILE *err, const char *fmt, ...) PC_PRINTF(2, 3);
 static int usage_error(FILE *err, const char *fmt, ...)
 {
+    char msg[1024];
     va_list ap;
-    fputs("pointcalc: ", err);
     va_start(ap, fmt);
-    pc_vfprintf(err, fmt, ap); /* numbers in the C locale */
+    pc_vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    fprintf(err, "\n%s", plot_usage);
-    return 2;
+    return args_usage_error(err, usage, "%s", msg);
 }
 
-typedef struct Assign {
-    char *name;       // owned
-    const char *text; // after '=' (argv)
-} Assign;
-
 typedef struct PlotArgs {
-    BudgetOptions budget;
-    const char *file, *opath;
-    char **outputs;
-    int noutputs;
-    int nat, nset, nparam;
-    Assign *at, *set, *param;
-    Assign atp; // --at-param (name NULL: none)
+    EvalArgs ea;       // --at, --set, --param, --output (args.h)
+    const char *opath; // -o
+    Assign atp;        // --at-param (name NULL: none)
+    NameList aux;      // --aux NAME[,NAME...]
+    int aux_given;
     const char *view, *tangents, *window, *size;
-    char **aux; // --aux NAME[,NAME...]: the construction's points drawn
-    int naux, aux_given;
     double tangent_scale, comb_scale;
     int comb, teeth;
     long max_samples;
@@ -109,42 +56,9 @@ typedef struct PlotArgs {
 
 static void args_clear(PlotArgs *a)
 {
-    for (int i = 0; i < a->nat; i++)
-        free(a->at[i].name);
-    for (int i = 0; i < a->nset; i++)
-        free(a->set[i].name);
-    for (int i = 0; i < a->nparam; i++)
-        free(a->param[i].name);
-    free(a->at);
-    free(a->set);
-    free(a->param);
+    eval_args_clear(&a->ea);
     free(a->atp.name);
-    for (int i = 0; i < a->noutputs; i++)
-        free(a->outputs[i]);
-    free(a->outputs);
-    for (int i = 0; i < a->naux; i++)
-        free(a->aux[i]);
-    free(a->aux);
-}
-
-static int split_assign(Assign *x, const char *arg)
-{
-    const char *eq = strchr(arg, '=');
-    if (!eq || eq == arg)
-        return -1;
-    x->name = pc_xstrndup(arg, (size_t)(eq - arg));
-    x->text = eq + 1;
-    return 0;
-}
-
-static int push_assign(Assign **list, int *n, const char *arg)
-{
-    Assign x;
-    if (split_assign(&x, arg) != 0)
-        return -1;
-    *list = pc_xrealloc(*list, sizeof **list * (size_t)(*n + 1));
-    (*list)[(*n)++] = x;
-    return 0;
+    args_names_clear(&a->aux);
 }
 
 /* a strict positive integer <= max */
@@ -159,121 +73,84 @@ static int parse_count(const char *s, long max, long *v)
     return 0;
 }
 
-static int parse_args(PlotArgs *a, int argc, char **argv, FILE *err)
+/* plot's own options after eval's; as ArgsOption */
+static int plot_option(void *ctx, int argc, char **argv, int i, FILE *err)
 {
-    memset(a, 0, sizeof *a);
-    budget_options_default(&a->budget);
-    a->tangent_scale = 1;
-    a->max_samples = PLOT_MAX_SAMPLES;
-    a->teeth = 100;
-    for (int i = 1; i < argc; i++) {
-        const char *o = argv[i];
-        int has = i + 1 < argc;
-        int used = budget_parse_option(&a->budget, argc, argv, i, err);
-        if (used < 0)
-            return 2;
-        if (used > 0) {
-            i += used - 1;
-        } else if ((strcmp(o, "--at") == 0 || strcmp(o, "--set") == 0 ||
-                    strcmp(o, "--param") == 0) &&
-                   has) {
-            const char *v = argv[++i];
-            Assign **list = o[2] == 'a'   ? &a->at
-                            : o[2] == 's' ? &a->set
-                                          : &a->param;
-            int *n = o[2] == 'a' ? &a->nat : o[2] == 's' ? &a->nset : &a->nparam;
-            if (push_assign(list, n, v) != 0)
-                return usage_error(err, "%s expects NAME=VALUE, found '%s'", o,
-                                   v);
-        } else if (strcmp(o, "--at-param") == 0 && has) {
-            const char *v = argv[++i];
-            if (a->atp.name)
-                return usage_error(err, "--at-param given twice");
-            if (split_assign(&a->atp, v) != 0)
-                return usage_error(err,
-                                   "--at-param expects PARAM=VALUE, found '%s'",
-                                   v);
-        } else if ((strcmp(o, "--output") == 0 || strcmp(o, "--aux") == 0) &&
-                   has) {
-            /* repeatable, and comma-separated lists */
-            const char *v = argv[++i];
-            int out = o[2] == 'o';
-            char ***list = out ? &a->outputs : &a->aux;
-            int *n = out ? &a->noutputs : &a->naux;
-            a->aux_given |= !out;
-            for (const char *c = v; !out || *v;) {
-                const char *e = strchr(c, ',');
-                size_t len = e ? (size_t)(e - c) : strlen(c);
-                if (len == 0 && (out || *v))
-                    return usage_error(err,
-                                       "%s '%s': expected names separated "
-                                       "by commas",
-                                       o, v);
-                if (len == 0) // --aux '': none
-                    break;
-                *list = pc_xrealloc(*list, sizeof **list * (size_t)(*n + 1));
-                (*list)[(*n)++] = pc_xstrndup(c, len);
-                if (!e)
-                    break;
-                c = e + 1;
-            }
-            if (out && !*v)
-                return usage_error(err,
-                                   "--output '': expected names separated "
-                                   "by commas");
-        } else if (strcmp(o, "-o") == 0 && has) {
-            a->opath = argv[++i];
-        } else if (strcmp(o, "--view") == 0 && has) {
-            a->view = argv[++i];
-        } else if (strcmp(o, "--tangents") == 0 && has) {
-            a->tangents = argv[++i];
-        } else if ((strcmp(o, "--tangent-scale") == 0 ||
-                    strcmp(o, "--comb-scale") == 0) &&
-                   has) {
-            const char *v = argv[++i];
-            double x;
-            if (sample_number(v, &x) != 0 || !(x > 0))
-                return usage_error(err, "%s '%s': expected a positive number",
-                                   o, v);
-            if (o[2] == 't')
-                a->tangent_scale = x;
-            else
-                a->comb_scale = x;
-        } else if (strcmp(o, "--comb") == 0) {
-            a->comb = 1;
-        } else if (strcmp(o, "--comb-teeth") == 0 && has) {
-            const char *v = argv[++i];
-            long n;
-            if (parse_count(v, PLOT_MAX_TEETH, &n) != 0)
-                return usage_error(err,
-                                   "--comb-teeth '%s': expected a whole "
-                                   "number from 1 to %d",
-                                   v, PLOT_MAX_TEETH);
-            a->teeth = (int)n;
-            a->comb = 1;
-        } else if (strcmp(o, "--size") == 0 && has) {
-            a->size = argv[++i];
-        } else if (strcmp(o, "--window") == 0 && has) {
-            a->window = argv[++i];
-        } else if (strcmp(o, "--max-samples") == 0 && has) {
-            const char *v = argv[++i];
-            if (parse_count(v, PLOT_SAMPLES_LIMIT, &a->max_samples) != 0 ||
-                a->max_samples < 2)
-                return usage_error(err,
-                                   "--max-samples '%s': expected a whole "
-                                   "number from 2 to %d",
-                                   v, PLOT_SAMPLES_LIMIT);
-        } else if (o[0] == '-' && o[1] != '\0') {
-            return usage_error(err, "unknown or incomplete option '%s'", o);
-        } else if (!a->file) {
-            a->file = o;
-        } else {
-            return usage_error(err, "plot takes one FILE, found '%s'", o);
-        }
+    PlotArgs *a = ctx;
+    int used = eval_args_option(&a->ea, argc, argv, i, usage, err);
+    if (used != 0)
+        return used;
+    const char *o = argv[i], *v = args_value(argc, argv, i);
+    if (strcmp(o, "--comb") == 0) {
+        a->comb = 1;
+        return 1;
     }
-    if (!a->file)
-        return usage_error(err, "plot needs a scheme FILE");
-    return 0;
+    if (!v)
+        return 0; // an option without its value: "incomplete"
+    if (strcmp(o, "-o") == 0) {
+        a->opath = v;
+    } else if (strcmp(o, "--at-param") == 0) {
+        const char *eq = strchr(v, '=');
+        if (a->atp.name) {
+            usage_error(err, "--at-param given twice");
+            return -1;
+        }
+        if (!eq || eq == v) {
+            usage_error(err, "--at-param expects PARAM=VALUE, found '%s'", v);
+            return -1;
+        }
+        a->atp.name = pc_xstrndup(v, (size_t)(eq - v));
+        a->atp.text = eq + 1;
+    } else if (strcmp(o, "--aux") == 0) {
+        a->aux_given = 1;
+        if (*v && args_names_add(&a->aux, v) != 0) {
+            usage_error(err, "--aux '%s': expected names separated by commas",
+                        v);
+            return -1;
+        }
+    } else if (strcmp(o, "--view") == 0) {
+        a->view = v;
+    } else if (strcmp(o, "--tangents") == 0) {
+        a->tangents = v;
+    } else if (strcmp(o, "--tangent-scale") == 0 ||
+               strcmp(o, "--comb-scale") == 0) {
+        double x;
+        if (sample_number(v, &x) != 0 || !(x > 0)) {
+            usage_error(err, "%s '%s': expected a positive number", o, v);
+            return -1;
+        }
+        if (o[2] == 't')
+            a->tangent_scale = x;
+        else
+            a->comb_scale = x;
+    } else if (strcmp(o, "--comb-teeth") == 0) {
+        long n;
+        if (parse_count(v, PLOT_MAX_TEETH, &n) != 0) {
+            usage_error(err,
+                        "--comb-teeth '%s': expected a whole number from 1 "
+                        "to %d",
+                        v, PLOT_MAX_TEETH);
+            return -1;
+        }
+        a->teeth = (int)n;
+        a->comb = 1;
+    } else if (strcmp(o, "--size") == 0) {
+        a->size = v;
+    } else if (strcmp(o, "--window") == 0) {
+        a->window = v;
+    } else if (strcmp(o, "--max-samples") == 0) {
+        if (parse_count(v, PLOT_SAMPLES_LIMIT, &a->max_samples) != 0 ||
+            a->max_samples < 2) {
+            usage_error(err,
+                        "--max-samples '%s': expected a whole number from 2 "
+                        "to %d",
+                        v, PLOT_SAMPLES_LIMIT);
+            return -1;
+        }
+    } else {
+        return 0;
+    }
+    return 2;
 }
 
 static int find_name(char *const *names, int n, const char *s)
@@ -295,57 +172,6 @@ static const char *name_list(char *const *names, int n, char *buf, size_t size)
     if (n == 0)
         snprintf(buf, size, "none");
     return buf;
-}
-
-/* Writes len bytes of text to path through a temporary file renamed into
- * place (or to out when path is NULL); 0 or 1. */
-static int write_file(const char *path, const char *text, size_t len,
-                      FILE *out, FILE *err)
-{
-    if (!path)
-        return fwrite(text, 1, len, out) != len;
-    const char *slash = strrchr(path, '/');
-    size_t dir = slash ? (size_t)(slash - path) + 1 : 0;
-    size_t cap = strlen(path) + 16;
-    char *tmp = pc_xmalloc(cap);
-    memcpy(tmp, path, dir);
-    snprintf(tmp + dir, cap - dir, ".%s.XXXXXX", path + dir);
-    int fd = mkstemp(tmp);
-    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
-    int ok = f != NULL && fwrite(text, 1, len, f) == len;
-    int e = errno;
-    if (f != NULL && fclose(f) != 0 && ok) {
-        ok = 0;
-        e = errno;
-    } else if (f == NULL && fd >= 0) {
-        close(fd);
-    }
-    if (ok) {
-        mode_t mask = umask(0);
-        umask(mask);
-        chmod(tmp, 0666 & ~mask);
-        if (rename(tmp, path) != 0) {
-            ok = 0;
-            e = errno;
-        }
-    }
-    if (!ok) {
-        fprintf(err, "pointcalc: cannot write '%s': %s\n", path, strerror(e));
-        if (fd >= 0)
-            unlink(tmp);
-    }
-    free(tmp);
-    return !ok;
-}
-
-/* 1 when a and b name the same file */
-static int same_file(const char *a, const char *b)
-{
-    struct stat sa, sb;
-    if (strcmp(a, b) == 0)
-        return 1;
-    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
-           sa.st_ino == sb.st_ino;
 }
 
 /* ---- the run --------------------------------------------------------- */
@@ -474,69 +300,54 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
 {
     const Plan *p = r->p;
     char list[512], msg[300];
-    /* the curves: point outputs */
+    /* the curves: point outputs (the scheme's outputs are the plan's first
+     * nout; what lower_all adds after them is not selectable) */
     r->sel = pc_xcalloc((size_t)p->noutputs + 1, sizeof *r->sel);
-    if (a->noutputs > 0) {
-        for (int i = 0; i < a->noutputs; i++) {
-            int o = plan_find_output(p, a->outputs[i]);
-            if (o < 0 || o >= r->nout) {
-                char **names = pc_xmalloc(sizeof *names * (size_t)(r->nout + 1));
-                for (int k = 0; k < r->nout; k++)
-                    names[k] = p->outputs[k].name;
-                name_list(names, r->nout, list, sizeof list);
-                free(names);
-                return usage_error(err,
-                                   "--output '%s' is not an output of the "
-                                   "scheme (outputs: %s)",
-                                   a->outputs[i], list);
-            }
-            if (p->outputs[o].kind != PLAN_POINT)
-                return usage_error(err,
-                                   "--output '%s' is a %s: plot draws point "
-                                   "outputs as curves (see --tangents for "
-                                   "derivatives)",
-                                   a->outputs[i],
-                                   p->outputs[o].kind == PLAN_SCALAR ? "scalar"
-                                                                     : "vector");
-            for (int j = 0; j < r->nsel; j++)
-                if (r->sel[j] == o)
-                    return usage_error(err, "--output '%s' is given twice",
-                                       a->outputs[i]);
+    Plan view = *p;
+    view.noutputs = r->nout;
+    int nsel = args_select_outputs(r->sel, &a->ea.outputs, &view, usage, err);
+    if (nsel < 0)
+        return 2;
+    for (int j = 0; j < nsel; j++) {
+        int o = r->sel[j];
+        if (p->outputs[o].kind == PLAN_POINT)
             r->sel[r->nsel++] = o;
-        }
-    } else {
-        for (int o = 0; o < r->nout; o++)
-            if (p->outputs[o].kind == PLAN_POINT)
-                r->sel[r->nsel++] = o;
-        if (r->nsel == 0)
+        else if (a->ea.outputs.n > 0)
             return usage_error(err,
-                               "the scheme has no point output to draw "
-                               "(its outputs are scalars or vectors)");
+                               "--output '%s' is a %s: plot draws point "
+                               "outputs as curves (see --tangents for "
+                               "derivatives)",
+                               p->outputs[o].name,
+                               p->outputs[o].kind == PLAN_SCALAR ? "scalar"
+                                                                 : "vector");
     }
+    if (r->nsel == 0)
+        return usage_error(err, "the scheme has no point output to draw "
+                                "(its outputs are scalars or vectors)");
     /* points */
     r->pt = pc_xcalloc((size_t)p->npoints + 1, sizeof *r->pt);
-    for (int i = 0; i < a->nat; i++) {
-        int k = find_name(p->points, p->npoints, a->at[i].name);
+    for (int i = 0; i < a->ea.nat; i++) {
+        int k = find_name(p->points, p->npoints, a->ea.at[i].name);
         if (k < 0)
             return usage_error(
                 err,
                 "--at %s: '%s' is not a base point of the scheme (points: %s)",
-                a->at[i].name, a->at[i].name,
+                a->ea.at[i].name, a->ea.at[i].name,
                 name_list(p->points, p->npoints, list, sizeof list));
         if (r->pt[k])
-            return usage_error(err, "--at %s given twice", a->at[i].name);
-        long n = sample_numbers(a->at[i].text, &r->pt[k]);
+            return usage_error(err, "--at %s given twice", a->ea.at[i].name);
+        long n = sample_numbers(a->ea.at[i].text, &r->pt[k]);
         if (n < 0)
             return usage_error(err,
                                "--at %s=%s: malformed coordinates; expected "
                                "numbers separated by commas",
-                               a->at[i].name, a->at[i].text);
+                               a->ea.at[i].name, a->ea.at[i].text);
         if (r->dim && n != r->dim)
             return usage_error(err,
                                "--at %s has %ld coordinates but the points "
                                "before it have %d: every point must have the "
                                "same dimension",
-                               a->at[i].name, n, r->dim);
+                               a->ea.at[i].name, n, r->dim);
         r->dim = (int)n;
     }
     for (int j = 0; j < r->nsel; j++)
@@ -550,22 +361,22 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     /* consts */
     r->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *r->consts);
     unsigned char *cseen = pc_xcalloc((size_t)p->nconsts + 1, 1);
-    for (int i = 0; i < a->nset; i++) {
-        int k = find_name(p->consts, p->nconsts, a->set[i].name);
+    for (int i = 0; i < a->ea.nset; i++) {
+        int k = find_name(p->consts, p->nconsts, a->ea.set[i].name);
         int rc = 0;
         if (k < 0)
             rc = usage_error(err,
-                             find_name(p->params, p->nparams, a->set[i].name) >= 0
+                             find_name(p->params, p->nparams, a->ea.set[i].name) >= 0
                                  ? "--set %s: '%s' is a param; give it with "
                                    "--param"
                                  : "--set %s: '%s' is not a const of the "
                                    "scheme",
-                             a->set[i].name, a->set[i].name);
+                             a->ea.set[i].name, a->ea.set[i].name);
         else if (cseen[k]++)
-            rc = usage_error(err, "--set %s given twice", a->set[i].name);
-        else if (sample_number(a->set[i].text, &r->consts[k]) != 0)
+            rc = usage_error(err, "--set %s given twice", a->ea.set[i].name);
+        else if (sample_number(a->ea.set[i].text, &r->consts[k]) != 0)
             rc = usage_error(err, "--set %s=%s: malformed number",
-                             a->set[i].name, a->set[i].text);
+                             a->ea.set[i].name, a->ea.set[i].text);
         if (rc) {
             free(cseen);
             return rc;
@@ -578,8 +389,8 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     r->sweep = -1;
     r->initial = PLOT_INITIAL;
     int rc = 0;
-    for (int i = 0; i < a->nparam && !rc; i++) {
-        const char *name = a->param[i].name, *text = a->param[i].text;
+    for (int i = 0; i < a->ea.nparam && !rc; i++) {
+        const char *name = a->ea.param[i].name, *text = a->ea.param[i].text;
         int k = find_name(p->params, p->nparams, name);
         if (k < 0) {
             rc = usage_error(
@@ -821,16 +632,16 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
     c->xyz = pc_xcalloc(cap * (size_t)r->dim, sizeof *c->xyz);
     c->lines = pc_xcalloc(2 * (size_t)d->nsteps + 1, sizeof *c->lines);
     /* --aux names point definitions */
-    for (int i = 0; i < a->naux; i++) {
+    for (int i = 0; i < a->aux.n; i++) {
         int found = 0;
         for (slong k = 0; k < d->nsteps && !found; k++)
             found = r->step_o[k] >= 0 &&
-                    strcmp(d->steps[k].value.name, a->aux[i]) == 0;
+                    strcmp(d->steps[k].value.name, a->aux.v[i]) == 0;
         if (!found)
             return usage_error(err,
                                "--aux '%s' is not a point definition of the "
                                "scheme",
-                               a->aux[i]);
+                               a->aux.v[i]);
     }
     if (a->aux_given && !r->have_at)
         return usage_error(err, "--aux needs --at-param %s=VALUE",
@@ -851,8 +662,8 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
     for (slong k = 0; k < d->nsteps; k++) {
         const char *name = d->steps[k].value.name;
         int want = !a->aux_given;
-        for (int i = 0; i < a->naux && !want; i++)
-            want = strcmp(a->aux[i], name) == 0;
+        for (int i = 0; i < a->aux.n && !want; i++)
+            want = strcmp(a->aux.v[i], name) == 0;
         if (r->step_o[k] < 0 || !want || find_mark(c, name) >= 0)
             continue;
         if (add_mark(c, r, env, r->step_o[k], name, PLOT_AUX, -1) < 0)
@@ -911,35 +722,41 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
     return 0;
 }
 
-int plot_main(int argc, char **argv, FILE *out, FILE *err)
+int cli_plot(int argc, char **argv, FILE *out, FILE *err)
 {
     PlotArgs a;
-    int rc = parse_args(&a, argc, argv, err);
+    memset(&a, 0, sizeof a);
+    eval_args_init(&a.ea);
+    a.tangent_scale = 1;
+    a.max_samples = PLOT_MAX_SAMPLES;
+    a.teeth = 100;
+    usage = help_usage("plot");
+    BudgetOptions bo;
+    const char *file;
+    int rc = args_parse(argc, argv, usage, &bo, &file, plot_option, &a, err);
     if (rc) {
         args_clear(&a);
         return rc;
     }
-    if (a.opath && same_file(a.opath, a.file)) {
-        rc = usage_error(err, "-o '%s' is the scheme itself; it would be "
-                              "overwritten",
+    if (a.opath && outfile_same(a.opath, file)) {
+        rc = usage_error(err,
+                         "-o '%s' is the scheme itself; it would be "
+                         "overwritten",
                          a.opath);
         args_clear(&a);
         return rc;
     }
     Run r;
     memset(&r, 0, sizeof r);
-    int bad_define = 0;
-    DeriveOptions opt = derive_options_cli(&a.budget, err, &bad_define);
-    opt.keep_steps = a.atp.name != NULL; // the construction
-    budget_arm(a.budget.max_seconds, a.budget.max_memory);
-    r.d = derive_file_ex(a.file, err, NULL, &opt);
+    /* the steps only for the construction */
+    r.d = cli_derive_file_ex(file, &bo, a.atp.name != NULL, err, &rc);
     if (!r.d) {
-        budget_disarm();
         args_clear(&a);
-        return bad_define ? 2 : 1;
+        return rc;
     }
+    budget_arm(bo.max_seconds, bo.max_memory);
     r.p = lower_all(&r, err);
-    budget_disarm();
+    budget_disarm(); /* the drawing takes what the budget of samples allows */
     if (!r.p) {
         run_clear(&r);
         args_clear(&a);
@@ -1012,7 +829,7 @@ int plot_main(int argc, char **argv, FILE *out, FILE *err)
     memset(&st, 0, sizeof st);
     plot_svg(m, &s, &st);
     fclose(m);
-    rc = write_file(a.opath, svg, len, out, err);
+    rc = outfile_write(a.opath, svg, len, out, err);
     if (rc == 0 && st.samples == 0)
         fprintf(err, "pointcalc: plot: nothing of the curves is drawable "
                      "over the range (every sample a pole, undefined or not "

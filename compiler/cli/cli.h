@@ -1,0 +1,56 @@
+/*
+ * cli.h - the commands of the pointcalc command line (contract section 4),
+ * one file each in compiler/cli/, dispatched by compiler/cli/main.c.
+ *
+ * A command takes argv[0] = its own name and argv[1..] = the arguments as
+ * typed; results go to out, messages to err.  Checks happen in this order:
+ * option syntax (exit 2), the scheme (exit 1), names against the scheme
+ * (exit 2); only then is anything written to out, so nothing reaches out
+ * when the scheme has an error or the command line is wrong.
+ *
+ * Exit status: 0 success, 1 an error in the scheme (or an output file that
+ * cannot be written; for eval also a sample at a pole, docs/eval.md), 2 a
+ * usage error.
+ */
+#ifndef PC_CLI_H
+#define PC_CLI_H
+
+#include <stdio.h>
+
+#include "codegen/lower.h"
+#include "compiler/budget.h"
+#include "compiler/derive.h"
+
+typedef int CliCommand(int argc, char **argv, FILE *out, FILE *err);
+
+CliCommand cli_derive; // derive.c: the exact equations, text|latex|json
+CliCommand cli_emit_c; // emit_c.c: C99 for the outputs
+CliCommand cli_eval;   // eval.c: numbers, CSV|JSON
+CliCommand cli_help;   // help.c: pointcalc help [CMD]
+CliCommand cli_plot;   // plot.c: the curves and the construction as SVG
+
+/* The pipeline every command starts with (pipeline.c).
+ *
+ * cli_derive_file: parse -> expand -> sema -> derive, under the budget b
+ * (armed for the derivation, disarmed after).  NULL when the scheme has an
+ * error (reported to err; *rc = 1) or a -D names no int of it (*rc = 2).
+ * cli_plan_file: the same, then lower to a numeric Plan (also under the
+ * budget); NULL with *rc = 1 when an output cannot be lowered.  With
+ * derived not NULL, the derivation is handed over there (the caller
+ * frees it) when a Plan is returned. */
+Derived *cli_derive_file(const char *file, const BudgetOptions *b, FILE *err,
+                         int *rc);
+/* the same, also recording the steps (Derived.steps) when keep_steps */
+Derived *cli_derive_file_ex(const char *file, const BudgetOptions *b,
+                            int keep_steps, FILE *err, int *rc);
+Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
+                    int *rc, Derived **derived);
+
+/* help.c: the texts.  cli_usage is the general synopsis; help_text and
+ * help_usage give a command's full help and its synopsis (for usage
+ * errors), NULL for a name that is no command. */
+extern const char cli_usage[];
+const char *help_text(const char *cmd);
+const char *help_usage(const char *cmd);
+
+#endif

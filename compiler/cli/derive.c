@@ -1,0 +1,82 @@
+/*
+ * derive.c - `pointcalc derive FILE [--format text|latex|json]
+ * [--origin POINT] [--steps]`: the exact equations of the outputs
+ * (format.h), after every step of the derivation with --steps (steps.h).
+ */
+#include "compiler/cli/cli.h"
+
+#include <string.h>
+
+#include "compiler/cli/args.h"
+#include "compiler/format.h"
+#include "compiler/steps.h"
+
+typedef struct DeriveArgs {
+    FormatStyle style;
+    const char *origin; // a base point's name, or NULL
+    const char *usage;
+    int steps;          // --steps
+} DeriveArgs;
+
+/* --format text|latex|json, --origin POINT */
+static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
+{
+    DeriveArgs *a = ctx;
+    if (strcmp(argv[i], "--steps") == 0) {
+        a->steps = 1;
+        return 1;
+    }
+    const char *v = args_value(argc, argv, i);
+    if (!v)
+        return 0;
+    if (strcmp(argv[i], "--origin") == 0) {
+        a->origin = v;
+        return 2;
+    }
+    if (strcmp(argv[i], "--format") != 0)
+        return 0;
+    if (strcmp(v, "text") == 0)
+        a->style = FMT_TEXT;
+    else if (strcmp(v, "latex") == 0)
+        a->style = FMT_LATEX;
+    else if (strcmp(v, "json") == 0)
+        a->style = FMT_JSON;
+    else {
+        args_usage_error(err, a->usage,
+                         "unknown format '%s'; expected text, latex or json",
+                         v);
+        return -1;
+    }
+    return 2;
+}
+
+int cli_derive(int argc, char **argv, FILE *out, FILE *err)
+{
+    DeriveArgs a = {FMT_TEXT, NULL, help_usage("derive"), 0};
+    BudgetOptions bo;
+    const char *file;
+    int rc =
+        args_parse(argc, argv, a.usage, &bo, &file, derive_option, &a, err);
+    if (rc)
+        return rc;
+    Derived *d = cli_derive_file_ex(file, &bo, a.steps, err, &rc);
+    if (!d)
+        return rc;
+    slong origin = a.origin ? derived_find_point(d, a.origin) : -1;
+    if (a.origin && origin < 0)
+        rc = args_usage_error(err, a.usage,
+                              "--origin '%s' is not a base point of the "
+                              "scheme",
+                              a.origin);
+    else if (a.steps && a.style == FMT_JSON) /* the steps and outputs */
+        steps_print(out, d, a.style, origin);
+    else {
+        if (a.steps) { /* the steps, then the outputs */
+            steps_print(out, d, a.style, origin);
+            fputs("\n", out);
+        }
+        format_derived(out, d, a.style, origin);
+    }
+    derived_free(d);
+    return rc;
+}
