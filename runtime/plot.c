@@ -270,7 +270,6 @@ typedef struct Sampler {
     double *pos;
     unsigned char *st;
     size_t cap;
-    size_t evals;
 } Sampler;
 
 static void sampler_init(Sampler *S, const PlotEnv *env, const PlotView *view,
@@ -330,7 +329,6 @@ static void sampler_run(Sampler *S, const PlotCurve *c, size_t n,
             S->pv[i][j] = i == env->param ? ts[j] : env->params[i];
     plan_eval(p, S->o, n, (const double *const *)S->pv, env->consts,
               env->points, dim, S->pos, S->st);
-    S->evals += n;
     for (size_t j = 0; j < n; j++) {
         plot_project(S->view, S->pos + j * (size_t)dim, dim, &x[j], &y[j]);
         ok[j] = S->st[j] == 0 && isfinite(x[j]) && isfinite(y[j]);
@@ -1216,11 +1214,8 @@ int plot_svg(FILE *out, const PlotSpec *s, PlotStats *st)
         memcpy(box, W, sizeof box);
     else
         fit_box(box, s, cv, mx, my);
-    st->evals = 0;
-    for (int k = 0; k < nc; k++) {
-        st->evals += cv[k].n;
+    for (int k = 0; k < nc; k++)
         plot_curve_refine(&cv[k], env, &s->view, box, &lim);
-    }
     /* the canvas */
     Fig g;
     g.out = out;

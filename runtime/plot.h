@@ -152,7 +152,6 @@ typedef struct PlotSpec {
 
 typedef struct PlotStats {
     size_t samples;  // vertices of all curves (before clipping)
-    size_t evals;    // samples evaluated
     int subpaths;    // of all curves
     double box[4];   // the window: xmin, ymin, xmax, ymax
     int digits;      // significant digits of the curves' coordinates
