@@ -2014,6 +2014,7 @@ static void record_steps(Deriver *D, Derived *d, const Source *src)
         }
         Sym *s = st->sym;
         DerivedStep *ds = &d->steps[d->nsteps++];
+        budget_statement(src, st->expr->span); /* (blamed if out of memory) */
         const Value *v = &D->defs[s->index];
         ratfun_init(ds->scalar, r);
         ratfun_init(ds->det, r);

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "compiler/json.h"
 #include "compiler/mem.h"
 
 /* the value x printed like a scalar output (malloc'd) */
@@ -70,26 +71,69 @@ static void coord_name(char *buf, size_t cap, slong k, slong n)
         snprintf(buf, cap, "c%ld", (long)(k - 1));
 }
 
+/* the first point (not a direction) of args[lo..hi-1]: the flat's origin */
+static slong flat_origin(const DerivedStep *s, slong lo, slong hi)
+{
+    for (slong j = lo; j < hi; j++)
+        if (s->args[j].kind != KIND_VECTOR)
+            return j;
+    return lo;
+}
+
+/* vertex j of the simplex: the point itself, or origin + j for a direction */
+static void text_vertex(FILE *out, const DerivedStep *s, slong j)
+{
+    slong lo = j < s->nfirst ? 0 : s->nfirst;
+    slong hi = j < s->nfirst ? s->nfirst : s->nargs;
+    if (s->args[j].kind == KIND_VECTOR)
+        fprintf(out, "(%s + %s)", s->args[flat_origin(s, lo, hi)].name,
+                s->args[j].name);
+    else
+        text_factor(out, s->args[j].name);
+}
+
+/* the direction of args[j] from origin o: "(Q - P)", or a direction itself */
+static void text_direction(FILE *out, const DerivedStep *s, slong j, slong o)
+{
+    if (s->args[j].kind == KIND_VECTOR)
+        text_factor(out, s->args[j].name);
+    else
+        fprintf(out, "(%s - %s)", s->args[j].name, s->args[o].name);
+}
+
+/* the parameter names: lambda on the first line; mu, or mu1 and mu2 */
+static const char *param_name(const DerivedStep *s, slong j, FormatStyle st)
+{
+    if (j == 0)
+        return st == FMT_LATEX ? "\\lambda" : "lambda";
+    if (s->nparams == 2)
+        return st == FMT_LATEX ? "\\mu" : "mu";
+    if (j == 1)
+        return st == FMT_LATEX ? "\\mu_1" : "mu1";
+    return st == FMT_LATEX ? "\\mu_2" : "mu2";
+}
+
 static void text_meet(FILE *out, const Derived *d, const DerivedStep *s)
 {
     const char *M = s->value.name;
-    const DerivedOutput *a = s->args;
     slong nb = s->nargs - s->nfirst, n = nb + 1;
     char cn[32];
     if (s->has_sv) {
-        const char *thm = nb == 2 ? "S" : "V";
-        fprintf(out, "    %s-theorem in the simplex %s, %s", thm, a[0].name,
-                a[1].name);
-        for (slong j = 2; j < s->nargs; j++)
-            if (j != s->sv_w)
-                fprintf(out, ", %s", a[j].name);
-        fprintf(out, ":  %s = ", a[s->sv_w].name);
+        fprintf(out, "    %s-theorem in the simplex ", nb == 2 ? "S" : "V");
+        for (slong j = 0, k = 0; j < s->nargs; j++)
+            if (j != s->sv_w) {
+                fputs(k++ ? ", " : "", out);
+                text_vertex(out, s, j);
+            }
+        fputs(":  ", out);
+        text_vertex(out, s, s->sv_w);
+        fputs(" = ", out);
         for (slong k = 0, j = 0; k < n; k++, j++) {
             if (j == s->sv_w)
                 j++;
             coord_name(cn, sizeof cn, k, n);
             fprintf(out, "%s%s*", k ? " + " : "", cn);
-            text_factor(out, a[j].name);
+            text_vertex(out, s, j);
         }
         fputs("\n       ", out);
         for (slong k = 0; k < n; k++) {
@@ -118,28 +162,36 @@ static void text_meet(FILE *out, const Derived *d, const DerivedStep *s)
                 nb == 2 ? "lines are" : "line and the plane are");
         free(det);
     }
-    if (s->nparams > 0) {
-        char *l = scalar_str(d, s->params, FMT_TEXT);
-        fprintf(out, "    lambda = %s%s,  %s = ", s->has_sv ? "b/(a + b) = " : "",
-                l, M);
-        free(l);
-        text_factor(out, a[0].name);
-        fputs(" + (", out);
-        fprintf(out, "%s - %s)*lambda\n", a[1].name, a[0].name);
-        for (slong j = 1; j < s->nparams; j++) {
-            char *m = scalar_str(d, s->params + j, FMT_TEXT);
-            fprintf(out, "    mu%s = %s,", s->nparams > 2 ? (j == 1 ? "1" : "2") : "",
-                    m);
-            free(m);
-        }
-        fprintf(out, "  %s = ", M);
-        text_factor(out, a[s->nfirst].name);
-        for (slong j = 1; j < s->nparams; j++)
-            fprintf(out, " + (%s - %s)*mu%s", a[s->nfirst + j].name,
-                    a[s->nfirst].name,
-                    s->nparams > 2 ? (j == 1 ? "1" : "2") : "");
-        fputs("\n", out);
+    if (s->nparams == 0)
+        return;
+    /* lambda on the first line, from its origin */
+    slong o = flat_origin(s, 0, s->nfirst);
+    char *l = scalar_str(d, s->params, FMT_TEXT);
+    fprintf(out, "    lambda = %s%s,  %s = ", s->has_sv ? "b/(a + b) = " : "",
+            l, M);
+    free(l);
+    text_factor(out, s->args[o].name);
+    fputs(" + ", out);
+    text_direction(out, s, o == 0 ? 1 : 0, o);
+    fputs("*lambda\n", out);
+    /* mu on the second flat */
+    o = flat_origin(s, s->nfirst, s->nargs);
+    fputs("   ", out);
+    for (slong j = 1; j < s->nparams; j++) {
+        char *m = scalar_str(d, s->params + j, FMT_TEXT);
+        fprintf(out, " %s = %s,", param_name(s, j, FMT_TEXT), m);
+        free(m);
     }
+    fprintf(out, "  %s = ", M);
+    text_factor(out, s->args[o].name);
+    for (slong j = s->nfirst, k = 1; j < s->nargs; j++) {
+        if (j == o)
+            continue;
+        fputs(" + ", out);
+        text_direction(out, s, j, o);
+        fprintf(out, "*%s", param_name(s, k++, FMT_TEXT));
+    }
+    fputs("\n", out);
 }
 
 static void text_steps(FILE *out, const Derived *d, slong origin)
@@ -186,11 +238,11 @@ static void text_steps(FILE *out, const Derived *d, slong origin)
 static void latex_name(FILE *out, const char *name)
 {
     static const char *const greek[] = {
-        "alpha", "beta",  "gamma", "delta", "epsilon", "zeta",   "eta",
-        "theta", "iota",  "kappa", "lambda", "mu",     "nu",     "xi",
-        "pi",    "rho",   "sigma", "tau",   "upsilon", "phi",    "chi",
-        "psi",   "omega", "Gamma", "Delta", "Theta",   "Lambda", "Xi",
-        "Pi",    "Sigma", "Phi",   "Psi",   "Omega",
+        "alpha", "beta",  "gamma", "delta",  "epsilon", "zeta",   "eta",
+        "theta", "iota",  "kappa", "lambda", "mu",      "nu",     "xi",
+        "pi",    "rho",   "sigma", "tau",    "upsilon", "phi",    "chi",
+        "psi",   "omega", "Gamma", "Delta",  "Theta",   "Lambda", "Xi",
+        "Pi",    "Sigma", "Phi",   "Psi",    "Omega",
     };
     size_t n = strlen(name), stem = 0;
     while (stem < n && isalpha((unsigned char)name[stem]) &&
@@ -215,7 +267,13 @@ static void latex_source(FILE *out, const char *s)
     fputs("\\texttt{", out);
     for (; *s; s++) {
         switch (*s) {
-        case '_': case '#': case '%': case '&': case '$': case '{': case '}':
+        case '_':
+        case '#':
+        case '%':
+        case '&':
+        case '$':
+        case '{':
+        case '}':
             fprintf(out, "\\%c", *s);
             break;
         case '^':
@@ -271,10 +329,36 @@ static void latex_coord_name(FILE *out, slong k, slong n)
         fprintf(out, "c_{%ld}", (long)(k - 1));
 }
 
+static void latex_vertex(FILE *out, const DerivedStep *s, slong j)
+{
+    slong lo = j < s->nfirst ? 0 : s->nfirst;
+    slong hi = j < s->nfirst ? s->nfirst : s->nargs;
+    if (s->args[j].kind == KIND_VECTOR) {
+        fputs("\\left(", out);
+        latex_factor(out, s->args[flat_origin(s, lo, hi)].name);
+        fputs(" + ", out);
+        latex_factor(out, s->args[j].name);
+        fputs("\\right)", out);
+    } else {
+        latex_factor(out, s->args[j].name);
+    }
+}
+
+static void latex_direction(FILE *out, const DerivedStep *s, slong j, slong o)
+{
+    if (s->args[j].kind == KIND_VECTOR) {
+        latex_factor(out, s->args[j].name);
+        return;
+    }
+    fputs("\\left(", out);
+    latex_factor(out, s->args[j].name);
+    fputs(" - ", out);
+    latex_factor(out, s->args[o].name);
+    fputs("\\right)", out);
+}
+
 static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
 {
-    const char *M = s->value.name;
-    const DerivedOutput *a = s->args;
     slong nb = s->nargs - s->nfirst, n = nb + 1;
     if (s->has_sv) {
         fprintf(out, "  &\\quad \\text{%s-theorem in the simplex } ",
@@ -282,10 +366,10 @@ static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
         for (slong j = 0, k = 0; j < s->nargs; j++)
             if (j != s->sv_w) {
                 fputs(k++ ? ", " : "", out);
-                latex_factor(out, a[j].name);
+                latex_vertex(out, s, j);
             }
         fputs(":\\quad ", out);
-        latex_factor(out, a[s->sv_w].name);
+        latex_vertex(out, s, s->sv_w);
         fputs(" = ", out);
         for (slong k = 0, j = 0; k < n; k++, j++) {
             if (j == s->sv_w)
@@ -293,7 +377,7 @@ static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
             fputs(k ? " + " : "", out);
             latex_coord_name(out, k, n);
             fputs(" ", out);
-            latex_factor(out, a[j].name);
+            latex_vertex(out, s, j);
         }
         fputs(" \\\\\n", out);
         for (slong k = 0; k < n; k++) {
@@ -329,33 +413,31 @@ static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
         fprintf(out, "  &\\quad \\lambda = %s \\\\\n", l);
         free(l);
     }
-    if (s->nparams > 0) {
-        fputs("  &\\quad ", out);
-        latex_name(out, M);
-        fputs(" = ", out);
-        latex_factor(out, a[0].name);
-        fputs(" + \\left(", out);
-        latex_factor(out, a[1].name);
-        fputs(" - ", out);
-        latex_factor(out, a[0].name);
-        fputs("\\right) \\lambda = ", out);
-        latex_factor(out, a[s->nfirst].name);
-        for (slong j = 1; j < s->nparams; j++) {
-            fputs(" + \\left(", out);
-            latex_factor(out, a[s->nfirst + j].name);
-            fputs(" - ", out);
-            latex_factor(out, a[s->nfirst].name);
-            fprintf(out, "\\right) \\mu%s",
-                    s->nparams > 2 ? (j == 1 ? "_1" : "_2") : "");
-        }
-        for (slong j = 1; j < s->nparams; j++) {
-            char *m = scalar_str(d, s->params + j, FMT_LATEX);
-            fprintf(out, ",\\quad \\mu%s = %s",
-                    s->nparams > 2 ? (j == 1 ? "_1" : "_2") : "", m);
-            free(m);
-        }
-        fputs(" \\\\\n", out);
+    if (s->nparams == 0)
+        return;
+    slong o = flat_origin(s, 0, s->nfirst);
+    fputs("  &\\quad ", out);
+    latex_name(out, s->value.name);
+    fputs(" = ", out);
+    latex_factor(out, s->args[o].name);
+    fputs(" + ", out);
+    latex_direction(out, s, o == 0 ? 1 : 0, o);
+    fputs(" \\lambda = ", out);
+    o = flat_origin(s, s->nfirst, s->nargs);
+    latex_factor(out, s->args[o].name);
+    for (slong j = s->nfirst, k = 1; j < s->nargs; j++) {
+        if (j == o)
+            continue;
+        fputs(" + ", out);
+        latex_direction(out, s, j, o);
+        fprintf(out, " %s", param_name(s, k++, FMT_LATEX));
     }
+    for (slong j = 1; j < s->nparams; j++) {
+        char *m = scalar_str(d, s->params + j, FMT_LATEX);
+        fprintf(out, ",\\quad %s = %s", param_name(s, j, FMT_LATEX), m);
+        free(m);
+    }
+    fputs(" \\\\\n", out);
 }
 
 static void latex_steps(FILE *out, const Derived *d, slong origin)
@@ -394,21 +476,6 @@ static void latex_steps(FILE *out, const Derived *d, slong origin)
 
 /* ---- JSON ---------------------------------------------------------------- */
 
-static void json_string(FILE *out, const char *s)
-{
-    fputc('"', out);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            fprintf(out, "\\%c", c);
-        else if (c < 0x20 || c == 0x7f)
-            fprintf(out, "\\u%04x", c);
-        else
-            fputc(c, out);
-    }
-    fputc('"', out);
-}
-
 static void json_ratfun(FILE *out, const Derived *d, const RatFun x)
 {
     char *s = format_weight(x, &d->ring);
@@ -443,14 +510,22 @@ static void json_value(FILE *out, const Derived *d, const DerivedOutput *o)
 static const char *op_name(StepOp op)
 {
     switch (op) {
-    case STEP_ALONG: return "along";
-    case STEP_DIVIDE: return "divide";
-    case STEP_MEET: return "meet";
-    case STEP_SUBST: return "subst";
-    case STEP_DIFF: return "diff";
-    case STEP_BEZIER: return "bezier";
-    case STEP_SOLVE: return "solve";
-    case STEP_EXPR: break;
+    case STEP_ALONG:
+        return "along";
+    case STEP_DIVIDE:
+        return "divide";
+    case STEP_MEET:
+        return "meet";
+    case STEP_SUBST:
+        return "subst";
+    case STEP_DIFF:
+        return "diff";
+    case STEP_BEZIER:
+        return "bezier";
+    case STEP_SOLVE:
+        return "solve";
+    case STEP_EXPR:
+        break;
     }
     return "expr";
 }

@@ -40,9 +40,9 @@ CliCommand cli_plot;   // plot.c: the curves and the construction as SVG
  * frees it) when a Plan is returned. */
 Derived *cli_derive_file(const char *file, const BudgetOptions *b, FILE *err,
                          int *rc);
-/* the same, also recording the steps (Derived.steps) when keep_steps */
-Derived *cli_derive_file_ex(const char *file, const BudgetOptions *b,
-                            int keep_steps, FILE *err, int *rc);
+/* cli_derive_file that also keeps the steps (derive --steps) */
+Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
+                               int keep_steps, FILE *err, int *rc);
 Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
                     int *rc, Derived **derived);
 

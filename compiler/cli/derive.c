@@ -14,11 +14,11 @@
 typedef struct DeriveArgs {
     FormatStyle style;
     const char *origin; // a base point's name, or NULL
-    const char *usage;
     int steps;          // --steps
+    const char *usage;
 } DeriveArgs;
 
-/* --format text|latex|json, --origin POINT */
+/* --format text|latex|json, --origin POINT, --steps */
 static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
 {
     DeriveArgs *a = ctx;
@@ -52,14 +52,14 @@ static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
 
 int cli_derive(int argc, char **argv, FILE *out, FILE *err)
 {
-    DeriveArgs a = {FMT_TEXT, NULL, help_usage("derive"), 0};
+    DeriveArgs a = {FMT_TEXT, NULL, 0, help_usage("derive")};
     BudgetOptions bo;
     const char *file;
     int rc =
         args_parse(argc, argv, a.usage, &bo, &file, derive_option, &a, err);
     if (rc)
         return rc;
-    Derived *d = cli_derive_file_ex(file, &bo, a.steps, err, &rc);
+    Derived *d = cli_derive_file_steps(file, &bo, a.steps, err, &rc);
     if (!d)
         return rc;
     slong origin = a.origin ? derived_find_point(d, a.origin) : -1;
@@ -68,10 +68,10 @@ int cli_derive(int argc, char **argv, FILE *out, FILE *err)
                               "--origin '%s' is not a base point of the "
                               "scheme",
                               a.origin);
-    else if (a.steps && a.style == FMT_JSON) /* the steps and outputs */
+    else if (a.steps && a.style == FMT_JSON) /* the object with "steps" */
         steps_print(out, d, a.style, origin);
     else {
-        if (a.steps) { /* the steps, then the outputs */
+        if (a.steps) { /* the steps, a blank line, then the outputs */
             steps_print(out, d, a.style, origin);
             fputs("\n", out);
         }

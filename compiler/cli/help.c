@@ -48,7 +48,7 @@ const char cli_usage[] =
 
 #define DERIVE_USAGE                                                           \
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin "       \
-    "POINT]\n"                                                                 \
+    "POINT]\n"                                                                \
     "                        [--steps]\n"
 
 #define EMIT_C_USAGE                                                           \
@@ -88,8 +88,8 @@ static const char derive_help[] = DERIVE_USAGE
     "expression\n"
     "  --origin POINT      text and LaTeX relative to a base point: (A - C)*f "
     "+ ... + C\n"
-    "  --steps             first every step in source order: each definition's "
-    "point\n"
+    "  --steps             first every step in source order: each "
+    "definition's point\n"
     "                      equation, each meet's S/V-theorem determinant and "
     "line\n"
     "                      parameters (JSON: a \"steps\" array)\n" COMMON_HELP;

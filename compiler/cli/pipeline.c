@@ -8,11 +8,11 @@
 Derived *cli_derive_file(const char *file, const BudgetOptions *b, FILE *err,
                          int *rc)
 {
-    return cli_derive_file_ex(file, b, 0, err, rc);
+    return cli_derive_file_steps(file, b, 0, err, rc);
 }
 
-Derived *cli_derive_file_ex(const char *file, const BudgetOptions *b,
-                            int keep_steps, FILE *err, int *rc)
+Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
+                               int keep_steps, FILE *err, int *rc)
 {
     int bad_define = 0;
     DeriveOptions opt = derive_options_cli(b, err, &bad_define);

@@ -3,7 +3,7 @@
  * the point outputs as SVG, with the construction at --at-param
  * (docs/plot.md; the drawing is runtime/plot.c).
  *
- *   cli_derive_file_ex (with the steps for --at-param) -> lower the
+ *   cli_derive_file_steps (with the steps for --at-param) -> lower the
  *   outputs, the params' declared ranges and the construction's points
  *   -> checks against the plan -> plot_svg -> outfile_write
  *
@@ -749,7 +749,7 @@ int cli_plot(int argc, char **argv, FILE *out, FILE *err)
     Run r;
     memset(&r, 0, sizeof r);
     /* the steps only for the construction */
-    r.d = cli_derive_file_ex(file, &bo, a.atp.name != NULL, err, &rc);
+    r.d = cli_derive_file_steps(file, &bo, a.atp.name != NULL, err, &rc);
     if (!r.d) {
         args_clear(&a);
         return rc;

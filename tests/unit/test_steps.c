@@ -60,8 +60,7 @@ static Derived *derive_text(const char *text, int keep, char **err)
     char *ebuf = NULL;
     FILE *e = open_memstream(&ebuf, &elen);
     int nerr = 0;
-    Derived *d = derive_source_ex("s.pcs", text, strlen(text), e, &nerr,
-                                  &opt);
+    Derived *d = derive_source_ex("s.pcs", text, strlen(text), e, &nerr, &opt);
     fclose(e);
     if (err)
         *err = ebuf;
@@ -117,8 +116,30 @@ static void scalar_is(const Derived *d, const RatFun x, const char *text)
 
 /* ---- the meet identities ------------------------------------------------- */
 
-/* every meet step: M = P + (Q - P)*lambda = R + (S - R)*mu [+ (U - R)*mu2],
- * lambda = b/(a + b), det = a + b, and W = a*P + b*Q + c*V... */
+/* the first point (not a direction) of args[lo..hi-1] */
+static slong origin_of(const DerivedStep *s, slong lo, slong hi)
+{
+    for (slong j = lo; j < hi; j++)
+        if (s->args[j].kind != KIND_VECTOR)
+            return j;
+    fail_msg("a flat of %s without a point", s->value.name);
+    return lo;
+}
+
+/* res = args[j] as a direction from args[o] (a direction is itself) */
+static void direction(PointEq res, const DerivedStep *s, slong j, slong o,
+                      const Ring *r)
+{
+    if (s->args[j].kind == KIND_VECTOR)
+        pteq_set(res, s->args[j].eq, r);
+    else
+        pteq_sub(res, s->args[j].eq, s->args[o].eq, r);
+}
+
+/* Every meet step: M = O1 + D1*lambda = O2 + sum D2_j*mu_j (O the flat's
+ * first point, D the others' directions from it), det = a + b, lambda =
+ * b/det, and W = a*P + b*Q + c*V... (a direction V stands for O + V).
+ * Returns the number of meets. */
 static int check_meets(const Derived *d)
 {
     const Ring *r = &d->ring;
@@ -130,24 +151,25 @@ static int check_meets(const Derived *d)
     ratfun_init(l, r);
     for (slong i = 0; i < d->nsteps; i++) {
         const DerivedStep *s = &d->steps[i];
-        if (s->op != STEP_MEET)
+        if (s->op != STEP_MEET || s->pending)
             continue;
         nmeets++;
         assert_int_equal(s->nfirst, 2);
         assert_int_equal(s->nparams, s->nargs - s->nfirst);
-        const PointEqStruct *a[5];
-        for (slong k = 0; k < s->nargs; k++)
-            a[k] = s->args[k].eq;
         /* on the first line */
-        pteq_sub(x, a[1], a[0], r);
+        slong o = origin_of(s, 0, 2);
+        direction(x, s, 1 - o, o, r);
         pteq_scalar_mul(x, x, s->params, r);
-        pteq_add(x, x, a[0], r);
+        pteq_add(x, x, s->args[o].eq, r);
         assert_true(pteq_equal(x, s->value.eq, r));
         /* on the second flat */
-        pteq_set(x, a[2], r);
-        for (slong j = 1; j < s->nparams; j++) {
-            pteq_sub(y, a[2 + j], a[2], r);
-            pteq_scalar_mul(y, y, s->params + j, r);
+        o = origin_of(s, 2, s->nargs);
+        pteq_set(x, s->args[o].eq, r);
+        for (slong j = 2, k = 1; j < s->nargs; j++) {
+            if (j == o)
+                continue;
+            direction(y, s, j, o, r);
+            pteq_scalar_mul(y, y, s->params + k++, r);
             pteq_add(x, x, y, r);
         }
         assert_true(pteq_equal(x, s->value.eq, r));
@@ -157,19 +179,57 @@ static int check_meets(const Derived *d)
         assert_true(ratfun_equal(l, s->det, r));
         assert_int_equal(ratfun_div(l, s->sv_coord + 1, s->det, r), 0);
         assert_true(ratfun_equal(l, s->params, r));
+        PointEq v[5];
+        for (slong j = 0; j < s->nargs; j++) {
+            pteq_init(v[j], r);
+            pteq_set(v[j], s->args[j].eq, r);
+            if (s->args[j].kind == KIND_VECTOR)
+                pteq_add(v[j], v[j],
+                         s->args[j < 2 ? origin_of(s, 0, 2)
+                                       : origin_of(s, 2, s->nargs)]
+                             .eq,
+                         r);
+        }
         pteq_zero(x, r);
         for (slong k = 0, j = 0; k <= s->nparams; k++, j++) {
             if (j == s->sv_w)
                 j++;
-            pteq_scalar_mul(y, a[j], s->sv_coord + k, r);
+            pteq_scalar_mul(y, v[j], s->sv_coord + k, r);
             pteq_add(x, x, y, r);
         }
-        assert_true(pteq_equal(x, a[s->sv_w], r));
+        assert_true(pteq_equal(x, v[s->sv_w], r));
+        for (slong j = 0; j < s->nargs; j++)
+            pteq_clear(v[j], r);
     }
     ratfun_clear(l, r);
     pteq_clear(y, r);
     pteq_clear(x, r);
     return nmeets;
+}
+
+/* the identities on the meets of examples: directions, planes, consts,
+ * solves */
+static void test_steps_meet_identities_examples(void **state)
+{
+    (void)state;
+    static const char *const files[] = {
+        "examples/parabola_improper_point.pcs",
+        "examples/curve_3d_one_ratio.pcs",
+        "examples/conic_five_points.pcs",
+        "examples/closed_cubics.pcs",
+        "examples/interpolation_desargues.pcs",
+        "examples/ellipse_conjugate_diameters_2.pcs",
+    };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        DeriveOptions opt = {.max_seconds = 60, .keep_steps = 1};
+        int nerr = 0;
+        Derived *d = derive_file_ex(files[i], stderr, &nerr, &opt);
+        if (!d)
+            fail_msg("%s does not derive", files[i]);
+        if (check_meets(d) == 0)
+            fail_msg("%s: no meet", files[i]);
+        derived_free(d);
+    }
 }
 
 /* ---- the Desargues arc and the article ----------------------------------- */
@@ -187,7 +247,9 @@ static int check_meets(const Derived *d)
  *   |p_j q_j 1-p_j-q_j; 1-lambda lambda 0; 0 0 1| = 0 gives
  *   lambda = q_j/(p_j + q_j) = tb/(2t^2 - 2t + 1);
  *   M = S t(2t - 1)/(2t^2 - 2t + 1) + N tb/(2t^2 - 2t + 1)
- *     = (A tb^3 + B t^2 tb + C tb^2 t + D t^3)/(2t^2 - 2t + 1)  (2). */
+ *     = (A tb^3 + B t^2 tb + C tb^2 t + D t^3)/(2t^2 - 2t + 1)  (2);
+ *   C = B, A = D (the closed arc, 1 - 3t tb = 3t^2 - 3t + 1), t = 1/2 (the
+ *   centroid), dM/dt and d2M/dt2 as printed, expanded numerators. */
 static const char article[] =
     "\n# the article's forms\n"
     "tb = 1 - t\n"
@@ -204,12 +266,24 @@ static const char article[] =
     "p_j = 2*t - 1\n"
     "q_j = tb/t\n"
     "J_snt = (S - T)*p_j + (N - T)*q_j + T\n"
+    "J_p = Q + (S - Q)*p_j\n"
+    "J_q = R + (N - R)*q_j\n"
     "lam = q_j/(p_j + q_j)\n"
     "pq = p_j + q_j\n"
     "mu_T = ABT/(1 + ABT)\n"
     "M_l = S*(1 - lam) + N*lam\n"
     "M_t = S*t*(2*t - 1)/(2*t^2 - 2*t + 1) + N*tb/(2*t^2 - 2*t + 1)\n"
-    "M_a = (A*tb^3 + B*t^2*tb + C*tb^2*t + D*t^3)/(2*t^2 - 2*t + 1)\n";
+    "M_a = (A*tb^3 + B*t^2*tb + C*tb^2*t + D*t^3)/(2*t^2 - 2*t + 1)\n"
+    "M_half_a = (A + B + C + D)/4\n"
+    "M_CB_a = (A*tb^3 + B*t*tb + D*t^3)/(2*t^2 - 2*t + 1)\n"
+    "M_DA_a = (A*(1 - 3*t*tb) + B*t^2*tb + C*tb^2*t)/(2*t^2 - 2*t + 1)\n"
+    "dM_a = ((-2*t^4 + 4*t^3 - 3*t^2 + 2*t - 1)*A"
+    " + (-2*t^4 + 4*t^3 - 5*t^2 + 2*t)*B"
+    " + (2*t^4 - 4*t^3 + 5*t^2 - 4*t + 1)*C"
+    " + (2*t^4 - 4*t^3 + 3*t^2)*D)/(2*t^2 - 2*t + 1)^2\n"
+    "d2M_a = ((-4*t^3 + 6*t - 2)*A + (4*t^3 - 6*t + 2)*B"
+    " + (-4*t^3 + 12*t^2 - 6*t)*C + (4*t^3 - 12*t^2 + 6*t)*D)"
+    "/(2*t^2 - 2*t + 1)^3\n";
 
 static Derived *derive_desargues(int keep)
 {
@@ -235,11 +309,11 @@ static void test_steps_desargues_match_article(void **state)
     Derived *d = derive_desargues(1);
     const Ring *r = &d->ring;
     /* one step per definition, in source order */
-    static const char *const order[] = {"P", "Q", "K", "N", "J", "T", "S",
-                                        "R", "M", "M_half", "M_CB"};
+    static const char *const order[] = {"P", "Q", "K", "N",      "J",   "T",
+                                        "S", "R", "M", "M_half", "M_CB"};
     for (size_t i = 0; i < sizeof order / sizeof order[0]; i++)
         assert_string_equal(d->steps[i].value.name, order[i]);
-    assert_int_equal(d->nsteps, 15 + 20);
+    assert_int_equal(d->nsteps, 15 + 27);
     assert_int_equal(step(d, "P")->op, STEP_ALONG);
     assert_int_equal(step(d, "T")->op, STEP_MEET);
     assert_int_equal(step(d, "T")->value.line, 40);
@@ -259,6 +333,19 @@ static void test_steps_desargues_match_article(void **state)
     same_point(d, "M", "M_l");
     same_point(d, "M", "M_t");
     same_point(d, "M", "M_a");
+    /* the article's ratios p_j = (J - Q)/(S - Q), q_j = (J - R)/(N - R) */
+    same_point(d, "J", "J_p");
+    same_point(d, "J", "J_q");
+    /* subst and diff: the special cases and derivatives it prints */
+    same_point(d, "M_half", "M_half_a");
+    same_point(d, "M_CB", "M_CB_a");
+    same_point(d, "M_DA", "M_DA_a");
+    same_point(d, "dM", "dM_a");
+    same_point(d, "d2M", "d2M_a");
+    assert_int_equal(step(d, "dM")->op, STEP_DIFF);
+    assert_int_equal(step(d, "d2M")->order, 2);
+    assert_int_equal(step(d, "M_CB")->op, STEP_SUBST);
+    scalar_is(d, step(d, "M_half")->scalar, "1/2");
 
     /* along: its points and ratio */
     const DerivedStep *n = step(d, "N");
@@ -310,8 +397,8 @@ static void test_steps_compare_can_fail(void **state)
                                "T_w = (B*(1-t)^2 - A*t^2)/(1 - 2*t)\n";
     Derived *d = derive_text(text, 1, NULL);
     assert_non_null(d);
-    assert_false(pteq_equal(step(d, "T")->value.eq, step(d, "T_w")->value.eq,
-                            &d->ring));
+    assert_false(
+        pteq_equal(step(d, "T")->value.eq, step(d, "T_w")->value.eq, &d->ring));
     derived_free(d);
 }
 
@@ -319,11 +406,10 @@ static void test_steps_compare_can_fail(void **state)
 static void test_steps_v_theorem(void **state)
 {
     (void)state;
-    static const char text[] =
-        "point A, B, C, D\nparam t\n"
-        "P = along(A, C, t)\nK = along(B, D, 1 - t)\n"
-        "X = meet(line(P, K), plane(A, B, (C + D)/2))\n"
-        "Y = meet(line(A, C), plane(B, D, P))\n";
+    static const char text[] = "point A, B, C, D\nparam t\n"
+                               "P = along(A, C, t)\nK = along(B, D, 1 - t)\n"
+                               "X = meet(line(P, K), plane(A, B, (C + D)/2))\n"
+                               "Y = meet(line(A, C), plane(B, D, P))\n";
     Derived *d = derive_text(text, 1, NULL);
     assert_non_null(d);
     const DerivedStep *x = step(d, "X");
@@ -539,6 +625,94 @@ static void test_steps_print_desargues(void **state)
     derived_free(d);
 }
 
+/* ---- robustness -----------------------------------------------------------
+ */
+
+static uint64_t rng = 1;
+
+static uint32_t rnd(uint32_t n)
+{
+    rng ^= rng >> 12; /* xorshift64* */
+    rng ^= rng << 25;
+    rng ^= rng >> 27;
+    return (uint32_t)((rng * 2685821657736338717ULL) >> 33) % n;
+}
+
+/* a derivation with steps, printed three ways: success XOR errors */
+static int probe_steps(const char *buf, size_t len)
+{
+    DeriveOptions opt = {.max_seconds = 10, .keep_steps = 1};
+    int nerr = -1;
+    Derived *d = derive_source_ex("m.pcs", buf, len, NULL, &nerr, &opt);
+    int ok = (d != NULL) == (nerr == 0);
+    if (d) {
+        char *out = NULL;
+        size_t n = 0;
+        FILE *f = open_memstream(&out, &n);
+        steps_print(f, d, FMT_TEXT, -1);
+        steps_print(f, d, FMT_LATEX, -1);
+        steps_print(f, d, FMT_JSON, -1);
+        if (d->npoints > 0)
+            steps_print(f, d, FMT_TEXT, 0);
+        fclose(f);
+        free(out);
+        ok = ok && d->nsteps > 0;
+    }
+    derived_free(d);
+    return ok;
+}
+
+/* seeded mutations of schemes with meets, solves, directions, subst and
+ * diff: no crash, no leak, success exactly when there is no error */
+static void test_steps_mutations_never_crash(void **state)
+{
+    (void)state;
+    static const char *const files[] = {
+        "examples/desargues_arc.pcs", "examples/parabola_improper_point.pcs",
+        "examples/curve_3d_one_ratio.pcs", "examples/interpolation_bezier.pcs",
+        "examples/ellipse_central_angle.pcs"};
+    static const char *const tokens[] = {
+        "(",     ")",        ",",      "=",      "+",      "-",       "*",
+        "/",     "^",        "\n",     "0",      "1",      "t",       "A",
+        "B",     "meet(",    "line(",  "plane(", "along(", "divide(", "subst(",
+        "diff(", "unknown ", "solve ", " for ",  "1/2",    "A - B",   "sin("};
+    const char *env = getenv("PC_FUZZ_MUTATIONS");
+    int muts = env ? atoi(env) / 5 + 1 : 300;
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        size_t len;
+        char *text = slurp(files[i], &len);
+        assert_true(probe_steps(text, len));
+        rng = 0x9e3779b97f4a7c15ULL ^ (uint64_t)len;
+        char *b = malloc(len * 2 + 64);
+        for (int m = 0; m < muts; m++) {
+            size_t n = len, cap = len * 2 + 64;
+            memcpy(b, text, len);
+            for (int e = 1 + (int)rnd(3); e > 0; e--) {
+                size_t at = n ? rnd((uint32_t)n) : 0;
+                if (rnd(3) == 0 && n) { /* delete a short range */
+                    size_t l = 1 + rnd(6);
+                    l = at + l > n ? n - at : l;
+                    memmove(b + at, b + at + l, n - at - l);
+                    n -= l;
+                } else { /* insert a token */
+                    const char *t = tokens[rnd(sizeof tokens / sizeof *tokens)];
+                    size_t l = strlen(t);
+                    if (n + l >= cap)
+                        continue;
+                    memmove(b + at + l, b + at, n - at);
+                    memcpy(b + at, t, l);
+                    n += l;
+                }
+            }
+            if (!probe_steps(b, n))
+                fail_msg("%s: inconsistent result for\n%.*s", files[i], (int)n,
+                         b);
+        }
+        free(b);
+        free(text);
+    }
+}
+
 /* ---- the command line ---------------------------------------------------- */
 
 typedef struct Run {
@@ -638,11 +812,13 @@ int main(void)
         cmocka_unit_test(test_steps_desargues_match_article),
         cmocka_unit_test(test_steps_compare_can_fail),
         cmocka_unit_test(test_steps_v_theorem),
+        cmocka_unit_test(test_steps_meet_identities_examples),
         cmocka_unit_test(test_steps_subst_diff),
         cmocka_unit_test(test_steps_solve),
         cmocka_unit_test(test_steps_pending),
         cmocka_unit_test(test_steps_parallel_error),
         cmocka_unit_test(test_steps_off_changes_nothing),
+        cmocka_unit_test(test_steps_mutations_never_crash),
         cmocka_unit_test(test_steps_print_desargues),
         cmocka_unit_test(test_steps_cli),
     };
