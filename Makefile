@@ -159,7 +159,7 @@ figures: $(B)/pointcalc
 	sh docs/figures/make-figures.sh $(B)/pointcalc docs/figures
 
 format:
-	clang-format -i $(wildcard */*.c */*.h */*/*.c)
+	clang-format -i $(wildcard */*.c */*.h */*/*.c compiler/cli/*.h)
 
 clean:
 	rm -rf build build-asan build-fuzz

@@ -1089,11 +1089,13 @@ static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
             " * %s_M_batch(n, ...) for n values (params as arrays), both\n"
             " * writing dim coordinates per value (one number for a scalar).\n"
             " * Poles: where a denominator of the reduced equation is 0 the\n"
-            " * coordinates are NaN; %s_M_checked returns 1 there (2 for a\n"
-            " * denominator beyond double, 3 for a value not finite otherwise:\n"
-            " * a NaN input; else 0)\n"
-            " * and %s_M_batch_checked returns how many samples are poles\n"
-            " * (status[i] = 1, 2 or 3 for each, when status is not NULL).\n"
+            " * coordinates are NaN.  %s_M_checked returns 0 ok, 1 pole,\n"
+            " * 2 overflow (a denominator beyond double), 3 not finite (a NaN\n"
+            " * input, a numerator beyond double), 4 domain (a function's\n"
+            " * argument outside its domain); the coordinates are NaN unless 0.\n"
+            " * %s_M_batch_checked returns how many samples are not 0 and\n"
+            " * sets status[i] to that code when status is not NULL (with\n"
+            " * status NULL, 3 is not looked for).\n"
             " */\n",
             N->prefix, N->prefix, N->prefix, N->prefix);
 }

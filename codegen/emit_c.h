@@ -7,9 +7,10 @@
  *   void   NAME_M_batch(size_t n, param arrays, consts, points, int dim,
  *                       double *out);
  *   int    NAME_M_checked(... as NAME_M ...);   0 ok, 1 pole, 2 overflow,
- *                                                3 not finite (a NaN input)
+ *                                                3 not finite, 4 domain
  *   size_t NAME_M_batch_checked(... as NAME_M_batch ...,
- *                               unsigned char *status);  number of poles
+ *                               unsigned char *status);  number of samples
+ *                                                         not 0
  *
  * At a pole (a denominator of the reduced equation is 0) every coordinate
  * is NaN; the _checked variants also report it (docs/codegen.md).  The code

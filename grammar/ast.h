@@ -144,7 +144,8 @@ Stmt *ast_new_stmt(Arena *a, StmtKind kind, Span span);
 
 const char *ast_node_kind_name(NodeKind k);
 const char *ast_stmt_kind_name(StmtKind k);
-/* deterministic S-expression dump (--dump-ast, golden tests) */
+/* deterministic S-expression dump, for golden tests (tests/unit/test_front.c;
+ * no command-line flag prints it) */
 void ast_dump(FILE *out, const Scheme *s);
 
 #endif

@@ -370,8 +370,8 @@ check "domain: json lists the outputs" python3 -c "
 import json, sys
 d = json.load(open(sys.argv[1]))
 s = d['samples']
-assert s[0]['domain'] == ['M', 'L'] and s[0]['M'] == [None] and s[0]['L'] is None
-assert 'domain' not in s[1] and s[1]['M'] == [2]
+assert s[0]['domain'] == ['M', 'L'] and s[0]['values'] == {'M': [None], 'L': None}
+assert 'domain' not in s[1] and s[1]['values']['M'] == [2]
 " "$tmp/out"
 
 # a scalar output that measures points reads them (and only those)
@@ -380,6 +380,139 @@ printf 'point A, B, C\nparam t\nd = dist(A, B)*t\noutput d\n' >"$tmp/di.pcs"
 check "dist: eval 2*|AB|" test $? -eq 0 -a "$(tail -1 "$tmp/out")" = "2,10"
 "$PC" eval "$tmp/di.pcs" --at A=0,0 --param t=2 >"$tmp/out" 2>"$tmp/err"
 check "dist: B is needed" grep -q "^pointcalc: missing --at B=" "$tmp/err"
+
+# ---- command-line friction (issue 9, item 4) ----------------------------
+
+# help for every command, help itself included: `help CMD` = `CMD --help`
+"$PC" help help >"$tmp/out" 2>"$tmp/err"
+check "help help: exit 0, on stdout" test $? -eq 0 -a -s "$tmp/out" -a ! -s "$tmp/err"
+check "help help: its usage" grep -q '^usage: pointcalc help' "$tmp/out"
+"$PC" help --help >"$tmp/out2"
+check "help --help: the same text" cmp -s "$tmp/out" "$tmp/out2"
+for c in derive emit-c eval help; do
+    check "general usage names $c" grep -q "pointcalc $c" <("$PC" help)
+done
+"$PC" help eval extra >"$tmp/out" 2>"$tmp/err"
+check "help with two words: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
+check "help with two words: said" grep -q "^pointcalc: help takes one command, found 'extra'$" "$tmp/err"
+"$PC" help emit-c | grep -q '^  --output NAMES'
+check "help emit-c: --output" test $? -eq 0
+"$PC" help eval | grep -q '^  --set k=SPEC'
+check "help eval: --set k=SPEC" test $? -eq 0
+
+# emit-c --output: repeatable, comma-separated, in that order; exactly those
+DA=examples/desargues_arc.pcs
+"$PC" emit-c $DA --output dM,M -o "$tmp/sel.c" --header "$tmp/sel.h"
+check "emit-c --output dM,M: exit 0" test $? -eq 0
+grep -o '^[a-z_]* *desargues_arc_[A-Za-z0-9_]*(' "$tmp/sel.h" | sed 's/.* //; s/(//' >"$tmp/protos"
+check "emit-c --output dM,M: dM's four, then M's four" test "$(tr '\n' ' ' <"$tmp/protos")" = "desargues_arc_dM desargues_arc_dM_checked desargues_arc_dM_batch desargues_arc_dM_batch_checked desargues_arc_M desargues_arc_M_checked desargues_arc_M_batch desargues_arc_M_batch_checked "
+cc -std=c99 -Wall -Wextra -pedantic -Werror -O1 -c "$tmp/sel.c" -o "$tmp/sel.o" 2>"$tmp/err"
+check "emit-c --output dM,M compiles" test $? -eq 0 -a ! -s "$tmp/err"
+nm -g --defined-only "$tmp/sel.o" | awk '{print $3}' | sort >"$tmp/syms"
+check "emit-c --output dM,M: exports = header" cmp -s "$tmp/syms" <(sort "$tmp/protos")
+check "emit-c --output: the banner names only those" test "$(grep -c '^ \* [A-Za-z_0-9]* (\(point\|vector\|scalar\), line' "$tmp/sel.c")" -eq 2
+"$PC" emit-c $DA --output dM --output M -o "$tmp/sel2.c"
+check "emit-c --output twice = a list" cmp -s "$tmp/sel.c" "$tmp/sel2.c"
+"$PC" emit-c $DA --output M -o "$tmp/selM.c"
+"$PC" emit-c $DA -o "$tmp/all.c"
+# (the same code but for the numbers of the registers)
+fbody() { sed -n '/^\/\* ---- M (/,$p' "$1" | sed -n '/^int desargues_arc_M_checked(/,/^}/p' | sed 's/r[0-9][0-9]*/r/g'; }
+check "emit-c --output M: M_checked as in the full file" test -n "$(fbody "$tmp/selM.c")" -a "$(fbody "$tmp/selM.c")" = "$(fbody "$tmp/all.c")"
+"$PC" emit-c $DA --output Q >"$tmp/out" 2>"$tmp/err"
+check "emit-c --output Q: exit 2, nothing written" test $? -eq 2 -a ! -s "$tmp/out"
+check "emit-c --output Q: the outputs named" grep -q "^pointcalc: --output 'Q' is not an output of the scheme (outputs: M, M_CB, M_AD, dM, d2M)$" "$tmp/err"
+"$PC" emit-c $DA --output M,M >"$tmp/out" 2>"$tmp/err"
+check "emit-c --output M,M: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
+"$PC" emit-c $DA --output ,M >"$tmp/out" 2>"$tmp/err"
+check "emit-c --output ,M: exit 2, what was expected" grep -q "^pointcalc: --output ',M': expected output names separated by commas$" "$tmp/err"
+
+# eval needs only the params (and points, consts) the selected outputs use
+printf 'point A, B, C\nparam t, u\nconst k\nM = along(A, B, t)\nN = along(A, C, k*u)\noutput M, N\n' >"$tmp/pu.pcs"
+"$PC" eval "$tmp/pu.pcs" --at A=0 --at B=2 --param t=0.5 --output M >"$tmp/out" 2>"$tmp/err"
+check "eval M: no --param u, --set k or --at C needed" test $? -eq 0 -a ! -s "$tmp/err"
+check "eval M: u is no column" test "$(tr '\n' ' ' <"$tmp/out")" = "t,M.1 0.5,1 "
+"$PC" eval "$tmp/pu.pcs" --at A=0 --at B=2 --param t=0.5 --param u=0,1 --output M >"$tmp/out"
+check "eval M with an unused --param u: a column and a grid" test "$(tr '\n' ' ' <"$tmp/out")" = "t,u,M.1 0.5,0,1 0.5,1,1 "
+"$PC" eval "$tmp/pu.pcs" --at A=0 --at C=1 --set k=2 --output N >"$tmp/out" 2>"$tmp/err"
+check "eval N: u is needed" test $? -eq 2 -a ! -s "$tmp/out"
+check "eval N: missing --param u" grep -q "^pointcalc: missing --param u=SPEC$" "$tmp/err"
+"$PC" eval "$tmp/pu.pcs" --at A=0 --at C=1 --param u=1 --output N >"$tmp/out" 2>"$tmp/err"
+check "eval N: missing --set k" grep -q "^pointcalc: missing --set k=VALUE$" "$tmp/err"
+
+# --set k=SPEC sweeps a const: the grid over params and swept consts (the
+# consts slowest), a column after the params; one value: no column
+printf 'point A, B\nparam t\nconst k, h\nM = along(A, B, k*t + h)\n' >"$tmp/sw.pcs"
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=0 --set k=1,2 --param t=0,1 >"$tmp/out" 2>"$tmp/err"
+check "sweep: exit 0" test $? -eq 0 -a ! -s "$tmp/err"
+check "sweep: header and rows, k slowest" test "$(tr '\n' ' ' <"$tmp/out")" = "t,k,M.1 0,1,0 1,1,1 0,2,0 1,2,2 "
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=1,10 --set k=0:1:3 --param t=2 >"$tmp/out"
+check "sweep of two consts: the last of them fastest" test "$(tr '\n' ' ' <"$tmp/out")" = "t,k,h,M.1 2,0,1,1 2,0,10,10 2,0.5,1,2 2,0.5,10,11 2,1,1,3 2,1,10,12 "
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=0 --set k=3 --param t=0,1 >"$tmp/out"
+check "one value: no column, as before" test "$(tr '\n' ' ' <"$tmp/out")" = "t,M.1 0,0 1,3 "
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=0 --set k=1,2 --param t=0,1 --format json >"$tmp/out"
+check "sweep: JSON names and values the consts" python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d['params'] == ['t'] and d['consts'] == ['k'], d
+s = d['samples']
+assert [(x['params']['t'], x['consts']['k'], x['values']['M']) for x in s] == [(0, 1, [0]), (1, 1, [1]), (0, 2, [0]), (1, 2, [2])], s
+" "$tmp/out"
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=0 --set k=1,,2 --param t=0 >"$tmp/out" 2>"$tmp/err"
+check "sweep: a malformed list is a usage error" test $? -eq 2 -a ! -s "$tmp/out"
+check "sweep: says what was expected" grep -q "^pointcalc: --set k=1,,2: malformed value list '1,,2': expected a number, a list 0,0.25,1 or lo:hi:count$" "$tmp/err"
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=0 --set k=1:2:1 --param t=0 >"$tmp/out" 2>"$tmp/err"
+check "sweep: a bad range is a usage error" test $? -eq 2 -a ! -s "$tmp/out"
+# a pole in a swept family is reported with the const's value
+printf 'point A, B\nparam t\nconst k\nM = A + (B - A)/(t - k)\n' >"$tmp/swp.pcs"
+"$PC" eval "$tmp/swp.pcs" --at A=0 --at B=1 --set k=0,1 --param t=1 >"$tmp/out" 2>"$tmp/err"
+check "sweep: a pole exits 1" test $? -eq 1
+check "sweep: the pole's k" grep -qx "pointcalc: eval: pole of M at t=1, k=1: a denominator of its equation vanishes; written as nan" "$tmp/err"
+check "sweep: every row" test "$(tr '\n' ' ' <"$tmp/out")" = "t,k,M.1 1,0,1 1,1,nan "
+# a large sweep crosses evaluation blocks: rows stay in order
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=0 --set k=0:2999:3000 --param t=0:1:3 >"$tmp/out"
+check "sweep over blocks: 9000 rows" test "$(wc -l <"$tmp/out")" -eq 9001
+check "sweep over blocks: row 7500" test "$(sed -n 7501p "$tmp/out")" = "1,2499,2499"
+"$PC" eval "$tmp/sw.pcs" --at A=0 --at B=1 --set h=0 --set k=1,2 --param t=0:4999:5000 >"$tmp/out"
+check "sweep, a block within a const's rows: row 4097" test "$(sed -n 4098p "$tmp/out")" = "4096,1,4096"
+check "sweep, a block within a const's rows: row 5001" test "$(sed -n 5002p "$tmp/out")" = "0,2,0"
+check "sweep, a block within a const's rows: the last" test "$(tail -1 "$tmp/out")" = "4999,2,9998"
+
+# eval JSON: a user's names never collide with the format's keys
+printf 'point A, B\nparam params\nconst consts\npoles = A + (B - A)/params\nvalues = params*consts\ndomain = sqrt(params)\noutput poles, values, domain\n' >"$tmp/clash.pcs"
+"$PC" eval "$tmp/clash.pcs" --at A=0 --at B=1 --set consts=1,2 --param params=-1,0 --format json >"$tmp/out" 2>/dev/null
+check "json: names like its keys exit 1 (a pole, a domain)" test $? -eq 1
+check "json: names like its keys stay apart" python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d['params'] == ['params'] and d['consts'] == ['consts'], d
+assert [o['name'] for o in d['outputs']] == ['poles', 'values', 'domain']
+s = d['samples']
+assert len(s) == 4 and all(set(x) - {'poles', 'nonfinite', 'domain'} == {'params', 'consts', 'values'} for x in s), s
+assert s[0]['params'] == {'params': -1} and s[0]['consts'] == {'consts': 1}
+assert s[0]['values'] == {'poles': [-1], 'values': -1, 'domain': None}
+assert s[0]['domain'] == ['domain'] and 'poles' not in s[0]
+assert s[1]['values']['poles'] == [None] and s[1]['poles'] == ['poles']
+assert s[3]['values']['values'] == 0 and s[3]['consts'] == {'consts': 2}
+" "$tmp/out"
+
+# the generated code's banner states the statuses the code returns (and
+# docs/codegen.md the same)
+"$PC" emit-c "$tmp/fn.pcs" -o "$tmp/fnc.c"
+check "banner: the five statuses" grep -q "_checked returns 0 ok, 1 pole,$" "$tmp/fnc.c"
+check "banner: 4 domain" grep -q "4 domain (a function's$" "$tmp/fnc.c"
+check "code: returns 4" grep -q '? 4 :' "$tmp/fnc.c"
+check "docs/codegen.md: the same statuses" grep -q '/\* 0 ok, 1 pole, 2 overflow, 3 not finite, 4 domain \*/' docs/codegen.md
+check "no --dump-ast is promised" test -z "$(grep -rn -- '--dump-ast' README.md docs grammar compiler codegen runtime)"
+
+# the contract is part of docs/, and the docs point at it
+check "docs/contract.md: the fixed contract" grep -q '^> This is the fixed contract of pointcalc' docs/contract.md
+check "docs/contract.md: its title" test "$(sed -n 3p docs/contract.md)" = "# pointcalc: the contract"
+check "no reference outside the repository" test -z "$(grep -rn 'shared/docs' README.md docs)"
+for f in README.md docs/*.md; do
+    for ref in $(grep -o 'docs/[a-z_]*\.md' "$f" | sort -u); do
+        check "$f: $ref exists" test -f "$ref"
+    done
+done
 
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

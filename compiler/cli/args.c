@@ -327,15 +327,17 @@ static int setup_const(EvalSetup *s, const Assign *x, int k, const char *usage,
                             msg);
 }
 
-/* --set: each const once; a param named instead is said to be one */
+/* --set: each const once (a param named instead is said to be one); the
+ * swept ones' axes in declaration order */
 static int setup_consts(EvalSetup *s, const EvalArgs *a, const Plan *p,
                         unsigned char *seen, const char *usage, FILE *err)
 {
     char list[512];
-    for (int i = 0; i < a->nset; i++) {
+    const Assign **given = pc_xcalloc((size_t)p->nconsts + 1, sizeof *given);
+    int rc = 0;
+    for (int i = 0; i < a->nset && !rc; i++) {
         const Assign *x = &a->set[i];
         int k = find_name(p->consts, p->nconsts, x->name);
-        int rc;
         if (k < 0 && find_name(p->params, p->nparams, x->name) >= 0)
             rc = args_usage_error(err, usage,
                                   "--set %s: '%s' is a param; give it with "
@@ -350,11 +352,13 @@ static int setup_consts(EvalSetup *s, const EvalArgs *a, const Plan *p,
         else if (seen[k]++)
             rc = args_usage_error(err, usage, "--set %s given twice", x->name);
         else
-            rc = setup_const(s, x, k, usage, err);
-        if (rc)
-            return rc;
+            given[k] = x;
     }
-    return 0;
+    for (int k = 0; k < p->nconsts && !rc; k++)
+        if (given[k])
+            rc = setup_const(s, given[k], k, usage, err);
+    free(given);
+    return rc;
 }
 
 /* --param: each param once; the axes in declaration order */

@@ -5,21 +5,26 @@
  *                     every command (budget, -v, -D: budget_parse_option),
  *                     the command's own options through a callback, and the
  *                     usage errors (unknown option, second FILE, no FILE)
+ *   NameList          --output NAME[,NAME...] (repeatable), and
+ *                     args_select_outputs: those names as a Plan's outputs
  *   EvalArgs          eval's --at A=x,y --set k=SPEC --param t=SPEC
  *                     --output NAME[,NAME...], as typed (no scheme needed)
  *   EvalSetup         those checked against a Plan: the selected outputs,
  *                     the points' coordinates, the consts' values and the
- *                     grid of samples
+ *                     grid of samples (the given params and the swept
+ *                     consts)
  *
- * eval and plot share EvalArgs and EvalSetup:
+ * eval and plot share EvalArgs and EvalSetup (compiler/cli/eval.c is the
+ * model):
  *
  *   EvalArgs a;  eval_args_init(&a);
  *   args_parse(argc, argv, usage, &budget, &file, my_option, &ctx, err)
  *       with my_option calling eval_args_option(&a, ...) first;
- *   Plan *p = cli_plan_file(file, &budget, err, &rc);
+ *   Plan *p = cli_plan_file(file, &budget, err, &rc, NULL);
  *   EvalSetup s;  eval_setup(&s, &a, p, usage, err);
- *   for each run of rows sharing their consts (eval_setup_run):
- *       eval_setup_row(&s, row, params, s.consts) ... plan_eval(...)
+ *   double *consts = a copy of s.consts (p->nconsts values);
+ *   for each run of rows sharing their consts (eval_setup_run), in blocks:
+ *       eval_setup_row(&s, row, params, consts) per row ... plan_eval(...)
  *   eval_setup_clear(&s);  eval_args_clear(&a);
  *
  * Every usage error is reported to err as "pointcalc: MESSAGE" and the

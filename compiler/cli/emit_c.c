@@ -98,22 +98,38 @@ static int check_names(const EmitArgs *a, const char *file, FILE *err)
     return 0;
 }
 
+/* a memory stream and its end, under the one out-of-memory policy (the
+ * only way they fail) */
+static FILE *memstream(char **text, size_t *len)
+{
+    FILE *m = open_memstream(text, len);
+    if (!m)
+        pc_out_of_memory(MEM_SYSTEM);
+    return m;
+}
+
+static void memstream_close(FILE *m)
+{
+    if (fclose(m) != 0)
+        pc_out_of_memory(MEM_SYSTEM);
+}
+
 /* the C (or the plan dump) and the header, then the files */
 static int write_outputs(const EmitArgs *a, const Plan *p, const char *file,
                          FILE *out, FILE *err)
 {
     char *ctext = NULL, *htext = NULL;
     size_t clen = 0, hlen = 0;
-    FILE *m = open_memstream(&ctext, &clen);
+    FILE *m = memstream(&ctext, &clen);
     if (a->dump)
         plan_dump(m, p);
     else
         emit_c_ex(m, p, a->prefix, file, a->functions);
-    fclose(m);
+    memstream_close(m);
     if (a->hpath) {
-        m = open_memstream(&htext, &hlen);
+        m = memstream(&htext, &hlen);
         emit_c_header_ex(m, p, a->prefix, file, a->functions);
-        fclose(m);
+        memstream_close(m);
     }
     int rc = a->hpath ? outfile_write(a->hpath, htext, hlen, out, err) : 0;
     if (rc == 0)

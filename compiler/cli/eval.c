@@ -72,6 +72,8 @@ static void block_init(Block *b, const Plan *p, const EvalSetup *s)
     b->cap = s->dim > 0 && CHUNK_VALUES / (size_t)s->dim < CHUNK
                  ? CHUNK_VALUES / (size_t)s->dim
                  : CHUNK;
+    if (b->cap == 0) // more than CHUNK_VALUES coordinates a point
+        b->cap = 1;
     b->pv = pc_xmalloc(sizeof *b->pv * (size_t)(p->nparams + 1));
     b->res = pc_xmalloc(sizeof *b->res * (size_t)(s->nsel + 1));
     b->st = pc_xmalloc(sizeof *b->st * (size_t)(s->nsel + 1));

@@ -117,6 +117,8 @@ static void json_head(FILE *out, const Plan *p, const EvalSetup *s)
     json_string(out, p->name);
     fputs(", ", out);
     json_axis_names(out, "params", p, s, 1);
+    fputs(", ", out);
+    json_axis_names(out, "consts", p, s, 0);
     fputs(", \"outputs\": [", out);
     for (int j = 0; j < s->nsel; j++) {
         const PlanOutput *o = &p->outputs[s->sel[j]];
@@ -129,12 +131,49 @@ static void json_head(FILE *out, const Plan *p, const EvalSetup *s)
     fputs("],\n \"samples\": [", out);
 }
 
-/* the sort of a status in JSON: "poles", "nonfinite" or "domain" */
-static const char *status_key(unsigned char st)
+/* "key": {NAME: VALUE, ...} for the axes of one sort */
+static void json_axis_values(FILE *out, const char *key, const Plan *p,
+                             const EvalSetup *s, const TableRow *r, int params)
 {
-    return st == PLAN_STATUS_POLE     ? "poles"
-           : st == PLAN_STATUS_DOMAIN ? "domain"
-                                      : "nonfinite";
+    const char *sep = "";
+    fprintf(out, "\"%s\": {", key);
+    for (int i = 0; i < s->naxes; i++) {
+        const EvalAxis *x = &s->axes[i];
+        if ((x->param >= 0) != params)
+            continue;
+        fputs(sep, out);
+        json_string(out, axis_name(p, x));
+        fputs(": ", out);
+        json_number(out, axis_value(x, r));
+        sep = ", ";
+    }
+    fputs("}", out);
+}
+
+/* "values": {"M": [x, y], "s": v} */
+static void json_values(FILE *out, const Plan *p, const EvalSetup *s,
+                        const TableRow *r)
+{
+    fputs("\"values\": {", out);
+    for (int j = 0; j < s->nsel; j++) {
+        const PlanOutput *o = &p->outputs[s->sel[j]];
+        int nc = table_columns(p, s->sel[j], s->dim);
+        fputs(j ? ", " : "", out);
+        json_string(out, o->name);
+        fputs(o->kind == PLAN_SCALAR ? ": " : ": [", out);
+        for (int c = 0; c < nc; c++) {
+            fputs(c ? ", " : "", out);
+            json_number(out, r->values[j][c]);
+        }
+        fputs(o->kind == PLAN_SCALAR ? "" : "]", out);
+    }
+    fputs("}", out);
+}
+
+/* the sort of a status in JSON: 0 "poles", 1 "nonfinite", 2 "domain" */
+static int status_sort(unsigned char st)
+{
+    return st == PLAN_STATUS_POLE ? 0 : st == PLAN_STATUS_DOMAIN ? 2 : 1;
 }
 
 /* , "poles": [..], "nonfinite": [..], "domain": [..], the empty ones left
@@ -147,7 +186,7 @@ static void json_statuses(FILE *out, const Plan *p, const EvalSetup *s,
         const char *sep = NULL;
         for (int j = 0; j < s->nsel; j++) {
             unsigned char st = r->status[j];
-            if (st == PLAN_STATUS_OK || status_key(st) != keys[k])
+            if (st == PLAN_STATUS_OK || status_sort(st) != k)
                 continue;
             if (!sep)
                 fprintf(out, ", \"%s\": [", keys[k]);
@@ -163,27 +202,12 @@ static void json_statuses(FILE *out, const Plan *p, const EvalSetup *s,
 static void json_row(FILE *out, const Plan *p, const EvalSetup *s,
                      const TableRow *r, size_t index)
 {
-    const char *sep = "";
     fputs(index ? ",\n  {" : "\n  {", out);
-    for (int i = 0; i < s->naxes; i++, sep = ", ") {
-        const EvalAxis *x = &s->axes[i];
-        fputs(sep, out);
-        json_string(out, axis_name(p, x));
-        fputs(": ", out);
-        json_number(out, axis_value(x, r));
-    }
-    for (int j = 0; j < s->nsel; j++, sep = ", ") {
-        const PlanOutput *o = &p->outputs[s->sel[j]];
-        int nc = table_columns(p, s->sel[j], s->dim);
-        fputs(sep, out);
-        json_string(out, o->name);
-        fputs(o->kind == PLAN_SCALAR ? ": " : ": [", out);
-        for (int c = 0; c < nc; c++) {
-            fputs(c ? ", " : "", out);
-            json_number(out, r->values[j][c]);
-        }
-        fputs(o->kind == PLAN_SCALAR ? "" : "]", out);
-    }
+    json_axis_values(out, "params", p, s, r, 1);
+    fputs(", ", out);
+    json_axis_values(out, "consts", p, s, r, 0);
+    fputs(", ", out);
+    json_values(out, p, s, r);
     json_statuses(out, p, s, r);
     fputc('}', out);
 }

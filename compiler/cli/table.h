@@ -8,9 +8,20 @@
  * sample, numbers as %.17g; NaN is "nan" (never "-nan"), infinities
  * "inf" and "-inf".
  *
- * JSON: one object {"scheme": .., "params": [..], "outputs": [..],
- * "samples": [..]}, a sample {"t": 0, "M": [0, 1], "poles": ["M"]}
- * (docs/eval.md).
+ * JSON: one object; the user's names appear only as keys of the objects
+ * "params", "consts" and "values" and in lists, so no name can collide
+ * with a key of the format:
+ *
+ *   {"scheme": "S", "params": ["t"], "consts": ["k"],
+ *    "outputs": [{"name": "M", "kind": "point", "dim": 2}],
+ *    "samples": [
+ *     {"params": {"t": 0}, "consts": {"k": 1}, "values": {"M": [0, 1]}},
+ *     {"params": {"t": 1}, "consts": {"k": 1}, "values": {"M": [null, null]},
+ *      "poles": ["M"]}, ...]}
+ *
+ * A sample lists the outputs that are not finite there under "poles",
+ * "nonfinite" and "domain" (each only when not empty); their values are
+ * null.
  */
 #ifndef PC_TABLE_H
 #define PC_TABLE_H

@@ -138,7 +138,8 @@ static void test_eval_all_outputs_and_json(void **state)
         run("eval examples/desargues_arc.pcs " PTS "--param t=0 --format json");
     assert_int_equal(r.rc, 0);
     assert_non_null(strstr(r.out, "\"scheme\": \"desargues_arc\""));
-    assert_non_null(strstr(r.out, "{\"t\": 0, \"M\": [0, 0, 0], "));
+    assert_non_null(strstr(r.out, "{\"params\": {\"t\": 0}, \"consts\": {}, "
+                                  "\"values\": {\"M\": [0, 0, 0], "));
     assert_non_null(strstr(r.out, "\"dM\": [0, 1, 0]")); // C - A
     run_free(&r);
     r = run("eval examples/desargues_arc.pcs --at A=0 --at B=1 --at C=2 "
@@ -186,8 +187,9 @@ static void test_eval_pole_prints_nan_and_exits_1(void **state)
              tmpdir);
     r = run(args);
     assert_int_equal(r.rc, 1);
-    assert_non_null(
-        strstr(r.out, "{\"t\": 0, \"M\": [null, null], \"poles\": [\"M\"]}"));
+    assert_non_null(strstr(r.out, "{\"params\": {\"t\": 0}, \"consts\": {}, "
+                                  "\"values\": {\"M\": [null, null]}, "
+                                  "\"poles\": [\"M\"]}"));
     run_free(&r);
 }
 
@@ -207,7 +209,7 @@ static void test_eval_overflow_is_reported(void **state)
     run_free(&r);
     r = run("eval " DA PTS "--param t=1e103 --format json");
     assert_int_equal(r.rc, 1);
-    assert_non_null(strstr(r.out, "\"M\": [null, null, null], "
+    assert_non_null(strstr(r.out, "\"M\": [null, null, null]}, "
                                   "\"nonfinite\": [\"M\"]}"));
     run_free(&r);
     /* a scheme without params: no " at" */
