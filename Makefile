@@ -5,6 +5,7 @@
 #   make valgrind the same tests under valgrind's memcheck
 #   make fuzz     libFuzzer on derive_source for FUZZ_SECONDS (clang)
 #   make bench    in-process benchmarks (bench/)
+#   make figures  docs/figures/*.svg (pointcalc plot)
 #   make format   clang-format the sources
 
 B       ?= build
@@ -83,6 +84,7 @@ check: tests
 	  python3 tests/printback.py $(B)/pointcalc examples/*.pcs tests/schemes/*.pcs || fail=1; \
 	  echo "== tests/latex_test.sh"; \
 	  tests/latex_test.sh $(B)/pointcalc || fail=1; \
+	  tests/plot_test.sh $(B)/pointcalc || fail=1; \
 	  echo "== $(B)/examples/api_example"; \
 	  $(B)/examples/api_example > $(B)/examples/api_example.out && \
 	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.out && \
@@ -111,6 +113,8 @@ valgrind: tests
 	  echo "== valgrind tests/cli_test.sh"; \
 	  PC_VALGRIND=1 PC_NOLEAK=$(B)/pointcalc-vg-noleak \
 	    tests/cli_test.sh $(B)/pointcalc-vg || fail=1; \
+	  echo "== valgrind tests/plot_test.sh"; \
+	  tests/plot_test.sh $(B)/pointcalc-vg || fail=1; \
 	  echo "== valgrind $(B)/examples/api_example"; \
 	  $(VALGRIND) $(B)/examples/api_example > $(B)/examples/api_example.vg.out && \
 	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.vg.out \
@@ -154,11 +158,15 @@ bench: $(BENCHES) $(B)/pointcalc
 	for b in $(BENCHES); do PYTHON=$$py $$b || exit 1; done
 	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
 
+# the figures of docs/plot.md (tests/plot_test.sh checks they are current)
+figures: $(B)/pointcalc
+	sh docs/figures/make-figures.sh $(B)/pointcalc docs/figures
+
 format:
 	clang-format -i $(wildcard */*.c */*.h */*/*.c compiler/cli/*.h)
 
 clean:
 	rm -rf build build-asan build-fuzz
 
-.PHONY: all tests check asan valgrind fuzz bench format clean
+.PHONY: all tests check asan valgrind fuzz bench figures format clean
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

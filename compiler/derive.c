@@ -2180,6 +2180,14 @@ retry:
                 count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
             }
         }
+        /* the params' ranges are derived too (Derived.range) */
+        for (int i = 0; i < info->nparams; i++) {
+            const Stmt *st = info->params[i]->decl;
+            if (st && st->lo && !st->bad) {
+                count_kernel_uses(st->lo, &calls, &ops, &pis, &metric);
+                count_kernel_uses(st->hi, &calls, &ops, &pis, &metric);
+            }
+        }
         slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
         if (metric)
             nslots += kernels_metric_slots(metric, d->npoints);
@@ -2269,6 +2277,18 @@ retry:
             uv.s[0] = D.ssol[s->index];
             check_no_unknown(&D, s, &uv);
         }
+    }
+
+    /* the declared ranges, exact (a range that does not reduce is left
+     * out: sema has reported what is wrong with it) */
+    d->range = ratfun_vec_init(2 * info->nparams, r);
+    d->has_range = pc_xcalloc((size_t)info->nparams + 1, 1);
+    for (int i = 0; i < info->nparams && diag.nerrors == 0; i++) {
+        const Stmt *st = info->params[i]->decl;
+        if (st && st->lo && !st->bad &&
+            eval_scalar(&D, d->range + 2 * i, st->lo) == 0 &&
+            eval_scalar(&D, d->range + 2 * i + 1, st->hi) == 0)
+            d->has_range[i] = 1;
     }
 
     if (diag.nerrors == 0) {
@@ -2414,6 +2434,9 @@ void derived_free(Derived *d)
         kernels_clear(d->kernels);
         free(d->kernels);
     }
+    if (d->range)
+        ratfun_vec_clear(d->range, 2 * d->nparams, &d->ring);
+    free(d->has_range);
     ring_clear(&d->ring);
     for (slong i = 0; i < d->npoints; i++)
         free(d->points[i]);

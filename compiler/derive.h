@@ -122,6 +122,8 @@ typedef struct Derived {
     Ring ring;
     struct Kernels *kernels; // the ring variables after the extra ones:
                              // functions and pi (kernel.h), or NULL
+    RatFunStruct *range;      // 2 * nparams: each param's declared range
+    unsigned char *has_range; // (lo, hi), exact; has_range[i] = 0: none
     slong noutputs; // `output` list (default: the last definition)
     DerivedOutput *outputs;
     slong nsteps;       // DeriveOptions.keep_steps: the steps in source

@@ -27,6 +27,7 @@ CliCommand cli_derive; // derive.c: the exact equations, text|latex|json
 CliCommand cli_emit_c; // emit_c.c: C99 for the outputs
 CliCommand cli_eval;   // eval.c: numbers, CSV|JSON
 CliCommand cli_help;   // help.c: pointcalc help [CMD]
+CliCommand cli_plot;   // plot.c: the curves and the construction as SVG
 
 /* The pipeline every command starts with (pipeline.c).
  *

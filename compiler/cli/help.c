@@ -16,7 +16,10 @@ const char cli_usage[] =
     "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=SPEC ...]\n"
     "                        --param t=SPEC ... [--output NAME[,NAME...]] "
     "[--format csv|json]\n"
-    "       pointcalc help [derive|emit-c|eval] | CMD --help | --version\n"
+    "       pointcalc plot   FILE --at A=x,y[,z...] ... [--output NAME,...] "
+    "[-o OUT.svg]\n"
+    "                        [--at-param t=VALUE] ...   (pointcalc help plot)\n"
+    "       pointcalc help [derive|emit-c|eval|plot] | CMD --help | --version\n"
     "\n"
     "\n"
     "Every command also takes --max-seconds S and --max-memory SIZE (the\n"
@@ -59,7 +62,19 @@ const char cli_usage[] =
     "                    --param t=SPEC ... [--output NAME[,NAME...]] ... "    \
     "[--format csv|json]\n"
 
-#define HELP_USAGE "usage: pointcalc help [derive|emit-c|eval]\n"
+#define PLOT_USAGE                                                             \
+    "usage: pointcalc plot FILE --at A=x,y[,z...] ... [--set k=VALUE ...]\n"   \
+    "                      [--param t=LO:HI[:N] | u=VALUE ...] "               \
+    "[--output NAME[,NAME...]] ...\n"                                          \
+    "                      [-o OUT.svg] [--at-param t=VALUE [--aux "           \
+    "NAME[,NAME...]]]\n"                                                       \
+    "                      [--view xy|xz|yz|iso|AZ,EL] [--tangents SPEC] "     \
+    "[--tangent-scale S]\n"                                                    \
+    "                      [--comb] [--comb-teeth N] [--comb-scale S] "        \
+    "[--size W[xH]]\n"                                                         \
+    "                      [--window X0,Y0,X1,Y1] [--max-samples N]\n"
+
+#define HELP_USAGE "usage: pointcalc help [derive|emit-c|eval|plot]\n"
 
 static const char derive_help[] = DERIVE_USAGE
     "\n"
@@ -121,6 +136,40 @@ static const char eval_help[] = EVAL_USAGE
     "to be given.  A sample at a pole or not finite is NaN in the output and\n"
     "makes the exit status 1 (docs/eval.md).\n" COMMON_HELP;
 
+static const char plot_help[] = PLOT_USAGE
+    "\n"
+    "Draws the curves of the point outputs over the swept param's range as "
+    "SVG,\n"
+    "the base points labelled, and at --at-param the construction "
+    "(docs/plot.md).\n"
+    "\n"
+    "  --at A=x,y,...      the coordinates of base point A (every point the "
+    "same\n"
+    "                      dimension; 3 and more are projected, see --view)\n"
+    "  --set k=VALUE       the value of const k\n"
+    "  --param t=LO:HI[:N] the swept param and its range (default: the range "
+    "the\n"
+    "                      scheme declares; N initial segments, default 64)\n"
+    "  --param u=VALUE     the value of a param that is not swept\n"
+    "  --output NAMES      which point outputs, repeatable or comma-separated\n"
+    "                      (default: all)\n"
+    "  -o OUT.svg          write the SVG there (default: stdout)\n"
+    "  --at-param t=VALUE  draw the construction there: its points and "
+    "lines\n"
+    "  --aux NAMES         which of its points (default: every point "
+    "definition)\n"
+    "  --view V            xy, xz, yz, iso (default in 3D) or "
+    "AZIMUTH,ELEVATION\n"
+    "  --tangents SPEC     tangent vectors dM/dt at these param values\n"
+    "  --tangent-scale S   drawn as S*dM/dt (default 1)\n"
+    "  --comb              the curvature comb; --comb-teeth N (default 100),\n"
+    "                      --comb-scale S (default: automatic)\n"
+    "  --size W[xH]        pixels (default 720 wide)\n"
+    "  --window X0,Y0,X1,Y1  the window in projected coordinates (default: "
+    "fitted)\n"
+    "  --max-samples N     the sample budget per curve (default 4000)\n"
+    "\nPoles are cut, never joined.\n" COMMON_HELP;
+
 static const char help_help[] =
     HELP_USAGE "\nPrints the general usage, or the help of one command.\n";
 
@@ -132,6 +181,7 @@ static const HelpEntry entries[] = {
     {"derive", DERIVE_USAGE, derive_help},
     {"emit-c", EMIT_C_USAGE, emit_c_help},
     {"eval", EVAL_USAGE, eval_help},
+    {"plot", PLOT_USAGE, plot_help},
     {"help", HELP_USAGE, help_help},
 };
 
@@ -164,8 +214,8 @@ int cli_help(int argc, char **argv, FILE *out, FILE *err)
     const char *h = argc == 2 ? help_text(argv[1]) : cli_usage;
     if (!h)
         return args_usage_error(err, HELP_USAGE,
-                                "no help on '%s'; expected derive, emit-c or "
-                                "eval",
+                                "no help on '%s'; expected derive, emit-c, "
+                                "eval or plot",
                                 argv[1]);
     return fputs(h, out) < 0;
 }

@@ -6,7 +6,8 @@
  *     |-> format (text, LaTeX, JSON)       derive  (derive.c)
  *     `-> lower to a Plan                  cli_plan_file (pipeline.c)
  *           |-> emit C                     emit-c  (emit_c.c)
- *           `-> interpret: CSV, JSON       eval    (eval.c, table.c)
+ *           |-> interpret: CSV, JSON       eval    (eval.c, table.c)
+ *           `-> sample and draw: SVG       plot    (plot.c)
  *
  * with the options every command shares in args.c.  This file only picks
  * the command.  Exit status: 0 success, 1 an error in the scheme, 2 a
@@ -34,6 +35,7 @@ static const Command commands[] = {
     {"emit-c", cli_emit_c},
     {"eval", cli_eval},
     {"help", cli_help},
+    {"plot", cli_plot},
 };
 
 static const Command *find_command(const char *name)

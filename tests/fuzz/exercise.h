@@ -15,9 +15,11 @@
 #include "compiler/derive.h"
 #include "compiler/format.h"
 #include "runtime/eval.h"
+#include "runtime/plot.h"
 
 /* formats d three ways (and relative to its first point), lowers it, emits
- * C and a header, and evaluates every output at a few samples in 2D */
+ * C and a header, evaluates every output at a few samples in 2D, and plots
+ * the point outputs (a small sample budget) */
 static inline void exercise_backends(const Derived *d)
 {
     char *text = NULL;
@@ -55,6 +57,37 @@ static inline void exercise_backends(const Derived *d)
         }
         for (int o = 0; o < p->noutputs; o++)
             (void)plan_eval(p, o, N, prm, cst, pts, DIM, out, st);
+        int *curves = calloc((size_t)p->noutputs + 1, sizeof *curves);
+        int nc = 0;
+        for (int o = 0; o < p->noutputs && p->nparams > 0; o++)
+            if (p->outputs[o].kind == PLAN_POINT)
+                curves[nc++] = o;
+        if (nc > 0) {
+            double pv[8] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5};
+            double *pvals = calloc((size_t)p->nparams + 1, sizeof *pvals);
+            for (int i = 0; i < p->nparams; i++)
+                pvals[i] = pv[i % 8];
+            PlotSpec ps;
+            plot_spec_default(&ps);
+            ps.env.plan = p;
+            ps.env.param = 0;
+            ps.env.params = pvals;
+            ps.env.consts = cst;
+            ps.env.points = pts;
+            ps.env.dim = DIM;
+            ps.curves = curves;
+            ps.ncurves = nc;
+            ps.lo = -1;
+            ps.hi = 3;
+            ps.lim.initial = 8;
+            ps.lim.max_samples = 40;
+            ps.ntangents = 1;
+            ps.tangents = pv;
+            ps.comb = 8;
+            (void)plot_svg(m, &ps, NULL);
+            free(pvals);
+        }
+        free(curves);
         free(coords);
         free(cst);
         free(pts);

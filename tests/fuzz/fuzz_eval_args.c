@@ -7,7 +7,9 @@
  * parsed on its own (runtime/sample.h).  Any crash, sanitizer report, or
  * an exit status other than 0, 1 or 2, is a bug.  Inputs whose grid has
  * more than 10^4 rows are skipped: a long evaluation is what they ask for,
- * not a fault.
+ * not a fault.  The same arguments then go to `plot` (its own options
+ * among them: --at-param, --view, --tangents, --comb ...; the SVG to
+ * /dev/null), unless one is -o, which would write a file.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -54,6 +56,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FILE *out = fopen("/dev/null", "w"), *err = fopen("/dev/null", "w");
         if (out != NULL && err != NULL) {
             int rc = cli_eval(argc, argv, out, err);
+            if (rc < 0 || rc > 2)
+                abort();
+            int writes = 0;
+            for (int i = 2; i < argc; i++)
+                writes |= strcmp(argv[i], "-o") == 0;
+            argv[0] = (char *)"plot";
+            rc = writes ? 0 : cli_plot(argc, argv, out, err);
             if (rc < 0 || rc > 2)
                 abort();
         }

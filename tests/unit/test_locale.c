@@ -33,6 +33,7 @@
 #include "compiler/derive.h"
 #include "compiler/format.h"
 #include "runtime/plan.h"
+#include "runtime/plot.h"
 #include "runtime/sample.h"
 
 static char locpath[64];
@@ -85,6 +86,53 @@ static int teardown(void **state)
     return 0;
 }
 
+/* the SVG of the point outputs over [0, 1] of the first param, points at
+ * (i, i^2/3), consts 0.75, the other params 0.5 */
+static void plot_points(FILE *m, const Plan *p)
+{
+    int *curves = calloc((size_t)p->noutputs + 1, sizeof *curves);
+    double *xy = calloc(2 * (size_t)p->npoints + 1, sizeof *xy);
+    const double **pts = calloc((size_t)p->npoints + 1, sizeof *pts);
+    double *pv = calloc((size_t)p->nparams + 1, sizeof *pv);
+    double *cv = calloc((size_t)p->nconsts + 1, sizeof *cv);
+    int nc = 0;
+    for (int o = 0; o < p->noutputs && p->nparams > 0; o++)
+        if (p->outputs[o].kind == PLAN_POINT)
+            curves[nc++] = o;
+    for (int i = 0; i < p->npoints; i++) {
+        xy[2 * i] = i;
+        xy[2 * i + 1] = i * i / 3.0;
+        pts[i] = xy + 2 * i;
+    }
+    for (int i = 0; i < p->nparams; i++)
+        pv[i] = 0.5;
+    for (int i = 0; i < p->nconsts; i++)
+        cv[i] = 0.75;
+    if (nc > 0) {
+        PlotSpec s;
+        plot_spec_default(&s);
+        s.env.plan = p;
+        s.env.params = pv;
+        s.env.consts = cv;
+        s.env.points = pts;
+        s.env.dim = 2;
+        s.curves = curves;
+        s.ncurves = nc;
+        s.lo = 0;
+        s.hi = 1;
+        s.lim.max_samples = 200;
+        s.tangents = pv;
+        s.ntangents = 1;
+        s.comb = 10;
+        plot_svg(m, &s, NULL);
+    }
+    free(curves);
+    free(xy);
+    free(pts);
+    free(pv);
+    free(cv);
+}
+
 /* everything printed about one scheme, as one string */
 static char *outputs(const char *path)
 {
@@ -101,6 +149,7 @@ static char *outputs(const char *path)
             emit_c(m, p, NULL, path);
             emit_c_header(m, p, NULL, path);
             plan_dump(m, p);
+            plot_points(m, p);
             plan_free(p);
         }
         derived_free(d);
