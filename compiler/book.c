@@ -154,6 +154,7 @@ enum {
     FACTOR_WORK = 200,
     MAX_FACTOR_TERMS_NESTED = 24, // factors and coefficients factored only
                                   // when this short
+    CHEAP_FACTOR_DEPTH = 2,       // from this depth on: form_factored_cheap
 };
 
 static void sum_free(PSum *s, const Ctx *c);
@@ -850,6 +851,85 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c);
 
 enum { MEMO_MAX = 1024 };
 
+/* A partial factoring without FLINT's (deep inside a form, where full
+ * factoring would cost more than it shows): the integer content, the
+ * monomial content, powers of 1 - x of params and consts, and a perfect
+ * square.  NULL when none of these is there. */
+static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth,
+                                 const Ctx *c)
+{
+    const Ring *r = c->r;
+    slong nv = r->nvars;
+    fmpz_mpoly_t q, m, bar, quo;
+    fmpz_mpoly_init(q, r->ctx);
+    fmpz_mpoly_init(m, r->ctx);
+    fmpz_mpoly_init(bar, r->ctx);
+    fmpz_mpoly_init(quo, r->ctx);
+    PSum *s = sum_new(c);
+    PTerm *t = sum_push(s);
+    int found = 0;
+    /* integer content, with the sign of the first (ascending) term */
+    _fmpz_vec_content(t->coeff, p->coeffs, fmpz_mpoly_length(p, r->ctx));
+    fmpz_mpoly_scalar_divexact_fmpz(q, p, t->coeff, r->ctx);
+    found |= !fmpz_is_one(t->coeff);
+    /* the monomial content */
+    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
+    for (slong k = 0; k < fmpz_mpoly_length(q, r->ctx); k++) {
+        fmpz_mpoly_get_term_exp_ui(e, q, k, r->ctx);
+        for (slong v = 0; v < nv; v++)
+            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
+    }
+    for (slong v = 0; v < nv; v++)
+        if (lo[v]) {
+            fmpz_mpoly_gen(m, v, r->ctx);
+            fmpz_mpoly_pow_ui(m, m, lo[v], r->ctx);
+            fmpz_mpoly_divides(q, q, m, r->ctx);
+            term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, lo[v]});
+            found = 1;
+        }
+    /* (1 - x)^k */
+    for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
+        ulong k = 0;
+        fmpz_mpoly_gen(bar, v, r->ctx);
+        fmpz_mpoly_neg(bar, bar, r->ctx);
+        fmpz_mpoly_add_si(bar, bar, 1, r->ctx);
+        while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
+               fmpz_mpoly_length(q, r->ctx) > 1 &&
+               fmpz_mpoly_divides(quo, q, bar, r->ctx)) {
+            fmpz_mpoly_swap(q, quo, r->ctx);
+            k++;
+        }
+        if (k) {
+            term_push(t, (Atom){AT_BAR, v, NULL, NULL, NULL, k});
+            found = 1;
+        }
+    }
+    free(lo);
+    free(e);
+    if (fmpz_mpoly_is_fmpz(q, r->ctx)) {
+        /* what is left is a unit: its sign */
+        if (fmpz_sgn(q->coeffs) < 0)
+            t->neg ^= 1;
+    } else if (fmpz_mpoly_length(q, r->ctx) > 1 &&
+               fmpz_mpoly_sqrt(m, q, r->ctx)) {
+        push_factor(t, m, 2, depth + 1, c);
+        found = 1;
+    } else if (found) {
+        push_factor(t, q, 1, depth + 1, c);
+    }
+    fmpz_mpoly_clear(q, r->ctx);
+    fmpz_mpoly_clear(m, r->ctx);
+    fmpz_mpoly_clear(bar, r->ctx);
+    fmpz_mpoly_clear(quo, r->ctx);
+    if (!found) {
+        sum_free(s, c);
+        return NULL;
+    }
+    sum_finish(s, p, c);
+    return s;
+}
+
 /* p in its best form (see book.h), remembered per output */
 static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
@@ -892,10 +972,15 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     *c->work += len;
     if (len < 2)
         return best; /* a monomial: expanded is factored */
-    if (depth == 0 ||
-        (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED)) {
+    if (depth < CHEAP_FACTOR_DEPTH &&
+        (depth == 0 ||
+         (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED))) {
         *c->work += FACTOR_WORK + 20 * len;
         keep_better(&best, &rank, &blen, form_factored(p, depth, c),
+                    R_FACTORED, c);
+    } else if (depth >= CHEAP_FACTOR_DEPTH) {
+        *c->work += 4 * len;
+        keep_better(&best, &rank, &blen, form_factored_cheap(p, depth, c),
                     R_FACTORED, c);
     }
     if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
