@@ -163,7 +163,7 @@ figures: $(B)/pointcalc
 	sh docs/figures/make-figures.sh $(B)/pointcalc docs/figures
 
 format:
-	clang-format -i $(wildcard */*.c */*.h */*/*.c compiler/cli/*.h)
+	clang-format -i $(wildcard $(addsuffix /*.[ch],grammar compiler compiler/cli codegen runtime tests/unit tests/fuzz bench examples))
 
 clean:
 	rm -rf build build-asan build-fuzz

@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "compiler/mem.h"
+#include "compiler/numfmt.h"
 #include "runtime/eval.h"
 
 int args_usage_error(FILE *err, const char *usage, const char *fmt, ...)
@@ -21,7 +22,7 @@ int args_usage_error(FILE *err, const char *usage, const char *fmt, ...)
     va_list ap;
     fputs("pointcalc: ", err);
     va_start(ap, fmt);
-    vfprintf(err, fmt, ap);
+    pc_vfprintf(err, fmt, ap);
     va_end(ap);
     fprintf(err, "\n%s", usage);
     return 2;
