@@ -36,9 +36,21 @@ static void latex_name(StrBuf *b, const char *name)
     const char *under = strchr(name, '_');
     if (under && under != name && under[1]) {
         char *stem = pc_xstrndup(name, (size_t)(under - name));
-        latex_name(b, stem);
+        StrBuf st = {0};
+        latex_name(&st, stem);
         free(stem);
-        sb_puts(b, "_{");
+        char *s = sb_take(&st);
+        size_t sl = strlen(s);
+        if (sl > 0 && s[sl - 1] == '}' && strstr(s, "_{")) {
+            /* the stem has its subscript already: one subscript,
+             * M116_abc -> M_{116,abc} (TeX has no double subscript) */
+            sb_putn(b, s, sl - 1);
+            sb_puts(b, ",");
+        } else {
+            sb_puts(b, s);
+            sb_puts(b, "_{");
+        }
+        free(s);
         sb_puts(b, under + 1);
         sb_puts(b, "}");
         return;

@@ -27,8 +27,10 @@ for f in examples/*.pcs; do
     done
 done
 
-# balanced braces (outside \{ \}), \begin/\end pairs, whole documents
-python3 - "$tmp"/docs/*.tex <<'PY' || fail=1
+# balanced braces (outside \{ \}), \begin/\end pairs, no double
+# subscripts, whole documents
+wellformed=1
+python3 - "$tmp"/docs/*.tex <<'PY' || { fail=1; wellformed=0; }
 import re, sys
 bad = 0
 for path in sys.argv[1:]:
@@ -50,6 +52,8 @@ for path in sys.argv[1:]:
             why = why or "\\end{%s} does not close the last \\begin" % m.group(2)
     if envs:
         why = why or "unclosed \\begin{%s}" % envs[-1]
+    if re.search(r"_\{[^{}]*\}_", s) or re.search(r"_[A-Za-z0-9]_", s):
+        why = why or "a double subscript"
     if not s.startswith("\\documentclass") or "\\end{document}" not in s:
         why = why or "not a whole document"
     if why:
@@ -64,13 +68,14 @@ if command -v pdflatex >/dev/null 2>&1; then
       printf '\\end{document}\n'; } > "$tmp/all.tex"
     if (cd "$tmp" && pdflatex -interaction=nonstopmode -halt-on-error all.tex \
             > /dev/null 2>&1); then
-        echo "latex: $n documents well-formed, all compiled with pdflatex"
+        [ $wellformed = 1 ] &&
+            echo "latex: $n documents well-formed, all compiled with pdflatex"
     else
         echo "FAIL: pdflatex on the examples' LaTeX:"
         grep -B2 -A6 '^!' "$tmp/all.log" | head -20
         fail=1
     fi
-else
+elif [ $wellformed = 1 ]; then
     echo "latex: $n documents well-formed (pdflatex not installed: not compiled)"
 fi
 exit $fail

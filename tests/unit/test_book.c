@@ -175,6 +175,8 @@ static void test_latex_names(void **state)
         {"Omega", "\\Omega"},
         {"x_max", "x_{max}"},
         {"kp_1", "\\mathit{kp}_{1}"},
+        {"M116_abc", "M_{116,abc}"}, /* no double subscript */
+        {"alpha1_x", "\\alpha_{1,x}"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char *s = book_latex_name(cases[i].name);
