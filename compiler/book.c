@@ -140,7 +140,8 @@ typedef struct Ctx {
                             // consts; the rest functions and extras
     int latex;
     long *work; // the printing work spent on this output (RENDER_WORK)
-    struct Memo *memo; // forms already chosen, for this output
+    struct Memo *memo; // forms already chosen: this output's, or the
+                       // scheme's (BookOptions.memo)
 } Ctx;
 
 /* render() of a polynomial at a depth, kept: the same coefficients and
@@ -154,7 +155,7 @@ typedef struct MemoEntry {
 typedef struct Memo {
     MemoEntry *e;
     slong n, alloc;
-} Memo;
+} Memo; /* = BookMemo (book.h) */
 
 enum {
     MAX_DEPTH = 2,          // levels of collection (factors and coefficients)
@@ -1326,7 +1327,7 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
     c->work = work;
     memo->e = NULL;
     memo->n = memo->alloc = 0;
-    c->memo = memo;
+    c->memo = opt->memo ? opt->memo : memo; /* shared by a scheme's outputs */
     c->r = &d->ring;
     c->nparams = d->nparams;
     c->nconsts = d->nconsts;
@@ -1485,4 +1486,19 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     free(rhs);
     free(lhs.s);
     return sb_take(&b);
+}
+
+BookMemo *book_memo_new(void)
+{
+    return pc_xcalloc(1, sizeof(Memo));
+}
+
+void book_memo_free(BookMemo *m, const Derived *d)
+{
+    if (!m)
+        return;
+    Ctx c = {0};
+    c.r = &d->ring;
+    memo_clear(m, &c);
+    free(m);
 }

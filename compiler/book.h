@@ -39,10 +39,18 @@
 
 #include "compiler/derive.h"
 
+/* the forms chosen so far, to share among the outputs of one Derived (they
+ * share denominators): book_memo_new, pass in BookOptions, then
+ * book_memo_free with that Derived */
+typedef struct Memo BookMemo;
+BookMemo *book_memo_new(void);
+void book_memo_free(BookMemo *m, const Derived *d);
+
 typedef struct BookOptions {
     int latex;      // 0 text, 1 LaTeX
     int width;      // LaTeX: break equations longer than this (0: 80)
     slong origin;   // a base point to write relative to, or -1
+    BookMemo *memo; // NULL: each call chooses afresh
 } BookOptions;
 
 /* one output's right-hand side (malloc'd) */

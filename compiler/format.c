@@ -274,7 +274,7 @@ char *format_weight(const RatFun w, const Ring *r)
 char *format_output_rhs(const Derived *d, const DerivedOutput *o,
                         FormatStyle st, slong origin)
 {
-    BookOptions opt = {st == FMT_LATEX, 0, origin};
+    BookOptions opt = {st == FMT_LATEX, 0, origin, NULL};
     return book_rhs(d, o, &opt);
 }
 
@@ -348,10 +348,11 @@ void format_derived_width(FILE *out, const Derived *d, FormatStyle st,
         format_json(out, d);
         return;
     }
-    BookOptions opt = {st == FMT_LATEX, width, origin};
+    BookOptions opt = {st == FMT_LATEX, width, origin, book_memo_new()};
     for (slong i = 0; i < d->noutputs; i++) {
         char *line = book_output(d, &d->outputs[i], &opt);
         fputs(line, out);
         free(line);
     }
+    book_memo_free(opt.memo, d);
 }
