@@ -86,8 +86,7 @@ void args_names_clear(NameList *l)
     l->n = 0;
 }
 
-/* "A, B, C" (or "none") into buf */
-static const char *name_list(char *const *names, int n, char *buf, size_t size)
+const char *args_name_list(char *const *names, int n, char *buf, size_t size)
 {
     size_t k = 0;
     buf[0] = '\0';
@@ -105,7 +104,7 @@ static const char *output_list(const Plan *p, char *buf, size_t size)
     char **names = pc_xmalloc(sizeof *names * (size_t)(p->noutputs + 1));
     for (int k = 0; k < p->noutputs; k++)
         names[k] = p->outputs[k].name;
-    name_list(names, p->noutputs, buf, size);
+    args_name_list(names, p->noutputs, buf, size);
     free(names);
     return buf;
 }
@@ -241,7 +240,7 @@ static int setup_points(EvalSetup *s, const EvalArgs *a, const Plan *p,
                 err, usage,
                 "--at %s: '%s' is not a base point of the scheme (points: %s)",
                 x->name, x->name,
-                name_list(p->points, p->npoints, list, sizeof list));
+                args_name_list(p->points, p->npoints, list, sizeof list));
         if (s->pt[k])
             return args_usage_error(err, usage, "--at %s given twice", x->name);
         long n = sample_numbers(x->text, &s->pt[k]);
@@ -349,7 +348,7 @@ static int setup_consts(EvalSetup *s, const EvalArgs *a, const Plan *p,
                 err, usage,
                 "--set %s: '%s' is not a const of the scheme (consts: %s)",
                 x->name, x->name,
-                name_list(p->consts, p->nconsts, list, sizeof list));
+                args_name_list(p->consts, p->nconsts, list, sizeof list));
         else if (seen[k]++)
             rc = args_usage_error(err, usage, "--set %s given twice", x->name);
         else
@@ -382,7 +381,7 @@ static int setup_params(EvalSetup *s, const EvalArgs *a, const Plan *p,
                 err, usage,
                 "--param %s: '%s' is not a param of the scheme (params: %s)",
                 x->name, x->name,
-                name_list(p->params, p->nparams, list, sizeof list));
+                args_name_list(p->params, p->nparams, list, sizeof list));
         else if (seen[k]++)
             rc =
                 args_usage_error(err, usage, "--param %s given twice", x->name);

@@ -139,4 +139,8 @@ size_t eval_setup_run(const EvalSetup *s, size_t row);
 /* 1 when const k is swept (a column of the output) */
 int eval_setup_swept(const EvalSetup *s, int k);
 
+/* "A, B, C" of names[0..n-1] (or "none") into buf, truncated to size;
+ * returns buf (for messages) */
+const char *args_name_list(char *const *names, int n, char *buf, size_t size);
+
 #endif

@@ -161,19 +161,6 @@ static int find_name(char *const *names, int n, const char *s)
     return -1;
 }
 
-/* "A, B, C" of names[0..n-1] (or "none") into buf */
-static const char *name_list(char *const *names, int n, char *buf, size_t size)
-{
-    size_t k = 0;
-    buf[0] = '\0';
-    for (int i = 0; i < n && k + 1 < size; i++)
-        k += (size_t)snprintf(buf + k, size - k, "%s%s", i ? ", " : "",
-                              names[i]);
-    if (n == 0)
-        snprintf(buf, size, "none");
-    return buf;
-}
-
 /* ---- the run --------------------------------------------------------- */
 
 typedef struct Run {
@@ -333,7 +320,7 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                 err,
                 "--at %s: '%s' is not a base point of the scheme (points: %s)",
                 a->ea.at[i].name, a->ea.at[i].name,
-                name_list(p->points, p->npoints, list, sizeof list));
+                args_name_list(p->points, p->npoints, list, sizeof list));
         if (r->pt[k])
             return usage_error(err, "--at %s given twice", a->ea.at[i].name);
         long n = sample_numbers(a->ea.at[i].text, &r->pt[k]);
@@ -457,7 +444,7 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                              "params %s have no value: one is swept (give "
                              "it as --param NAME=LO:HI, or leave only it "
                              "out), the others need --param NAME=VALUE",
-                             name_list(free_names, nfree, list, sizeof list));
+                             args_name_list(free_names, nfree, list, sizeof list));
         free(free_names);
         if (!rc && r->sweep < 0)
             rc = usage_error(err,
