@@ -1030,6 +1030,8 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
             ok[i] = (unsigned char)jet_at(J, s->curves[k], t, p);
             for (int f = 0; f < nf; f++)
                 fac[(size_t)i * (size_t)nf + (size_t)f] = J->r[c->facreg[f]][0];
+            if (!ok[i]) /* p is not filled in */
+                continue;
             double sp = hypot(p[1][0], p[1][1]);
             double kp = (p[1][0] * p[2][1] - p[1][1] * p[2][0]) / (sp * sp * sp);
             if (!(sp > 0) || !isfinite(kp))
