@@ -14,6 +14,10 @@
  *
  * In the batch code each weight is peeled (plan_peel): a weight -x is
  * computed as x and the points' coordinates are negated once per call.
+ * NAME_M_batch has its own fused loop for dim 2 and 3 (emit_batch_fast):
+ * the rows written straight to a restrict out, the numerators summed and
+ * multiplied by 1/L once, a block whose rows or L are not finite handed
+ * to NAME_M_batch_checked (docs/codegen.md, "Batch code").
  *
  * The pole flag (sum of POLE checks of the output's denominator factors)
  * marks the samples whose coordinates are overwritten with NaN, whatever
@@ -77,7 +81,7 @@ static const char *const reserved[] = {
     "unix", "linux", "i386",
     /* names of the generated code */
     "n", "dim", "out", "status", "i0", "m", "j", "c", "nbad", "nb", "bad", "o",
-    "fb", NULL};
+    "fb", "nfull", "chk", NULL};
 
 /* generated names follow these shapes: r12 w3 x0 p0 pad0 q1 k0_2 */
 static int internal_shape(const char *s)
@@ -398,8 +402,10 @@ static void line_arg(Line *L, const char *text, int last)
     L->col += len;
 }
 
-static void signature(FILE *out, const Plan *p, const Names *N, int oi,
-                      Variant v)
+/* restr: the definition of the fast _batch, whose param arrays and out
+ * are restrict (compatible with the prototype, which has no qualifier) */
+static void signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
+                         Variant v, int restr)
 {
     static const char *const ret[] = {"void ", "int ", "void ", "size_t "};
     /* a _checked variant that only its plain one calls is private */
@@ -413,7 +419,10 @@ static void signature(FILE *out, const Plan *p, const Names *N, int oi,
         line_arg(&L, "size_t n", 0);
     for (int i = 0; i < N->nin; i++) {
         char *arg = xasprintf(
-            "%s%s", batch && i < p->nparams ? "const double *" : "double ",
+            "%s%s",
+            batch && i < p->nparams
+                ? (restr ? "const double *restrict " : "const double *")
+                : "double ",
             N->in[i]);
         line_arg(&L, arg, 0);
         free(arg);
@@ -424,9 +433,16 @@ static void signature(FILE *out, const Plan *p, const Names *N, int oi,
         free(arg);
     }
     line_arg(&L, "int dim", 0);
-    line_arg(&L, "double *out", v != BATCH_CHECKED);
+    line_arg(&L, restr ? "double *restrict out" : "double *out",
+             v != BATCH_CHECKED);
     if (v == BATCH_CHECKED)
         line_arg(&L, "unsigned char *status", 1);
+}
+
+static void signature(FILE *out, const Plan *p, const Names *N, int oi,
+                      Variant v)
+{
+    signature_ex(out, p, N, oi, v, 0);
 }
 
 /* ---- one output -------------------------------------------------------- */
@@ -990,6 +1006,301 @@ static void emit_batch(Ctx *C)
     free(slot);
 }
 
+/* ---- the fast _batch ---------------------------------------------------- */
+
+/* 1 when r is a factor of the product L: a leaf of its MUL/POWI tree */
+static int factor_of(const Plan *p, int L, int r, int depth)
+{
+    if (L == r)
+        return 1;
+    const PlanIns *x = &p->ins[L];
+    if (depth > 256)
+        return 0;
+    if (x->op == PLAN_MUL)
+        return factor_of(p, x->a, r, depth + 1) ||
+               factor_of(p, x->b, r, depth + 1);
+    if (x->op == PLAN_POWI)
+        return factor_of(p, x->a, r, depth + 1);
+    return 0;
+}
+
+/* In the pole flag bad, the register 1/L whose overflow it checks, when
+ * every other flag in it checks a factor of L (lower.c): then 1/L made NaN
+ * where L * (1/L) is not about 1 marks every flagged sample, and the fast
+ * _batch needs no flags.  -1 when bad has another shape (a function's
+ * domain, a flag of something else). */
+static int pole_inverse(const Plan *p, int bad)
+{
+    int stack[512], ns = 0, inv = -1, poles[512], np = 0;
+    stack[ns++] = bad;
+    while (ns > 0) {
+        const PlanIns *x = &p->ins[stack[--ns]];
+        if (x->op == PLAN_POLE) {
+            const PlanIns *d = &p->ins[x->a];
+            if (d->op == PLAN_DIV && p->ins[d->a].op == PLAN_CONST &&
+                p->k[p->ins[d->a].a] == 1.0) {
+                if (inv >= 0 && inv != x->a)
+                    return -1;
+                inv = x->a;
+            } else if (np < 512) {
+                poles[np++] = x->a;
+            } else {
+                return -1;
+            }
+        } else if (x->op == PLAN_ADD || x->op == PLAN_MUL) {
+            if (ns + 2 > 512)
+                return -1;
+            stack[ns++] = x->a;
+            stack[ns++] = x->b;
+        } else if (x->op != PLAN_CONST) {
+            return -1; // a DOMAIN flag, or a shape lower.c does not make
+        }
+    }
+    if (inv < 0)
+        return -1;
+    for (int i = 0; i < np; i++)
+        if (!factor_of(p, p->ins[inv].b, poles[i], 0))
+            return -1;
+    return inv;
+}
+
+/* 1 when register r reads register x (through any instruction): one pass
+ * from x to r, the Plan being in dependency order (mark: nins bytes) */
+static int reads(const Plan *p, int r, int x, unsigned char *mark)
+{
+    if (r < x)
+        return 0;
+    memset(mark + x, 0, (size_t)(r - x + 1));
+    mark[x] = 1;
+    for (int i = x + 1; i <= r; i++) {
+        const PlanIns *in = &p->ins[i];
+        switch ((PlanOp)in->op) {
+        case PLAN_NEG:
+        case PLAN_POWI:
+        case PLAN_POLE:
+        case PLAN_FN:
+        case PLAN_DOMAIN:
+            mark[i] = in->a >= x && mark[in->a];
+            break;
+        case PLAN_ADD:
+        case PLAN_SUB:
+        case PLAN_MUL:
+        case PLAN_DIV:
+        case PLAN_ATAN2:
+            mark[i] = (in->a >= x && mark[in->a]) || (in->b >= x && mark[in->b]);
+            break;
+        default:
+            mark[i] = 0;
+        }
+    }
+    return mark[r];
+}
+
+/* A weight w = f1 * f2 * ... * inv as a product: the factors beside inv
+ * on the chain of MULs from w down to inv (lower.c builds it so), into
+ * f[] (at most nmax); their number, or -1 when w is not of that shape */
+static int inverse_factors(const Plan *p, int w, int inv, int *f, int nmax,
+                           unsigned char *seen)
+{
+    int n = 0;
+    while (w != inv) {
+        const PlanIns *x = &p->ins[w];
+        if (x->op != PLAN_MUL || n == nmax)
+            return -1;
+        int ina = reads(p, x->a, inv, seen);
+        int inb = reads(p, x->b, inv, seen);
+        if (ina == inb) // both or neither
+            return -1;
+        f[n++] = ina ? x->b : x->a;
+        w = ina ? x->a : x->b;
+    }
+    return n;
+}
+
+/* (void)NAME_M_batch_checked(N, param + OFF..., consts, points, dim, OUT,
+ * NULL); */
+static void checked_call(const Ctx *C, const char *ind, const char *n,
+                         const char *off, const char *dst)
+{
+    Line L;
+    char *head = xasprintf("%s(void)%s(", ind,
+                           C->N->fn[NVARIANTS * C->oi + BATCH_CHECKED]);
+    line_start(&L, C->out, head);
+    free(head);
+    line_arg(&L, n, 0);
+    for (int i = 0; i < C->N->nin; i++) {
+        char *a = xasprintf("%s%s", C->N->in[i],
+                            i < C->p->nparams ? off : "");
+        line_arg(&L, a, 0);
+        free(a);
+    }
+    for (int i = 0; i < C->N->npt; i++)
+        line_arg(&L, C->N->pt[i], 0);
+    line_arg(&L, "dim", 0);
+    line_arg(&L, dst, 0);
+    line_arg(&L, "NULL", 1);
+    fputs(";\n", C->out);
+}
+
+/* void NAME_M_batch(...) for dim 2 and 3: the weights and the coordinates
+ * in one fixed-length loop per block, written straight to out (restrict:
+ * out does not overlap the inputs), the tail block through a local
+ * buffer; a pole or an overflow makes 1/L NaN, so no flags.  Other dims,
+ * scalars and outputs with domain checks call _batch_checked.  0 when it
+ * did not apply (nothing written). */
+static int emit_batch_fast(Ctx *C)
+{
+    FILE *out = C->out;
+    const PlanOutput *o = C->o;
+    const Plan *p = C->p;
+    if (o->kind == PLAN_SCALAR || o->nterms == 0 || uses_domain(C))
+        return 0;
+    int inv = -1;
+    if (o->bad >= 0 && (inv = pole_inverse(p, o->bad)) < 0)
+        return 0;
+    enum { NF = 32 };
+    Slot *slot = pc_xcalloc((size_t)o->nterms, sizeof *slot);
+    int *nf = pc_xcalloc((size_t)o->nterms, sizeof *nf);
+    int *f = pc_xcalloc((size_t)o->nterms * NF, sizeof *f);
+    unsigned char *seen = pc_xmalloc((size_t)p->nins + 1);
+    /* with 1/L a factor of every weight, the coordinates are summed from
+     * the numerators and multiplied by 1/L once each: fewer products, and
+     * the sums do not wait for the division */
+    int hoist = inv >= 0;
+    for (int k = 0; k < o->nterms; k++) {
+        slot[k].root = plan_peel(p, o->reg[k], &slot[k].sign);
+        if (hoist)
+            nf[k] = inverse_factors(p, slot[k].root, inv, f + k * NF, NF,
+                                    seen);
+        hoist &= nf[k] >= 0;
+    }
+    free(seen);
+    memset(C->live, 0, (size_t)p->nins);
+    for (int k = 0; k < o->nterms; k++) {
+        if (!hoist)
+            C->live[slot[k].root] = 1;
+        for (int i = 0; hoist && i < nf[k]; i++)
+            C->live[f[k * NF + i]] = 1;
+    }
+    if (hoist)
+        C->live[inv] = 1;
+    plan_live_close(p, C->live);
+    if (inv >= 0 && !C->live[inv]) { // the weights do not use 1/L
+        free(slot);
+        free(nf);
+        free(f);
+        return 0;
+    }
+
+    signature_ex(out, p, C->N, C->oi, BATCH, 1);
+    fputs("\n{\n", out);
+    fprintf(out, "    const size_t nfull = n - n %% %d; /* in full blocks */\n"
+                 "    double chk[%d]; /* per sample: finite or not */\n"
+                 "    size_t i0, j;\n",
+            BLOCK, BLOCK);
+    /* other dims, the tail block and a block with a value that is not
+     * finite: the general code (which also writes NaN at poles and
+     * overflows, and is what this computes where it can) */
+    fputs("    if (dim != 2 && dim != 3) {\n", out);
+    checked_call(C, "        ", "n", "", "out");
+    fputs("        return;\n    }\n", out);
+    C->batch = 0;
+    instructions(C, 1, "    ");
+    for (int dim = 3; dim >= 2; dim--) {
+        fprintf(out, dim == 3 ? "    if (dim == 3) {\n" : "    } else {\n");
+        for (int k = 0; k < o->nterms; k++) {
+            const char *P = C->N->pt[o->point[k]];
+            fputs("        const double ", out);
+            for (int c = 0; c < dim; c++)
+                fprintf(out, "%sk%d_%d = %s%s[%d]", c ? ", " : "", k, c,
+                        scaled(&slot[k]) ? "-" : "", P, c);
+            fputs(";\n", out);
+        }
+        fprintf(out, "        for (i0 = 0; i0 < nfull; i0 += %d) {\n", BLOCK);
+        for (int i = 0; i < p->nparams; i++)
+            if (param_used(C, i))
+                fprintf(out, "            const double *p%d = %s + i0;\n", i,
+                        C->N->in[i]);
+        fprintf(out,
+                "            double *o = out + i0 * %d;\n"
+                "            for (j = 0; j < %d; j++) {\n",
+                dim, BLOCK);
+        for (int i = 0; i < p->nparams; i++)
+            if (param_used(C, i))
+                fprintf(out, "                const double x%d = p%d[j];\n", i,
+                        i);
+        C->batch = 1;
+        instructions(C, 0, "                ");
+        for (int k = 0; hoist && k < o->nterms; k++) {
+            fprintf(out, "                const double w%d = ", k);
+            for (int i = 0; i < nf[k]; i++) {
+                fputs(i ? " * " : "", out);
+                operand(C, f[k * NF + i]);
+            }
+            fputs(nf[k] == 0 ? "1.0;" : ";", out);
+            const char *r = C->role[o->reg[k]] ? C->role[o->reg[k]]
+                                                : C->role[slot[k].root];
+            fprintf(out, " /* %s%s, times the denominator */\n",
+                    r ? r : "weight", scaled(&slot[k]) ? ", negated" : "");
+        }
+        for (int c = 0; c < dim; c++) {
+            fprintf(out, "                const double q%d = %s", c,
+                    hoist ? "(" : "");
+            for (int k = 0; k < o->nterms; k++) {
+                fputs(k ? " + " : "", out);
+                if (hoist)
+                    fprintf(out, "w%d", k);
+                else
+                    operand(C, slot[k].root);
+                fprintf(out, " * k%d_%d", k, c);
+            }
+            if (hoist) {
+                fputs(") * ", out);
+                operand(C, inv);
+            }
+            fputs(";\n", out);
+        }
+        for (int c = 0; c < dim; c++)
+            fprintf(out, "                o[%d * j%s] = q%d;\n", dim,
+                    c == 0 ? "" : c == 1 ? " + 1" : " + 2", c);
+        /* the coordinates and the denominator L summed: not finite when
+         * one of them is (a pole makes 1/L infinite; L beyond double makes
+         * 1/L 0 and the coordinates wrong), or rarely when the sum
+         * overflows */
+        fputs("                chk[j] = q0 + q1", out);
+        fputs(dim == 3 ? " + q2" : "", out);
+        if (inv >= 0) {
+            fputs(" + ", out);
+            operand(C, p->ins[inv].b);
+        }
+        fputs(";\n", out);
+        C->batch = 0;
+        /* summed in halves, in loops of fixed length that vectorise (a
+         * plain sum of doubles does not, gcc keeps its order) */
+        fputs("            }\n", out);
+        for (int h = BLOCK / 2; h >= 8; h /= 2)
+            fprintf(out,
+                    "            for (j = 0; j < %d; j++)\n"
+                    "                chk[j] += chk[j + %d];\n",
+                    h, h);
+        fputs("            chk[0] += chk[1] + chk[2] + chk[3] + chk[4] + "
+              "chk[5] + chk[6] + chk[7];\n"
+              "            if (!(chk[0] - chk[0] == 0.0)) /* not finite */\n",
+              out);
+        char *nn = xasprintf("%d", BLOCK);
+        checked_call(C, "                ", nn, " + i0", "o");
+        free(nn);
+        fputs("        }\n", out);
+    }
+    fputs("    }\n    if (nfull < n)\n", out);
+    checked_call(C, "        ", "n - nfull", " + nfull", "out + nfull * (size_t)dim");
+    fputs("}\n\n", out);
+    free(slot);
+    free(nf);
+    free(f);
+    return 1;
+}
+
 /* the call of the _checked variant with the arguments of the variant v
  * (ONE or BATCH) being defined */
 static void emit_forward(const Ctx *C, Variant v)
@@ -1156,8 +1467,11 @@ void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
             emit_forward(&C, ONE);
         if (N.want & (EMIT_C_BATCH | EMIT_C_BATCH_CHECKED))
             emit_batch(&C);
-        if (N.want & EMIT_C_BATCH)
-            emit_forward(&C, BATCH);
+        if (N.want & EMIT_C_BATCH) {
+            plan_live(p, i, live);
+            if (!emit_batch_fast(&C))
+                emit_forward(&C, BATCH);
+        }
     }
     for (int r = 0; r < p->nins; r++)
         free(owned[r]);

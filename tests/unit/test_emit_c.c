@@ -1024,6 +1024,23 @@ static void test_emit_c_denominator_overflow_is_reported(void **state)
         assert_true(want[i] ? isnan(bout[2 * i]) && isnan(rout[2 * i])
                             : bout[2 * i] == rout[2 * i]);
     }
+    /* the unchecked batch (its own code for dim 2 and 3: 1/L made NaN
+     * where L * (1/L) is not about 1) writes NaN rows at the pole and the
+     * overflow too, and the value elsewhere; dim 3 and dim 4 (the general
+     * code) as well */
+    double A3[4] = {0, 1, 5, 6}, B3[4] = {1e10, 2, 5, 7}, bout3[12];
+    const double *pts3[2] = {A3, B3};
+    for (int dim = 2; dim <= 4; dim++) {
+        for (int i = 0; i < 3 * dim; i++)
+            bout3[i] = 0.0;
+        batch(3, prm, &k, dim == 2 ? pts : pts3, dim, bout3, NULL, 0);
+        for (int i = 0; i < 3; i++)
+            for (int cc = 0; cc < dim; cc++)
+                assert_true(want[i] ? isnan(bout3[dim * i + cc])
+                                    : fabs(bout3[dim * i + cc] -
+                                           (cc == 0 ? 1e10 : cc == 1 ? 2.0
+                                            : cc == 2 ? 5.0 : 7.0)) <= 1e-5);
+    }
     compiled_clear(&c);
     plan_free(p);
     derived_free(d);
