@@ -722,33 +722,52 @@ static int den_const(const CollapseOutput *o)
     return 1;
 }
 
-/* the rows of a block for dim 3 or 2 (m == BLOCK: a fixed trip count) */
-static void rows(FILE *out, const CollapseOutput *o, int dim, int dc)
+/* tau, the denominator and the flags of sample j (t = p<pi>[j]): x0, r1
+ * (1/denominator, or 1.0 for a constant one) and fb[j] = pole + 0.5
+ * overflow + 4 per failed range test.  The range tests use == only (with
+ * fabs): quiet comparisons, which gcc -O2 vectorises under the default
+ * -ftrapping-math, where it does not vectorise t >= lo. */
+static void sample(FILE *out, const CollapseOutput *o, int pi, int dc,
+                   const char *ind, int line)
 {
-    for (int full = 1; full >= 0; full--) {
-        fprintf(out, full ? "            if (m == %d) {\n"
-                          : "            } else {\n",
-                BLOCK);
-        if (full)
-            fprintf(out, "                for (j = 0; j < %d; j++) {\n", BLOCK);
-        else
-            fputs("                for (j = 0; j < m; j++) {\n", out);
-        fprintf(out,
-                "                    double *o = out + (i0 + j) * %d;\n"
-                "                    const double x0 = w0[j];\n",
-                dim);
-        for (int c = 0; c < dim; c++) {
-            char head[16];
-            snprintf(head, sizeof head, "k%d_", c);
-            fprintf(out, "                    o[%d] = ", c);
-            if (!dc)
-                fputc('(', out);
-            horner(out, o, head);
-            fputs(dc ? ";\n" : ") * w1[j];\n", out);
-        }
-        fputs("                }\n", out);
+    fprintf(out, "%sconst double x0 = (p%d[j] - ", ind, pi);
+    lit(out, o->mid);
+    fputs(") * ", out);
+    lit(out, o->scale);
+    fputs(";\n", out);
+    fprintf(out, "%sconst double r2 = p%d[j] - ", ind, pi);
+    lit(out, o->lo);
+    fprintf(out, ", r3 = ");
+    lit(out, o->hi);
+    fprintf(out, " - p%d[j];\n", pi);
+    if (!dc) {
+        fprintf(out, "%sconst double r0 = ", ind);
+        horner(out, o, NULL);
+        fprintf(out, "; /* line %d: denominator */\n", line);
+        fprintf(out, "%sconst double r1 = 1.0 / r0;\n", ind);
     }
-    fputs("            }\n", out);
+    fprintf(out,
+            "%sfb[j] = %s4.0 * ((double)(r2 != fabs(r2)) + (double)(r3 != "
+            "fabs(r3)));\n",
+            ind,
+            dc ? "" : "(double)(r0 == 0.0) + 0.5 * (double)(r1 == 0.0) + ");
+}
+
+/* the coordinates of row j for dim 3 or 2 from x0 and r1 */
+static void row(FILE *out, const CollapseOutput *o, int dim, int dc,
+                const char *ind)
+{
+    fprintf(out, "%sdouble *o = out + (i0 + j) * %d;\n", ind, dim);
+    for (int c = 0; c < dim; c++) {
+        char head[16];
+        snprintf(head, sizeof head, "k%d_%d", c, 0);
+        head[strlen(head) - 1] = '\0'; // "k0_"
+        fprintf(out, "%so[%d] = ", ind, c);
+        if (!dc)
+            fputc('(', out);
+        horner(out, o, head);
+        fputs(dc ? ";\n" : ") * r1;\n", out);
+    }
 }
 
 void collapse_emit_batch(FILE *out, const CollapseOutput *o,
@@ -780,10 +799,11 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
             "    double w0[%d]; /* tau = (%s - m) * scale */\n",
             pi, BLOCK, N->in[pi], BLOCK, N->in[pi]);
     if (!dc)
-        fprintf(out,
-                "    double w1[%d]; /* 1/denominator */\n"
-                "    double fb[%d]; /* pole flags, +0.5: overflow */\n",
-                BLOCK, BLOCK);
+        fprintf(out, "    double w1[%d]; /* 1/denominator */\n", BLOCK);
+    fprintf(out,
+            "    double fb[%d]; /* pole flags, +0.5: overflow, +4: outside "
+            "the range */\n",
+            BLOCK);
     fputs("    size_t i0, j, nbad = 0;\n    int c, bad = 0;\n", out);
     /* the coefficients of dims 3 and 2, once per call */
     for (int c = 0; c < 3; c++) {
@@ -833,56 +853,58 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
             "                pad%d[j] = j < m ? p%d[j] : ",
             BLOCK, BLOCK, pi, N->in[pi], BLOCK, BLOCK, pi, pi);
     lit(out, o->lo);
+    fprintf(out, ";\n            p%d = pad%d;\n        }\n", pi, pi);
+    /* tau, 1/denominator and the flags into block arrays: a loop of
+     * fixed length that reads p and writes only locals (gcc -O2 vectorises
+     * it without an alias check, which its cost model at -O2 refuses) */
+    fprintf(out, "        for (j = 0; j < %d; j++) {\n", BLOCK);
+    sample(out, o, pi, dc, "            ", line);
+    fputs("            w0[j] = x0;\n", out);
+    if (!dc)
+        fputs("            w1[j] = r1;\n", out);
+    fputs("        }\n", out);
     fprintf(out,
-            ";\n"
-            "            p%d = pad%d;\n"
-            "        }\n"
-            "        for (j = 0; j < %d; j++) /* outside [lo, hi], or NaN */\n"
-            "            nb += !((p%d[j] >= ",
-            pi, pi, BLOCK, pi);
-    lit(out, o->lo);
-    fprintf(out, ") & (p%d[j] <= ", pi);
-    lit(out, o->hi);
-    fprintf(out, "));\n"
-                 "        if (nb != 0) { /* the weights code for this block */\n"
-                 "            nbad += %s(m, ",
-            N->fallback);
+            "        for (j = 0; j < %d; j++)\n"
+            "            nb += fb[j] != 0.0;\n"
+            "        if (nb != 0) {\n"
+            "            for (j = 0; j < m && fb[j] < 4.0; j++)\n"
+            "                ;\n"
+            "            if (j < m) { /* outside [lo, hi], or NaN: the weights "
+            "code */\n"
+            "                nbad += %s(m, ",
+            BLOCK, N->fallback);
     for (int i = 0; i < N->nin; i++)
         fprintf(out, i == pi ? "%s + i0, " : "%s, ", N->in[i]);
     for (int i = 0; i < N->npt; i++)
         fprintf(out, "%s, ", N->pt[i]);
     fputs("dim,\n"
-          "                out + i0 * (size_t)dim, status != NULL ? status + i0 "
-          ": NULL);\n"
-          "            continue;\n"
+          "                    out + i0 * (size_t)dim, status != NULL ? status "
+          "+ i0 : NULL);\n"
+          "                continue;\n"
+          "            }\n"
           "        }\n",
           out);
-    fprintf(out, "        for (j = 0; j < %d; j++) {\n", BLOCK);
-    fprintf(out, "            const double x0 = (p%d[j] - ", pi);
-    lit(out, o->mid);
-    fputs(") * ", out);
-    lit(out, o->scale);
-    fputs(";\n", out);
-    if (!dc) {
-        fputs("            const double r0 = ", out);
-        horner(out, o, NULL);
-        fprintf(out, "; /* line %d: denominator */\n", line);
-        fputs("            const double r1 = 1.0 / r0;\n"
-              "            w1[j] = r1;\n"
-              "            fb[j] = (double)(r0 == 0.0) + 0.5 * (double)(r1 == "
-              "0.0);\n",
-              out);
+    /* the rows from w0 and w1: dims 3 and 2 with a fixed trip count in a
+     * full block (the interleaved stores vectorise), any other dim
+     * coordinate by coordinate */
+    for (int dim = 3; dim >= 2; dim--) {
+        fprintf(out, "        %sif (dim == %d) {\n", dim == 3 ? "" : "} else ",
+                dim);
+        for (int full = 1; full >= 0; full--) {
+            fprintf(out, full ? "            if (m == %d) {\n"
+                              : "            } else {\n",
+                    BLOCK);
+            fprintf(out, full ? "                for (j = 0; j < %d; j++) {\n"
+                              : "                for (j = 0; j < m; j++) {\n",
+                    BLOCK);
+            fputs("                    const double x0 = w0[j];\n", out);
+            if (!dc)
+                fputs("                    const double r1 = w1[j];\n", out);
+            row(out, o, dim, dc, "                    ");
+            fputs("                }\n", out);
+        }
+        fputs("            }\n", out);
     }
-    fputs("            w0[j] = x0;\n        }\n", out);
-    if (!dc)
-        fprintf(out,
-                "        for (j = 0; j < %d; j++)\n"
-                "            nb += fb[j] != 0.0;\n",
-                BLOCK);
-    fputs("        if (dim == 3) {\n", out);
-    rows(out, o, 3, dc);
-    fputs("        } else if (dim == 2) {\n", out);
-    rows(out, o, 2, dc);
     fputs("        } else {\n"
           "            for (c = 0; c < dim; c++) {\n",
           out);
