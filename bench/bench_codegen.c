@@ -8,6 +8,8 @@
  * like for like):
  *
  *   generated      emit-c's desargues_arc_M_batch
+ *   collapsed      the same with --kernel collapsed (codegen/collapse.h):
+ *                  each coordinate a cubic in tau, one division
  *   hand, simple   the weights per sample, then the coordinates
  *   hand, careful  each coordinate a cubic, coefficients combined once,
  *                  Horner, one division: what an engineer writes
@@ -26,7 +28,8 @@
  * only when every round agrees; otherwise "undecided (spread)".
  *
  * Goals (issue 6): generated <= 1.0x the careful hand loop at each flag
- * set; runtime <= 4x generated.  PC_BENCH_QUICK=1 runs 10^5 and 10^6.
+ * set; runtime <= 4x generated; collapsed <= 1.3x the store floor at
+ * each flag set (issue 6, item 3).  PC_BENCH_QUICK=1 runs 10^5 and 10^6.
  * Times are CPU time of this process (CLOCK_PROCESS_CPUTIME_ID).
  */
 #include <dlfcn.h>
@@ -40,6 +43,7 @@
 
 #include <flint/flint.h>
 
+#include "codegen/collapse.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
 #include "bench/bench_util.h"
@@ -113,14 +117,14 @@ static void naive(size_t n, const double *t, double *out)
 
 /* ---- the contestants ---------------------------------------------------- */
 
-enum { FLAGSETS = 2, PER_SET = 6, NC = FLAGSETS * PER_SET + 2 };
+enum { FLAGSETS = 2, PER_SET = 7, NC = FLAGSETS * PER_SET + 2 };
 static const char *const flagsets[FLAGSETS] = {"-O2", "-O3 -march=native"};
 static const char *const set_names[PER_SET] = {
     "generated", "hand, simple", "hand, careful", "store floor",
-    "stream floor", "read + store"};
+    "stream floor", "read + store", "collapsed"};
 static const char *const kernel_syms[PER_SET] = {
     NULL, "hand_simple", "hand_careful", "floor_store", "floor_stream",
-    "floor_read_store"};
+    "floor_read_store", NULL};
 
 typedef struct Contestant {
     char name[64];
@@ -153,14 +157,15 @@ static double time_one(const Bench *b, const Contestant *c, size_t n)
 }
 
 /* generated code + bench/kernels.c at one flag set, as one shared object */
-static void *compile_set(const char *dir, const char *cfile, int set)
+static void *compile_set(const char *dir, const char *cfile,
+                         const char *cfile2, int set)
 {
-    char cmd[600], so[200];
+    char cmd[700], so[200];
     snprintf(so, sizeof so, "%s/set%d.so", dir, set);
     snprintf(cmd, sizeof cmd,
-             "cc -std=c99 -Wall -Wextra %s -fPIC -shared -o %s %s "
+             "cc -std=c99 -Wall -Wextra %s -fPIC -shared -o %s %s %s "
              "bench/kernels.c",
-             flagsets[set], so, cfile);
+             flagsets[set], so, cfile, cfile2);
     if (system(cmd) != 0)
         return NULL;
     return dlopen(so, RTLD_NOW | RTLD_LOCAL);
@@ -205,6 +210,7 @@ int main(void)
     if (!d)
         return 1;
     Plan *plan = lower_derived(d, stderr);
+    Collapse *col = plan ? collapse_new(d, plan) : NULL;
     derived_free(d);
     int m = plan ? plan_find_output(plan, "M") : -1;
     if (m < 0) {
@@ -221,12 +227,25 @@ int main(void)
         return 1;
     emit_c_ex(f, plan, NULL, "examples/desargues_arc.pcs", EMIT_C_BATCH);
     fclose(f);
+    char cfile2[128];
+    snprintf(cfile2, sizeof cfile2, "%s/arc_collapsed.c", dir);
+    f = fopen(cfile2, "w");
+    if (!f)
+        return 1;
+    emit_c_kernel(f, plan, "arcc", "examples/desargues_arc.pcs",
+                  EMIT_C_BATCH, col);
+    fclose(f);
+    if (!col->o[m].ok) {
+        fprintf(stderr, "bench_codegen: M not collapsed: %s\n", col->o[m].why);
+        return 1;
+    }
+    collapse_free(col);
 
     Contestant cs[NC];
     void *so[FLAGSETS];
     memset(cs, 0, sizeof cs);
     for (int set = 0; set < FLAGSETS; set++) {
-        so[set] = compile_set(dir, cfile, set);
+        so[set] = compile_set(dir, cfile, cfile2, set);
         if (!so[set]) {
             fprintf(stderr, "bench_codegen: cannot compile at %s\n",
                     flagsets[set]);
@@ -236,9 +255,9 @@ int main(void)
             Contestant *c = &cs[set * PER_SET + k];
             snprintf(c->name, sizeof c->name, "%s (%s)", set_names[k],
                      flagsets[set]);
-            if (k == 0)
-                c->gen = (batch_fn)(uintptr_t)dlsym(so[set],
-                                                    "desargues_arc_M_batch");
+            if (k == 0 || k == PER_SET - 1)
+                c->gen = (batch_fn)(uintptr_t)dlsym(
+                    so[set], k ? "arcc_M_batch" : "desargues_arc_M_batch");
             else
                 c->kern = (kernel_fn)(uintptr_t)dlsym(so[set], kernel_syms[k]);
             if (!c->gen && !c->kern) {
@@ -285,6 +304,13 @@ int main(void)
             snprintf(what, sizeof what, "generated / store floor (%s)",
                      flagsets[set]);
             bench_verdict(what, g, tm[set * PER_SET + 3], rounds, 2.0);
+            const double *cl = tm[set * PER_SET + PER_SET - 1];
+            snprintf(what, sizeof what, "collapsed / store floor (%s)",
+                     flagsets[set]);
+            bench_verdict(what, cl, tm[set * PER_SET + 3], rounds, 1.3);
+            snprintf(what, sizeof what, "collapsed / hand careful (%s)",
+                     flagsets[set]);
+            bench_verdict(what, cl, tm[set * PER_SET + 2], rounds, 1.0);
         }
         bench_verdict("runtime / generated (-O2)", tm[NC - 2], tm[0], rounds, 4.0);
         fflush(stdout);

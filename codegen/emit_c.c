@@ -30,6 +30,7 @@
  * and the output's name; emit_c_clash reports when two coincide.
  */
 #include "codegen/emit_c.h"
+#include "codegen/collapse.h"
 #include "compiler/numfmt.h"
 #include "compiler/mem.h"
 
@@ -1430,10 +1431,47 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
 void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
                const char *source, unsigned functions)
 {
+    emit_c_kernel(out, p, prefix, source, functions, NULL);
+}
+
+/* the collapsed batch function of output i (col, collapse.h), today's as
+ * its static fallback; 0 when the output keeps today's */
+static int emit_collapsed(Ctx *C, Names *N, const Collapse *col, int i)
+{
+    if (!col || i >= col->n || !col->o[i].ok)
+        return 0;
+    char **fn = &N->fn[NVARIANTS * i + BATCH_CHECKED], *pub = *fn;
+    char *fallback = xasprintf("pcw_%s", pub);
+    if (!collapse_name_free(fallback, N->fn, N->nfn) ||
+        !collapse_name_free(fallback, N->in, N->nin) ||
+        !collapse_name_free(fallback, N->pt, N->npt)) {
+        free(fallback);
+        return 0;
+    }
+    unsigned want = N->want;
+    *fn = fallback;
+    N->want &= ~(unsigned)EMIT_C_BATCH_CHECKED;
+    emit_batch(C);
+    *fn = pub;
+    N->want = want;
+    CollapseNames CN = {pub,    fallback, !(want & EMIT_C_BATCH_CHECKED),
+                        N->in,  C->p->nparams, N->nin,
+                        N->pt,  N->npt};
+    collapse_emit_batch(C->out, &col->o[i], &CN, C->o->line);
+    free(fallback);
+    return 1;
+}
+
+void emit_c_kernel(FILE *out, const Plan *p, const char *prefix,
+                   const char *source, unsigned functions,
+                   const Collapse *col)
+{
     Names N;
     names_init(&N, p, prefix);
     N.want = functions & EMIT_C_ALL ? functions & EMIT_C_ALL : EMIT_C_ALL;
     banner(out, p, &N, source, "C99");
+    if (col)
+        collapse_banner(out, col);
     fputs("#include <math.h>\n#include <stddef.h>\n\n", out);
     prototypes(out, p, &N);
     fputs("\n", out);
@@ -1465,7 +1503,8 @@ void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
             emit_one(&C);
         if (N.want & EMIT_C_ONE)
             emit_forward(&C, ONE);
-        if (N.want & (EMIT_C_BATCH | EMIT_C_BATCH_CHECKED))
+        if ((N.want & (EMIT_C_BATCH | EMIT_C_BATCH_CHECKED)) &&
+            !emit_collapsed(&C, &N, col, i))
             emit_batch(&C);
         if (N.want & EMIT_C_BATCH) {
             plan_live(p, i, live);

@@ -237,6 +237,32 @@ for fs in plain checked batch batch_checked plain,batch all; do
     done
     check "--functions $fs: $want functions" test "$(wc -l <"$tmp/syms")" -eq "$want"
 done
+# emit-c --kernel: weights is the default, byte for byte; collapsed says
+# per output which kernel it got, compiles warning-free with every
+# --functions set, and exports what the header declares; a bad value is a
+# usage error
+"$PC" emit-c examples/desargues_arc.pcs >"$tmp/k0.c"
+"$PC" emit-c examples/desargues_arc.pcs --kernel weights >"$tmp/k1.c"
+check "--kernel weights = default" cmp -s "$tmp/k0.c" "$tmp/k1.c"
+for fs in all batch batch_checked plain; do
+    "$PC" emit-c examples/desargues_arc.pcs --kernel collapsed --functions "$fs" -o "$tmp/kc.c" --header "$tmp/kc.h"
+    cc -std=c99 -Wall -Wextra -pedantic -Werror -O1 -c "$tmp/kc.c" -o "$tmp/kc.o" 2>"$tmp/err"
+    check "--kernel collapsed --functions $fs compiles" test $? -eq 0 -a ! -s "$tmp/err"
+    nm -g --defined-only "$tmp/kc.o" | awk '{print $3}' | sort >"$tmp/syms"
+    grep -o '^[a-z_]* *desargues_arc_[A-Za-z0-9_]*(' "$tmp/kc.h" | sed 's/.* //; s/(//' | sort >"$tmp/protos"
+    check "--kernel collapsed --functions $fs: exports = header" cmp -s "$tmp/syms" "$tmp/protos"
+done
+"$PC" emit-c examples/desargues_arc.pcs --kernel collapsed >"$tmp/kc.c"
+check "--kernel collapsed: M collapsed" grep -q '^ \* M: collapsed, monomial basis in tau = (t - 0.5) \* 2^1, degree 3; kappa <= ' "$tmp/kc.c"
+check "--kernel collapsed: the batch function" grep -q '^size_t desargues_arc_M_batch_checked(' "$tmp/kc.c"
+"$PC" emit-c examples/circle_three_points.pcs --kernel collapsed >"$tmp/kc.c"
+check "--kernel collapsed: why not" grep -q '^ \* M: the weights kernel: depends on more than one variable' "$tmp/kc.c"
+"$PC" emit-c examples/desargues_arc.pcs --kernel fast >"$tmp/out" 2>"$tmp/err"
+check "--kernel fast: exit 2" test $? -eq 2 -a ! -s "$tmp/out"
+check "--kernel fast: why" grep -q "^pointcalc: --kernel 'fast': expected weights or collapsed$" "$tmp/err"
+"$PC" emit-c examples/desargues_arc.pcs --kernel >"$tmp/out" 2>"$tmp/err"
+check "--kernel without a value: exit 2" test $? -eq 2
+
 "$PC" emit-c examples/desargues_arc.pcs --functions plain --prefix sub -o "$tmp/sub.c"
 "$PC" emit-c examples/desargues_arc.pcs --prefix full -o "$tmp/full.c"
 cat >"$tmp/drv.c" <<'EOF_C'

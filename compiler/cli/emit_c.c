@@ -1,6 +1,7 @@
 /*
  * emit_c.c - `pointcalc emit-c FILE [-o OUT.c] [--header OUT.h]
- * [--prefix NAME] [--output NAMES] [--functions LIST] [--dump-plan]`: C99
+ * [--prefix NAME] [--output NAMES] [--functions LIST] [--kernel K]
+ * [--dump-plan]`: C99
  * for the outputs
  * (codegen/emit_c.h, contract section 5).
  *
@@ -12,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "codegen/collapse.h"
 #include "codegen/emit_c.h"
 #include "compiler/cli/args.h"
 #include "compiler/cli/outfile.h"
@@ -21,6 +23,7 @@ typedef struct EmitArgs {
     const char *cpath, *hpath, *prefix; // NULL: stdout, none, the scheme's
     unsigned functions;                 // EMIT_C_* bits
     int dump;                           // --dump-plan
+    int collapsed;                      // --kernel collapsed
     BudgetOptions budget;
     NameList outputs; // --output (none: all)
     const char *usage;
@@ -37,6 +40,18 @@ static int parse_functions(EmitArgs *a, const char *v, FILE *err)
                      "--functions '%s': '%.*s' is not one of plain, checked, "
                      "batch, batch_checked, all",
                      v, (int)strcspn(bad, ","), bad);
+    return -1;
+}
+
+/* --kernel weights|collapsed */
+static int parse_kernel(EmitArgs *a, const char *v, FILE *err)
+{
+    if (strcmp(v, "weights") == 0 || strcmp(v, "collapsed") == 0) {
+        a->collapsed = v[0] == 'c';
+        return 2;
+    }
+    args_usage_error(err, a->usage,
+                     "--kernel '%s': expected weights or collapsed", v);
     return -1;
 }
 
@@ -58,6 +73,8 @@ static int emit_option(void *ctx, int argc, char **argv, int i, FILE *err)
         a->prefix = v;
     else if (strcmp(o, "--functions") == 0)
         return parse_functions(a, v, err);
+    else if (strcmp(o, "--kernel") == 0)
+        return parse_kernel(a, v, err);
     else if (strcmp(o, "--output") != 0)
         return 0;
     else if (args_names_add(&a->outputs, v) != 0) {
@@ -115,15 +132,19 @@ static void memstream_close(FILE *m)
 }
 
 /* the C (or the plan dump) and the header, then the files */
-static int write_outputs(const EmitArgs *a, const Plan *p, const char *file,
-                         FILE *out, FILE *err)
+static int write_outputs(const EmitArgs *a, const Plan *p, const Derived *d,
+                         const char *file, FILE *out, FILE *err)
 {
     char *ctext = NULL, *htext = NULL;
     size_t clen = 0, hlen = 0;
     FILE *m = memstream(&ctext, &clen);
     if (a->dump)
         plan_dump(m, p);
-    else
+    else if (a->collapsed) {
+        Collapse *col = collapse_new(d, p);
+        emit_c_kernel(m, p, a->prefix, file, a->functions, col);
+        collapse_free(col);
+    } else
         emit_c_ex(m, p, a->prefix, file, a->functions);
     memstream_close(m);
     if (a->hpath) {
@@ -166,7 +187,7 @@ static int emit(const EmitArgs *a, const char *file, FILE *out, FILE *err)
     if (!rc)
         rc = select_outputs(a, p, err);
     if (!rc)
-        rc = write_outputs(a, p, file, out, err);
+        rc = write_outputs(a, p, d, file, out, err);
     derived_free(d);
     plan_free(p);
     return rc;

@@ -55,7 +55,7 @@ const char cli_usage[] =
     "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix "      \
     "NAME]\n"                                                                  \
     "                      [--output NAME[,NAME...]] ... [--functions LIST]\n" \
-    "                      [--dump-plan]\n"
+    "                      [--kernel weights|collapsed] [--dump-plan]\n"
 
 #define EVAL_USAGE                                                             \
     "usage: pointcalc eval FILE --at A=x,y[,z...] ... [--set k=SPEC ...]\n"    \
@@ -113,6 +113,11 @@ static const char emit_c_help[] = EMIT_C_USAGE
     "(default: all)\n"
     "  --functions LIST    which forms: plain, checked, batch, batch_checked, "
     "all\n"
+    "  --kernel collapsed  batch functions: each coordinate one polynomial in "
+    "the\n"
+    "                      param, where a bound over its declared range "
+    "keeps\n"
+    "                      1e-13 (docs/codegen.md); default: weights\n"
     "  --dump-plan         print the numeric plan instead "
     "(debugging)\n" COMMON_HELP;
 

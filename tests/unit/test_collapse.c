@@ -1,0 +1,567 @@
+/*
+ * test_collapse.c - the collapsed kernel (emit-c --kernel collapsed,
+ * codegen/collapse.h) against exact rational evaluation.
+ *
+ * Every scheme in examples/ and tests/schemes/, a few families at degree
+ * 10 and 12 (interpolation_bezier -D n=10, 12; inline schemes of degree 12)
+ * is emitted with the collapsed kernel, compiled (-std=c99 -pedantic
+ * -Werror), and every collapsed output's _batch_checked and _batch are
+ * compared, at 301 parameter values spread over the declared range (and
+ * its ends), with the exact value of the reduced equation (FLINT fmpq), in
+ * dims 2, 3 and 5, with points of comparable size (coordinates of
+ * magnitude 1 to 2, either sign):
+ *
+ *   |got - exact| <= 1e-12 max(|exact|, sum_k |w_k P_k[c]|)   (the tests'
+ *                                                              scale)
+ *   |got - exact| <= bound * max_k |P_k[c]| * sum_k |w_k|      (the bound
+ *                                                              itself)
+ *
+ * Values outside the range and NaN go to the weights code (compared at
+ * 1e-12 too, NaN: status 3).  The bound must refuse the monomial basis for
+ * the degree-12 Bernstein and Lagrange weights, and a perturbed
+ * coefficient must be caught.
+ */
+/* cmocka.h needs these first, in this order */
+// clang-format off
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+// clang-format on
+
+#include <dirent.h>
+#include <dlfcn.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <flint/flint.h>
+#include <flint/fmpq.h>
+
+#include "codegen/collapse.h"
+#include "codegen/emit_c.h"
+#include "codegen/lower.h"
+#include "compiler/derive.h"
+
+#define REL_TOL 1e-12
+#define NS 301 // samples in the range: > 4 blocks of 64
+
+typedef size_t (*batch_fn)(size_t n, const double *const *prm,
+                           const double *cst, const double *const *pts, int dim,
+                           double *out, unsigned char *status, int checked);
+
+static int total_checks, total_collapsed;
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+typedef struct Compiled {
+    char dir[64];
+    void *so;
+} Compiled;
+
+/* the C (collapsed kernel), its header and a wrapper wb_O per output */
+static void compile(Compiled *c, const Plan *p, const Collapse *col)
+{
+    char path[128], cmd[512];
+    char *src = NULL, *hdr = NULL, *wrap = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&src, &len);
+    emit_c_kernel(m, p, "pcx", "test.pcs", EMIT_C_ALL, col);
+    fclose(m);
+    m = open_memstream(&hdr, &len);
+    emit_c_header(m, p, "pcx", "test.pcs");
+    fclose(m);
+    m = open_memstream(&wrap, &len);
+    fputs("#include <stddef.h>\n#include \"gen.h\"\n", m);
+    for (int o = 0; o < p->noutputs; o++) {
+        fprintf(m,
+                "size_t wb_%d(size_t n, const double *const *prm, "
+                "const double *cst, const double *const *pts, int dim, "
+                "double *out, unsigned char *status, int checked);\n"
+                "size_t wb_%d(size_t n, const double *const *prm, "
+                "const double *cst, const double *const *pts, int dim, "
+                "double *out, unsigned char *status, int checked)\n"
+                "{\n    (void)prm; (void)cst; (void)pts;\n"
+                "    if (!checked) {\n        pcx_%s_batch(n, ",
+                o, o, p->outputs[o].name);
+        for (int pass = 0; pass < 2; pass++) {
+            for (int i = 0; i < p->nparams; i++)
+                fprintf(m, "prm[%d], ", i);
+            for (int i = 0; i < p->nconsts; i++)
+                fprintf(m, "cst[%d], ", i);
+            for (int i = 0; i < p->npoints; i++)
+                fprintf(m, "pts[%d], ", i);
+            fputs(pass == 0 ? "dim, out);\n" : "dim, out, status);\n", m);
+            if (pass == 0)
+                fprintf(m,
+                        "        return (size_t)-1;\n    }\n"
+                        "    return pcx_%s_batch_checked(n, ",
+                        p->outputs[o].name);
+        }
+        fputs("}\n", m);
+    }
+    fclose(m);
+    strcpy(c->dir, "/tmp/pc_collapse_XXXXXX");
+    assert_non_null(mkdtemp(c->dir));
+    snprintf(path, sizeof path, "%s/gen.c", c->dir);
+    write_file(path, src);
+    snprintf(path, sizeof path, "%s/gen.h", c->dir);
+    write_file(path, hdr);
+    snprintf(path, sizeof path, "%s/wrap.c", c->dir);
+    write_file(path, wrap);
+    free(src);
+    free(hdr);
+    free(wrap);
+    snprintf(cmd, sizeof cmd,
+             "cd %s && cc -std=c99 -Wall -Wextra -Werror -pedantic -O2 "
+             "-fPIC -shared -o gen.so gen.c wrap.c -lm",
+             c->dir);
+    int rc = system(cmd);
+    if (rc != 0)
+        fprintf(stderr, "compile failed, sources kept in %s\n", c->dir);
+    assert_int_equal(rc, 0);
+    snprintf(path, sizeof path, "%s/gen.so", c->dir);
+    c->so = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    assert_non_null(c->so);
+}
+
+static void compiled_clear(Compiled *c)
+{
+    static const char *const files[] = {"gen.c", "gen.h", "wrap.c", "gen.so"};
+    char path[128];
+    dlclose(c->so);
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        snprintf(path, sizeof path, "%s/%s", c->dir, files[i]);
+        unlink(path);
+    }
+    rmdir(c->dir);
+}
+
+static void q_set_double(fmpq_t r, double v)
+{
+    int e;
+    double m = frexp(v, &e);
+    fmpz_t num;
+    fmpz_init(num);
+    fmpz_set_d(num, ldexp(m, 53));
+    fmpq_set_fmpz_frac(r, num, (fmpz[]){1});
+    if (e - 53 >= 0)
+        fmpq_mul_2exp(r, r, (ulong)(e - 53));
+    else
+        fmpq_div_2exp(r, r, (ulong)(53 - e));
+    fmpz_clear(num);
+}
+
+/* The largest error of output o over the samples, relative to the bound's
+ * scale (max_k |P_k[c]| sum_k |w_k|); fails (strict) when a value misses
+ * the tests' 1e-12 or the bound itself. */
+static double check_output(const Derived *d, const Plan *p, const Collapse *col,
+                           const Compiled *c, int o, int strict)
+{
+    const CollapseOutput *co = &col->o[o];
+    const DerivedOutput *dout = &d->outputs[derived_find_output(d, co->name)];
+    int np = p->nparams, nv = (int)d->ring.nvars > 0 ? (int)d->ring.nvars : 1;
+    int K = (int)dout->eq->len, pi = co->param;
+    char name[32];
+    snprintf(name, sizeof name, "wb_%d", o);
+    batch_fn batch = (batch_fn)(uintptr_t)dlsym(c->so, name);
+    assert_non_null(batch);
+    /* the samples: the range's doubles, its ends, then outside it and NaN */
+    enum { NOUT = 5 };
+    int n = NS + NOUT;
+    double **prm = calloc((size_t)np + 1, sizeof *prm);
+    for (int i = 0; i < np; i++) {
+        prm[i] = malloc(sizeof **prm * (size_t)n);
+        for (int s = 0; s < n; s++)
+            prm[i][s] = 0.5;
+    }
+    double lo = co->lo, hi = co->hi, w = hi - lo;
+    for (int s = 0; s < NS; s++)
+        prm[pi][s] = s == NS - 1 ? hi : lo + w * s / (NS - 1);
+    const double outside[NOUT] = {lo - 0.25 * w - 0.5, hi + 0.5 * w + 0.25,
+                                  NAN, lo - 1e-3 * w - 1e-3,
+                                  hi + 2.0 * w + 1};
+    for (int s = 0; s < NOUT; s++)
+        prm[pi][NS + s] = outside[s];
+    /* the outside samples in the middle of a block: the weights code gets
+     * a whole block */
+    for (int s = 0; s < NOUT; s++) {
+        double t = prm[pi][NS + s];
+        prm[pi][NS + s] = prm[pi][70 + 3 * s];
+        prm[pi][70 + 3 * s] = t;
+    }
+    double cst[8] = {0.75, 0.625, 1.25, -0.5, 2.0, 0.375, 1.5, 3.0};
+    fmpq *vals = _fmpq_vec_init(nv), *wk = _fmpq_vec_init(K);
+    for (int i = 0; i < np; i++)
+        fmpq_set_si(vals + i, 1, 2);
+    for (int i = 0; i < p->nconsts && i < 8; i++)
+        q_set_double(vals + np + i, cst[i]);
+    flint_rand_t rs;
+    flint_randinit(rs);
+    double worst = 0;
+    static const int dims[] = {2, 3, 5};
+    for (int di = 0; di < 3; di++) {
+        int dim = dims[di];
+        double **pts = calloc((size_t)p->npoints + 1, sizeof *pts);
+        for (int k = 0; k < p->npoints; k++) {
+            pts[k] = malloc(sizeof **pts * (size_t)dim);
+            for (int cc = 0; cc < dim; cc++) { // 1 to 2, either sign
+                double v = 1 + (double)n_randint(rs, 1025) / 1024;
+                pts[k][cc] = n_randint(rs, 2) ? v : -v;
+            }
+        }
+        double *got = malloc(sizeof *got * (size_t)(n * dim));
+        unsigned char *st = malloc((size_t)n);
+        for (int checked = 1; checked >= 0; checked--) {
+            memset(st, 7, (size_t)n);
+            size_t nb = batch((size_t)n, (const double *const *)prm, cst,
+                              (const double *const *)pts, dim, got,
+                              checked ? st : NULL, checked);
+            for (int s = 0; s < n; s++) {
+                double t = prm[pi][s];
+                if (isnan(t)) { /* the weights code: status 3 */
+                    if (checked)
+                        assert_int_equal(st[s], 3);
+                    for (int cc = 0; cc < dim; cc++)
+                        assert_true(checked ? isnan(got[s * dim + cc]) : 1);
+                    continue;
+                }
+                int in = t >= lo && t <= hi;
+                q_set_double(vals + pi, t);
+                int pole = 0;
+                double sumw = 0;
+                for (int k = 0; k < K; k++) {
+                    if (ratfun_evaluate_fmpq(wk + k, &dout->w[k], vals,
+                                             &d->ring) == RATFUN_EPOLE)
+                        pole = 1;
+                    else
+                        sumw += fabs(fmpq_get_d(wk + k));
+                }
+                if (checked)
+                    assert_int_equal(st[s], pole ? 1 : 0);
+                for (int cc = 0; cc < dim; cc++) {
+                    double g = got[s * dim + cc];
+                    if (pole) {
+                        assert_false(in);
+                        assert_true(isnan(g));
+                        continue;
+                    }
+                    fmpq_t sum, x;
+                    fmpq_init(sum);
+                    fmpq_init(x);
+                    double sc = 0, pmax = 0;
+                    for (int k = 0; k < K; k++) {
+                        double P = pts[dout->eq->terms[k].point][cc];
+                        q_set_double(x, P);
+                        fmpq_mul(x, x, wk + k);
+                        fmpq_add(sum, sum, x);
+                        sc += fabs(fmpq_get_d(wk + k) * P);
+                        pmax = fmax(pmax, fabs(P));
+                    }
+                    /* |got - exact|, exactly, rounded */
+                    q_set_double(x, g);
+                    fmpq_sub(x, x, sum);
+                    double err = fabs(fmpq_get_d(x));
+                    double exact = fmpq_get_d(sum);
+                    fmpq_clear(x);
+                    fmpq_clear(sum);
+                    double tol = REL_TOL * fmax(fabs(exact), sc);
+                    total_checks++;
+                    if (strict && !(err <= tol))
+                        fail_msg("%s output %s t = %.17g dim %d coord %d: "
+                                 "got %.17g, exact %.17g (error %g, tol %g)",
+                                 p->name, co->name, t, dim, cc, g, exact, err,
+                                 tol);
+                    if (!in)
+                        continue;
+                    double rel = err / (pmax * sumw);
+                    worst = fmax(worst, rel);
+                    if (strict && !(rel <= co->bound))
+                        fail_msg("%s output %s t = %.17g: error %g relative, "
+                                 "above the bound %g",
+                                 p->name, co->name, t, rel, co->bound);
+                }
+            }
+            if (checked) {
+                size_t expect = 0;
+                for (int s = 0; s < n; s++)
+                    expect += st[s] != 0;
+                assert_int_equal(nb, expect);
+            }
+        }
+        free(st);
+        free(got);
+        for (int k = 0; k < p->npoints; k++)
+            free(pts[k]);
+        free(pts);
+    }
+    flint_randclear(rs);
+    _fmpq_vec_clear(vals, nv);
+    _fmpq_vec_clear(wk, K);
+    for (int i = 0; i < np; i++)
+        free(prm[i]);
+    free(prm);
+    return worst;
+}
+
+/* derives (a file, or text when not NULL; -D define), checks every
+ * collapsed output; returns how many were collapsed */
+static int check_scheme(const char *path, const char *text,
+                        const char *define)
+{
+    const char *defs[1] = {define};
+    DeriveOptions opt = {.max_seconds = 60, .defines = defs,
+                         .ndefines = define ? 1 : 0};
+    Derived *d = text ? derive_source_ex(path, text, strlen(text), stderr,
+                                         NULL, &opt)
+                      : derive_file_ex(path, stderr, NULL, &opt);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    assert_non_null(p);
+    Collapse *col = collapse_new(d, p);
+    assert_int_equal(col->n, p->noutputs);
+    int any = 0;
+    for (int o = 0; o < col->n; o++)
+        any += col->o[o].ok;
+    if (any) {
+        Compiled c;
+        compile(&c, p, col);
+        for (int o = 0; o < col->n; o++) {
+            if (!col->o[o].ok)
+                continue;
+            double worst = check_output(d, p, col, &c, o, 1);
+            fprintf(stderr,
+                    "collapse: %-34s %-10s deg %2d kappa %7.3g bound %8.3g "
+                    "max error %8.3g\n",
+                    path, col->o[o].name, col->o[o].deg, col->o[o].kappa,
+                    col->o[o].bound, worst);
+        }
+        compiled_clear(&c);
+    }
+    total_collapsed += any;
+    collapse_free(col);
+    plan_free(p);
+    derived_free(d);
+    return any;
+}
+
+static void check_dir(const char *dir)
+{
+    DIR *dp = opendir(dir);
+    assert_non_null(dp);
+    struct dirent *e;
+    while ((e = readdir(dp))) {
+        size_t len = strlen(e->d_name);
+        if (len <= 4 || strcmp(e->d_name + len - 4, ".pcs") != 0)
+            continue;
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        check_scheme(path, NULL, NULL);
+    }
+    closedir(dp);
+}
+
+/* ---- tests --------------------------------------------------------------- */
+
+static void test_collapse_examples_match_exact(void **state)
+{
+    (void)state;
+    total_collapsed = 0;
+    check_dir("examples");
+    check_dir("tests/schemes");
+    assert_true(total_collapsed >= 15); // outputs that qualify
+}
+
+/* degree 12: a power (well conditioned: collapsed), a rational curve of
+ * degree 12 with a denominator, a pole just outside the range; a range
+ * of odd endpoints (the centre not a dyadic) and a wide one */
+static const char high[] = "scheme high\n"
+                           "point A, B, C\n"
+                           "param t in [0, 1]\n"
+                           "M = along(A, B, t^12)\n"
+                           "R = along(along(A, B, t^12), C, t/(t^2 + 3))\n"
+                           "output M, R\n";
+/* the same power over another range: refused there (kappa >= 98) */
+static const char odd[] = "scheme odd\n"
+                          "point A, B, C\n"
+                          "param t in [1/3, 7/5]\n"
+                          "M = along(A, B, t^12)\n"
+                          "Q = along(A, B, 1/(t - 2))\n"
+                          "output M, Q\n";
+static const char wide[] = "scheme wide\n"
+                           "point A, B, C, D\n"
+                           "param t in [-3, 1000]\n"
+                           "P = along(A, C, t/1000)\n"
+                           "Q = along(C, B, t/1000)\n"
+                           "M = along(P, Q, t/(t + 500))\n"
+                           "N = along(P, D, t/1000)\n"
+                           "output M, N\n";
+static const char bern12[] = "scheme bern12\n"
+                             "point P[1..13]\n"
+                             "param t in [0, 1]\n"
+                             "X = bezier(t, P[1..13])\n";
+
+static const CollapseOutput *find(const Collapse *col, const char *name)
+{
+    for (int o = 0; o < col->n; o++)
+        if (strcmp(col->o[o].name, name) == 0)
+            return &col->o[o];
+    fail_msg("no output %s", name);
+    return NULL;
+}
+
+static void test_collapse_high_degree(void **state)
+{
+    (void)state;
+    assert_int_equal(check_scheme("high.pcs", high, NULL), 2);
+    assert_int_equal(check_scheme("odd.pcs", odd, NULL), 1);
+    assert_int_equal(check_scheme("wide.pcs", wide, NULL), 2);
+    Derived *d = derive_source("high.pcs", high, strlen(high), stderr, NULL);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    Collapse *col = collapse_new(d, p);
+    assert_int_equal(find(col, "M")->deg, 12);
+    assert_true(find(col, "R")->deg >= 12);
+    assert_true(find(col, "M")->ok && find(col, "R")->ok);
+    collapse_free(col);
+    plan_free(p);
+    derived_free(d);
+    d = derive_source("odd.pcs", odd, strlen(odd), stderr, NULL);
+    p = lower_derived(d, stderr);
+    col = collapse_new(d, p);
+    assert_false(find(col, "M")->ok); // the same power: refused over this range
+    assert_true(find(col, "Q")->ok);
+    collapse_free(col);
+    plan_free(p);
+    derived_free(d);
+}
+
+/* the bound refuses the monomial basis where it must: Bernstein weights
+ * of degree 12 (kappa = 2^12 at the ends), Lagrange-like weights of the
+ * interpolating Bezier curves of degree 10 and 12, and a denominator with
+ * a root in the range (kappa_d infinite); those keep the weights code */
+static void test_collapse_bound_refuses(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *path, *text, *define, *out;
+    } cases[] = {
+        {"bern12.pcs", bern12, NULL, "X"},
+        {"examples/interpolation_bezier.pcs", NULL, "n=10", "X"},
+        {"examples/interpolation_bezier.pcs", NULL, "n=12", "X"},
+        {"pole.pcs",
+         "scheme pole\npoint A, B\nparam t in [0, 3]\n"
+         "Q = along(A, B, 1/(t - 2))\n",
+         NULL, "Q"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        const char *defs[1] = {cases[i].define};
+        DeriveOptions opt = {.max_seconds = 60, .defines = defs,
+                             .ndefines = cases[i].define ? 1 : 0};
+        Derived *d = cases[i].text
+                         ? derive_source_ex(cases[i].path, cases[i].text,
+                                            strlen(cases[i].text), stderr,
+                                            NULL, &opt)
+                         : derive_file_ex(cases[i].path, stderr, NULL, &opt);
+        assert_non_null(d);
+        Plan *p = lower_derived(d, stderr);
+        Collapse *col = collapse_new(d, p);
+        const CollapseOutput *co = find(col, cases[i].out);
+        fprintf(stderr, "collapse: %s %s: %s\n", cases[i].path,
+                cases[i].define ? cases[i].define : "", co->why);
+        assert_false(co->ok);
+        assert_non_null(strstr(co->why, "refused"));
+        /* the output is emitted with the weights code: still right */
+        char *text = NULL;
+        size_t len = 0;
+        FILE *m = open_memstream(&text, &len);
+        emit_c_kernel(m, p, NULL, NULL, EMIT_C_ALL, col);
+        fclose(m);
+        assert_null(strstr(text, "collapsed kernel (emit-c"));
+        free(text);
+        collapse_free(col);
+        plan_free(p);
+        derived_free(d);
+    }
+}
+
+/* the comparison can fail: one coefficient off by 1e-9 relative */
+static void test_collapse_detects_a_broken_coefficient(void **state)
+{
+    (void)state;
+    Derived *d = derive_file("examples/desargues_arc.pcs", stderr, NULL);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    Collapse *col = collapse_new(d, p);
+    int o = plan_find_output(p, "M");
+    assert_true(col->o[o].ok);
+    Compiled c;
+    compile(&c, p, col);
+    double good = check_output(d, p, col, &c, o, 1);
+    compiled_clear(&c);
+    CollapseOutput *co = &col->o[o];
+    co->a[2 * co->nterms + 1] *= 1 + 1e-9;
+    compile(&c, p, col);
+    double bad = check_output(d, p, col, &c, o, 0);
+    compiled_clear(&c);
+    fprintf(stderr, "collapse: desargues M max error %g, broken %g\n", good,
+            bad);
+    assert_true(good <= co->bound);
+    assert_true(bad > 1e3 * co->bound);
+    collapse_free(col);
+    plan_free(p);
+    derived_free(d);
+}
+
+/* without a Collapse (and with one that collapses nothing) the C is
+ * today's, byte for byte */
+static void test_collapse_default_is_unchanged(void **state)
+{
+    (void)state;
+    Derived *d = derive_file("examples/circle_three_points.pcs", stderr, NULL);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    char *a = NULL, *b = NULL;
+    size_t la = 0, lb = 0;
+    FILE *m = open_memstream(&a, &la);
+    emit_c_ex(m, p, NULL, "x.pcs", EMIT_C_ALL);
+    fclose(m);
+    m = open_memstream(&b, &lb);
+    emit_c_kernel(m, p, NULL, "x.pcs", EMIT_C_ALL, NULL);
+    fclose(m);
+    assert_string_equal(a, b);
+    free(a);
+    free(b);
+    plan_free(p);
+    derived_free(d);
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    flint_cleanup_master();
+    return 0;
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_collapse_default_is_unchanged),
+        cmocka_unit_test(test_collapse_bound_refuses),
+        cmocka_unit_test(test_collapse_detects_a_broken_coefficient),
+        cmocka_unit_test(test_collapse_high_degree),
+        cmocka_unit_test(test_collapse_examples_match_exact),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, teardown);
+    fprintf(stderr, "test_collapse: %d value comparisons\n", total_checks);
+    return rc;
+}
