@@ -1503,12 +1503,17 @@ void emit_c_kernel(FILE *out, const Plan *p, const char *prefix,
             emit_one(&C);
         if (N.want & EMIT_C_ONE)
             emit_forward(&C, ONE);
-        if ((N.want & (EMIT_C_BATCH | EMIT_C_BATCH_CHECKED)) &&
-            !emit_collapsed(&C, &N, col, i))
-            emit_batch(&C);
+        int collapsed = 0;
+        if (N.want & (EMIT_C_BATCH | EMIT_C_BATCH_CHECKED)) {
+            collapsed = emit_collapsed(&C, &N, col, i);
+            if (!collapsed)
+                emit_batch(&C);
+        }
         if (N.want & EMIT_C_BATCH) {
+            /* the collapsed kernel is its _batch_checked; else the fused
+             * weights loop where it applies */
             plan_live(p, i, live);
-            if (!emit_batch_fast(&C))
+            if (collapsed || !emit_batch_fast(&C))
                 emit_forward(&C, BATCH);
         }
     }
