@@ -7,6 +7,8 @@
 #   make bench    in-process benchmarks (bench/)
 #   make figures  docs/figures/*.svg (pointcalc plot)
 #   make format   clang-format the sources
+#   make flint-static  a static libflint.a from Debian's source package
+#                 (.ci/flint-static; pointcalc then links it and starts faster)
 
 B       ?= build
 CC      ?= cc
@@ -20,6 +22,17 @@ ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) $(CFLAGS) $(SAN) \
              -I. -I$(B) -MMD -MP
 LDLIBS  = -lflint -lgmp -lm
 TEST_LDLIBS = -lcmocka $(LDLIBS)
+# pointcalc itself links a static FLINT when .ci/flint-static has built one
+# (`make flint-static`): it then starts without loading libflint.so and what
+# that pulls in (issue 6: milliseconds a process); tests and benches keep
+# the shared libraries
+FLINT_STATIC ?= $(wildcard build-flint/libflint.a)
+ifneq ($(FLINT_STATIC),)
+PC_LDLIBS = $(FLINT_STATIC) $(shell $(CC) -print-file-name=libmpfr.a) \
+            $(shell $(CC) -print-file-name=libgmp.a) -lm -lpthread
+else
+PC_LDLIBS = $(LDLIBS)
+endif
 
 LIB_SRC = $(wildcard compiler/*.c) \
           $(filter-out compiler/cli/main.c,$(wildcard compiler/cli/*.c)) \
@@ -56,7 +69,11 @@ $(B)/libpointcalc.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(B)/pointcalc: $(B)/compiler/cli/main.o $(B)/libpointcalc.a
+$(B)/pointcalc: $(B)/compiler/cli/main.o $(B)/libpointcalc.a $(FLINT_STATIC)
+	$(CC) $(ALL_CFLAGS) -o $@ $(B)/compiler/cli/main.o $(B)/libpointcalc.a $(PC_LDLIBS)
+
+# the shared-library build beside a static one, for bench_start
+$(B)/pointcalc-shared: $(B)/compiler/cli/main.o $(B)/libpointcalc.a
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDLIBS)
 
 $(B)/tests/%: tests/unit/%.c $(B)/libpointcalc.a
@@ -150,13 +167,15 @@ fuzz:
 
 # PYTHON: the interpreter for bench/lambdify.py; by default the first python3
 # on PATH that has sympy and numpy (else the first with sympy)
-bench: $(BENCHES) $(B)/pointcalc
+bench: $(BENCHES) $(B)/pointcalc $(if $(FLINT_STATIC),$(B)/pointcalc-shared)
 	@py=$${PYTHON:-}; \
 	if [ -z "$$py" ]; then for m in 'sympy, numpy' sympy; do \
 	  for p in python3 /usr/bin/python3; do \
 	    if $$p -c "import $$m" 2>/dev/null; then py=$$p; break 2; fi; \
 	  done; done; fi; \
-	for b in $(BENCHES); do PYTHON=$$py $$b || exit 1; done
+	for b in $(BENCHES); do case $$b in \
+	  *bench_start) $$b $(B)/pointcalc $(if $(FLINT_STATIC),$(B)/pointcalc-shared) || exit 1;; \
+	  *) PYTHON=$$py $$b || exit 1;; esac; done
 	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
 
 # the figures of docs/plot.md (tests/plot_test.sh checks they are current)
@@ -166,8 +185,11 @@ figures: $(B)/pointcalc
 format:
 	clang-format -i $(wildcard $(addsuffix /*.[ch],grammar compiler compiler/cli codegen runtime tests/unit tests/fuzz bench examples))
 
+flint-static:
+	.ci/flint-static
+
 clean:
 	rm -rf build build-asan build-fuzz
 
-.PHONY: all tests check asan valgrind fuzz bench figures format clean
+.PHONY: all tests check asan valgrind fuzz bench figures format clean flint-static
 -include $(shell find $(B) -name '*.d' 2>/dev/null)
