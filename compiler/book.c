@@ -827,28 +827,38 @@ static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
     return s;
 }
 
+/* the length of s's text form (whatever the style): measured only when a
+ * tie between two collected forms needs it */
+static size_t text_len(const PSum *s, const Ctx *c)
+{
+    Ctx text = *c;
+    text.latex = 0;
+    return sum_text_len(s, &text);
+}
+
 /* keeps the better of *best and cand: fewer leaves; then factored before
  * expanded before collected; among collected forms the shorter text, then
  * Bernstein before powers; then the earlier candidate.  Lengths are those
- * of the text form whatever the style, so text and LaTeX agree. */
+ * of the text form whatever the style, so text and LaTeX agree (*best_len:
+ * (size_t)-1 until measured). */
 static void keep_better(PSum **best, int *best_rank, size_t *best_len,
                         PSum *cand, int rank, const Ctx *c)
 {
     if (!cand)
         return;
-    Ctx text = *c;
-    text.latex = 0;
-    size_t len = sum_text_len(cand, &text);
+    size_t len = (size_t)-1;
     if (*best) {
         slong lb = sum_leaves(*best), lc = sum_leaves(cand);
         int kb = *best_rank < 2 ? *best_rank : 2;
         int kc = rank < 2 ? rank : 2;
-        int better = lc < lb ||
-                     (lc == lb &&
-                      (kc < kb ||
-                       (kc == kb && kc == 2 &&
-                        (len < *best_len ||
-                         (len == *best_len && rank < *best_rank)))));
+        int better = lc < lb || (lc == lb && kc < kb);
+        if (lc == lb && kc == kb && kc == 2) {
+            if (*best_len == (size_t)-1)
+                *best_len = text_len(*best, c);
+            len = text_len(cand, c);
+            better = len < *best_len ||
+                     (len == *best_len && rank < *best_rank);
+        }
         if (!better) {
             sum_free(cand, c);
             return;
@@ -979,9 +989,7 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     if (len == 0 || fmpz_mpoly_is_fmpz(p, r->ctx))
         return best;
     int rank = R_EXPANDED;
-    Ctx text = *c;
-    text.latex = 0;
-    size_t blen = sum_text_len(best, &text);
+    size_t blen = (size_t)-1;
     *c->work += len;
     if (len < 2)
         return best; /* a monomial: expanded is factored */
