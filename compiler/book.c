@@ -7,6 +7,7 @@
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 #include <flint/fmpz_vec.h>
+#include <flint/nmod_poly.h>
 
 #include "compiler/mem.h"
 #include "compiler/ring.h"
@@ -688,6 +689,67 @@ static int vanishes_at_ones(const fmpz_mpoly_t q, const Ring *r)
     return z;
 }
 
+/* u = c2 x^2 + c1 x + c0 (c2 != 0) is irreducible over Q: exactly when
+ * its discriminant is not a square (what fmpz_poly_factor would say,
+ * content aside, for much less) */
+static int quadratic_irreducible(const fmpz_poly_t u)
+{
+    fmpz_t d, t;
+    fmpz_init(d);
+    fmpz_init(t);
+    fmpz_mul(d, u->coeffs + 1, u->coeffs + 1);
+    fmpz_mul(t, u->coeffs + 0, u->coeffs + 2);
+    fmpz_submul_ui(d, t, 4);
+    int irr = !fmpz_is_square(d);
+    fmpz_clear(t);
+    fmpz_clear(d);
+    return irr;
+}
+
+/* a proof that u (primitive, of degree n >= 1) is irreducible over Q:
+ * irreducible modulo a small prime not dividing its leading coefficient
+ * (a factorisation over Z would reduce to one of the same degrees).  A
+ * root modulo the prime (looked for first, by evaluation: the cheap
+ * refutation, as a reducible u has linear factors most often) rules the
+ * prime out; of degree <= 3, no root is irreducibility.
+ * 0: no proof (u may still be irreducible, or not). */
+static int irreducible_mod_small_prime(const fmpz_poly_t u)
+{
+    enum { MAX_DEG = 32 };
+    static const ulong primes[] = {3, 5, 7, 11, 13};
+    slong n = fmpz_poly_degree(u);
+    if (n < 1 || n > MAX_DEG)
+        return 0;
+    ulong cm[MAX_DEG + 1];
+    int irr = 0;
+    for (size_t i = 0; i < sizeof primes / sizeof primes[0] && !irr; i++) {
+        ulong q = primes[i];
+        if (fmpz_fdiv_ui(u->coeffs + n, q) == 0)
+            continue;
+        for (slong k = 0; k <= n; k++)
+            cm[k] = fmpz_fdiv_ui(u->coeffs + k, q);
+        int root = 0;
+        for (ulong z = 0; z < q && !root; z++) {
+            ulong y = 0;
+            for (slong k = n; k >= 0; k--)
+                y = (y * z + cm[k]) % q;
+            root = y == 0;
+        }
+        if (root)
+            continue;
+        if (n <= 3) {
+            irr = 1;
+            break;
+        }
+        nmod_poly_t m;
+        nmod_poly_init(m, q);
+        fmpz_poly_get_nmod_poly(m, u);
+        irr = nmod_poly_is_irreducible(m);
+        nmod_poly_clear(m);
+    }
+    return irr;
+}
+
 /* A cheap proof that p (not linear) is irreducible and primitive, when
  * there is one: then factoring would give p itself and form_factored has
  * nothing to offer, so FLINT's factoring (most of the printing time) is
@@ -769,7 +831,15 @@ static int surely_irreducible(const fmpz_mpoly_t p, const Ring *r)
             ok = 1;
             break;
         }
-        for (int a = 0; a < 2 && !ok && images < MAX_IMAGES; a++) {
+        /* p in x alone: its image is p itself, the same for every a, and
+         * factoring it is what FLINT would do anyway (a reducible p, as
+         * the Bernstein forms' often are, would pay twice): only cheap
+         * proofs, by one image */
+        int alone = 1;
+        for (slong v = 0; v < nv; v++)
+            alone &= v == x || deg[v] == 0;
+        for (int a = 0; a < (alone ? 1 : 2) && !ok && images < MAX_IMAGES;
+             a++) {
             /* the image at others = small integers, distinct per variable */
             fmpz_poly_zero(u);
             for (slong k = 0; k < len; k++) {
@@ -793,11 +863,17 @@ static int surely_irreducible(const fmpz_mpoly_t p, const Ring *r)
             if (fmpz_poly_degree(u) != deg[x])
                 continue;
             images++;
-            fmpz_poly_factor_t uf;
-            fmpz_poly_factor_init(uf);
-            fmpz_poly_factor(uf, u);
-            ok = uf->num == 1 && uf->exp[0] == 1;
-            fmpz_poly_factor_clear(uf);
+            if (deg[x] == 2) {
+                ok = quadratic_irreducible(u);
+            } else if (alone) {
+                ok = irreducible_mod_small_prime(u);
+            } else {
+                fmpz_poly_factor_t uf;
+                fmpz_poly_factor_init(uf);
+                fmpz_poly_factor(uf, u);
+                ok = uf->num == 1 && uf->exp[0] == 1;
+                fmpz_poly_factor_clear(uf);
+            }
         }
     }
 done:
