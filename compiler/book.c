@@ -5,9 +5,12 @@
 #include <string.h>
 
 #include <flint/fmpz_mpoly_factor.h>
+#include <flint/fmpz_poly_factor.h>
 #include <flint/fmpz_vec.h>
+#include <flint/nmod_poly.h>
 
 #include "compiler/mem.h"
+#include "compiler/ring.h"
 #include "compiler/strbuf.h"
 
 /* ---- names ------------------------------------------------------------ */
@@ -673,6 +676,325 @@ static int factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
     return ok;
 }
 
+/* q(1, ..., 1) == 0: necessary for x - 1 to divide q (a cheap test
+ * before fmpz_mpoly_divides) */
+static int vanishes_at_ones(const fmpz_mpoly_t q, const Ring *r)
+{
+    fmpz_t s;
+    fmpz_init(s);
+    for (slong k = 0; k < fmpz_mpoly_length(q, r->ctx); k++)
+        fmpz_add(s, s, q->coeffs + k);
+    int z = fmpz_is_zero(s);
+    fmpz_clear(s);
+    return z;
+}
+
+/* u = c2 x^2 + c1 x + c0 (c2 != 0) is irreducible over Q: exactly when
+ * its discriminant is not a square (what fmpz_poly_factor would say,
+ * content aside, for much less) */
+static int quadratic_irreducible(const fmpz_poly_t u)
+{
+    fmpz_t d, t;
+    fmpz_init(d);
+    fmpz_init(t);
+    fmpz_mul(d, u->coeffs + 1, u->coeffs + 1);
+    fmpz_mul(t, u->coeffs + 0, u->coeffs + 2);
+    fmpz_submul_ui(d, t, 4);
+    int irr = !fmpz_is_square(d);
+    fmpz_clear(t);
+    fmpz_clear(d);
+    return irr;
+}
+
+/* a proof that u (primitive, of degree n >= 1) is irreducible over Q:
+ * irreducible modulo a small prime not dividing its leading coefficient
+ * (a factorisation over Z would reduce to one of the same degrees).  A
+ * root modulo the prime (looked for first, by evaluation: the cheap
+ * refutation, as a reducible u has linear factors most often) rules the
+ * prime out; of degree <= 3, no root is irreducibility.
+ * 0: no proof (u may still be irreducible, or not). */
+static int irreducible_mod_small_prime(const fmpz_poly_t u)
+{
+    enum { MAX_DEG = 32 };
+    static const ulong primes[] = {3, 5, 7, 11, 13};
+    slong n = fmpz_poly_degree(u);
+    if (n < 1 || n > MAX_DEG)
+        return 0;
+    ulong cm[MAX_DEG + 1];
+    int irr = 0;
+    for (size_t i = 0; i < sizeof primes / sizeof primes[0] && !irr; i++) {
+        ulong q = primes[i];
+        if (fmpz_fdiv_ui(u->coeffs + n, q) == 0)
+            continue;
+        for (slong k = 0; k <= n; k++)
+            cm[k] = fmpz_fdiv_ui(u->coeffs + k, q);
+        int root = 0;
+        for (ulong z = 0; z < q && !root; z++) {
+            ulong y = 0;
+            for (slong k = n; k >= 0; k--)
+                y = (y * z + cm[k]) % q;
+            root = y == 0;
+        }
+        if (root)
+            continue;
+        if (n <= 3) {
+            irr = 1;
+            break;
+        }
+        nmod_poly_t m;
+        nmod_poly_init(m, q);
+        fmpz_poly_get_nmod_poly(m, u);
+        irr = nmod_poly_is_irreducible(m);
+        nmod_poly_clear(m);
+    }
+    return irr;
+}
+
+/* A cheap proof that p (not linear) is irreducible and primitive, when
+ * there is one: then factoring would give p itself and form_factored has
+ * nothing to offer, so FLINT's factoring (most of the printing time) is
+ * not needed.  The proof: p has integer content 1 and no monomial factor;
+ * for some variable x one coefficient of a power of x is a single term, so
+ * p's content in x is 1 (it would divide that term, hence every term), and
+ * every factor of p involves x; then p is irreducible when its degree in x
+ * is 1, or when an image p(x, others = integers) keeps that degree and is
+ * irreducible over Q (a factorisation of p would map to one of the image).
+ * 0: no proof found (p may still be irreducible). */
+static int surely_irreducible(const fmpz_mpoly_t p, const Ring *r)
+{
+    enum { MAX_IMAGES = 4 };
+    slong len = fmpz_mpoly_length(p, r->ctx);
+    slong nv = r->ctx->minfo->nvars;
+    if (len < 2 || nv < 1 || !fmpz_mpoly_degrees_fit_si(p, r->ctx))
+        return 0;
+    int ok = 0, images = 0;
+    fmpz_t g, t, val;
+    fmpz_init(g);
+    fmpz_init(t);
+    fmpz_init(val);
+    _fmpz_vec_content(g, p->coeffs, len);
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(len * nv));
+    slong *deg = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    slong *cnt = NULL;
+    fmpz_poly_t u;
+    fmpz_poly_init(u);
+    if (!fmpz_is_one(g))
+        goto done;
+    for (slong k = 0; k < len; k++)
+        fmpz_mpoly_get_term_exp_ui(e + k * nv, p, k, r->ctx);
+    for (slong v = 0; v < nv; v++) {
+        ulong lo = e[v], hi = e[v];
+        for (slong k = 1; k < len; k++) {
+            ulong x = e[k * nv + v];
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
+        }
+        if (lo > 0)
+            goto done; /* a monomial factor */
+        deg[v] = (slong)hi;
+    }
+    /* first the variables with a coefficient of one term, then (pass 1)
+     * those of degree 1 by a gcd */
+    for (slong xx = 0; xx < 2 * nv && !ok && images < MAX_IMAGES; xx++) {
+        slong x = xx % nv, pass = xx / nv;
+        if (deg[x] < 1 || (pass == 1 && deg[x] != 1))
+            continue;
+        /* a coefficient in x of one term: p's content in x is 1 */
+        cnt = pc_xrealloc(cnt, sizeof(slong) * (size_t)(deg[x] + 1));
+        memset(cnt, 0, sizeof(slong) * (size_t)(deg[x] + 1));
+        for (slong k = 0; k < len; k++)
+            cnt[e[k * nv + x]]++;
+        int single = 0;
+        for (slong i = 0; i <= deg[x]; i++)
+            single |= cnt[i] == 1;
+        if (single == (pass == 1))
+            continue; /* pass 0: one term; pass 1: the others */
+        if (!single && deg[x] == 1) {
+            /* p = a*x + b: its content in x is gcd(a, b) */
+            fmpz_mpoly_t a, b, h;
+            fmpz_mpoly_init(a, r->ctx);
+            fmpz_mpoly_init(b, r->ctx);
+            fmpz_mpoly_init(h, r->ctx);
+            ulong one = 1, zero = 0;
+            fmpz_mpoly_get_coeff_vars_ui(a, p, &x, &one, 1, r->ctx);
+            fmpz_mpoly_get_coeff_vars_ui(b, p, &x, &zero, 1, r->ctx);
+            single = fmpz_mpoly_gcd(h, a, b, r->ctx) &&
+                     fmpz_mpoly_is_fmpz(h, r->ctx);
+            fmpz_mpoly_clear(h, r->ctx);
+            fmpz_mpoly_clear(b, r->ctx);
+            fmpz_mpoly_clear(a, r->ctx);
+            images++; /* a gcd costs about as much as an image */
+        }
+        if (!single)
+            continue;
+        if (deg[x] == 1) {
+            ok = 1;
+            break;
+        }
+        /* p in x alone: its image is p itself, the same for every a, and
+         * factoring it is what FLINT would do anyway (a reducible p, as
+         * the Bernstein forms' often are, would pay twice): only cheap
+         * proofs, by one image */
+        int alone = 1;
+        for (slong v = 0; v < nv; v++)
+            alone &= v == x || deg[v] == 0;
+        for (int a = 0; a < (alone ? 1 : 2) && !ok && images < MAX_IMAGES;
+             a++) {
+            /* the image at others = small integers, distinct per variable */
+            fmpz_poly_zero(u);
+            for (slong k = 0; k < len; k++) {
+                fmpz_set(t, p->coeffs + k);
+                for (slong v = 0; v < nv; v++) {
+                    ulong ev = e[k * nv + v];
+                    if (v == x || ev == 0)
+                        continue;
+                    slong w = 2 + v + (slong)nv * a;
+                    fmpz_set_si(val, (v + a) & 1 ? -w : w);
+                    fmpz_pow_ui(val, val, ev);
+                    fmpz_mul(t, t, val);
+                }
+                fmpz_t cur;
+                fmpz_init(cur);
+                fmpz_poly_get_coeff_fmpz(cur, u, (slong)e[k * nv + x]);
+                fmpz_add(cur, cur, t);
+                fmpz_poly_set_coeff_fmpz(u, (slong)e[k * nv + x], cur);
+                fmpz_clear(cur);
+            }
+            if (fmpz_poly_degree(u) != deg[x])
+                continue;
+            images++;
+            if (deg[x] == 2) {
+                ok = quadratic_irreducible(u);
+            } else if (alone) {
+                ok = irreducible_mod_small_prime(u);
+            } else {
+                fmpz_poly_factor_t uf;
+                fmpz_poly_factor_init(uf);
+                fmpz_poly_factor(uf, u);
+                ok = uf->num == 1 && uf->exp[0] == 1;
+                fmpz_poly_factor_clear(uf);
+            }
+        }
+    }
+done:
+    fmpz_poly_clear(u);
+    free(cnt);
+    free(deg);
+    free(e);
+    fmpz_clear(val);
+    fmpz_clear(t);
+    fmpz_clear(g);
+    return ok;
+}
+
+/* FLINT's factorisation of p (ring_factor), or what form_factored makes
+ * of it, when p is a constant times a monomial times powers of x - 1 (x a
+ * param or const) times a polynomial q that surely_irreducible proves
+ * irreducible (or 1), without FLINT's factoring (most of the printing
+ * time).  FLINT's factoring first takes out the integer content (with the
+ * sign of p's leading term), then the powers of the variables in their
+ * order (fmpz_mpoly_factor_content), then splits the rest:
+ *   - without the powers of x - 1, the rest, q, stays whole, in both of
+ *     ring_factor's ways: the same factors in the same order;
+ *   - with them, when ring_factor factors fully (ring_factor_affordable):
+ *     the same factors, up to their order after the monomials; an order
+ *     form_factored does not see, as a power of x - 1 is an atom (\bar{x})
+ *     and only q is rendered (the squarefree way might keep a product of
+ *     them whole: not taken).
+ * 0: no such proof (f untouched). */
+static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
+                        const Ctx *c)
+{
+    const Ring *r = c->r;
+    enum { SQUAREFREE_MAX_TERMS = 4096 }; /* ring_factor's: beyond, it fails */
+    slong len = fmpz_mpoly_length(p, r->ctx), nv = r->ctx->minfo->nvars;
+    if (len < 2 || len > SQUAREFREE_MAX_TERMS ||
+        !fmpz_mpoly_degrees_fit_si(p, r->ctx))
+        return 0;
+    fmpz_t g;
+    fmpz_init(g);
+    _fmpz_vec_content(g, p->coeffs, len);
+    if (fmpz_sgn(p->coeffs + 0) < 0)
+        fmpz_neg(g, g);
+    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)nv);
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)nv);
+    for (slong k = 0; k < len; k++) {
+        fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
+        for (slong v = 0; v < nv; v++)
+            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
+    }
+    fmpz_mpoly_t q;
+    fmpz_mpoly_init(q, r->ctx);
+    fmpz_t cq;
+    fmpz_init(cq);
+    for (slong k = 0; k < len; k++) {
+        fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
+        for (slong v = 0; v < nv; v++)
+            e[v] -= lo[v];
+        fmpz_divexact(cq, p->coeffs + k, g);
+        fmpz_mpoly_push_term_fmpz_ui(q, cq, e, r->ctx);
+    }
+    /* (the same order: dividing by a monomial keeps degrevlex's) */
+    /* powers of x - 1, when FLINT factors fully */
+    ulong *bars = pc_xcalloc((size_t)nv, sizeof(ulong));
+    int nbars = 0;
+    if (ring_factor_affordable(p, r)) {
+        fmpz_mpoly_t bar, quo;
+        fmpz_mpoly_init(bar, r->ctx);
+        fmpz_mpoly_init(quo, r->ctx);
+        for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
+            fmpz_mpoly_gen(bar, v, r->ctx);
+            fmpz_mpoly_sub_ui(bar, bar, 1, r->ctx);
+            while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
+                   vanishes_at_ones(q, r) &&
+                   fmpz_mpoly_divides(quo, q, bar, r->ctx)) {
+                fmpz_mpoly_swap(q, quo, r->ctx);
+                bars[v]++;
+            }
+            nbars += bars[v] > 0;
+        }
+        fmpz_mpoly_clear(quo, r->ctx);
+        fmpz_mpoly_clear(bar, r->ctx);
+    }
+    /* q: 1 (only with powers of x - 1: p is not linear), or irreducible */
+    int unit = fmpz_mpoly_is_one(q, r->ctx);
+    int ok = unit ? nbars > 0 : surely_irreducible(q, r);
+    if (ok) {
+        slong n = 1 + nbars;
+        for (slong v = 0; v < nv; v++)
+            n += lo[v] > 0;
+        fmpz_mpoly_factor_fit_length(f, n, r->ctx);
+        fmpz_swap(f->constant, g);
+        f->num = 0;
+        for (slong v = 0; v < nv; v++)
+            if (lo[v] > 0) {
+                fmpz_mpoly_gen(f->poly + f->num, v, r->ctx);
+                fmpz_set_ui(f->exp + f->num, lo[v]);
+                f->num++;
+            }
+        for (slong v = 0; v < nv; v++)
+            if (bars[v] > 0) {
+                fmpz_mpoly_gen(f->poly + f->num, v, r->ctx);
+                fmpz_mpoly_sub_ui(f->poly + f->num, f->poly + f->num, 1,
+                                  r->ctx);
+                fmpz_set_ui(f->exp + f->num, bars[v]);
+                f->num++;
+            }
+        if (!unit) {
+            fmpz_mpoly_swap(f->poly + f->num, q, r->ctx);
+            fmpz_one(f->exp + f->num);
+            f->num++;
+        }
+    }
+    free(bars);
+    fmpz_clear(cq);
+    fmpz_mpoly_clear(q, r->ctx);
+    free(e);
+    free(lo);
+    fmpz_clear(g);
+    return ok;
+}
+
 static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     const Ring *r = c->r;
@@ -698,7 +1020,7 @@ static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
     }
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
-    if (!factor_compact(f, p, r)) {
+    if (!factor_known(f, p, c) && !factor_compact(f, p, r)) {
         fmpz_mpoly_factor_clear(f, r->ctx);
         return NULL;
     }
@@ -827,28 +1149,38 @@ static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
     return s;
 }
 
+/* the length of s's text form (whatever the style): measured only when a
+ * tie between two collected forms needs it */
+static size_t text_len(const PSum *s, const Ctx *c)
+{
+    Ctx text = *c;
+    text.latex = 0;
+    return sum_text_len(s, &text);
+}
+
 /* keeps the better of *best and cand: fewer leaves; then factored before
  * expanded before collected; among collected forms the shorter text, then
  * Bernstein before powers; then the earlier candidate.  Lengths are those
- * of the text form whatever the style, so text and LaTeX agree. */
+ * of the text form whatever the style, so text and LaTeX agree (*best_len:
+ * (size_t)-1 until measured). */
 static void keep_better(PSum **best, int *best_rank, size_t *best_len,
                         PSum *cand, int rank, const Ctx *c)
 {
     if (!cand)
         return;
-    Ctx text = *c;
-    text.latex = 0;
-    size_t len = sum_text_len(cand, &text);
+    size_t len = (size_t)-1;
     if (*best) {
         slong lb = sum_leaves(*best), lc = sum_leaves(cand);
         int kb = *best_rank < 2 ? *best_rank : 2;
         int kc = rank < 2 ? rank : 2;
-        int better = lc < lb ||
-                     (lc == lb &&
-                      (kc < kb ||
-                       (kc == kb && kc == 2 &&
-                        (len < *best_len ||
-                         (len == *best_len && rank < *best_rank)))));
+        int better = lc < lb || (lc == lb && kc < kb);
+        if (lc == lb && kc == kb && kc == 2) {
+            if (*best_len == (size_t)-1)
+                *best_len = text_len(*best, c);
+            len = text_len(cand, c);
+            better = len < *best_len ||
+                     (len == *best_len && rank < *best_rank);
+        }
         if (!better) {
             sum_free(cand, c);
             return;
@@ -908,7 +1240,7 @@ static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth,
         fmpz_mpoly_neg(bar, bar, r->ctx);
         fmpz_mpoly_add_si(bar, bar, 1, r->ctx);
         while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
-               fmpz_mpoly_length(q, r->ctx) > 1 &&
+               fmpz_mpoly_length(q, r->ctx) > 1 && vanishes_at_ones(q, r) &&
                fmpz_mpoly_divides(quo, q, bar, r->ctx)) {
             fmpz_mpoly_swap(q, quo, r->ctx);
             k++;
@@ -979,9 +1311,7 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     if (len == 0 || fmpz_mpoly_is_fmpz(p, r->ctx))
         return best;
     int rank = R_EXPANDED;
-    Ctx text = *c;
-    text.latex = 0;
-    size_t blen = sum_text_len(best, &text);
+    size_t blen = (size_t)-1;
     *c->work += len;
     if (len < 2)
         return best; /* a monomial: expanded is factored */

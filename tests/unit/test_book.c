@@ -126,6 +126,26 @@ static void test_factor_order(void **state)
     free(y);
 }
 
+/* factors found without FLINT's factoring (book.c, factor_known: an
+ * integer, a monomial, powers of 1 - x, one irreducible rest) print as
+ * FLINT's would: the same rules as above */
+static void test_factor_known(void **state)
+{
+    (void)state;
+    expect("param t in [0, 1]\nconst a\n"
+           "s = 6*t^2*a*(1 - t)^2*(1 - a)*(2 + t + a^2*t)\n",
+           FMT_TEXT, "s = 6*a*(1 - a)*t^2*(1 - t)^2*(2 + t + a^2*t)\n");
+    expect("param t in [0, 1]\nconst a\n"
+           "s = 2*t*(1 - t)^3*(t^2 + a*t + 1)\n",
+           FMT_TEXT, "s = 2*t*(1 - t)^3*(1 + a*t + t^2)\n");
+    expect("param t in [0, 1]\nconst a\n"
+           "s = -3*t*(t - 1)*(1 + a*t^2)\n",
+           FMT_TEXT, "s = 3*t*(1 - t)*(1 + a*t^2)\n");
+    /* irreducible (no shortcut can split it): expanded */
+    expect("param t\nparam u\ns = t^2 + u^3 + 1\n", FMT_TEXT,
+           "s = 1 + t^2 + u^3\n");
+}
+
 /* an all-minus numerator is written -(...); the denominator's first term
  * is positive */
 static void test_minus_outside(void **state)
@@ -282,6 +302,7 @@ int main(void)
         cmocka_unit_test(test_minus_outside),
         cmocka_unit_test(test_vector_differences),
         cmocka_unit_test(test_latex_names),
+        cmocka_unit_test(test_factor_known),
         cmocka_unit_test(test_multline),
         cmocka_unit_test(test_origin),
         cmocka_unit_test(test_conic_of_2_1_6),
