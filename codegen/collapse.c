@@ -613,8 +613,11 @@ static void lit(FILE *out, double v)
     fprintf(out, v < 0 ? "(%s%s)" : "%s%s", buf, plain ? ".0" : "");
 }
 
+/* the definition's first line(s); restrict_param >= 0: that param's array
+ * and out are restrict (compatible with the header's prototype, which has
+ * no restrict: gcc honours restrict on parameters, not on local pointers) */
 static void signature(FILE *out, const CollapseNames *N, const char *fn,
-                      int is_static)
+                      int is_static, int restrict_param)
 {
     int col = fprintf(out, "%ssize_t %s(", is_static ? "static " : "", fn);
     int indent = col;
@@ -624,14 +627,18 @@ static void signature(FILE *out, const CollapseNames *N, const char *fn,
         if (i == 0)
             arg = fmt("size_t n");
         else if (i <= N->nin)
-            arg = fmt("%s%s", i - 1 < N->nparams ? "const double *" : "double ",
+            arg = fmt("%s%s",
+                      i - 1 == restrict_param ? "const double *restrict "
+                      : i - 1 < N->nparams    ? "const double *"
+                                              : "double ",
                       N->in[i - 1]);
         else if (i <= N->nin + N->npt)
             arg = fmt("const double *%s", N->pt[i - 1 - N->nin]);
         else if (i == N->nin + N->npt + 1)
             arg = fmt("int dim");
         else if (i == N->nin + N->npt + 2)
-            arg = fmt("double *out");
+            arg = fmt(restrict_param >= 0 ? "double *restrict out"
+                                          : "double *out");
         else
             arg = fmt("unsigned char *status");
         int last = i == N->nin + N->npt + 3;
@@ -770,6 +777,61 @@ static void row(FILE *out, const CollapseOutput *o, int dim, int dc,
     }
 }
 
+/* The fast path of a full block for dim 3 or 2 (no bad input): one
+ * loop of fixed length that computes each sample and writes its row
+ * straight to out (t and out are restrict parameters, so gcc vectorises it
+ * at -O2 and without an alias check at -O3), and chk[j] = 0 when sample j
+ * is in [lo, hi] and its coordinates and denominator are finite; else
+ * negative or NaN: (v - v) is NaN for v not finite, (r - fabs(r)) is
+ * negative for r < 0 (quiet operations only, which vectorise under
+ * -ftrapping-math).  Every value that the general code would flag (a pole:
+ * 1/0 in every coordinate; an overflow: an infinite denominator; a
+ * coordinate not finite; outside the range, NaN) makes chk[j] non-zero. */
+static void fast_loop(FILE *out, const CollapseOutput *o, int pi, int dc,
+                      int dim, int line)
+{
+    const char *ind = "                ";
+    fprintf(out, "            %sif (dim == %d) {\n", dim == 3 ? "" : "} else ",
+            dim);
+    fprintf(out, "            %sdouble *o = out + i0 * %d;\n", "    ", dim);
+    fprintf(out, "                for (j = 0; j < %d; j++) {\n", BLOCK);
+    ind = "                    ";
+    fprintf(out, "%sconst double x0 = (p%d[j] - ", ind, pi);
+    lit(out, o->mid);
+    fputs(") * ", out);
+    lit(out, o->scale);
+    fputs(";\n", out);
+    fprintf(out, "%sconst double r2 = p%d[j] - ", ind, pi);
+    lit(out, o->lo);
+    fprintf(out, ", r3 = ");
+    lit(out, o->hi);
+    fprintf(out, " - p%d[j];\n", pi);
+    if (!dc) {
+        fprintf(out, "%sconst double r0 = ", ind);
+        horner(out, o, NULL);
+        fprintf(out, "; /* line %d: denominator */\n", line);
+        fprintf(out, "%sconst double r1 = 1.0 / r0;\n", ind);
+    }
+    for (int c = 0; c < dim; c++) {
+        char head[16];
+        snprintf(head, sizeof head, "k%d_", c);
+        fprintf(out, "%sconst double q%d = ", ind, c);
+        if (!dc)
+            fputc('(', out);
+        horner(out, o, head);
+        fputs(dc ? ";\n" : ") * r1;\n", out);
+    }
+    for (int c = 0; c < dim; c++)
+        fprintf(out, "%so[%d * j + %d] = q%d;\n", ind, dim, c, c);
+    fprintf(out, "%s{\n%s    const double v = q0 + q1%s%s;\n", ind, ind,
+            dim == 3 ? " + q2" : "", dc ? "" : " + r0");
+    fprintf(out,
+            "%s    chk[j] = (v - v) + ((r2 - fabs(r2)) + (r3 - fabs(r3)));\n"
+            "%s}\n",
+            ind, ind);
+    fputs("                }\n", out);
+}
+
 void collapse_emit_batch(FILE *out, const CollapseOutput *o,
                          const CollapseNames *N, int line)
 {
@@ -782,7 +844,7 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
             " * The bound is relative to max_k |P_k[c]| * sum_k |w_k|.  Other\n"
             " * values of %s (or NaN): the weights code, %s. */\n",
             N->fn, N->in[pi], o->lo, o->hi, o->why, N->in[pi], N->fallback);
-    signature(out, N, N->fn, N->is_static);
+    signature(out, N, N->fn, N->is_static, pi);
     fputs("\n{\n", out);
     for (int i = 0; i < N->nparams; i++)
         if (i != pi)
@@ -804,7 +866,10 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
             "    double fb[%d]; /* pole flags, +0.5: overflow, +4: outside "
             "the range */\n",
             BLOCK);
-    fputs("    size_t i0, j, nbad = 0;\n    int c, bad = 0;\n", out);
+    fprintf(out,
+            "    double chk[%d]; /* fast path: 0 when sample j is plain */\n",
+            BLOCK);
+    fputs("    size_t i0, j, nbad = 0, nfull;\n    int c, bad = 0;\n", out);
     /* the coefficients of dims 3 and 2, once per call */
     for (int c = 0; c < 3; c++) {
         int first = 1;
@@ -843,15 +908,50 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
         fprintf(out, "        bad |= !(%s[c] - %s[c] == 0.0);\n",
                 N->pt[o->point[k]], N->pt[o->point[k]]);
     fputs("    }\n", out);
+    /* the full blocks of dims 3 and 2 (finite inputs) try the fast path
+     * first; a block where it finds anything to flag, the tail, other dims
+     * and non-finite inputs: the general code below */
+    fprintf(out,
+            "    nfull = (dim == 3 || dim == 2) && !bad ? n - n %% %d : 0;\n",
+            BLOCK);
     fprintf(out, "    for (i0 = 0; i0 < n; i0 += %d) {\n", BLOCK);
     fprintf(out,
             "        const size_t m = n - i0 < %d ? n - i0 : %d;\n"
             "        const double *p%d = %s + i0;\n"
-            "        int nb = 0;\n"
+            "        int nb = 0;\n",
+            BLOCK, BLOCK, pi, N->in[pi]);
+    fputs("        if (i0 < nfull) { /* the fast path */\n"
+          "            double s;\n",
+          out);
+    fast_loop(out, o, pi, dc, 3, line);
+    fast_loop(out, o, pi, dc, 2, line);
+    fputs("            }\n", out);
+    /* the sum of chk in halves (a sum, unlike a count, vectorises at -O2):
+     * 0 only when every chk[j] is */
+    for (int h = BLOCK / 2; h >= 8; h /= 2)
+        fprintf(out,
+                "            for (j = 0; j < %d; j++)\n"
+                "                chk[j] += chk[j + %d];\n",
+                h, h);
+    fputs("            s = chk[0] + chk[1] + chk[2] + chk[3] + chk[4] + chk[5] "
+          "+ chk[6] + chk[7];\n"
+          "            if (s == 0.0) {\n"
+          "                if (status != NULL)\n",
+          out);
+    fprintf(out,
+            "                    for (j = 0; j < %d; j++)\n"
+            "                        status[i0 + j] = 0;\n"
+            "                continue;\n"
+            "            }\n"
+            "            /* something to flag: the block again, by the general "
+            "code */\n"
+            "        }\n",
+            BLOCK);
+    fprintf(out,
             "        if (m < %d) {\n"
             "            for (j = 0; j < %d; j++)\n"
             "                pad%d[j] = j < m ? p%d[j] : ",
-            BLOCK, BLOCK, pi, N->in[pi], BLOCK, BLOCK, pi, pi);
+            BLOCK, BLOCK, pi, pi);
     lit(out, o->lo);
     fprintf(out, ";\n            p%d = pad%d;\n        }\n", pi, pi);
     /* tau, 1/denominator and the flags into block arrays: a loop of

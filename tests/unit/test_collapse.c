@@ -17,7 +17,9 @@
  *                                                              itself)
  *
  * Values outside the range and NaN go to the weights code (compared at
- * 1e-12 too, NaN: status 3).  The bound must refuse the monomial basis for
+ * 1e-12 too, NaN: status 3).  The fast path of full blocks against the
+ * weights code: one flagged sample in a block, n not a multiple of 64,
+ * non-finite points.  The bound must refuse the monomial basis for
  * the degree-12 Bernstein and Lagrange weights, and a perturbed
  * coefficient must be caught.
  */
@@ -522,6 +524,134 @@ static void test_collapse_detects_a_broken_coefficient(void **state)
     derived_free(d);
 }
 
+typedef size_t (*arc_fn)(size_t n, const double *t, const double *A,
+                         const double *B, const double *C, const double *D,
+                         int dim, double *out, unsigned char *status);
+
+/* The fast path of full blocks and the general code around it: the
+ * Desargues arc's collapsed _batch_checked against the weights kernel's
+ * (the same C without --kernel collapsed) on layouts that put one flagged
+ * sample in an otherwise plain full block (out of range at a block's
+ * first, middle and last sample, NaN, just outside either end), n a
+ * multiple of 64 and not, the tail alone, non-finite points (every sample
+ * status 3), in dims 2, 3 and 5, status NULL and not: the same statuses,
+ * NaN at the same places, the values within 1e-12. */
+static void test_collapse_fast_path_blocks(void **state)
+{
+    (void)state;
+    Derived *d = derive_file("examples/desargues_arc.pcs", stderr, NULL);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    assert_non_null(p);
+    Collapse *col = collapse_new(d, p);
+    const CollapseOutput *co = find(col, "M");
+    assert_true(co->ok);
+    char *src = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&src, &len);
+    emit_c_kernel(m, p, "pcd", "arc.pcs", EMIT_C_ALL, NULL);
+    emit_c_kernel(m, p, "pcx", "arc.pcs", EMIT_C_ALL, col);
+    fclose(m);
+    Compiled c;
+    char path[128], cmd[512];
+    strcpy(c.dir, "/tmp/pc_collapse_XXXXXX");
+    assert_non_null(mkdtemp(c.dir));
+    snprintf(path, sizeof path, "%s/gen.c", c.dir);
+    write_file(path, src);
+    free(src);
+    /* no header: the files compiled_clear removes must exist */
+    snprintf(path, sizeof path, "%s/gen.h", c.dir);
+    write_file(path, "\n");
+    snprintf(path, sizeof path, "%s/wrap.c", c.dir);
+    write_file(path, "\n");
+    snprintf(cmd, sizeof cmd,
+             "cd %s && cc -std=c99 -Wall -Wextra -Werror -pedantic -O2 "
+             "-fPIC -shared -o gen.so gen.c -lm",
+             c.dir);
+    assert_int_equal(system(cmd), 0);
+    snprintf(path, sizeof path, "%s/gen.so", c.dir);
+    c.so = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    assert_non_null(c.so);
+    arc_fn ref = (arc_fn)(uintptr_t)dlsym(c.so, "pcd_M_batch_checked");
+    arc_fn got = (arc_fn)(uintptr_t)dlsym(c.so, "pcx_M_batch_checked");
+    assert_non_null(ref);
+    assert_non_null(got);
+    enum { NMAX = 4 * 64 + 9 };
+    double lo = co->lo, hi = co->hi, w = hi - lo;
+    const double flag_t[] = {lo - 0.5 * w, hi + 0.25 * w, NAN,
+                          nextafter(lo, -INFINITY), nextafter(hi, INFINITY)};
+    static const int where[] = {64 + 17, 128, 191, 192 + 63, 200};
+    static const size_t ns[] = {NMAX, 256, 192, 64, 63, 1, 0};
+    static const int dims[] = {2, 3, 5};
+    double t[NMAX], P[4][5], *pts[4] = {P[0], P[1], P[2], P[3]};
+    double a[NMAX * 5], b[NMAX * 5];
+    unsigned char sa[NMAX], sb[NMAX];
+    for (int k = 0; k < 4; k++)
+        for (int cc = 0; cc < 5; cc++)
+            P[k][cc] = (k + 1) * (cc % 2 ? -0.75 : 1.25) + 0.125 * cc;
+    for (int layout = 0; layout < 7; layout++) {
+        for (int s = 0; s < NMAX; s++)
+            t[s] = lo + w * (s % 97) / 96;
+        if (layout < 5) // one flagged sample
+            t[where[layout]] = flag_t[layout];
+        if (layout == 6) // every flagged sample at once
+            for (int i = 0; i < 5; i++)
+                t[where[i]] = flag_t[i];
+        for (int bad = 0; bad < 2; bad++) {
+            P[2][1] = bad ? INFINITY : 3 * -0.75 + 0.125;
+            for (size_t ni = 0; ni < sizeof ns / sizeof *ns; ni++)
+                for (int di = 0; di < 3; di++)
+                    for (int checked = 1; checked >= 0; checked--) {
+                        size_t n = ns[ni];
+                        int dim = dims[di];
+                        memset(sa, 7, sizeof sa);
+                        memset(sb, 7, sizeof sb);
+                        size_t ra =
+                            ref(n, t, pts[0], pts[1], pts[2], pts[3], dim, a,
+                                checked ? sa : NULL);
+                        size_t rb =
+                            got(n, t, pts[0], pts[1], pts[2], pts[3], dim, b,
+                                checked ? sb : NULL);
+                        if (!checked) {
+                            assert_int_equal(sb[0], 7); // status untouched
+                            if (bad) // no status: nothing to compare
+                                continue;
+                        }
+                        assert_int_equal(ra, rb);
+                        for (size_t s = 0; s < n; s++) {
+                            if (checked)
+                                assert_int_equal(sa[s], sb[s]);
+                            int in = t[s] >= lo && t[s] <= hi;
+                            for (int cc = 0; cc < dim; cc++) {
+                                double x = a[s * (size_t)dim + (size_t)cc],
+                                       y = b[s * (size_t)dim + (size_t)cc];
+                                total_checks++;
+                                if (isnan(x) || isnan(y)) {
+                                    if (!(isnan(x) && isnan(y)))
+                                        fail_msg("layout %d bad %d n %zu dim "
+                                                 "%d checked %d sample %zu: "
+                                                 "%.17g, weights %.17g",
+                                                 layout, bad, n, dim, checked,
+                                                 s, y, x);
+                                    continue;
+                                }
+                                if (!in) /* the weights code itself */
+                                    assert_true(x == y);
+                                else if (!(fabs(x - y) <= 1e-12 * 8))
+                                    fail_msg("layout %d n %zu dim %d sample "
+                                             "%zu: %.17g, weights %.17g",
+                                             layout, n, dim, s, y, x);
+                            }
+                        }
+                    }
+        }
+    }
+    compiled_clear(&c);
+    collapse_free(col);
+    plan_free(p);
+    derived_free(d);
+}
+
 /* without a Collapse (and with one that collapses nothing) the C is
  * today's, byte for byte */
 static void test_collapse_default_is_unchanged(void **state)
@@ -559,6 +689,7 @@ int main(void)
         cmocka_unit_test(test_collapse_bound_refuses),
         cmocka_unit_test(test_collapse_detects_a_broken_coefficient),
         cmocka_unit_test(test_collapse_high_degree),
+        cmocka_unit_test(test_collapse_fast_path_blocks),
         cmocka_unit_test(test_collapse_examples_match_exact),
     };
     int rc = cmocka_run_group_tests(tests, NULL, teardown);
