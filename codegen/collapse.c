@@ -4,6 +4,7 @@
  * (collapse.h; docs/codegen.md "The collapsed kernel").
  */
 #include "codegen/collapse.h"
+#include "codegen/emit_c.h"
 #include "codegen/lower.h"
 #include "compiler/mem.h"
 #include "compiler/numfmt.h"
@@ -24,25 +25,6 @@ enum {
     KAPPA_WORK = 40000,  // subintervals looked at, at most
 };
 
-/* printf into a new string */
-#if defined(__GNUC__)
-__attribute__((format(printf, 1, 2)))
-#endif
-static char *
-fmt(const char *f, ...)
-{
-    va_list ap;
-    va_start(ap, f);
-    int n = vsnprintf(NULL, 0, f, ap);
-    va_end(ap);
-    if (n < 0)
-        abort();
-    char *r = pc_xmalloc((size_t)n + 1);
-    va_start(ap, f);
-    vsnprintf(r, (size_t)n + 1, f, ap);
-    va_end(ap);
-    return r;
-}
 
 /* ---- exact analysis ------------------------------------------------------ */
 
@@ -306,11 +288,11 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
     const PointEqStruct *eq = o->eq;
     slong nv = fmpz_mpoly_ctx_nvars(r->ctx);
     if (o->kind == KIND_SCALAR) {
-        co->why = fmt("a scalar output");
+        co->why = pc_xasprintf("a scalar output");
         return;
     }
     if (eq->len == 0) {
-        co->why = fmt("identically zero");
+        co->why = pc_xasprintf("identically zero");
         return;
     }
     unsigned char *dep = pc_xcalloc((size_t)nv + 1, 1);
@@ -325,11 +307,11 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
         }
     free(dep);
     if (ndep == 0) {
-        co->why = fmt("depends on no param");
+        co->why = pc_xasprintf("depends on no param");
         return;
     }
     if (ndep > 1 || var >= d->nparams) {
-        co->why = fmt("depends on %s", ndep > 1 ? "more than one variable"
+        co->why = pc_xasprintf("depends on %s", ndep > 1 ? "more than one variable"
                                       : var < d->nparams + d->nconsts
                                           ? "a const only"
                                           : "a function or an unknown");
@@ -342,7 +324,7 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
     if (!d->has_range[var] ||
         !ratfun_get_fmpq(lo, d->range + 2 * var, r) ||
         !ratfun_get_fmpq(hi, d->range + 2 * var + 1, r)) {
-        co->why = fmt("param %s has no declared range of numbers",
+        co->why = pc_xasprintf("param %s has no declared range of numbers",
                       d->params[var]);
         fmpq_clear(lo);
         fmpq_clear(hi);
@@ -357,7 +339,7 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
             deg = e;
     }
     if (deg > COLLAPSE_MAX_DEGREE) {
-        co->why = fmt("degree %ld, above %d", (long)deg, COLLAPSE_MAX_DEGREE);
+        co->why = pc_xasprintf("degree %ld, above %d", (long)deg, COLLAPSE_MAX_DEGREE);
         fmpq_clear(lo);
         fmpq_clear(hi);
         return;
@@ -384,7 +366,7 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
     q_div_si(m, m, 2);
     if (!q_double(&co->mid, m) || !q_bound(&co->lo, lo, 1) ||
         !q_bound(&co->hi, hi, 0) || co->lo > co->hi) {
-        co->why = fmt("the range of %s is not within doubles",
+        co->why = pc_xasprintf("the range of %s is not within doubles",
                       d->params[var]);
         goto done;
     }
@@ -409,7 +391,7 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
         }
     }
     if (e > 1000 || e < -1000) {
-        co->why = fmt("the range of %s is not within doubles",
+        co->why = pc_xasprintf("the range of %s is not within doubles",
                       d->params[var]);
         goto done;
     }
@@ -463,7 +445,7 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
         for (slong j = 0; j <= deg; j++) {
             fmpq_poly_get_coeff_fmpq(t, np + k, j);
             if (!q_double(&co->a[j * K + k], t)) {
-                co->why = fmt("a coefficient beyond the normal doubles");
+                co->why = pc_xasprintf("a coefficient beyond the normal doubles");
                 goto done;
             }
         }
@@ -471,7 +453,7 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
     for (slong j = 0; j <= deg; j++) {
         fmpq_poly_get_coeff_fmpq(t, dpoly, j);
         if (!q_double(&co->b[j], t)) {
-            co->why = fmt("a coefficient beyond the normal doubles");
+            co->why = pc_xasprintf("a coefficient beyond the normal doubles");
             goto done;
         }
     }
@@ -517,14 +499,14 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
         if (!(co->bound <= COLLAPSE_TOL)) {
             if (atleast || atleast_d || !isfinite(co->kappa) ||
                 !isfinite(co->kappa_d))
-                co->why = fmt(
+                co->why = pc_xasprintf(
                     "monomial basis refused: kappa %s %.3g, kappa_d %s %.3g "
                     "over [%.17g, %.17g]: the error bound is above %g",
                     atleast ? ">=" : "<=", co->kappa,
                     atleast_d ? ">=" : "<=", co->kappa_d, co->lo, co->hi,
                     COLLAPSE_TOL);
             else
-                co->why = fmt("monomial basis refused: kappa <= %.3g, "
+                co->why = pc_xasprintf("monomial basis refused: kappa <= %.3g, "
                               "kappa_d <= %.3g, error bound %.3g above %g",
                               co->kappa, co->kappa_d, co->bound,
                               COLLAPSE_TOL);
@@ -532,7 +514,7 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
         }
     }
     co->ok = 1;
-    co->why = fmt("monomial basis in %s = (%s - %.17g) * 2^%d, degree %d; "
+    co->why = pc_xasprintf("monomial basis in %s = (%s - %.17g) * 2^%d, degree %d; "
                   "kappa <= %.3g, kappa_d <= %.3g, error bound %.3g",
                   "tau", d->params[var], co->mid, -e, co->deg, co->kappa,
                   co->kappa_d, co->bound);
@@ -564,7 +546,7 @@ Collapse *collapse_new(const Derived *d, const Plan *p)
         co->name = pc_xstrdup(p->outputs[i].name);
         slong o = derived_find_output(d, co->name);
         if (o < 0) {
-            co->why = fmt("not found");
+            co->why = pc_xasprintf("not found");
             continue;
         }
         analyse(co, d, &d->outputs[o]);
@@ -596,22 +578,6 @@ void collapse_free(Collapse *c)
 
 /* ---- the C ---------------------------------------------------------------- */
 
-/* a double literal that reads back exactly (as emit_c.c writes them) */
-static void lit(FILE *out, double v)
-{
-    char buf[40];
-    pc_snprintf(buf, sizeof buf, "%.17g", v);
-    for (int prec = 15; prec < 17; prec++) {
-        char t[40];
-        pc_snprintf(t, sizeof t, "%.*g", prec, v);
-        if (pc_strtod(t, NULL) == v) {
-            memcpy(buf, t, sizeof t);
-            break;
-        }
-    }
-    int plain = strspn(buf, "-0123456789") == strlen(buf);
-    fprintf(out, v < 0 ? "(%s%s)" : "%s%s", buf, plain ? ".0" : "");
-}
 
 /* the definition's first line(s); restrict_param >= 0: that param's array
  * and out are restrict (compatible with the header's prototype, which has
@@ -625,22 +591,22 @@ static void signature(FILE *out, const CollapseNames *N, const char *fn,
     for (int i = 0; i < N->nin + N->npt + 4; i++) {
         char *arg;
         if (i == 0)
-            arg = fmt("size_t n");
+            arg = pc_xasprintf("size_t n");
         else if (i <= N->nin)
-            arg = fmt("%s%s",
+            arg = pc_xasprintf("%s%s",
                       i - 1 == restrict_param ? "const double *restrict "
                       : i - 1 < N->nparams    ? "const double *"
                                               : "double ",
                       N->in[i - 1]);
         else if (i <= N->nin + N->npt)
-            arg = fmt("const double *%s", N->pt[i - 1 - N->nin]);
+            arg = pc_xasprintf("const double *%s", N->pt[i - 1 - N->nin]);
         else if (i == N->nin + N->npt + 1)
-            arg = fmt("int dim");
+            arg = pc_xasprintf("int dim");
         else if (i == N->nin + N->npt + 2)
-            arg = fmt(restrict_param >= 0 ? "double *restrict out"
+            arg = pc_xasprintf(restrict_param >= 0 ? "double *restrict out"
                                           : "double *out");
         else
-            arg = fmt("unsigned char *status");
+            arg = pc_xasprintf("unsigned char *status");
         int last = i == N->nin + N->npt + 3;
         int len = (int)strlen(arg) + (last ? 1 : 2);
         if (!first && col + 1 + len > 79) {
@@ -680,7 +646,7 @@ static void coef_expr(FILE *out, const CollapseOutput *o,
         if (a == 1) {
             fprintf(out, "%s[%s]", N->pt[o->point[k]], idx);
         } else {
-            lit(out, a);
+            emit_c_double(out, a);
             fprintf(out, " * %s[%s]", N->pt[o->point[k]], idx);
         }
         any = 1;
@@ -714,7 +680,7 @@ static void horner(FILE *out, const CollapseOutput *o, const char *head)
             if (head)
                 fprintf(out, "%s%d", head, j);
             else
-                lit(out, o->b[j]);
+                emit_c_double(out, o->b[j]);
         }
         if (j < top)
             fputc(')', out);
@@ -738,14 +704,14 @@ static void sample(FILE *out, const CollapseOutput *o, int pi, int dc,
                    const char *ind, int line)
 {
     fprintf(out, "%sconst double x0 = (p%d[j] - ", ind, pi);
-    lit(out, o->mid);
+    emit_c_double(out, o->mid);
     fputs(") * ", out);
-    lit(out, o->scale);
+    emit_c_double(out, o->scale);
     fputs(";\n", out);
     fprintf(out, "%sconst double r2 = p%d[j] - ", ind, pi);
-    lit(out, o->lo);
+    emit_c_double(out, o->lo);
     fprintf(out, ", r3 = ");
-    lit(out, o->hi);
+    emit_c_double(out, o->hi);
     fprintf(out, " - p%d[j];\n", pi);
     if (!dc) {
         fprintf(out, "%sconst double r0 = ", ind);
@@ -797,14 +763,14 @@ static void fast_loop(FILE *out, const CollapseOutput *o, int pi, int dc,
     fprintf(out, "                for (j = 0; j < %d; j++) {\n", BLOCK);
     ind = "                    ";
     fprintf(out, "%sconst double x0 = (p%d[j] - ", ind, pi);
-    lit(out, o->mid);
+    emit_c_double(out, o->mid);
     fputs(") * ", out);
-    lit(out, o->scale);
+    emit_c_double(out, o->scale);
     fputs(";\n", out);
     fprintf(out, "%sconst double r2 = p%d[j] - ", ind, pi);
-    lit(out, o->lo);
+    emit_c_double(out, o->lo);
     fprintf(out, ", r3 = ");
-    lit(out, o->hi);
+    emit_c_double(out, o->hi);
     fprintf(out, " - p%d[j];\n", pi);
     if (!dc) {
         fprintf(out, "%sconst double r0 = ", ind);
@@ -952,7 +918,7 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
             "            for (j = 0; j < %d; j++)\n"
             "                pad%d[j] = j < m ? p%d[j] : ",
             BLOCK, BLOCK, pi, pi);
-    lit(out, o->lo);
+    emit_c_double(out, o->lo);
     fprintf(out, ";\n            p%d = pad%d;\n        }\n", pi, pi);
     /* tau, 1/denominator and the flags into block arrays: a loop of
      * fixed length that reads p and writes only locals (gcc -O2 vectorises

@@ -181,25 +181,6 @@ int emit_c_valid_prefix(const char *s)
     return !in(keywords, s);
 }
 
-/* printf into a new string (malloc'ed) */
-#if defined(__GNUC__)
-__attribute__((format(printf, 1, 2)))
-#endif
-static char *
-xasprintf(const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        abort();
-    char *r = pc_xmalloc((size_t)n + 1);
-    va_start(ap, fmt);
-    vsnprintf(r, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-    return r;
-}
 
 /* a C identifier from any text: other characters become _; one that would
  * start with neither a letter nor _ gets the prefix pc_ ("3d-curve.pcs" ->
@@ -256,7 +237,7 @@ static char *c_name(const Names *N, int nin, int npt, const char *user)
 {
     char *s = identifier(user);
     if (reserved_family(s)) {
-        char *t = xasprintf("a_%s", s);
+        char *t = pc_xasprintf("a_%s", s);
         free(s);
         s = t;
     }
@@ -283,7 +264,7 @@ static void names_init(Names *N, const Plan *p, const char *prefix)
         char *oname = identifier(p->outputs[i].name);
         for (int v = 0; v < NVARIANTS; v++)
             N->fn[NVARIANTS * i + v] =
-                xasprintf("%s_%s%s", N->prefix, oname, variant_suffix[v]);
+                pc_xasprintf("%s_%s%s", N->prefix, oname, variant_suffix[v]);
         free(oname);
     }
     for (int i = 0; i < N->nin; i++)
@@ -358,7 +339,7 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
 /* ---- printing helpers -------------------------------------------------- */
 
 /* a double literal that reads back exactly: 2.0, 0.5, (-3.0), 1e+20 */
-static void print_double(FILE *out, double v)
+void emit_c_double(FILE *out, double v)
 {
     char buf[40];
     pc_snprintf(buf, sizeof buf, "%.17g", v);
@@ -410,7 +391,7 @@ static void signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
 {
     static const char *const ret[] = {"void ", "int ", "void ", "size_t "};
     /* a _checked variant that only its plain one calls is private */
-    char *head = xasprintf("%s%s%s(", N->want & (1u << v) ? "" : "static ",
+    char *head = pc_xasprintf("%s%s%s(", N->want & (1u << v) ? "" : "static ",
                            ret[v], N->fn[NVARIANTS * oi + v]);
     Line L;
     line_start(&L, out, head);
@@ -419,7 +400,7 @@ static void signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
     if (batch)
         line_arg(&L, "size_t n", 0);
     for (int i = 0; i < N->nin; i++) {
-        char *arg = xasprintf(
+        char *arg = pc_xasprintf(
             "%s%s",
             batch && i < p->nparams
                 ? (restr ? "const double *restrict " : "const double *")
@@ -429,7 +410,7 @@ static void signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
         free(arg);
     }
     for (int i = 0; i < N->npt; i++) {
-        char *arg = xasprintf("const double *%s", N->pt[i]);
+        char *arg = pc_xasprintf("const double *%s", N->pt[i]);
         line_arg(&L, arg, 0);
         free(arg);
     }
@@ -463,7 +444,7 @@ static void operand(const Ctx *C, int r)
 {
     const PlanIns *x = &C->p->ins[r];
     if (x->op == PLAN_CONST)
-        print_double(C->out, C->p->k[x->a]);
+        emit_c_double(C->out, C->p->k[x->a]);
     else if (x->op == PLAN_INPUT && C->batch && x->a < C->p->nparams)
         fprintf(C->out, "x%d", x->a);
     else if (x->op == PLAN_INPUT)
@@ -806,7 +787,7 @@ static void emit_batch(Ctx *C)
         }
         C->live[s->root] = 1;
         if (scaled(s) && !C->role[s->root]) {
-            owned[k] = xasprintf("%s, negated",
+            owned[k] = pc_xasprintf("%s, negated",
                                  C->role[o->reg[k]] ? C->role[o->reg[k]]
                                                     : "weight");
             C->role[s->root] = owned[k];
@@ -1124,13 +1105,13 @@ static void checked_call(const Ctx *C, const char *ind, const char *n,
                          const char *off, const char *dst)
 {
     Line L;
-    char *head = xasprintf("%s(void)%s(", ind,
+    char *head = pc_xasprintf("%s(void)%s(", ind,
                            C->N->fn[NVARIANTS * C->oi + BATCH_CHECKED]);
     line_start(&L, C->out, head);
     free(head);
     line_arg(&L, n, 0);
     for (int i = 0; i < C->N->nin; i++) {
-        char *a = xasprintf("%s%s", C->N->in[i],
+        char *a = pc_xasprintf("%s%s", C->N->in[i],
                             i < C->p->nparams ? off : "");
         line_arg(&L, a, 0);
         free(a);
@@ -1288,7 +1269,7 @@ static int emit_batch_fast(Ctx *C)
               "chk[5] + chk[6] + chk[7];\n"
               "            if (!(chk[0] - chk[0] == 0.0)) /* not finite */\n",
               out);
-        char *nn = xasprintf("%d", BLOCK);
+        char *nn = pc_xasprintf("%d", BLOCK);
         checked_call(C, "                ", nn, " + i0", "o");
         free(nn);
         fputs("        }\n", out);
@@ -1309,7 +1290,7 @@ static void emit_forward(const Ctx *C, Variant v)
     FILE *out = C->out;
     int batch = v == BATCH;
     signature(out, C->p, C->N, C->oi, v);
-    char *head = xasprintf(
+    char *head = pc_xasprintf(
         "    (void)%s(",
         C->N->fn[NVARIANTS * C->oi + (batch ? BATCH_CHECKED : ONE_CHECKED)]);
     fputs("\n{\n", out);
@@ -1338,9 +1319,9 @@ static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
             continue;
         free(owned[r]);
         if (o->point[k] < 0)
-            owned[r] = xasprintf("value of %s", o->name);
+            owned[r] = pc_xasprintf("value of %s", o->name);
         else
-            owned[r] = xasprintf("weight of %s in %s", p->points[o->point[k]],
+            owned[r] = pc_xasprintf("weight of %s in %s", p->points[o->point[k]],
                                  o->name);
         role[r] = owned[r];
     }
@@ -1441,7 +1422,7 @@ static int emit_collapsed(Ctx *C, Names *N, const Collapse *col, int i)
     if (!col || i >= col->n || !col->o[i].ok)
         return 0;
     char **fn = &N->fn[NVARIANTS * i + BATCH_CHECKED], *pub = *fn;
-    char *fallback = xasprintf("pcw_%s", pub);
+    char *fallback = pc_xasprintf("pcw_%s", pub);
     if (!collapse_name_free(fallback, N->fn, N->nfn) ||
         !collapse_name_free(fallback, N->in, N->nin) ||
         !collapse_name_free(fallback, N->pt, N->npt)) {

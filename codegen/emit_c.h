@@ -69,6 +69,10 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
 int emit_c_check(const Plan *p, const Derived *d, const char *prefix,
                  FILE *err);
 
+/* a C double literal that reads back exactly (shortest of %.15g..%.17g,
+ * locale-independent): 2.0, 0.5, (-3.0), 1e+20 */
+void emit_c_double(FILE *out, double v);
+
 /* 1 if s is usable as a --prefix (a C identifier, not a keyword). */
 int emit_c_valid_prefix(const char *s);
 

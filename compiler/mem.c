@@ -8,6 +8,8 @@
 
 #include <gmp.h>
 #include <malloc.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -80,6 +82,21 @@ char *pc_xstrndup(const char *s, size_t n)
 char *pc_xstrdup(const char *s)
 {
     return pc_xstrndup(s, strlen(s));
+}
+
+char *pc_xasprintf(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        abort(); // an invalid format: a bug of the caller
+    char *r = pc_xmalloc((size_t)n + 1);
+    va_start(ap, fmt);
+    vsnprintf(r, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    return r;
 }
 
 /* ---- counted allocators for GMP and FLINT -------------------------------- */

@@ -25,6 +25,12 @@ void *pc_xcalloc(size_t n, size_t size);
 void *pc_xrealloc(void *p, size_t n);
 char *pc_xstrdup(const char *s);
 char *pc_xstrndup(const char *s, size_t n);
+/* printf into a new string (names and integers: floating point goes
+ * through numfmt.h, which does not depend on the locale) */
+#if defined(__GNUC__)
+__attribute__((format(printf, 1, 2)))
+#endif
+char *pc_xasprintf(const char *fmt, ...);
 
 /* why the handler was called */
 typedef enum MemFailure {
