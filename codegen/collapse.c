@@ -892,16 +892,9 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
     fast_loop(out, o, pi, dc, 3, line);
     fast_loop(out, o, pi, dc, 2, line);
     fputs("            }\n", out);
-    /* the sum of chk in halves (a sum, unlike a count, vectorises at -O2):
-     * 0 only when every chk[j] is */
-    for (int h = BLOCK / 2; h >= 8; h /= 2)
-        fprintf(out,
-                "            for (j = 0; j < %d; j++)\n"
-                "                chk[j] += chk[j + %d];\n",
-                h, h);
-    fputs("            s = chk[0] + chk[1] + chk[2] + chk[3] + chk[4] + chk[5] "
-          "+ chk[6] + chk[7];\n"
-          "            if (s == 0.0) {\n"
+    /* the sum of chk (0 only when every chk[j] is) */
+    emit_c_chk_sum(out, "            ", "s =");
+    fputs("            if (s == 0.0) {\n"
           "                if (status != NULL)\n",
           out);
     fprintf(out,

@@ -1099,6 +1099,22 @@ static int inverse_factors(const Plan *p, int w, int inv, int *f, int nmax,
     return n;
 }
 
+void emit_c_chk_sum(FILE *out, const char *ind, const char *head)
+{
+    /* in halves, in loops of fixed length that vectorise (a plain sum of
+     * doubles does not at -O2: gcc keeps its order; nor does an int count
+     * of a double compare with SSE2) */
+    for (int h = BLOCK / 2; h >= 8; h /= 2)
+        fprintf(out,
+                "%sfor (j = 0; j < %d; j++)\n"
+                "%s    chk[j] += chk[j + %d];\n",
+                ind, h, ind, h);
+    fprintf(out,
+            "%s%s chk[0] + chk[1] + chk[2] + chk[3] + chk[4] + chk[5] + "
+            "chk[6] + chk[7];\n",
+            ind, head);
+}
+
 /* (void)NAME_M_batch_checked(N, param + OFF..., consts, points, dim, OUT,
  * NULL); */
 static void checked_call(const Ctx *C, const char *ind, const char *n,
@@ -1257,17 +1273,9 @@ static int emit_batch_fast(Ctx *C)
         }
         fputs(";\n", out);
         C->batch = 0;
-        /* summed in halves, in loops of fixed length that vectorise (a
-         * plain sum of doubles does not, gcc keeps its order) */
         fputs("            }\n", out);
-        for (int h = BLOCK / 2; h >= 8; h /= 2)
-            fprintf(out,
-                    "            for (j = 0; j < %d; j++)\n"
-                    "                chk[j] += chk[j + %d];\n",
-                    h, h);
-        fputs("            chk[0] += chk[1] + chk[2] + chk[3] + chk[4] + "
-              "chk[5] + chk[6] + chk[7];\n"
-              "            if (!(chk[0] - chk[0] == 0.0)) /* not finite */\n",
+        emit_c_chk_sum(out, "            ", "chk[0] =");
+        fputs("            if (!(chk[0] - chk[0] == 0.0)) /* not finite */\n",
               out);
         char *nn = pc_xasprintf("%d", BLOCK);
         checked_call(C, "                ", nn, " + i0", "o");

@@ -73,6 +73,11 @@ int emit_c_check(const Plan *p, const Derived *d, const char *prefix,
  * locale-independent): 2.0, 0.5, (-3.0), 1e+20 */
 void emit_c_double(FILE *out, double v);
 
+/* the block check of the fast batch loops: the BLOCK doubles chk[] summed
+ * in halves into chk[0..7], then "IND HEAD chk[0] + ... + chk[7];" (HEAD
+ * e.g. "s =" or "chk[0] ="); uses the loop index j */
+void emit_c_chk_sum(FILE *out, const char *ind, const char *head);
+
 /* 1 if s is usable as a --prefix (a C identifier, not a keyword). */
 int emit_c_valid_prefix(const char *s);
 
