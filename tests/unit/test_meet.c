@@ -458,6 +458,42 @@ static void test_meet_vplane_chain(void **state)
     ratfun_clear(s, r);
 }
 
+/* pteq_divide_known, which meet uses for a multiplier it could not divide
+ * out of z: x*f/f is x again; a factor that does not divide leaves x as
+ * it was */
+static void test_pteq_divide_known(void **state)
+{
+    Fixture *f = *state;
+    const Ring *r = &f->r;
+    PointEq x, y;
+    fmpz_mpoly_t g;
+    pteq_init(x, r);
+    pteq_init(y, r);
+    fmpz_mpoly_init(g, r->ctx);
+    for (slong it = 0; it < rand_iters(100); it++) {
+        rand_comb(x, f->st, 0, 4, (int)(it & 1), r);
+        rand_poly(g, f->st, 4, 3, r);
+        pteq_set(y, x, r);
+        if (fmpz_mpoly_is_zero(g, r->ctx) || pteq_is_zero(x, r))
+            continue;
+        for (slong i = 0; i < y->len; i++)
+            fmpz_mpoly_mul(y->terms[i].num, y->terms[i].num, g, r->ctx);
+        fmpz_mpoly_mul(y->den, y->den, g, r->ctx);
+        assert_int_equal(pteq_divide_known(y, g, r),
+                         !fmpz_mpoly_is_fmpz(g, r->ctx));
+        if (!fmpz_mpoly_is_fmpz(g, r->ctx))
+            assert_true(pteq_equal(x, y, r));
+        /* x is canonical: a non-constant factor cannot divide it all */
+        if (!fmpz_mpoly_is_fmpz(g, r->ctx)) {
+            assert_int_equal(pteq_divide_known(y, g, r), 0);
+            assert_true(pteq_equal(x, y, r));
+        }
+    }
+    fmpz_mpoly_clear(g, r->ctx);
+    pteq_clear(y, r);
+    pteq_clear(x, r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -467,6 +503,7 @@ int main(void)
         cmocka_unit_test(test_meet_degenerate_cases),
         cmocka_unit_test(test_meet_flats_through_one_point),
         cmocka_unit_test(test_meet_vplane_chain),
+        cmocka_unit_test(test_pteq_divide_known),
     };
     int fails = cmocka_run_group_tests(tests, setup, teardown);
     flint_cleanup_master();
