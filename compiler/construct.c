@@ -194,7 +194,10 @@ static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
  * column on side a takes -sum_b z_j b_j[X]: the a-side sum there is that
  * plus terms that cancel), and one content reduction makes it primitive.
  * For meet(line(A, P), line(B, Q)) in the plane ABC this is three products,
- * M ~ (P_C Q_A, Q_C P_B, Q_C P_C).
+ * M ~ (P_C Q_A, Q_C P_B, Q_C P_C).  Before the minors, the columns of each
+ * side are reduced against each other where they share a big common part
+ * (reduce_side: points made from one X), and only the z that M's rows use
+ * are formed.
  *
  * R is chosen by Gaussian elimination of G' evaluated at a random point
  * modulo a 61-bit prime, which never claims a rank that G' lacks (a minor
