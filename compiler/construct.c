@@ -429,10 +429,11 @@ static void column_divide(fmpz_mpoly_struct *own, const fmpz_mpoly_struct **G,
  * (M's rows there are formed from the other side) and stay NULL.
  * The multiplier ap of a reduced column scales the other side's z, and so
  * M: it is recorded in fac[] (*nfac of them) for M's content reduction.
+ * The reduced columns live in *ownp (m*k entries, allocated by the first).
  * Returns 0, or -1 when a column became zero (dependent points: the
  * general path names it); *big when a product would be too large.
  */
-static int reduce_side(fmpz_mpoly_struct *own, const fmpz_mpoly_struct **G,
+static int reduce_side(fmpz_mpoly_struct **ownp, const fmpz_mpoly_struct **G,
                        slong m, slong k, const slong *row_unit,
                        const PointEq *cols, const slong *cl, slong nc,
                        slong lo, slong hi, fmpz_mpoly_struct *fac,
@@ -485,6 +486,12 @@ static int reduce_side(fmpz_mpoly_struct *own, const fmpz_mpoly_struct **G,
             continue;
         /* column j := ap*c_j - aj*c_p, in own storage */
         int zero = 1;
+        if (*ownp == NULL) {
+            *ownp = flint_malloc((size_t)(m * k) * sizeof(fmpz_mpoly_struct));
+            for (slong i = 0; i < m * k; i++)
+                fmpz_mpoly_init(*ownp + i, r->ctx);
+        }
+        fmpz_mpoly_struct *own = *ownp;
         for (slong i = 0; i < m && !*big; i++) {
             const fmpz_mpoly_struct *x = G[i * k + p], *y = G[i * k + j];
             fmpz_mpoly_struct *dst = own + i * k + j;
@@ -524,8 +531,10 @@ static int reduce_side(fmpz_mpoly_struct *own, const fmpz_mpoly_struct **G,
             st = -1;
             break;
         }
-        if (!fmpz_mpoly_is_fmpz(ap, r->ctx))
+        if (!fmpz_mpoly_is_fmpz(ap, r->ctx)) {
+            fmpz_mpoly_init(fac + *nfac, r->ctx);
             fmpz_mpoly_set(fac + (*nfac)++, ap, r->ctx);
+        }
         meet_reductions++;
         /* the known factors first: the columns' denominators */
         column_divide(own, G, m, k, j, cols[p]->den, r);
@@ -555,11 +564,14 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
     slong *rl = flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(slong));
     const fmpz_mpoly_struct **G =
         flint_calloc((size_t)FLINT_MAX(m * k, 1), sizeof(fmpz_mpoly_struct *));
-    fmpz_mpoly_struct *minor = NULL, *z = NULL, *own = NULL, *quo = NULL;
+    fmpz_mpoly_struct *minor = NULL, *z = NULL, *own = NULL;
+    fmpz_mpoly_struct quo[MEET_MAX_COLS];
+    char from_buf[64];
+    slong nquo = 0;
     char *have = NULL, need[MEET_MAX_COLS];
     fmpz_mpoly_struct fac[MEET_MAX_COLS], rdiv[2], *rq = NULL;
     slong nfac = 0, nfac_a = 0;
-    char used[MEET_MAX_COLS] = {0}, *from = NULL;
+    char used[MEET_MAX_COLS] = {0}, *from = NULL, rdiv_set[2] = {0, 0};
     slong nmask = 0;
     fmpz_mpoly_t t, u, ub;
     PointEq acc;
@@ -567,6 +579,8 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
     fmpz_mpoly_init(t, r->ctx);
     fmpz_mpoly_init(u, r->ctx);
     fmpz_mpoly_init(ub, r->ctx);
+    fmpz_mpoly_init(rdiv + 0, r->ctx); /* 1 until rdiv_set[] */
+    fmpz_mpoly_init(rdiv + 1, r->ctx);
     pteq_init(acc, r);
     if (k > MEET_MAX_COLS)
         goto done;
@@ -597,20 +611,10 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
         goto done;
 
     /* each side's columns reduced against each other (reduce_side) */
-    own = flint_malloc((size_t)(m * k) * sizeof(fmpz_mpoly_struct));
-    for (slong i = 0; i < m * k; i++)
-        fmpz_mpoly_init(own + i, r->ctx);
-    for (slong c = 0; c < MEET_MAX_COLS; c++)
-        fmpz_mpoly_init(fac + c, r->ctx);
-    fmpz_mpoly_init(rdiv + 0, r->ctx);
-    fmpz_mpoly_init(rdiv + 1, r->ctx);
-    fmpz_mpoly_one(rdiv + 0, r->ctx);
-    fmpz_mpoly_one(rdiv + 1, r->ctx);
-    from = flint_malloc((size_t)m);
-    if (reduce_side(own, G, m, k, row_unit, cols, cl, nc, 0, na, fac, &nfac,
+    if (reduce_side(&own, G, m, k, row_unit, cols, cl, nc, 0, na, fac, &nfac,
                     &big, r) < 0 ||
         big || (nfac_a = nfac, 0) ||
-        reduce_side(own, G, m, k, row_unit, cols, cl, nc, na, k, fac, &nfac,
+        reduce_side(&own, G, m, k, row_unit, cols, cl, nc, na, k, fac, &nfac,
                     &big, r) < 0 ||
         big)
         goto done;
@@ -686,10 +690,10 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
     for (slong s = 0; s < nmask; s++)
         fmpz_mpoly_init(minor + s, r->ctx);
     z = flint_malloc((size_t)nc * sizeof(fmpz_mpoly_struct));
-    quo = flint_malloc((size_t)nc * sizeof(fmpz_mpoly_struct));
     for (slong c = 0; c < nc; c++) {
         fmpz_mpoly_init(z + c, r->ctx);
         fmpz_mpoly_init(quo + c, r->ctx);
+        nquo++;
     }
     for (slong c = 0; c < nc; c++) {
         if (!need[c])
@@ -724,7 +728,11 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
         for (slong c = 0; c < nc; c++)
             if (cl[c] >= olo && cl[c] < ohi && !fmpz_mpoly_is_zero(z + c, r->ctx))
                 fmpz_mpoly_swap(z + c, quo + c, r->ctx);
-        fmpz_mpoly_mul(rdiv + sd, rdiv + sd, fac + f, r->ctx);
+        if (rdiv_set[sd])
+            fmpz_mpoly_mul(rdiv + sd, rdiv + sd, fac + f, r->ctx);
+        else
+            fmpz_mpoly_set(rdiv + sd, fac + f, r->ctx);
+        rdiv_set[sd] = 1;
         used[f] = 1;
     }
 
@@ -769,13 +777,14 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
         row_sum(u, G, rl[q], k, z, cl, nc, 0, na, 1, t, &big, r);
         if (!big)
             row_sum(ub, G, rl[q], k, z, cl, nc, na, k, 1, t, &big, r);
-        if (!big && (too_big(u, rdiv + 1, r) || too_big(ub, rdiv + 0, r)))
+        if (!big && ((rdiv_set[1] && too_big(u, rdiv + 1, r)) ||
+                     (rdiv_set[0] && too_big(ub, rdiv + 0, r))))
             big = 1;
         if (big)
             goto done;
-        if (!fmpz_mpoly_is_one(rdiv + 1, r->ctx))
+        if (rdiv_set[1])
             fmpz_mpoly_mul(u, u, rdiv + 1, r->ctx);
-        if (!fmpz_mpoly_is_one(rdiv + 0, r->ctx))
+        if (rdiv_set[0])
             fmpz_mpoly_mul(ub, ub, rdiv + 0, r->ctx);
         fmpz_mpoly_add(u, u, ub, r->ctx);
         if (!fmpz_mpoly_is_zero(u, r->ctx))
@@ -784,6 +793,7 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
 
     /* M row by row (rows are sorted base points), each from one side:
      * from[i] = 0 for sum z_a a, 1 for -sum z_b b */
+    from = m <= 64 ? from_buf : flint_malloc((size_t)m);
     for (slong i = 0; i < m; i++) {
         fmpz_mpoly_struct *num = pteq_append(acc, rows[i], r);
         slong un = row_unit[i];
@@ -806,7 +816,7 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
      * then the other rows are multiplied back) */
     for (int sd = 0; sd < 2; sd++) {
         slong i;
-        if (fmpz_mpoly_is_one(rdiv + sd, r->ctx))
+        if (!rdiv_set[sd])
             continue;
         if (rq == NULL) {
             rq = flint_malloc((size_t)m * sizeof(fmpz_mpoly_struct));
@@ -852,22 +862,20 @@ done:
         for (slong i = 0; i < m * k; i++)
             fmpz_mpoly_clear(own + i, r->ctx);
         flint_free(own);
-        for (slong c = 0; c < MEET_MAX_COLS; c++)
-            fmpz_mpoly_clear(fac + c, r->ctx);
-        fmpz_mpoly_clear(rdiv + 0, r->ctx);
-        fmpz_mpoly_clear(rdiv + 1, r->ctx);
-        flint_free(from);
     }
+    for (slong f = 0; f < nfac; f++)
+        fmpz_mpoly_clear(fac + f, r->ctx);
+    fmpz_mpoly_clear(rdiv + 0, r->ctx);
+    fmpz_mpoly_clear(rdiv + 1, r->ctx);
+    if (from != from_buf)
+        flint_free(from);
     if (rq != NULL) {
         for (slong i = 0; i < m; i++)
             fmpz_mpoly_clear(rq + i, r->ctx);
         flint_free(rq);
     }
-    if (quo != NULL) {
-        for (slong c = 0; c < nc; c++)
-            fmpz_mpoly_clear(quo + c, r->ctx);
-        flint_free(quo);
-    }
+    for (slong c = 0; c < nquo; c++)
+        fmpz_mpoly_clear(quo + c, r->ctx);
     if (z != NULL) {
         for (slong c = 0; c < nc; c++)
             fmpz_mpoly_clear(z + c, r->ctx);
