@@ -318,7 +318,10 @@ static void row_sum(fmpz_mpoly_t acc, const fmpz_mpoly_struct **G, slong i,
             return;
         }
         fmpz_mpoly_mul(t, g, z + c, r->ctx);
-        fmpz_mpoly_add(acc, acc, t, r->ctx);
+        if (fmpz_mpoly_is_zero(acc, r->ctx))
+            fmpz_mpoly_swap(acc, t, r->ctx); /* the first term: no copy */
+        else
+            fmpz_mpoly_add(acc, acc, t, r->ctx);
     }
     if (sign < 0)
         fmpz_mpoly_neg(acc, acc, r->ctx);
