@@ -23,6 +23,10 @@
  * highest run, and the size of the printed result.  "refused" is a size
  * limit's error (docs/language.md), reached in the time shown.
  *
+ *   bench_chains [FAMILY|CASE ...]   only these families (vplane) or cases
+ *                                    (vplane4)
+ *   bench_chains --print CASE        the scheme text of one case (vplane4)
+ *
  * The previous release's figures (commit b5e0642, the per-weight
  * representation, measured on this machine in the same way) are in the
  * table below; the last column is their ratio to today's median.
@@ -161,10 +165,35 @@ static const Base *base_of(const char *name)
     return NULL;
 }
 
-int main(void)
+/* 1 when no filter is given or name (fam + k) matches one */
+static int selected(int argc, char **argv, const char *fam, const char *name)
+{
+    if (argc < 2)
+        return 1;
+    for (int i = 1; i < argc; i++)
+        if (strcmp(argv[i], fam) == 0 || strcmp(argv[i], name) == 0)
+            return 1;
+    return 0;
+}
+
+int main(int argc, char **argv)
 {
     static const char *const fams[] = {"1p", "lin", "rat", "one", "onerat",
                                        "vplane"};
+    if (argc == 3 && strcmp(argv[1], "--print") == 0) {
+        for (size_t fi = 0; fi < sizeof fams / sizeof *fams; fi++) {
+            size_t n = strlen(fams[fi]);
+            if (strncmp(argv[2], fams[fi], n) == 0 && argv[2][n] >= '1' &&
+                argv[2][n] <= '9' && argv[2][n + 1] == '\0') {
+                char *text = scheme(fams[fi], argv[2][n] - '0');
+                fputs(text, stdout);
+                free(text);
+                return 0;
+            }
+        }
+        fprintf(stderr, "bench_chains: no case %s\n", argv[2]);
+        return 2;
+    }
     const char *to = getenv("PC_CHAIN_TIMEOUT");
     int timeout = to ? atoi(to) : 30;
     int quick = getenv("PC_BENCH_QUICK") != NULL;
@@ -177,6 +206,8 @@ int main(void)
         for (int k = 1; k <= (quick ? 4 : 8); k++) {
             char name[32], buf[128] = "";
             snprintf(name, sizeof name, "%s%d", fams[fi], k);
+            if (!selected(argc, argv, fams[fi], name))
+                continue;
             char *text = scheme(fams[fi], k);
             int pfd[2];
             if (pipe(pfd) != 0)

@@ -194,7 +194,10 @@ static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
  * column on side a takes -sum_b z_j b_j[X]: the a-side sum there is that
  * plus terms that cancel), and one content reduction makes it primitive.
  * For meet(line(A, P), line(B, Q)) in the plane ABC this is three products,
- * M ~ (P_C Q_A, Q_C P_B, Q_C P_C).
+ * M ~ (P_C Q_A, Q_C P_B, Q_C P_C).  Before the minors, the columns of each
+ * side are reduced against each other where they share a big common part
+ * (reduce_side: points made from one X), and only the z that M's rows use
+ * are formed.
  *
  * R is chosen by Gaussian elimination of G' evaluated at a random point
  * modulo a 61-bit prime, which never claims a rank that G' lacks (a minor
@@ -206,6 +209,8 @@ static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
  */
 
 #define MEET_MAX_COLS 5
+/* reduce_side works on entries of at least this many terms */
+#define MEET_REDUCE_MIN_TERMS 100
 /* the limit of one intermediate product (ratfun.h's estimates) */
 #define MEET_MAX_LOG2_BITS 30.0
 
@@ -313,7 +318,10 @@ static void row_sum(fmpz_mpoly_t acc, const fmpz_mpoly_struct **G, slong i,
             return;
         }
         fmpz_mpoly_mul(t, g, z + c, r->ctx);
-        fmpz_mpoly_add(acc, acc, t, r->ctx);
+        if (fmpz_mpoly_is_zero(acc, r->ctx))
+            fmpz_mpoly_swap(acc, t, r->ctx); /* the first term: no copy */
+        else
+            fmpz_mpoly_add(acc, acc, t, r->ctx);
     }
     if (sign < 0)
         fmpz_mpoly_neg(acc, acc, r->ctx);
@@ -333,6 +341,216 @@ static double row_cost(const fmpz_mpoly_struct **G, slong i, slong k,
     return c;
 }
 
+/* 1 when every column of [lo, hi) with an entry in row i has need[] set */
+static int covered(const char *need, const fmpz_mpoly_struct **G, slong i,
+                   slong k, const slong *cl, slong nc, slong lo, slong hi)
+{
+    for (slong c = 0; c < nc; c++)
+        if (cl[c] >= lo && cl[c] < hi && G[i * k + cl[c]] != NULL && !need[c])
+            return 0;
+    return 1;
+}
+
+/* need[] set for every column of [lo, hi) with an entry in row i */
+static void mark_row(char *need, const fmpz_mpoly_struct **G, slong i,
+                     slong k, const slong *cl, slong nc, slong lo, slong hi)
+{
+    for (slong c = 0; c < nc; c++)
+        if (cl[c] >= lo && cl[c] < hi && G[i * k + cl[c]] != NULL)
+            need[c] = 1;
+}
+
+/* reduce_side's threshold: below it the gcd that finds the multipliers
+ * costs more than the products it saves (FLINT's gcd has a large constant
+ * cost); construct_meet_set_reduce_min_terms changes it for tests */
+static slong meet_reduce_min_terms = MEET_REDUCE_MIN_TERMS;
+static slong meet_reductions, meet_fast;
+
+void construct_meet_set_reduce_min_terms(slong n)
+{
+    meet_reduce_min_terms = n < 0 ? MEET_REDUCE_MIN_TERMS : n;
+}
+
+void construct_meet_stats(slong *fast, slong *reduced)
+{
+    *fast = meet_fast;
+    *reduced = meet_reductions;
+}
+
+/* the most rows column_divide works on (base points in the flats' support) */
+#define MEET_MAX_ROWS 64
+
+/* Divides every entry of column j (rows 0..m-1 of G, own storage) by f
+ * when f divides them all; the shortest entries first, so that a factor
+ * that is not there is usually found out on a short one. */
+static void column_divide(fmpz_mpoly_struct *own, const fmpz_mpoly_struct **G,
+                          slong m, slong k, slong j, const fmpz_mpoly_t f,
+                          const Ring *r)
+{
+    slong order[MEET_MAX_ROWS], n = 0, q;
+    fmpz_mpoly_struct quo[MEET_MAX_ROWS];
+    if (fmpz_mpoly_is_fmpz(f, r->ctx) || m > MEET_MAX_ROWS)
+        return;
+    for (slong i = 0; i < m; i++) {
+        if (G[i * k + j] == NULL)
+            continue;
+        q = n++;
+        while (q > 0 &&
+               G[order[q - 1] * k + j]->length > G[i * k + j]->length) {
+            order[q] = order[q - 1];
+            q--;
+        }
+        order[q] = i;
+    }
+    for (q = 0; q < n; q++) {
+        fmpz_mpoly_init(quo + q, r->ctx);
+        if (!fmpz_mpoly_divides(quo + q, G[order[q] * k + j], f, r->ctx))
+            break;
+    }
+    if (q == n)
+        for (slong e = 0; e < n; e++)
+            fmpz_mpoly_swap(own + order[e] * k + j, quo + e, r->ctx);
+    for (slong e = 0; e < q + (q < n); e++)
+        fmpz_mpoly_clear(quo + e, r->ctx);
+}
+
+/*
+ * Column operations inside one side (columns [lo, hi)): they change the
+ * null vector but not the spans, so not M.  The defining points of a flat
+ * built from one point X = N/d (plane(B, along(X, C, r), along(X, D, s)))
+ * share X's numerators N: in a row where both columns are only multiples
+ * of N's entry (row A there: (1 - r) N_A and (1 - s) N_A), the gcd of the
+ * two entries is that entry and its cofactors are the small multipliers of
+ * the combination that eliminates N, (1 - r) b3 - (1 - s) b2 =
+ * d ((1 - r) s D - (1 - s) r C): after the known factor d is divided out,
+ * a column of small entries.  The minors are then products of a big entry
+ * and a small one, and none of them carries d, which otherwise every 2x2
+ * minor of such a plane would (formed by products of big entries and
+ * divided out again).  Every other non-unit column of the side is reduced
+ * against the first where a row's gcd holds most of both entries (the
+ * shortest two rows are tried); the side's own unit rows are never read
+ * (M's rows there are formed from the other side) and stay NULL.
+ * The multiplier ap of a reduced column scales the other side's z, and so
+ * M: it is recorded in fac[] (*nfac of them) for M's content reduction.
+ * The reduced columns live in *ownp (m*k entries, allocated by the first).
+ * Returns 0, or -1 when a column became zero (dependent points: the
+ * general path names it); *big when a product would be too large.
+ */
+static int reduce_side(fmpz_mpoly_struct **ownp, const fmpz_mpoly_struct **G,
+                       slong m, slong k, const slong *row_unit,
+                       const PointEq *cols, const slong *cl, slong nc,
+                       slong lo, slong hi, fmpz_mpoly_struct *fac,
+                       slong *nfac, int *big, const Ring *r)
+{
+    slong sc[MEET_MAX_COLS], ns = 0;
+    int st = 0;
+    fmpz_mpoly_t g, ap, aj, t;
+
+    for (slong c = 0; c < nc; c++)
+        if (cl[c] >= lo && cl[c] < hi)
+            sc[ns++] = cl[c];
+    if (ns < 2)
+        return 0;
+    fmpz_mpoly_init(g, r->ctx);
+    fmpz_mpoly_init(ap, r->ctx);
+    fmpz_mpoly_init(aj, r->ctx);
+    fmpz_mpoly_init(t, r->ctx);
+    slong p = sc[0];
+    for (slong q = 1; q < ns && st == 0 && !*big; q++) {
+        slong j = sc[q], tried[2] = {-1, -1}, piv = -1;
+        for (slong attempt = 0; attempt < 2 && piv < 0; attempt++) {
+            slong best = -1;
+            double bl = 0;
+            for (slong i = 0; i < m; i++) {
+                const fmpz_mpoly_struct *x = G[i * k + p], *y = G[i * k + j];
+                if ((row_unit[i] >= lo && row_unit[i] < hi) || x == NULL ||
+                    y == NULL || i == tried[0])
+                    continue;
+                double l = (double)x->length + (double)y->length;
+                if (best < 0 || l < bl) {
+                    best = i;
+                    bl = l;
+                }
+            }
+            if (best < 0)
+                break;
+            tried[attempt] = best;
+            const fmpz_mpoly_struct *x = G[best * k + p], *y = G[best * k + j];
+            if (x->length < meet_reduce_min_terms ||
+                y->length < meet_reduce_min_terms)
+                break; /* nothing big to eliminate */
+            if (!fmpz_mpoly_gcd_cofactors(g, ap, aj, x, y, r->ctx))
+                break;
+            if (g->length >= 2 * FLINT_MAX(ap->length, aj->length) ||
+                meet_reduce_min_terms == 0)
+                piv = best;
+        }
+        if (piv < 0)
+            continue;
+        /* column j := ap*c_j - aj*c_p, in own storage */
+        int zero = 1;
+        if (*ownp == NULL) {
+            *ownp = flint_malloc((size_t)(m * k) * sizeof(fmpz_mpoly_struct));
+            for (slong i = 0; i < m * k; i++)
+                fmpz_mpoly_init(*ownp + i, r->ctx);
+        }
+        fmpz_mpoly_struct *own = *ownp;
+        for (slong i = 0; i < m && !*big; i++) {
+            const fmpz_mpoly_struct *x = G[i * k + p], *y = G[i * k + j];
+            fmpz_mpoly_struct *dst = own + i * k + j;
+            if (row_unit[i] >= lo && row_unit[i] < hi) {
+                G[i * k + j] = NULL;
+                continue;
+            }
+            if (i == piv) {
+                G[i * k + j] = NULL; /* exactly zero */
+                continue;
+            }
+            if ((y != NULL && too_big(ap, y, r)) ||
+                (x != NULL && too_big(aj, x, r))) {
+                *big = 1;
+                break;
+            }
+            if (y != NULL)
+                fmpz_mpoly_mul(t, ap, y, r->ctx);
+            else
+                fmpz_mpoly_zero(t, r->ctx);
+            if (x != NULL) {
+                fmpz_mpoly_mul(dst, aj, x, r->ctx);
+                fmpz_mpoly_sub(dst, t, dst, r->ctx);
+            } else {
+                fmpz_mpoly_swap(dst, t, r->ctx);
+            }
+            if (fmpz_mpoly_is_zero(dst, r->ctx)) {
+                G[i * k + j] = NULL;
+            } else {
+                G[i * k + j] = dst;
+                zero = 0;
+            }
+        }
+        if (*big)
+            break;
+        if (zero) {
+            st = -1;
+            break;
+        }
+        if (!fmpz_mpoly_is_fmpz(ap, r->ctx)) {
+            fmpz_mpoly_init(fac + *nfac, r->ctx);
+            fmpz_mpoly_set(fac + (*nfac)++, ap, r->ctx);
+        }
+        meet_reductions++;
+        /* the known factors first: the columns' denominators */
+        column_divide(own, G, m, k, j, cols[p]->den, r);
+        if (!fmpz_mpoly_equal(cols[p]->den, cols[j]->den, r->ctx))
+            column_divide(own, G, m, k, j, cols[j]->den, r);
+    }
+    fmpz_mpoly_clear(t, r->ctx);
+    fmpz_mpoly_clear(aj, r->ctx);
+    fmpz_mpoly_clear(ap, r->ctx);
+    fmpz_mpoly_clear(g, r->ctx);
+    return st;
+}
+
 static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
                               slong k, const slong *rows, slong m,
                               const Ring *r)
@@ -349,14 +567,23 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
     slong *rl = flint_malloc((size_t)FLINT_MAX(m, 1) * sizeof(slong));
     const fmpz_mpoly_struct **G =
         flint_calloc((size_t)FLINT_MAX(m * k, 1), sizeof(fmpz_mpoly_struct *));
-    fmpz_mpoly_struct *minor = NULL, *z = NULL;
-    char *have = NULL;
+    fmpz_mpoly_struct *minor = NULL, *z = NULL, *own = NULL;
+    fmpz_mpoly_struct quo[MEET_MAX_COLS];
+    char from_buf[64];
+    slong nquo = 0;
+    char *have = NULL, need[MEET_MAX_COLS];
+    fmpz_mpoly_struct fac[MEET_MAX_COLS], rdiv[2], *rq = NULL;
+    slong nfac = 0, nfac_a = 0;
+    char used[MEET_MAX_COLS] = {0}, *from = NULL, rdiv_set[2] = {0, 0};
     slong nmask = 0;
-    fmpz_mpoly_t t, u;
+    fmpz_mpoly_t t, u, ub;
     PointEq acc;
 
     fmpz_mpoly_init(t, r->ctx);
     fmpz_mpoly_init(u, r->ctx);
+    fmpz_mpoly_init(ub, r->ctx);
+    fmpz_mpoly_init(rdiv + 0, r->ctx); /* 1 until rdiv_set[] */
+    fmpz_mpoly_init(rdiv + 1, r->ctx);
     pteq_init(acc, r);
     if (k > MEET_MAX_COLS)
         goto done;
@@ -384,6 +611,15 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
         if (row_unit[i] < 0)
             rl[nr++] = i;
     if (nc == 0 || nr < nc - 1)
+        goto done;
+
+    /* each side's columns reduced against each other (reduce_side) */
+    if (reduce_side(&own, G, m, k, row_unit, cols, cl, nc, 0, na, fac, &nfac,
+                    &big, r) < 0 ||
+        big || (nfac_a = nfac, 0) ||
+        reduce_side(&own, G, m, k, row_unit, cols, cl, nc, na, k, fac, &nfac,
+                    &big, r) < 0 ||
+        big)
         goto done;
 
     /* rows R: independent rows of G' at a random point mod p */
@@ -431,7 +667,26 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
     if (!ok || rank != nc - 1)
         goto done;
 
-    /* the null vector of G': z[c] for column cl[c] */
+    /* Which z M needs: a unit row takes the other side's columns, the rows
+     * beyond R all of them, a free row either side; a free row that no
+     * side needed so far covers makes every z needed (then the cheaper
+     * side per row, as before).  A z nothing needs is not formed: after
+     * reduce_side that is often the one minor of two big entries. */
+    for (slong c = 0; c < nc; c++)
+        need[c] = nr > rank;
+    for (slong i = 0; i < m; i++)
+        if (row_unit[i] >= 0)
+            mark_row(need, G, i, k, cl, nc, row_unit[i] < na ? na : 0,
+                     row_unit[i] < na ? k : na);
+    for (slong i = 0; i < m; i++)
+        if (row_unit[i] < 0 && !covered(need, G, i, k, cl, nc, 0, na) &&
+            !covered(need, G, i, k, cl, nc, na, k)) {
+            for (slong c = 0; c < nc; c++)
+                need[c] = 1;
+            break;
+        }
+
+    /* the null vector of G': z[c] for column cl[c] (0 where not needed) */
     nmask = WORD(1) << nc;
     minor = flint_malloc((size_t)nmask * sizeof(fmpz_mpoly_struct));
     have = flint_calloc((size_t)nmask, 1);
@@ -440,6 +695,12 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
     z = flint_malloc((size_t)nc * sizeof(fmpz_mpoly_struct));
     for (slong c = 0; c < nc; c++) {
         fmpz_mpoly_init(z + c, r->ctx);
+        fmpz_mpoly_init(quo + c, r->ctx);
+        nquo++;
+    }
+    for (slong c = 0; c < nc; c++) {
+        if (!need[c])
+            continue;
         const fmpz_mpoly_struct *mc =
             get_minor(minor, have, (nmask - 1) ^ (WORD(1) << c), G, k, sel,
                       cl, nc, t, &big, r);
@@ -453,12 +714,36 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
 
     /* z's own content (z = (N, -N) for two lines through the same ratio
      * N/D) would otherwise multiply M and only be found again, at twice
-     * the degree, by the reduction at the end */
+     * the degree, by the reduction at the end.  Only the z M uses need to
+     * be divisible: M is a multiple of the point whatever the scale. */
+    /* reduce_side's multiplier ap of a column of one side divides the
+     * other side's z (its minors hold the whole reduced side, whose
+     * determinant ap/f the column operations multiplied in): divided out
+     * there, and later from the rows formed from the reduced side */
+    for (slong f = 0; f < nfac; f++) {
+        int sd = f >= nfac_a, all = 1;
+        slong olo = sd ? 0 : na, ohi = sd ? na : k;
+        for (slong c = 0; c < nc && all; c++)
+            if (cl[c] >= olo && cl[c] < ohi && !fmpz_mpoly_is_zero(z + c, r->ctx))
+                all = fmpz_mpoly_divides(quo + c, z + c, fac + f, r->ctx);
+        if (!all)
+            continue;
+        for (slong c = 0; c < nc; c++)
+            if (cl[c] >= olo && cl[c] < ohi && !fmpz_mpoly_is_zero(z + c, r->ctx))
+                fmpz_mpoly_swap(z + c, quo + c, r->ctx);
+        if (rdiv_set[sd])
+            fmpz_mpoly_mul(rdiv + sd, rdiv + sd, fac + f, r->ctx);
+        else
+            fmpz_mpoly_set(rdiv + sd, fac + f, r->ctx);
+        rdiv_set[sd] = 1;
+        used[f] = 1;
+    }
+
     if (nc >= 2) {
         /* the likely content first: the denominators of the columns (in a
-         * plane through points made from one X, every minor carries X's
-         * denominator); dividing by a known factor is far cheaper than
-         * finding it with a gcd of the z */
+         * plane through points made from one X that reduce_side could not
+         * simplify, every minor carries X's denominator); dividing by a
+         * known factor is far cheaper than finding it with a gcd of the z */
         for (slong c = 0; c < nc; c++) {
             const fmpz_mpoly_struct *den = cols[cl[c]]->den;
             int again = !fmpz_mpoly_is_fmpz(den, r->ctx);
@@ -467,11 +752,11 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
             if (again) {
                 for (slong j = 0; j < nc && again; j++)
                     again = fmpz_mpoly_is_zero(z + j, r->ctx) ||
-                            fmpz_mpoly_divides(minor + j, z + j, den, r->ctx);
+                            fmpz_mpoly_divides(quo + j, z + j, den, r->ctx);
                 if (again)
                     for (slong j = 0; j < nc; j++)
                         if (!fmpz_mpoly_is_zero(z + j, r->ctx))
-                            fmpz_mpoly_swap(z + j, minor + j, r->ctx);
+                            fmpz_mpoly_swap(z + j, quo + j, r->ctx);
             }
         }
         fmpz_mpoly_zero(u, r->ctx);
@@ -491,39 +776,109 @@ static int meet_fraction_free(PointEq res, const PointEq *cols, slong na,
             b++;
             continue;
         }
-        row_sum(u, G, rl[q], k, z, cl, nc, 0, k, 1, t, &big, r);
-        if (big || !fmpz_mpoly_is_zero(u, r->ctx))
+        /* z_a was divided by rdiv[1], z_b by rdiv[0] */
+        row_sum(u, G, rl[q], k, z, cl, nc, 0, na, 1, t, &big, r);
+        if (!big)
+            row_sum(ub, G, rl[q], k, z, cl, nc, na, k, 1, t, &big, r);
+        if (!big && ((rdiv_set[1] && too_big(u, rdiv + 1, r)) ||
+                     (rdiv_set[0] && too_big(ub, rdiv + 0, r))))
+            big = 1;
+        if (big)
+            goto done;
+        if (rdiv_set[1])
+            fmpz_mpoly_mul(u, u, rdiv + 1, r->ctx);
+        if (rdiv_set[0])
+            fmpz_mpoly_mul(ub, ub, rdiv + 0, r->ctx);
+        fmpz_mpoly_add(u, u, ub, r->ctx);
+        if (!fmpz_mpoly_is_zero(u, r->ctx))
             goto done;
     }
 
-    /* M row by row (rows are sorted base points); its weight sum is the
-     * denominator */
-    fmpz_mpoly_zero(acc->den, r->ctx);
+    /* M row by row (rows are sorted base points), each from one side:
+     * from[i] = 0 for sum z_a a, 1 for -sum z_b b */
+    from = m <= 64 ? from_buf : flint_malloc((size_t)m);
     for (slong i = 0; i < m; i++) {
         fmpz_mpoly_struct *num = pteq_append(acc, rows[i], r);
         slong un = row_unit[i];
-        if (un >= 0 && un < na)
-            row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, &big, r);
-        else if (un >= 0)
-            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, &big, r);
-        else if (row_cost(G, i, k, z, cl, nc, 0, na) <=
-                 row_cost(G, i, k, z, cl, nc, na, k))
-            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, &big, r);
+        if (un >= 0)
+            from[i] = un < na;
         else
+            from[i] = !(!covered(need, G, i, k, cl, nc, na, k) ||
+                        (covered(need, G, i, k, cl, nc, 0, na) &&
+                         row_cost(G, i, k, z, cl, nc, 0, na) <=
+                             row_cost(G, i, k, z, cl, nc, na, k)));
+        if (from[i])
             row_sum(num, G, i, k, z, cl, nc, na, k, -1, t, &big, r);
+        else
+            row_sum(num, G, i, k, z, cl, nc, 0, na, 1, t, &big, r);
         if (big)
             goto done;
-        fmpz_mpoly_add(acc->den, acc->den, num, r->ctx);
     }
+    /* the rows from a side whose multipliers were divided out of the other
+     * side's z: divided too (exact unless a unit row's z keeps the factor:
+     * then the other rows are multiplied back) */
+    for (int sd = 0; sd < 2; sd++) {
+        slong i;
+        if (!rdiv_set[sd])
+            continue;
+        if (rq == NULL) {
+            rq = flint_malloc((size_t)m * sizeof(fmpz_mpoly_struct));
+            for (i = 0; i < m; i++)
+                fmpz_mpoly_init(rq + i, r->ctx);
+        }
+        for (i = 0; i < m; i++)
+            if (from[i] == sd &&
+                !fmpz_mpoly_divides(rq + i, acc->terms[i].num, rdiv + sd,
+                                    r->ctx))
+                break;
+        for (slong e = 0; e < m && !big; e++) {
+            if (i == m && from[e] == sd) {
+                fmpz_mpoly_swap(rq + e, acc->terms[e].num, r->ctx);
+            } else if (i < m && from[e] != sd) {
+                if (too_big(acc->terms[e].num, rdiv + sd, r))
+                    big = 1;
+                else
+                    fmpz_mpoly_mul(acc->terms[e].num, acc->terms[e].num,
+                                   rdiv + sd, r->ctx);
+            }
+        }
+        if (big)
+            goto done;
+    }
+    fmpz_mpoly_zero(acc->den, r->ctx);
+    for (slong i = 0; i < m; i++)
+        fmpz_mpoly_add(acc->den, acc->den, acc->terms[i].num, r->ctx);
     if (fmpz_mpoly_is_zero(acc->den, r->ctx)) {
         pteq_zero(acc, r);
         goto done; /* at infinity, or zero: the general path tells */
     }
+    for (slong f = 0; f < nfac; f++)
+        if (!used[f])
+            pteq_divide_known(acc, fac + f, r);
     pteq_canonicalise(acc, r);
     pteq_swap(res, acc, r);
     found = 1;
+    meet_fast++;
 
 done:
+    if (own != NULL) {
+        for (slong i = 0; i < m * k; i++)
+            fmpz_mpoly_clear(own + i, r->ctx);
+        flint_free(own);
+    }
+    for (slong f = 0; f < nfac; f++)
+        fmpz_mpoly_clear(fac + f, r->ctx);
+    fmpz_mpoly_clear(rdiv + 0, r->ctx);
+    fmpz_mpoly_clear(rdiv + 1, r->ctx);
+    if (from != from_buf)
+        flint_free(from);
+    if (rq != NULL) {
+        for (slong i = 0; i < m; i++)
+            fmpz_mpoly_clear(rq + i, r->ctx);
+        flint_free(rq);
+    }
+    for (slong c = 0; c < nquo; c++)
+        fmpz_mpoly_clear(quo + c, r->ctx);
     if (z != NULL) {
         for (slong c = 0; c < nc; c++)
             fmpz_mpoly_clear(z + c, r->ctx);
@@ -536,6 +891,7 @@ done:
     }
     flint_free(have);
     pteq_clear(acc, r);
+    fmpz_mpoly_clear(ub, r->ctx);
     fmpz_mpoly_clear(u, r->ctx);
     fmpz_mpoly_clear(t, r->ctx);
     flint_free(G);

@@ -48,6 +48,16 @@ MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
  * comes here when that cannot decide; the tests compare the two. */
 MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
                                   const PointEq *b, slong nb, const Ring *r);
+/* For tests: the fraction-free form reduces a flat's points against each
+ * other (column operations that eliminate a point they share) only where
+ * the entries have at least n terms and a gcd holds most of them (default
+ * 100, restored by n < 0); n = 0 reduces wherever a gcd is found, which
+ * takes the tests' small flats down that path.  Results are the same
+ * whatever n is.  construct_meet_stats: how many meets the fraction-free
+ * form has solved so far (*fast) and how many columns it reduced
+ * (*reduced).  Neither is thread-safe. */
+void construct_meet_set_reduce_min_terms(slong n);
+void construct_meet_stats(slong *fast, slong *reduced);
 
 /* For derive --steps: where the meet m of line(a[0], a[1]) and the flat
  * b[0..nb-1] lies on each flat.  params[0] = lambda with m = a0 + (a1 -

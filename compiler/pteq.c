@@ -201,6 +201,34 @@ void pteq_canonicalise(PointEq x, const Ring *r)
     fmpz_mpoly_clear(g, r->ctx);
 }
 
+int pteq_divide_known(PointEq x, const fmpz_mpoly_t f, const Ring *r)
+{
+    slong n = x->len, q;
+    fmpz_mpoly_struct *quo;
+    slong *o;
+    if (fmpz_mpoly_is_fmpz(f, r->ctx) || n == 0)
+        return 0;
+    o = by_length(x);
+    quo = flint_malloc((size_t)(n + 1) * sizeof(fmpz_mpoly_struct));
+    for (q = 0; q <= n; q++) {
+        const fmpz_mpoly_struct *a = q < n ? x->terms[o[q]].num : x->den;
+        fmpz_mpoly_init(quo + q, r->ctx);
+        if (!fmpz_mpoly_divides(quo + q, a, f, r->ctx))
+            break;
+    }
+    int all = q > n;
+    if (all) {
+        for (slong i = 0; i < n; i++)
+            fmpz_mpoly_swap(x->terms[o[i]].num, quo + i, r->ctx);
+        fmpz_mpoly_swap(x->den, quo + n, r->ctx);
+    }
+    for (slong i = 0; i < (all ? n + 1 : q + 1); i++)
+        fmpz_mpoly_clear(quo + i, r->ctx);
+    flint_free(quo);
+    flint_free(o);
+    return all;
+}
+
 int pteq_is_canonical(const PointEq x, const Ring *r)
 {
     int ok = x->len <= x->alloc && !fmpz_mpoly_is_zero(x->den, r->ctx) &&

@@ -115,6 +115,11 @@ void pteq_derivative_n(PointEq res, const PointEq x, slong var, ulong k,
  * removes the content gcd(n1, ..., nn, d), makes lc(d) > 0.  The terms
  * must already be sorted by point. */
 void pteq_canonicalise(PointEq x, const Ring *r);
+/* Divides every numerator and den of x by f when f divides them all (a
+ * known factor of the content, before pteq_canonicalise, whose gcds then
+ * need not find it); returns 1 then, 0 (x untouched) otherwise or when f
+ * is a constant. */
+int pteq_divide_known(PointEq x, const fmpz_mpoly_t f, const Ring *r);
 /* Opens a term for point at the end of x (points must be appended in
  * increasing order) and returns its numerator to fill; for builders that
  * call pteq_canonicalise afterwards. */

@@ -5,7 +5,11 @@
  * over the fraction field, the original solver), on seeded random flats:
  * lines in a plane of three base points, in a plane spanned by random
  * points over five base points (rows beyond the minors are then checked),
- * a line and a plane in 3-space, skew lines, and the degenerate cases.
+ * a line and a plane in 3-space, skew lines, and the degenerate cases;
+ * flats whose points are made from one random point X (along(X, Q, r)),
+ * where the fast path reduces a flat's points against each other (with the
+ * threshold of that reduction at 0 so that small flats take it too, and at
+ * its default on a chain of meets in 3-space whose entries exceed it).
  * Both must agree on the status and, when they meet, on the canonical
  * point equation; every result is also checked to lie on both flats.
  */
@@ -267,6 +271,229 @@ static void test_meet_degenerate_cases(void **state)
     ratfun_clear(s, r);
 }
 
+
+/* a generator made from X: along(X, Q, s) with Q a base point of lo..hi-1
+ * or (a quarter of them) a random point; or (a sixth) a base point, or
+ * when may_be_direction (a sixth) the direction (Q - X)*s */
+static void rand_gen_from(PointEq g, const PointEq x, flint_rand_t st,
+                          slong lo, slong hi, int may_be_direction,
+                          const Ring *r)
+{
+    PointEq q;
+    RatFun s;
+    pteq_init(q, r);
+    ratfun_init(s, r);
+    ulong kind = n_randint(st, 6);
+    if (n_randint(st, 4) == 0)
+        rand_comb(q, st, lo, hi, 1, r);
+    else
+        pteq_set_point(q, lo + (slong)n_randint(st, (ulong)(hi - lo)), r);
+    rand_ratfun_nz(s, st, r);
+    if (kind == 0) {
+        pteq_set_point(g, lo + (slong)n_randint(st, (ulong)(hi - lo)), r);
+    } else if (kind == 1 && may_be_direction) {
+        pteq_sub(q, q, x, r);
+        pteq_scalar_mul(g, q, s, r);
+    } else {
+        construct_along(g, x, q, s, r);
+    }
+    if (pteq_is_zero(g, r))
+        pteq_set(g, x, r);
+    ratfun_clear(s, r);
+    pteq_clear(q, r);
+}
+
+/* line and plane in 3-space, two lines in the plane, with points made from
+ * one X (the V-theorem chains of bench_chains): the reduction of a flat's
+ * points against each other, at threshold 0.  In a third of the cases the
+ * base points are not the simplex of the flats: X and the other points lie
+ * in the span of random points p[] over five base points, and the rows
+ * beyond the minors are checked. */
+static void test_meet_flats_through_one_point(void **state)
+{
+    Fixture *f = *state;
+    const Ring *r = &f->r;
+    PointEq x, a[2], b[3], p[4];
+    RatFun s;
+    slong ok = 0, fast0, red0, fast1, red1, spanned = 0, spanned_fast = 0;
+    ratfun_init(s, r);
+    pteq_init(x, r);
+    for (int i = 0; i < 4; i++)
+        pteq_init(p[i], r);
+    for (int i = 0; i < 3; i++) {
+        pteq_init(b[i], r);
+        if (i < 2)
+            pteq_init(a[i], r);
+    }
+    construct_meet_stats(&fast0, &red0);
+    construct_meet_set_reduce_min_terms(0);
+    for (slong it = 0; it < rand_iters(150); it++) {
+        int plane = it % 3 != 0, span = it % 3 == 2 || it % 7 == 0;
+        slong hi = plane ? 4 : 3;
+        PointEq *g[5] = {&a[0], &a[1], &b[0], &b[1], &b[2]};
+        rand_comb(x, f->st, 0, hi, 1, r);
+        if (it % 2 == 0)
+            rand_gen(a[0], f->st, 0, hi, 0, r); /* line(A, along(X, ...)) */
+        else
+            rand_gen_from(a[0], x, f->st, 0, hi, 0, r);
+        rand_gen_from(a[1], x, f->st, 0, hi, 1, r);
+        if (it % 5 == 0)
+            rand_gen(b[0], f->st, 0, hi, 0, r);
+        else
+            rand_gen_from(b[0], x, f->st, 0, hi, 0, r);
+        for (int i = 1; i < (plane ? 3 : 2); i++)
+            rand_gen_from(b[i], x, f->st, 0, hi, 1, r);
+        if (span) { /* base point q -> p[q]: the same figure, spanned */
+            for (slong i = 0; i < hi; i++)
+                rand_comb(p[i], f->st, 0, 5, 1, r);
+            for (int q = 0; q < (plane ? 5 : 4); q++) {
+                PointEq m;
+                pteq_init(m, r);
+                for (slong i = 0; i < (*g[q])->len; i++) {
+                    fmpz_mpoly_set(s->num, (*g[q])->terms[i].num, r->ctx);
+                    fmpz_mpoly_set(s->den, (*g[q])->den, r->ctx);
+                    ratfun_canonicalise(s, r);
+                    pteq_addmul(m, m, p[(*g[q])->terms[i].point], s, r);
+                }
+                pteq_swap(*g[q], m, r);
+                pteq_clear(m, r);
+            }
+            construct_meet_stats(&fast1, &red1);
+        }
+        MeetStatus ms =
+            check_meet((const PointEq *)a, 2, (const PointEq *)b,
+                       plane ? 3 : 2, r, __LINE__);
+        ok += ms == MEET_OK;
+        if (span && ms == MEET_OK) {
+            slong fast2, red2;
+            construct_meet_stats(&fast2, &red2);
+            spanned++;
+            spanned_fast += fast2 > fast1 && red2 > red1;
+        }
+    }
+    construct_meet_set_reduce_min_terms(-1);
+    construct_meet_stats(&fast1, &red1);
+    assert_true(ok > rand_iters(150) / 2);
+    /* the fast path solved most, reduced often, also with rows to check */
+    assert_true(fast1 - fast0 > ok / 2);
+    assert_true(red1 - red0 > rand_iters(150) / 4);
+    assert_true(spanned > 0 && spanned_fast > spanned / 3);
+    for (int i = 0; i < 3; i++) {
+        pteq_clear(b[i], r);
+        if (i < 2)
+            pteq_clear(a[i], r);
+    }
+    for (int i = 0; i < 4; i++)
+        pteq_clear(p[i], r);
+    pteq_clear(x, r);
+    ratfun_clear(s, r);
+}
+
+/* bench_chains' vplane chain over this ring's two variables: X_i =
+ * meet(line(A, along(X, B, t)), plane(B, along(X, C, u), along(X, D, t)))
+ * until the entries pass the default threshold of the reduction, each
+ * meet checked against the general path */
+static void test_meet_vplane_chain(void **state)
+{
+    Fixture *f = *state;
+    const Ring *r = &f->r;
+    PointEq x, a[2], b[3], y;
+    RatFun s, v;
+    slong fast0, red0, fast1, red1;
+    construct_meet_stats(&fast0, &red0);
+    ratfun_init(s, r);
+    ratfun_init(v, r);
+    pteq_init(x, r);
+    pteq_init(y, r);
+    for (int i = 0; i < 3; i++) {
+        pteq_init(b[i], r);
+        if (i < 2)
+            pteq_init(a[i], r);
+    }
+    ratfun_gen(s, 0, r);
+    ratfun_gen(v, 1, r);
+    /* X0 = (A + 2B + 4C + 8D)/15 */
+    pteq_set_point(x, 0, r);
+    for (slong p = 1; p < 4; p++) {
+        RatFun w;
+        ratfun_init(w, r);
+        ratfun_set_si(w, WORD(1) << p, r);
+        pteq_set_point(y, p, r);
+        pteq_addmul(x, x, y, w, r);
+        ratfun_clear(w, r);
+    }
+    {
+        RatFun w;
+        ratfun_init(w, r);
+        ratfun_set_si(w, 15, r);
+        ratfun_inv(w, w, r);
+        pteq_scalar_mul(x, x, w, r);
+        ratfun_clear(w, r);
+    }
+    for (int i = 1; i <= 4; i++) {
+        pteq_set_point(a[0], 0, r);
+        pteq_set_point(y, 1, r);
+        construct_along(a[1], x, y, s, r);
+        pteq_set_point(b[0], 1, r);
+        pteq_set_point(y, 2, r);
+        construct_along(b[1], x, y, v, r);
+        pteq_set_point(y, 3, r);
+        construct_along(b[2], x, y, s, r);
+        assert_int_equal(check_meet((const PointEq *)a, 2, (const PointEq *)b,
+                                    3, r, __LINE__),
+                         MEET_OK);
+        construct_meet(x, (const PointEq *)a, 2, (const PointEq *)b, 3, r);
+    }
+    construct_meet_stats(&fast1, &red1);
+    assert_int_equal(fast1 - fast0, 2 * 4); /* check_meet's and the chain's */
+    assert_true(red1 > red0);
+    for (int i = 0; i < 3; i++) {
+        pteq_clear(b[i], r);
+        if (i < 2)
+            pteq_clear(a[i], r);
+    }
+    pteq_clear(y, r);
+    pteq_clear(x, r);
+    ratfun_clear(v, r);
+    ratfun_clear(s, r);
+}
+
+/* pteq_divide_known, which meet uses for a multiplier it could not divide
+ * out of z: x*f/f is x again; a factor that does not divide leaves x as
+ * it was */
+static void test_pteq_divide_known(void **state)
+{
+    Fixture *f = *state;
+    const Ring *r = &f->r;
+    PointEq x, y;
+    fmpz_mpoly_t g;
+    pteq_init(x, r);
+    pteq_init(y, r);
+    fmpz_mpoly_init(g, r->ctx);
+    for (slong it = 0; it < rand_iters(100); it++) {
+        rand_comb(x, f->st, 0, 4, (int)(it & 1), r);
+        rand_poly(g, f->st, 4, 3, r);
+        pteq_set(y, x, r);
+        if (fmpz_mpoly_is_zero(g, r->ctx) || pteq_is_zero(x, r))
+            continue;
+        for (slong i = 0; i < y->len; i++)
+            fmpz_mpoly_mul(y->terms[i].num, y->terms[i].num, g, r->ctx);
+        fmpz_mpoly_mul(y->den, y->den, g, r->ctx);
+        assert_int_equal(pteq_divide_known(y, g, r),
+                         !fmpz_mpoly_is_fmpz(g, r->ctx));
+        if (!fmpz_mpoly_is_fmpz(g, r->ctx))
+            assert_true(pteq_equal(x, y, r));
+        /* x is canonical: a non-constant factor cannot divide it all */
+        if (!fmpz_mpoly_is_fmpz(g, r->ctx)) {
+            assert_int_equal(pteq_divide_known(y, g, r), 0);
+            assert_true(pteq_equal(x, y, r));
+        }
+    }
+    fmpz_mpoly_clear(g, r->ctx);
+    pteq_clear(y, r);
+    pteq_clear(x, r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -274,6 +501,9 @@ int main(void)
         cmocka_unit_test(test_meet_lines_in_a_spanned_plane),
         cmocka_unit_test(test_meet_line_and_plane_in_space),
         cmocka_unit_test(test_meet_degenerate_cases),
+        cmocka_unit_test(test_meet_flats_through_one_point),
+        cmocka_unit_test(test_meet_vplane_chain),
+        cmocka_unit_test(test_pteq_divide_known),
     };
     int fails = cmocka_run_group_tests(tests, setup, teardown);
     flint_cleanup_master();
