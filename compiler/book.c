@@ -887,6 +887,22 @@ done:
     return ok;
 }
 
+/* the proofs above, for the unit tests (book.h) */
+int book_test_surely_irreducible(const fmpz_mpoly_t p, const Ring *r)
+{
+    return surely_irreducible(p, r);
+}
+
+int book_test_irreducible_mod_small_prime(const fmpz_poly_t u)
+{
+    return irreducible_mod_small_prime(u);
+}
+
+int book_test_quadratic_irreducible(const fmpz_poly_t u)
+{
+    return quadratic_irreducible(u);
+}
+
 /* FLINT's factorisation of p (ring_factor), or what form_factored makes
  * of it, when p is a constant times a monomial times powers of x - 1 (x a
  * param or const) times a polynomial q that surely_irreducible proves

@@ -37,6 +37,8 @@
 #ifndef PC_BOOK_H
 #define PC_BOOK_H
 
+#include <flint/fmpz_poly.h>
+
 #include "compiler/derive.h"
 
 /* the forms chosen so far, to share among the outputs of one Derived (they
@@ -62,5 +64,15 @@ char *book_output(const Derived *d, const DerivedOutput *o,
                   const BookOptions *opt);
 /* LaTeX of a name (the rule above) appended to a malloc'd string */
 char *book_latex_name(const char *name);
+
+/* for tests/unit/test_book.c only: book.c's cheap proofs of irreducibility
+ * (1: proved; 0: no proof), which let the printer skip FLINT's factoring.
+ * surely_irreducible: p (of r) irreducible and primitive;
+ * irreducible_mod_small_prime: u (degree >= 1) irreducible over Q;
+ * quadratic_irreducible: u of degree 2 irreducible over Q (an answer both
+ * ways: its discriminant is not a square). */
+int book_test_surely_irreducible(const fmpz_mpoly_t p, const Ring *r);
+int book_test_irreducible_mod_small_prime(const fmpz_poly_t u);
+int book_test_quadratic_irreducible(const fmpz_poly_t u);
 
 #endif

@@ -13,8 +13,12 @@
 
 #include <cmocka.h>
 
+#include <flint/fmpz_mpoly_factor.h>
+#include <flint/fmpz_poly_factor.h>
+
 #include "compiler/book.h"
 #include "compiler/format.h"
+#include "compiler/ring.h"
 #include "libpointcalc.h"
 
 
@@ -144,6 +148,380 @@ static void test_factor_known(void **state)
     /* irreducible (no shortcut can split it): expanded */
     expect("param t\nparam u\ns = t^2 + u^3 + 1\n", FMT_TEXT,
            "s = 1 + t^2 + u^3\n");
+}
+
+/* ---- the cheap proofs of irreducibility (book.c), against FLINT ------ */
+
+/* a random integer in [-b, b] */
+static slong rand_si(flint_rand_t st, slong b)
+{
+    return (slong)n_randint(st, (ulong)(2 * b + 1)) - b;
+}
+
+/* a random polynomial of degree d, coefficients in [-b, b], the leading one
+ * nonzero */
+static void rand_upoly(fmpz_poly_t u, flint_rand_t st, slong d, slong b)
+{
+    fmpz_poly_zero(u);
+    for (slong k = 0; k < d; k++)
+        fmpz_poly_set_coeff_si(u, k, rand_si(st, b));
+    slong lc = 0;
+    while (lc == 0)
+        lc = rand_si(st, b);
+    fmpz_poly_set_coeff_si(u, d, lc);
+}
+
+/* FLINT: u is irreducible over Q (its content aside) */
+static int flint_upoly_irreducible(const fmpz_poly_t u)
+{
+    fmpz_poly_factor_t f;
+    fmpz_poly_factor_init(f);
+    fmpz_poly_factor(f, u);
+    int irr = f->num == 1 && f->exp[0] == 1;
+    fmpz_poly_factor_clear(f);
+    return irr;
+}
+
+/* FLINT: p is irreducible (its integer content aside); with primitive,
+ * and primitive (what surely_irreducible proves: p is its factorisation) */
+static int flint_mpoly_irreducible_ex(const fmpz_mpoly_t p, const Ring *r,
+                                      int primitive)
+{
+    fmpz_mpoly_factor_t f;
+    fmpz_mpoly_factor_init(f, r->ctx);
+    assert_true(fmpz_mpoly_factor(f, p, r->ctx));
+    int irr = f->num == 1 && fmpz_is_one(f->exp + 0) &&
+              (!primitive || fmpz_is_pm1(f->constant));
+    fmpz_mpoly_factor_clear(f, r->ctx);
+    return irr;
+}
+
+static int flint_mpoly_irreducible(const fmpz_mpoly_t p, const Ring *r)
+{
+    return flint_mpoly_irreducible_ex(p, r, 0);
+}
+
+/* surely_irreducible's claim: irreducible and primitive */
+static int flint_mpoly_primitive_irreducible(const fmpz_mpoly_t p,
+                                             const Ring *r)
+{
+    return flint_mpoly_irreducible_ex(p, r, 1);
+}
+
+/* p = u(x_v) in r */
+static void upoly_in_var(fmpz_mpoly_t p, const fmpz_poly_t u, slong v,
+                         const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    ulong e[4] = {0, 0, 0, 0};
+    assert_true(nv <= 4);
+    fmpz_mpoly_zero(p, r->ctx);
+    for (slong k = 0; k <= fmpz_poly_degree(u); k++) {
+        e[v] = (ulong)k;
+        fmpz_mpoly_set_coeff_fmpz_ui(p, u->coeffs + k, e, r->ctx);
+    }
+}
+
+static const char *const irr_names[] = {"x", "y", "z", "w"};
+
+/* p on stderr (the failing case) */
+static void put_mpoly(const char *what, const fmpz_mpoly_t p, const Ring *r)
+{
+    char *s = fmpz_mpoly_get_str_pretty(p, (const char **)irr_names, r->ctx);
+    fprintf(stderr, "%s%s", what, s);
+    flint_free(s);
+}
+
+/* (1) a polynomial in one variable, of degree 1..8: random (irreducible
+ * most often), products of random factors, with repeated factors, times a
+ * content; whenever irreducible_mod_small_prime, or surely_irreducible of
+ * the same polynomial in one variable of a ring of 1..3, says
+ * "irreducible", FLINT's factoring agrees */
+static void test_irreducible_one_variable(void **state)
+{
+    (void)state;
+    enum { N = 4000 };
+    flint_rand_t st;
+    flint_randinit(st);
+    flint_randseed(st, 20261125, 284);
+    Ring rings[3];
+    for (int i = 0; i < 3; i++)
+        ring_init(&rings[i], i + 1, irr_names);
+    fmpz_poly_t u, f, g;
+    fmpz_poly_init(u);
+    fmpz_poly_init(f);
+    fmpz_poly_init(g);
+    long claims = 0, sure_claims = 0, reducible = 0, deg4 = 0;
+    for (int i = 0; i < N; i++) {
+        slong d = 1 + (slong)n_randint(st, 8);
+        slong b = n_randint(st, 2) ? 9 : 40;
+        switch (i % 4) {
+        case 0: /* random */
+            rand_upoly(u, st, d, b);
+            break;
+        case 1: /* a product of two or three random factors */
+            rand_upoly(u, st, 1 + (slong)n_randint(st, 4), b);
+            for (int k = 1 + (int)n_randint(st, 2); k > 0; k--) {
+                slong df = 1 + (slong)n_randint(st, 3);
+                if (fmpz_poly_degree(u) + df > 8)
+                    break;
+                rand_upoly(f, st, df, b);
+                fmpz_poly_mul(u, u, f);
+            }
+            break;
+        case 2: /* a repeated factor: f^k g */
+        {
+            slong df = 1 + (slong)n_randint(st, 3);
+            slong k = 2 + (slong)n_randint(st, (ulong)(8 / df - 1));
+            rand_upoly(f, st, df, 9);
+            fmpz_poly_pow(u, f, (ulong)k);
+            slong dg = (slong)n_randint(st, (ulong)(9 - df * k)); /* < 9 */
+            if (dg > 0) {
+                rand_upoly(g, st, dg, 9);
+                fmpz_poly_mul(u, u, g);
+            }
+            break;
+        }
+        default: /* linear and quadratic factors whose leading coefficients
+                  * are multiples of the small primes: images modulo those
+                  * primes lose degree */
+            fmpz_poly_one(u);
+            while (fmpz_poly_degree(u) < d) {
+                static const slong mult[] = {3, 5, 7, 9, 11, 13, 15, 21};
+                slong df = 1 + (slong)n_randint(st, 2);
+                rand_upoly(f, st, df, 9);
+                fmpz_poly_set_coeff_si(f, df,
+                                       mult[n_randint(st, 8)] *
+                                           (n_randint(st, 2) ? 1 : -1));
+                fmpz_poly_mul(u, u, f);
+            }
+            break;
+        }
+        if (n_randint(st, 4) == 0) /* a content */
+            fmpz_poly_scalar_mul_si(u, u, 2 + (slong)n_randint(st, 12));
+        if (fmpz_poly_degree(u) > 8 || fmpz_poly_degree(u) < 1)
+            continue;
+        int irr = flint_upoly_irreducible(u);
+        reducible += !irr;
+        if (book_test_irreducible_mod_small_prime(u)) {
+            claims++;
+            deg4 += fmpz_poly_degree(u) >= 4;
+            if (!irr) {
+                fprintf(stderr, "irreducible_mod_small_prime: ");
+                fmpz_poly_fprint_pretty(stderr, u, "x");
+                fprintf(stderr, "\n");
+            }
+            assert_true(irr);
+        }
+        /* the same polynomial in variable v of a ring of nv */
+        const Ring *r = &rings[i % 3];
+        slong v = (slong)n_randint(st, (ulong)(i % 3 + 1));
+        fmpz_mpoly_t p;
+        fmpz_mpoly_init(p, r->ctx);
+        upoly_in_var(p, u, v, r);
+        if (book_test_surely_irreducible(p, r)) {
+            sure_claims++;
+            if (!irr || !flint_mpoly_primitive_irreducible(p, r)) {
+                fprintf(stderr, "surely_irreducible: ");
+                put_mpoly("", p, r);
+                fprintf(stderr, "\n");
+            }
+            assert_true(irr);
+            assert_true(flint_mpoly_primitive_irreducible(p, r));
+        }
+        fmpz_mpoly_clear(p, r->ctx);
+    }
+    /* not vacuous: both answers, the proofs of degree 4 or more too */
+    assert_true(reducible > N / 2);
+    assert_true(claims > N / 10);
+    assert_true(deg4 > N / 20);
+    assert_true(sure_claims > N / 10);
+    fmpz_poly_clear(g);
+    fmpz_poly_clear(f);
+    fmpz_poly_clear(u);
+    for (int i = 0; i < 3; i++)
+        ring_clear(&rings[i]);
+    flint_randclear(st);
+}
+
+/* (2) quadratics: quadratic_irreducible is an answer both ways, FLINT's;
+ * in one variable (random, and products of two linear factors, times a
+ * content), in two as binary forms a x^2 + b x y + c y^2 (irreducible
+ * exactly when a x^2 + b x + c is), and a(y) x^2 + b(y) x + c(y) through
+ * surely_irreducible (whose images are quadratics) */
+static void test_quadratic_irreducible(void **state)
+{
+    (void)state;
+    enum { N = 3000 };
+    flint_rand_t st;
+    flint_randinit(st);
+    flint_randseed(st, 20261125, 2);
+    Ring r;
+    ring_init(&r, 2, irr_names);
+    fmpz_poly_t u, f, g;
+    fmpz_poly_init(u);
+    fmpz_poly_init(f);
+    fmpz_poly_init(g);
+    fmpz_mpoly_t p, a, b;
+    fmpz_mpoly_init(p, r.ctx);
+    fmpz_mpoly_init(a, r.ctx);
+    fmpz_mpoly_init(b, r.ctx);
+    long yes[2] = {0, 0}, no[2] = {0, 0}, sure_claims = 0;
+    for (int i = 0; i < N; i++) {
+        slong bd = n_randint(st, 2) ? 6 : 30;
+        if (i % 2 == 0) {
+            rand_upoly(u, st, 2, bd);
+        } else {
+            rand_upoly(f, st, 1, bd);
+            rand_upoly(g, st, 1, bd);
+            fmpz_poly_mul(u, f, g);
+        }
+        if (n_randint(st, 4) == 0)
+            fmpz_poly_scalar_mul_si(u, u, 2 + (slong)n_randint(st, 8));
+        /* one variable */
+        int irr = flint_upoly_irreducible(u);
+        assert_int_equal(book_test_quadratic_irreducible(u), irr);
+        (irr ? yes : no)[0]++;
+        /* two: the binary form u2 x^2 + u1 x y + u0 y^2 */
+        fmpz_mpoly_zero(p, r.ctx);
+        for (ulong k = 0; k <= 2; k++) {
+            ulong e[2] = {k, 2 - k};
+            fmpz_mpoly_set_coeff_fmpz_ui(p, u->coeffs + k, e, r.ctx);
+        }
+        irr = flint_mpoly_irreducible(p, &r);
+        assert_int_equal(book_test_quadratic_irreducible(u), irr);
+        (irr ? yes : no)[1]++;
+        /* a(y) x^2 + b(y) x + c(y), or (a1 x + b1)(a2 x + b2), a, b in y */
+        fmpz_mpoly_zero(p, r.ctx);
+        if (i % 2 == 0) {
+            for (ulong k = 0; k <= 2; k++)
+                for (ulong j = 0; j <= 2; j++) {
+                    ulong e[2] = {k, j};
+                    if (n_randint(st, 2))
+                        fmpz_mpoly_set_coeff_si_ui(p, rand_si(st, 6), e, r.ctx);
+                }
+        } else {
+            fmpz_mpoly_one(p, r.ctx);
+            for (int m = 0; m < 2; m++) {
+                fmpz_mpoly_zero(a, r.ctx);
+                for (ulong k = 0; k <= 1; k++)
+                    for (ulong j = 0; j <= 2; j++) {
+                        ulong e[2] = {k, j};
+                        if (n_randint(st, 2))
+                            fmpz_mpoly_set_coeff_si_ui(a, rand_si(st, 6), e,
+                                                       r.ctx);
+                    }
+                fmpz_mpoly_mul(p, p, a, r.ctx);
+            }
+        }
+        if (fmpz_mpoly_is_zero(p, r.ctx) ||
+            fmpz_mpoly_degree_si(p, 0, r.ctx) != 2)
+            continue;
+        if (book_test_surely_irreducible(p, &r)) {
+            sure_claims++;
+            if (!flint_mpoly_primitive_irreducible(p, &r)) {
+                fprintf(stderr, "surely_irreducible: ");
+                put_mpoly("", p, &r);
+                fprintf(stderr, "\n");
+            }
+            assert_true(flint_mpoly_primitive_irreducible(p, &r));
+        }
+    }
+    for (int k = 0; k < 2; k++) {
+        assert_true(yes[k] > N / 4);
+        assert_true(no[k] > N / 4);
+    }
+    assert_true(sure_claims > N / 5);
+    fmpz_mpoly_clear(b, r.ctx);
+    fmpz_mpoly_clear(a, r.ctx);
+    fmpz_mpoly_clear(p, r.ctx);
+    fmpz_poly_clear(g);
+    fmpz_poly_clear(f);
+    fmpz_poly_clear(u);
+    ring_clear(&r);
+    flint_randclear(st);
+}
+
+/* a random polynomial of r, of 1..maxterms terms, exponents in [0, maxe],
+ * coefficients in [-5, 5] */
+static void rand_mpoly(fmpz_mpoly_t p, flint_rand_t st, slong maxterms,
+                       ulong maxe, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    ulong e[4];
+    fmpz_mpoly_zero(p, r->ctx);
+    for (slong t = 1 + (slong)n_randint(st, (ulong)maxterms); t > 0; t--) {
+        for (slong v = 0; v < nv; v++)
+            e[v] = n_randint(st, maxe + 1);
+        fmpz_mpoly_set_coeff_si_ui(p, rand_si(st, 5), e, r->ctx);
+    }
+}
+
+/* (3) surely_irreducible never says "irreducible" of a product of two
+ * non-constant polynomials of 2..4 variables (nor of a square), and when it
+ * says so of a random polynomial, FLINT agrees */
+static void test_surely_irreducible_products(void **state)
+{
+    (void)state;
+    enum { N = 3000 };
+    flint_rand_t st;
+    flint_randinit(st);
+    flint_randseed(st, 20261125, 3);
+    Ring rings[3];
+    for (int i = 0; i < 3; i++)
+        ring_init(&rings[i], i + 2, irr_names);
+    long products = 0, claims = 0;
+    for (int i = 0; i < N; i++) {
+        const Ring *r = &rings[i % 3];
+        fmpz_mpoly_t p, f, g;
+        fmpz_mpoly_init(p, r->ctx);
+        fmpz_mpoly_init(f, r->ctx);
+        fmpz_mpoly_init(g, r->ctx);
+        ulong maxe = 1 + n_randint(st, 2);
+        rand_mpoly(f, st, 5, maxe, r);
+        if (i % 3 == 0) { /* one random polynomial */
+            fmpz_mpoly_swap(p, f, r->ctx);
+            if (fmpz_mpoly_total_degree_si(p, r->ctx) < 1)
+                goto next;
+            if (book_test_surely_irreducible(p, r)) {
+                claims++;
+                if (!flint_mpoly_primitive_irreducible(p, r)) {
+                    fprintf(stderr, "surely_irreducible: ");
+                    put_mpoly("", p, r);
+                    fprintf(stderr, "\n");
+                }
+                assert_true(flint_mpoly_primitive_irreducible(p, r));
+            }
+            goto next;
+        }
+        if (i % 7 == 0)
+            fmpz_mpoly_set(g, f, r->ctx); /* a square */
+        else
+            rand_mpoly(g, st, 5, maxe, r);
+        if (fmpz_mpoly_total_degree_si(f, r->ctx) < 1 ||
+            fmpz_mpoly_total_degree_si(g, r->ctx) < 1)
+            goto next;
+        fmpz_mpoly_mul(p, f, g, r->ctx);
+        products++;
+        assert_false(flint_mpoly_irreducible(p, r));
+        if (book_test_surely_irreducible(p, r)) {
+            fprintf(stderr, "surely_irreducible: (");
+            put_mpoly("", f, r);
+            fprintf(stderr, ")*(");
+            put_mpoly("", g, r);
+            fprintf(stderr, ")\n");
+            fail();
+        }
+    next:
+        fmpz_mpoly_clear(g, r->ctx);
+        fmpz_mpoly_clear(f, r->ctx);
+        fmpz_mpoly_clear(p, r->ctx);
+    }
+    assert_true(products > N / 2);
+    assert_true(claims > N / 10);
+    for (int i = 0; i < 3; i++)
+        ring_clear(&rings[i]);
+    flint_randclear(st);
 }
 
 /* an all-minus numerator is written -(...); the denominator's first term
@@ -303,6 +681,9 @@ int main(void)
         cmocka_unit_test(test_vector_differences),
         cmocka_unit_test(test_latex_names),
         cmocka_unit_test(test_factor_known),
+        cmocka_unit_test(test_irreducible_one_variable),
+        cmocka_unit_test(test_quadratic_irreducible),
+        cmocka_unit_test(test_surely_irreducible_products),
         cmocka_unit_test(test_multline),
         cmocka_unit_test(test_origin),
         cmocka_unit_test(test_conic_of_2_1_6),
