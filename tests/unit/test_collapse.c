@@ -47,6 +47,7 @@
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
 #include "compiler/derive.h"
+#include "tests/unit/emit_harness.h"
 
 #define REL_TOL 1e-12
 #define NS 301 // samples in the range: > 4 blocks of 64
@@ -57,23 +58,9 @@ typedef size_t (*batch_fn)(size_t n, const double *const *prm,
 
 static int total_checks, total_collapsed;
 
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
-
-typedef struct Compiled {
-    char dir[64];
-    void *so;
-} Compiled;
-
 /* the C (collapsed kernel), its header and a wrapper wb_O per output */
 static void compile(Compiled *c, const Plan *p, const Collapse *col)
 {
-    char path[128], cmd[512];
     char *src = NULL, *hdr = NULL, *wrap = NULL;
     size_t len = 0;
     FILE *m = open_memstream(&src, &len);
@@ -84,83 +71,13 @@ static void compile(Compiled *c, const Plan *p, const Collapse *col)
     fclose(m);
     m = open_memstream(&wrap, &len);
     fputs("#include <stddef.h>\n#include \"gen.h\"\n", m);
-    for (int o = 0; o < p->noutputs; o++) {
-        fprintf(m,
-                "size_t wb_%d(size_t n, const double *const *prm, "
-                "const double *cst, const double *const *pts, int dim, "
-                "double *out, unsigned char *status, int checked);\n"
-                "size_t wb_%d(size_t n, const double *const *prm, "
-                "const double *cst, const double *const *pts, int dim, "
-                "double *out, unsigned char *status, int checked)\n"
-                "{\n    (void)prm; (void)cst; (void)pts;\n"
-                "    if (!checked) {\n        pcx_%s_batch(n, ",
-                o, o, p->outputs[o].name);
-        for (int pass = 0; pass < 2; pass++) {
-            for (int i = 0; i < p->nparams; i++)
-                fprintf(m, "prm[%d], ", i);
-            for (int i = 0; i < p->nconsts; i++)
-                fprintf(m, "cst[%d], ", i);
-            for (int i = 0; i < p->npoints; i++)
-                fprintf(m, "pts[%d], ", i);
-            fputs(pass == 0 ? "dim, out);\n" : "dim, out, status);\n", m);
-            if (pass == 0)
-                fprintf(m,
-                        "        return (size_t)-1;\n    }\n"
-                        "    return pcx_%s_batch_checked(n, ",
-                        p->outputs[o].name);
-        }
-        fputs("}\n", m);
-    }
+    for (int o = 0; o < p->noutputs; o++)
+        harness_batch_wrapper(m, p, o);
     fclose(m);
-    strcpy(c->dir, "/tmp/pc_collapse_XXXXXX");
-    assert_non_null(mkdtemp(c->dir));
-    snprintf(path, sizeof path, "%s/gen.c", c->dir);
-    write_file(path, src);
-    snprintf(path, sizeof path, "%s/gen.h", c->dir);
-    write_file(path, hdr);
-    snprintf(path, sizeof path, "%s/wrap.c", c->dir);
-    write_file(path, wrap);
+    harness_compile(c, "collapse", src, hdr, wrap);
     free(src);
     free(hdr);
     free(wrap);
-    snprintf(cmd, sizeof cmd,
-             "cd %s && cc -std=c99 -Wall -Wextra -Werror -pedantic -O2 "
-             "-fPIC -shared -o gen.so gen.c wrap.c -lm",
-             c->dir);
-    int rc = system(cmd);
-    if (rc != 0)
-        fprintf(stderr, "compile failed, sources kept in %s\n", c->dir);
-    assert_int_equal(rc, 0);
-    snprintf(path, sizeof path, "%s/gen.so", c->dir);
-    c->so = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    assert_non_null(c->so);
-}
-
-static void compiled_clear(Compiled *c)
-{
-    static const char *const files[] = {"gen.c", "gen.h", "wrap.c", "gen.so"};
-    char path[128];
-    dlclose(c->so);
-    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-        snprintf(path, sizeof path, "%s/%s", c->dir, files[i]);
-        unlink(path);
-    }
-    rmdir(c->dir);
-}
-
-static void q_set_double(fmpq_t r, double v)
-{
-    int e;
-    double m = frexp(v, &e);
-    fmpz_t num;
-    fmpz_init(num);
-    fmpz_set_d(num, ldexp(m, 53));
-    fmpq_set_fmpz_frac(r, num, (fmpz[]){1});
-    if (e - 53 >= 0)
-        fmpq_mul_2exp(r, r, (ulong)(e - 53));
-    else
-        fmpq_div_2exp(r, r, (ulong)(53 - e));
-    fmpz_clear(num);
 }
 
 /* The largest error of output o over the samples, relative to the bound's
@@ -206,7 +123,7 @@ static double check_output(const Derived *d, const Plan *p, const Collapse *col,
     for (int i = 0; i < np; i++)
         fmpq_set_si(vals + i, 1, 2);
     for (int i = 0; i < p->nconsts && i < 8; i++)
-        q_set_double(vals + np + i, cst[i]);
+        fmpq_set_double(vals + np + i, cst[i]);
     flint_rand_t rs;
     flint_randinit(rs);
     double worst = 0;
@@ -238,7 +155,7 @@ static double check_output(const Derived *d, const Plan *p, const Collapse *col,
                     continue;
                 }
                 int in = t >= lo && t <= hi;
-                q_set_double(vals + pi, t);
+                fmpq_set_double(vals + pi, t);
                 int pole = 0;
                 double sumw = 0;
                 for (int k = 0; k < K; k++) {
@@ -263,14 +180,14 @@ static double check_output(const Derived *d, const Plan *p, const Collapse *col,
                     double sc = 0, pmax = 0;
                     for (int k = 0; k < K; k++) {
                         double P = pts[dout->eq->terms[k].point][cc];
-                        q_set_double(x, P);
+                        fmpq_set_double(x, P);
                         fmpq_mul(x, x, wk + k);
                         fmpq_add(sum, sum, x);
                         sc += fabs(fmpq_get_d(wk + k) * P);
                         pmax = fmax(pmax, fabs(P));
                     }
                     /* |got - exact|, exactly, rounded */
-                    q_set_double(x, g);
+                    fmpq_set_double(x, g);
                     fmpq_sub(x, x, sum);
                     double err = fabs(fmpq_get_d(x));
                     double exact = fmpq_get_d(sum);

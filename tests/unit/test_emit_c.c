@@ -43,6 +43,7 @@
 #include "compiler/derive.h"
 #include "compiler/kernel.h"
 #include "runtime/eval.h"
+#include "tests/unit/emit_harness.h"
 
 #define REL_TOL 1e-12
 #define NBATCH 300 // > 2 blocks of the generated code (64) and runtime (128)
@@ -63,19 +64,6 @@ static const double const_vals[] = {0.75, 0.625, 1.25, -0.5, 2.0, 0.375};
 static int total_checks;
 
 /* ---- compiling generated code ------------------------------------------ */
-
-typedef struct Compiled {
-    char dir[64];
-    void *so;
-} Compiled;
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
 
 static char *emit_to_string(const Plan *p, int header)
 {
@@ -122,31 +110,7 @@ static char *wrapper(const Plan *p)
                         nm);
         }
         fputs("}\n", m);
-        fprintf(m,
-                "size_t wb_%d(size_t n, const double *const *prm, "
-                "const double *cst, const double *const *pts, int dim, "
-                "double *out, unsigned char *status, int checked);\n"
-                "size_t wb_%d(size_t n, const double *const *prm, "
-                "const double *cst, const double *const *pts, int dim, "
-                "double *out, unsigned char *status, int checked)\n"
-                "{\n    (void)prm; (void)cst; (void)pts;\n"
-                "    if (!checked) {\n        pcx_%s_batch(n, ",
-                o, o, nm);
-        for (int pass = 0; pass < 2; pass++) {
-            for (int i = 0; i < p->nparams; i++)
-                fprintf(m, "prm[%d], ", i);
-            for (int i = 0; i < p->nconsts; i++)
-                fprintf(m, "cst[%d], ", i);
-            for (int i = 0; i < p->npoints; i++)
-                fprintf(m, "pts[%d], ", i);
-            fputs(pass == 0 ? "dim, out);\n" : "dim, out, status);\n", m);
-            if (pass == 0)
-                fprintf(m,
-                        "        return (size_t)-1;\n    }\n"
-                        "    return pcx_%s_batch_checked(n, ",
-                        nm);
-        }
-        fputs("}\n", m);
+        harness_batch_wrapper(m, p, o);
     }
     fclose(m);
     return text;
@@ -154,50 +118,15 @@ static char *wrapper(const Plan *p)
 
 static void compile_plan(Compiled *c, const Plan *p)
 {
-    char path[128], cmd[512];
-    strcpy(c->dir, "/tmp/pc_emit_XXXXXX");
-    assert_non_null(mkdtemp(c->dir));
     char *src = emit_to_string(p, 0), *hdr = emit_to_string(p, 1);
     char *wrap = wrapper(p);
-    snprintf(path, sizeof path, "%s/gen.c", c->dir);
-    write_file(path, src);
-    snprintf(path, sizeof path, "%s/gen.h", c->dir);
-    write_file(path, hdr);
-    snprintf(path, sizeof path, "%s/wrap.c", c->dir);
-    write_file(path, wrap);
+    harness_compile(c, "emit", src, hdr, wrap);
     free(src);
     free(hdr);
     free(wrap);
-    /* the contract's flags, warnings are errors; the wrapper includes the
-     * header, so prototypes and definitions must agree */
-    snprintf(cmd, sizeof cmd,
-             "cd %s && cc -std=c99 -Wall -Wextra -Werror -pedantic -O2 "
-             "-fPIC -shared -o gen.so gen.c wrap.c -lm",
-             c->dir);
-    int rc = system(cmd);
-    if (rc != 0)
-        fprintf(stderr, "compile failed, sources kept in %s\n", c->dir);
-    assert_int_equal(rc, 0);
-    snprintf(path, sizeof path, "%s/gen.so", c->dir);
-    c->so = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    assert_non_null(c->so);
-}
-
-static void compiled_clear(Compiled *c)
-{
-    static const char *const files[] = {"gen.c", "gen.h", "wrap.c", "gen.so"};
-    char path[128];
-    dlclose(c->so);
-    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-        snprintf(path, sizeof path, "%s/%s", c->dir, files[i]);
-        unlink(path);
-    }
-    rmdir(c->dir);
 }
 
 /* ---- exact values ------------------------------------------------------- */
-
-static void fmpq_set_double(fmpq_t r, double v);
 
 /* The values of the functions (kernels) at vals (the params and consts
  * set): each kernel's argument evaluated exactly, the function applied in
@@ -831,21 +760,6 @@ static void test_emit_c_clash_detects_function_names(void **state)
     derived_free(d);
 }
 
-/* exact value of a double as a rational */
-static void fmpq_set_double(fmpq_t r, double v)
-{
-    int e;
-    double m = frexp(v, &e); // v = m 2^e, m in [0.5, 1)
-    fmpz_t num;
-    fmpz_init(num);
-    fmpz_set_d(num, ldexp(m, 53)); // exact: an integer below 2^53
-    fmpq_set_fmpz_frac(r, num, (fmpz[]){1});
-    if (e - 53 >= 0)
-        fmpq_mul_2exp(r, r, (ulong)(e - 53));
-    else
-        fmpq_div_2exp(r, r, (ulong)(53 - e));
-    fmpz_clear(num);
-}
 
 /* lower_q_to_double is the nearest double, ties to even: |q - d| is at
  * most the distance to either neighbour, and on a tie d's last bit is 0 */
