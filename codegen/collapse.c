@@ -700,8 +700,10 @@ static int den_const(const CollapseOutput *o)
  * overflow + 4 per failed range test.  The range tests use == only (with
  * fabs): quiet comparisons, which gcc -O2 vectorises under the default
  * -ftrapping-math, where it does not vectorise t >= lo. */
-static void sample(FILE *out, const CollapseOutput *o, int pi, int dc,
-                   const char *ind, int line)
+/* x0 = tau, r2 = t - lo, r3 = hi - t and (dc 0) r0 = the denominator,
+ * r1 = 1/r0 of sample j */
+static void sample_values(FILE *out, const CollapseOutput *o, int pi, int dc,
+                          const char *ind, int line)
 {
     fprintf(out, "%sconst double x0 = (p%d[j] - ", ind, pi);
     emit_c_double(out, o->mid);
@@ -719,6 +721,12 @@ static void sample(FILE *out, const CollapseOutput *o, int pi, int dc,
         fprintf(out, "; /* line %d: denominator */\n", line);
         fprintf(out, "%sconst double r1 = 1.0 / r0;\n", ind);
     }
+}
+
+static void sample(FILE *out, const CollapseOutput *o, int pi, int dc,
+                   const char *ind, int line)
+{
+    sample_values(out, o, pi, dc, ind, line);
     fprintf(out,
             "%sfb[j] = %s4.0 * ((double)(r2 != fabs(r2)) + (double)(r3 != "
             "fabs(r3)));\n",
@@ -733,8 +741,7 @@ static void row(FILE *out, const CollapseOutput *o, int dim, int dc,
     fprintf(out, "%sdouble *o = out + (i0 + j) * %d;\n", ind, dim);
     for (int c = 0; c < dim; c++) {
         char head[16];
-        snprintf(head, sizeof head, "k%d_%d", c, 0);
-        head[strlen(head) - 1] = '\0'; // "k0_"
+        snprintf(head, sizeof head, "k%d_", c);
         fprintf(out, "%so[%d] = ", ind, c);
         if (!dc)
             fputc('(', out);
@@ -762,22 +769,7 @@ static void fast_loop(FILE *out, const CollapseOutput *o, int pi, int dc,
     fprintf(out, "            %sdouble *o = out + i0 * %d;\n", "    ", dim);
     fprintf(out, "                for (j = 0; j < %d; j++) {\n", BLOCK);
     ind = "                    ";
-    fprintf(out, "%sconst double x0 = (p%d[j] - ", ind, pi);
-    emit_c_double(out, o->mid);
-    fputs(") * ", out);
-    emit_c_double(out, o->scale);
-    fputs(";\n", out);
-    fprintf(out, "%sconst double r2 = p%d[j] - ", ind, pi);
-    emit_c_double(out, o->lo);
-    fprintf(out, ", r3 = ");
-    emit_c_double(out, o->hi);
-    fprintf(out, " - p%d[j];\n", pi);
-    if (!dc) {
-        fprintf(out, "%sconst double r0 = ", ind);
-        horner(out, o, NULL);
-        fprintf(out, "; /* line %d: denominator */\n", line);
-        fprintf(out, "%sconst double r1 = 1.0 / r0;\n", ind);
-    }
+    sample_values(out, o, pi, dc, ind, line);
     for (int c = 0; c < dim; c++) {
         char head[16];
         snprintf(head, sizeof head, "k%d_", c);
