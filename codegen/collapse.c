@@ -579,48 +579,16 @@ void collapse_free(Collapse *c)
 /* ---- the C ---------------------------------------------------------------- */
 
 
-/* the definition's first line(s); restrict_param >= 0: that param's array
- * and out are restrict (compatible with the header's prototype, which has
- * no restrict: gcc honours restrict on parameters, not on local pointers) */
+/* the definition's first line(s); restr: the param arrays and out are
+ * restrict (compatible with the header's prototype, which has no
+ * restrict: gcc honours restrict on parameters, not on local pointers) */
 static void signature(FILE *out, const CollapseNames *N, const char *fn,
-                      int is_static, int restrict_param)
+                      int is_static, int restr)
 {
-    int col = fprintf(out, "%ssize_t %s(", is_static ? "static " : "", fn);
-    int indent = col;
-    int first = 1;
-    for (int i = 0; i < N->nin + N->npt + 4; i++) {
-        char *arg;
-        if (i == 0)
-            arg = pc_xasprintf("size_t n");
-        else if (i <= N->nin)
-            arg = pc_xasprintf("%s%s",
-                      i - 1 == restrict_param ? "const double *restrict "
-                      : i - 1 < N->nparams    ? "const double *"
-                                              : "double ",
-                      N->in[i - 1]);
-        else if (i <= N->nin + N->npt)
-            arg = pc_xasprintf("const double *%s", N->pt[i - 1 - N->nin]);
-        else if (i == N->nin + N->npt + 1)
-            arg = pc_xasprintf("int dim");
-        else if (i == N->nin + N->npt + 2)
-            arg = pc_xasprintf(restrict_param >= 0 ? "double *restrict out"
-                                          : "double *out");
-        else
-            arg = pc_xasprintf("unsigned char *status");
-        int last = i == N->nin + N->npt + 3;
-        int len = (int)strlen(arg) + (last ? 1 : 2);
-        if (!first && col + 1 + len > 79) {
-            fprintf(out, "\n%*s", indent, "");
-            col = indent;
-        } else if (!first) {
-            fputc(' ', out);
-            col++;
-        }
-        fprintf(out, "%s%s", arg, last ? ")" : ",");
-        col += len;
-        first = 0;
-        free(arg);
-    }
+    char *head = pc_xasprintf("%ssize_t %s(", is_static ? "static " : "", fn);
+    emit_c_params(out, head, N->in, N->nparams, N->nin, N->pt, N->npt, 1, 1,
+                  restr);
+    free(head);
 }
 
 /* is coefficient j of the numerators non-zero for some point? */
@@ -802,7 +770,7 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
             " * The bound is relative to max_k |P_k[c]| * sum_k |w_k|.  Other\n"
             " * values of %s (or NaN): the weights code, %s. */\n",
             N->fn, N->in[pi], o->lo, o->hi, o->why, N->in[pi], N->fallback);
-    signature(out, N, N->fn, N->is_static, pi);
+    signature(out, N, N->fn, N->is_static, 1);
     fputs("\n{\n", out);
     for (int i = 0; i < N->nparams; i++)
         if (i != pi)

@@ -384,6 +384,35 @@ static void line_arg(Line *L, const char *text, int last)
     L->col += len;
 }
 
+void emit_c_params(FILE *out, const char *head, char *const *in, int nparams,
+                   int nin, char *const *pt, int npt, int batch, int status,
+                   int restr)
+{
+    Line L;
+    line_start(&L, out, head);
+    if (batch)
+        line_arg(&L, "size_t n", 0);
+    for (int i = 0; i < nin; i++) {
+        char *arg = pc_xasprintf(
+            "%s%s",
+            batch && i < nparams
+                ? (restr ? "const double *restrict " : "const double *")
+                : "double ",
+            in[i]);
+        line_arg(&L, arg, 0);
+        free(arg);
+    }
+    for (int i = 0; i < npt; i++) {
+        char *arg = pc_xasprintf("const double *%s", pt[i]);
+        line_arg(&L, arg, 0);
+        free(arg);
+    }
+    line_arg(&L, "int dim", 0);
+    line_arg(&L, restr ? "double *restrict out" : "double *out", !status);
+    if (status)
+        line_arg(&L, "unsigned char *status", 1);
+}
+
 /* restr: the definition of the fast _batch, whose param arrays and out
  * are restrict (compatible with the prototype, which has no qualifier) */
 static void signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
@@ -392,33 +421,10 @@ static void signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
     static const char *const ret[] = {"void ", "int ", "void ", "size_t "};
     /* a _checked variant that only its plain one calls is private */
     char *head = pc_xasprintf("%s%s%s(", N->want & (1u << v) ? "" : "static ",
-                           ret[v], N->fn[NVARIANTS * oi + v]);
-    Line L;
-    line_start(&L, out, head);
+                              ret[v], N->fn[NVARIANTS * oi + v]);
+    emit_c_params(out, head, N->in, p->nparams, N->nin, N->pt, N->npt,
+                  v == BATCH || v == BATCH_CHECKED, v == BATCH_CHECKED, restr);
     free(head);
-    int batch = v == BATCH || v == BATCH_CHECKED;
-    if (batch)
-        line_arg(&L, "size_t n", 0);
-    for (int i = 0; i < N->nin; i++) {
-        char *arg = pc_xasprintf(
-            "%s%s",
-            batch && i < p->nparams
-                ? (restr ? "const double *restrict " : "const double *")
-                : "double ",
-            N->in[i]);
-        line_arg(&L, arg, 0);
-        free(arg);
-    }
-    for (int i = 0; i < N->npt; i++) {
-        char *arg = pc_xasprintf("const double *%s", N->pt[i]);
-        line_arg(&L, arg, 0);
-        free(arg);
-    }
-    line_arg(&L, "int dim", 0);
-    line_arg(&L, restr ? "double *restrict out" : "double *out",
-             v != BATCH_CHECKED);
-    if (v == BATCH_CHECKED)
-        line_arg(&L, "unsigned char *status", 1);
 }
 
 static void signature(FILE *out, const Plan *p, const Names *N, int oi,

@@ -69,6 +69,16 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
 int emit_c_check(const Plan *p, const Derived *d, const char *prefix,
                  FILE *err);
 
+/* The parameter list of a generated function, wrapped at 80 columns and
+ * aligned after its '(': "HEAD[size_t n, ]params, consts, points, int dim,
+ * double *out[, unsigned char *status])".  batch: params as arrays (and n
+ * first); status: the _batch_checked status argument; restr: the param
+ * arrays and out restrict (a definition; compatible with a prototype
+ * without). */
+void emit_c_params(FILE *out, const char *head, char *const *in, int nparams,
+                   int nin, char *const *pt, int npt, int batch, int status,
+                   int restr);
+
 /* a C double literal that reads back exactly (shortest of %.15g..%.17g,
  * locale-independent): 2.0, 0.5, (-3.0), 1e+20 */
 void emit_c_double(FILE *out, double v);
