@@ -1121,28 +1121,32 @@ void emit_c_chk_sum(FILE *out, const char *ind, const char *head)
             ind, head);
 }
 
-/* (void)NAME_M_batch_checked(N, param + OFF..., consts, points, dim, OUT,
- * NULL); */
+/* (void)NAME_M_batch_checked(N, param + OFF..., consts, points, dim, DST,
+ * NULL); or, N NULL, (void)NAME_M_checked(params, consts, points, dim,
+ * DST); */
 static void checked_call(const Ctx *C, const char *ind, const char *n,
                          const char *off, const char *dst)
 {
     Line L;
-    char *head = pc_xasprintf("%s(void)%s(", ind,
-                           C->N->fn[NVARIANTS * C->oi + BATCH_CHECKED]);
+    char *head = pc_xasprintf(
+        "%s(void)%s(", ind,
+        C->N->fn[NVARIANTS * C->oi + (n ? BATCH_CHECKED : ONE_CHECKED)]);
     line_start(&L, C->out, head);
     free(head);
-    line_arg(&L, n, 0);
+    if (n)
+        line_arg(&L, n, 0);
     for (int i = 0; i < C->N->nin; i++) {
         char *a = pc_xasprintf("%s%s", C->N->in[i],
-                            i < C->p->nparams ? off : "");
+                               i < C->p->nparams ? off : "");
         line_arg(&L, a, 0);
         free(a);
     }
     for (int i = 0; i < C->N->npt; i++)
         line_arg(&L, C->N->pt[i], 0);
     line_arg(&L, "dim", 0);
-    line_arg(&L, dst, 0);
-    line_arg(&L, "NULL", 1);
+    line_arg(&L, dst, !n);
+    if (n)
+        line_arg(&L, "NULL", 1);
     fputs(";\n", C->out);
 }
 
@@ -1301,27 +1305,10 @@ static int emit_batch_fast(Ctx *C)
  * (ONE or BATCH) being defined */
 static void emit_forward(const Ctx *C, Variant v)
 {
-    FILE *out = C->out;
-    int batch = v == BATCH;
-    signature(out, C->p, C->N, C->oi, v);
-    char *head = pc_xasprintf(
-        "    (void)%s(",
-        C->N->fn[NVARIANTS * C->oi + (batch ? BATCH_CHECKED : ONE_CHECKED)]);
-    fputs("\n{\n", out);
-    Line L;
-    line_start(&L, out, head);
-    free(head);
-    if (batch)
-        line_arg(&L, "n", 0);
-    for (int i = 0; i < C->N->nin; i++)
-        line_arg(&L, C->N->in[i], 0);
-    for (int i = 0; i < C->N->npt; i++)
-        line_arg(&L, C->N->pt[i], 0);
-    line_arg(&L, "dim", 0);
-    line_arg(&L, "out", !batch);
-    if (batch)
-        line_arg(&L, "NULL", 1);
-    fputs(";\n}\n\n", out);
+    signature(C->out, C->p, C->N, C->oi, v);
+    fputs("\n{\n", C->out);
+    checked_call(C, "    ", v == BATCH ? "n" : NULL, "", "out");
+    fputs("}\n\n", C->out);
 }
 
 static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
