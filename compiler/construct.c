@@ -139,7 +139,8 @@ static slong *support_union(slong *nrows, const PointEq *eqs, slong n)
 }
 
 /* rank of the directions as columns over the base points */
-static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
+static slong dirs_rank(const PointEq *dirs, slong n, LinNormal *nf,
+                       const Ring *r)
 {
     slong m, rank = 0;
     slong *rows = support_union(&m, dirs, n);
@@ -159,7 +160,7 @@ static slong dirs_rank(const PointEq *dirs, slong n, const Ring *r)
     }
     for (slong j = 0; j < n; j++)
         ratfun_init(x + j, r);
-    linsolve(x, &rank, a, b, m, n, r);
+    linsolve_nf(x, &rank, a, b, m, n, nf, r);
     for (slong j = 0; j < n; j++)
         ratfun_clear(x + j, r);
     for (slong i = 0; i < m; i++) {
@@ -925,6 +926,13 @@ MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
 MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
                                   const PointEq *b, slong nb, const Ring *r)
 {
+    return construct_meet_general_nf(res, a, na, b, nb, NULL, r);
+}
+
+MeetStatus construct_meet_general_nf(PointEq res, const PointEq *a, slong na,
+                                     const PointEq *b, slong nb,
+                                     LinNormal *nf, const Ring *r)
+{
     /* unknowns: lambda_1..lambda_{na-1}, mu_1..mu_{nb-1};
      * sum lambda_i d_i - sum mu_j e_j = ob - oa  over every base point */
     slong n = na - 1 + nb - 1, m = 0;
@@ -965,15 +973,17 @@ MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
         ratfun_init(X + j, r);
 
     slong rank = 0;
-    LinSolveResult ls = linsolve(X, &rank, A, B, m, n, r);
-    if (ls == LINSOLVE_UNIQUE) {
+    LinSolveResult ls = linsolve_nf(X, &rank, A, B, m, n, nf, r);
+    if (ls == LINSOLVE_FAILED) {
+        st = MEET_FAILED;
+    } else if (ls == LINSOLVE_UNIQUE) {
         /* M = oa + sum lambda_i d_i */
         for (slong j = 0; j < na - 1; j++)
             pteq_addmul(oa, oa, cols[j], X + j, r);
         pteq_swap(res, oa, r);
-    } else if (dirs_rank((const PointEq *)cols, na - 1, r) < na - 1) {
+    } else if (dirs_rank((const PointEq *)cols, na - 1, nf, r) < na - 1) {
         st = MEET_DEGENERATE_FIRST;
-    } else if (dirs_rank((const PointEq *)cols + (na - 1), nb - 1, r) <
+    } else if (dirs_rank((const PointEq *)cols + (na - 1), nb - 1, nf, r) <
                nb - 1) {
         st = MEET_DEGENERATE_SECOND;
     } else if (rank < n) {

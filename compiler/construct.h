@@ -7,6 +7,7 @@
 #ifndef PC_CONSTRUCT_H
 #define PC_CONSTRUCT_H
 
+#include "compiler/linsolve.h"
 #include "compiler/pteq.h"
 #include "compiler/ratfun.h"
 
@@ -19,6 +20,7 @@ typedef enum MeetStatus {
     MEET_SKEW,              // independent directions but not coplanar
     MEET_NO_POINT,          // a flat has no proper point (only vectors)
     MEET_TOO_BIG,           // an intermediate product could exceed 2^30
+    MEET_FAILED,            // the normal form failed (nf->err)
                             // bits (128 MB; ratfun.h's size estimates)
 } MeetStatus;
 
@@ -48,6 +50,15 @@ MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
  * comes here when that cannot decide; the tests compare the two. */
 MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
                                   const PointEq *b, slong nb, const Ring *r);
+/* the general path with every entry in the normal form nf (the kernels'
+ * identities, linsolve.h): for flats that are parallel, coincident or
+ * degenerate only by sin^2 + cos^2 = 1 and the like, which the
+ * fraction-free form, blind to the identities, solves with a denominator
+ * that the normal form then finds identically zero.  The result is not
+ * reduced. */
+MeetStatus construct_meet_general_nf(PointEq res, const PointEq *a, slong na,
+                                     const PointEq *b, slong nb,
+                                     LinNormal *nf, const Ring *r);
 /* For tests: the fraction-free form reduces a flat's points against each
  * other (column operations that eliminate a point they share) only where
  * the entries have at least n terms and a gcd holds most of them (default

@@ -281,27 +281,36 @@ static slong value_terms(const Value *v)
 }
 
 /* reports a failed kernel operation at n; returns -1 */
+static int kernel_error_at(Deriver *D, int rc, Span at, Span arg);
+
 static int kernel_error(Deriver *D, int rc, const Node *n, const Node *arg)
+{
+    return kernel_error_at(D, rc, n->span, (arg ? arg : n)->span);
+}
+
+/* the message of a failed kernel operation (rc: KERNEL_E*) at `at` (a
+ * domain error at `arg`); returns -1 */
+static int kernel_error_at(Deriver *D, int rc, Span at, Span arg)
 {
     switch (rc) {
     case KERNEL_EFULL:
-        diag_error(D->diag, n->span,
+        diag_error(D->diag, at,
                    "too many distinct functions in one scheme: at most %ld "
                    "different function values (kernels) fit; split the "
                    "scheme",
                    (long)D->K->cap);
         break;
     case KERNEL_EDOMAIN:
-        diag_error(D->diag, (arg ? arg : n)->span, "%s",
+        diag_error(D->diag, arg, "%s",
                    D->K->why ? D->K->why : "argument outside the domain");
         break;
     case KERNEL_ETIME:
-        if (!D->expired && !out_of_time_at(D, n->span))
-            diag_error(D->diag, n->span, "the time budget ran out while "
+        if (!D->expired && !out_of_time_at(D, at))
+            diag_error(D->diag, at, "the time budget ran out while "
                                          "deriving this");
         break;
     case KERNEL_EBIG:
-        diag_error(D->diag, n->span,
+        diag_error(D->diag, at,
                    "expression too large for the functions' identities: "
                    "a value of over %d terms, or an intermediate result of "
                    "over %d",
@@ -310,7 +319,7 @@ static int kernel_error(Deriver *D, int rc, const Node *n, const Node *arg)
     case RATFUN_EPOLE:
     case KERNEL_EZERO:
     default:
-        diag_error(D->diag, n->span,
+        diag_error(D->diag, at,
                    "vanishing denominator: a denominator of this expression "
                    "is identically zero by the identities of its functions "
                    "(sin^2 + cos^2 = 1, sqrt(x)^2 = x, ...)");
@@ -332,6 +341,24 @@ static int reduce_value(Deriver *D, Value *v, const Node *n)
     int rc = v->is_point ? kernel_reduce_pteq(D->K, v->p)
                          : kernel_reduce(D->K, v->s);
     return rc ? kernel_error(D, rc, n, NULL) : 0;
+}
+
+/* the kernels' normal form as solve's and linsolve's hook (LinNormal) */
+static int normal_form(void *ctx, RatFunStruct *x)
+{
+    return kernel_reduce((Kernels *)ctx, x);
+}
+
+/* the normal form for a system whose entries may hold kernels with
+ * identities, or NULL when none can occur */
+static LinNormal *solve_normal_form(Deriver *D, LinNormal *nf)
+{
+    if (!D->K || D->K->nrel == 0)
+        return NULL;
+    nf->reduce = normal_form;
+    nf->ctx = D->K;
+    nf->err = 0;
+    return nf;
 }
 
 /* the scalar functions are the builtins BI_SQRT .. BI_SIGN (sema.h) */
@@ -676,8 +703,19 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
         ratfun_clear(sum, r);
     }
     if (st == 0) {
+        /* with functions that obey identities, in their normal form:
+         * the fraction-free form is blind to them (flats parallel or
+         * coincident only by sin^2 + cos^2 = 1 would meet "generically") */
+        LinNormal nfs, *nf = solve_normal_form(D, &nfs);
+        int uses = 0;
+        for (int k = 0; nf && k < fa->nargs; k++)
+            uses |= kernel_uses_pteq(D->K, pa[k], 0);
+        for (int k = 0; nf && k < fb->nargs; k++)
+            uses |= kernel_uses_pteq(D->K, pb[k], 0);
         MeetStatus ms =
-            construct_meet(res->p, pa, fa->nargs, pb, fb->nargs, r);
+            uses ? construct_meet_general_nf(res->p, pa, fa->nargs, pb,
+                                             fb->nargs, nf, r)
+                 : construct_meet(res->p, pa, fa->nargs, pb, fb->nargs, r);
         int plane = fb->nargs == 3;
         st = -1;
         switch (ms) {
@@ -722,6 +760,9 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
                        "expression too large to compute exactly: an "
                        "intermediate product of meet() could need more than "
                        "128 MB of coefficients");
+            break;
+        case MEET_FAILED:
+            kernel_error(D, nf->err, n, NULL);
             break;
         case MEET_NO_POINT: /* checked above */
             diag_error(D->diag, n->span,
@@ -1268,15 +1309,24 @@ static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
                       r->names[var]);
             flint_free(txt);
             D->state[i] = -1;
+        } else if (reduce_value(D, d, D->info->defs[i]->def->expr) < 0) {
+            D->state[i] = -1;
         }
     }
     for (int k = 0; k < D->info->nunknowns; k++) {
         if (!D->usolved[k])
             continue;
+        int rc;
         if (D->info->unknowns[k]->is_point)
-            pteq_compose_var(D->usol[k], D->usol[k], var, v, r);
+            rc = pteq_compose_var(D->usol[k], D->usol[k], var, v, r);
         else
-            ratfun_compose_var(D->ssol + k, D->ssol + k, var, v, r);
+            rc = ratfun_compose_var(D->ssol + k, D->ssol + k, var, v, r);
+        /* (a failure leaves the solution as it is, valid but not in the
+         * normal form: what uses it is reduced and reports) */
+        if (rc == 0 && D->K && D->K->nrel)
+            (void)(D->info->unknowns[k]->is_point
+                       ? kernel_reduce_pteq(D->K, D->usol[k])
+                       : kernel_reduce(D->K, D->ssol + k));
     }
 }
 
@@ -1301,8 +1351,11 @@ static void substitute_solved(Deriver *D, const slong *cols, Sym *const *syms,
         sol[j][0] = D->usol[syms[j]->index][0]; /* borrowed, not modified */
     for (int i = 0; i < D->info->ndefs; i++) {
         Value *v = &D->defs[i];
-        if (D->state[i] == 1 && v->is_point && has_any(v->p, cols, n))
+        if (D->state[i] == 1 && v->is_point && has_any(v->p, cols, n)) {
             pteq_subst_points(v->p, v->p, cols, (const PointEq *)sol, n, r);
+            if (reduce_value(D, v, D->info->defs[i]->def->expr) < 0)
+                D->state[i] = -1;
+        }
     }
     for (int k = 0; k < D->info->nunknowns; k++)
         if (D->usolved[k] && D->info->unknowns[k]->is_point &&
@@ -1372,6 +1425,15 @@ static void linear_coeff(fmpz_mpoly_t c, const fmpz_mpoly_t p,
         ex[m] = 1;
     fmpz_mpoly_get_coeff_vars_ui(c, p, vars, ex, nv, r->ctx);
     free(ex);
+}
+
+/* the note on a system that is singular only by the functions' identities
+ * (over the polynomials, without them, it has one solution) */
+static void note_by_identity(Deriver *D, const Stmt *st)
+{
+    diag_note(D->diag, st->span,
+              "its determinant vanishes by the identities of its functions "
+              "(sin^2 + cos^2 = 1, sqrt(x)^2 = x, ...), not as a polynomial");
 }
 
 /* `solve` with unknown scalars among the unknowns: each point equation
@@ -1497,8 +1559,29 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
             }
         }
         slong rank = 0;
-        LinSolveResult lr = linsolve(x, &rank, A, b, nrow, ncol, r);
-        if (lr == LINSOLVE_INCONSISTENT) {
+        LinNormal nfs, *nf = solve_normal_form(D, &nfs);
+        LinSolveResult lr = linsolve_nf(x, &rank, A, b, nrow, ncol, nf, r);
+        for (slong m = 0; lr != LINSOLVE_FAILED && nf && m < ncol; m++)
+            if ((nf->err = kernel_reduce(D->K, x + m)))
+                lr = LINSOLVE_FAILED;
+        int by_identity = 0;
+        if (nf && (lr == LINSOLVE_INCONSISTENT ||
+                   lr == LINSOLVE_UNDERDETERMINED)) {
+            /* only by the identities? (the plain system solves) */
+            RatFunStruct *y = ratfun_vec_init(ncol, r);
+            by_identity = linsolve(y, NULL, A, b, nrow, ncol, r) ==
+                          LINSOLVE_UNIQUE;
+            ratfun_vec_clear(y, ncol, r);
+        }
+        if (lr == LINSOLVE_FAILED) {
+            kernel_error_at(D, nf->err, st->span, st->span);
+        } else if (lr == LINSOLVE_INCONSISTENT && rank < ncol) {
+            diag_error(D->diag, st->span,
+                       "singular system: the determinant of the unknowns' "
+                       "coefficients vanishes (rank %ld of %ld scalar "
+                       "unknowns), and the equations contradict each other",
+                       (long)rank, (long)ncol);
+        } else if (lr == LINSOLVE_INCONSISTENT) {
             diag_error(D->diag, st->span,
                        "inconsistent system: the equations contradict each "
                        "other");
@@ -1507,7 +1590,10 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
                        "singular system: the equations leave the unknowns "
                        "undetermined (rank %ld of %ld scalar unknowns)",
                        (long)rank, (long)ncol);
-        } else {
+        }
+        if (by_identity)
+            note_by_identity(D, st);
+        if (lr == LINSOLVE_UNIQUE) {
             /* the scalars first: the points' weights do not hold them */
             for (slong m = 0; m < nk; m++) {
                 Sym *u = syms[ksym[m]];
@@ -1653,11 +1739,38 @@ static void derive_solve(Deriver *D, Stmt *st)
         free(pq);
         free(pe);
     } else if (ok) {
+        /* with functions that obey identities, the system is solved in
+         * their normal form (pivots, rank, consistency modulo them) */
+        LinNormal nfs, *nf = solve_normal_form(D, &nfs);
+        int by_identity = 0;
+        for (e = 0; nf && e < neq; e++)
+            if (kernel_uses_pteq(D->K, eqs[e], 0))
+                break;
+        if (nf && e == neq)
+            nf = NULL;
         SolveStatus ss =
             nunk > SOLVE_MAX_UNKNOWNS
                 ? SOLVE_TOO_BIG
-                : solve_points_ex(x, (const PointEq *)eqs, neq, cols, nunk,
-                                  undetermined, dependent, D->deadline, r);
+                : solve_points_nf(x, (const PointEq *)eqs, neq, cols, nunk,
+                                  undetermined, dependent, D->deadline, nf, r);
+        for (j = 0; ss == SOLVE_OK && nf && j < nunk; j++)
+            if ((nf->err = kernel_reduce_pteq(D->K, x[j])))
+                ss = SOLVE_FAILED;
+        if (nf && (ss == SOLVE_SINGULAR || ss == SOLVE_INCONSISTENT)) {
+            /* singular or inconsistent only by the identities? (the
+             * system over the polynomials, the identities unknown to it) */
+            PointEq *y = pc_xmalloc(sizeof(PointEq) * (size_t)nunk);
+            for (j = 0; j < nunk; j++)
+                pteq_init(y[j], r);
+            by_identity = solve_points_ex(y, (const PointEq *)eqs, neq, cols,
+                                          nunk, NULL, NULL, D->deadline,
+                                          r) == SOLVE_OK;
+            for (j = 0; j < nunk; j++)
+                pteq_clear(y[j], r);
+            free(y);
+        }
+        if (ss == SOLVE_FAILED)
+            kernel_error_at(D, nf->err, st->span, st->span);
         if (ss == SOLVE_TIME)
             out_of_time_at(D, st->span);
         if (ss == SOLVE_OK) {
@@ -1673,6 +1786,8 @@ static void derive_solve(Deriver *D, Stmt *st)
             diag_error(D->diag, names[j < nunk ? j : 0]->span,
                        "singular system: the equations leave %s undetermined",
                        list);
+            if (by_identity)
+                note_by_identity(D, st);
             for (e = 0; e < neq; e++)
                 if (dependent[e])
                     diag_note(D->diag, eqn[e]->span,
@@ -1681,9 +1796,19 @@ static void derive_solve(Deriver *D, Stmt *st)
         } else if (ss == SOLVE_INCONSISTENT) {
             for (e = 0; e < neq && !dependent[e]; e++)
                 ;
-            diag_error(D->diag, eqn[e < neq ? e : 0]->span,
-                       "inconsistent system: this equation contradicts the "
-                       "others");
+            for (j = 0; j < nunk && !undetermined[j]; j++)
+                ;
+            if (j < nunk) /* the coefficients' determinant vanishes */
+                diag_error(D->diag, eqn[e < neq ? e : 0]->span,
+                           "singular system: the determinant of the unknowns' "
+                           "coefficients vanishes, and this equation "
+                           "contradicts the others");
+            else
+                diag_error(D->diag, eqn[e < neq ? e : 0]->span,
+                           "inconsistent system: this equation contradicts "
+                           "the others");
+            if (by_identity)
+                note_by_identity(D, st);
         } else if (ss == SOLVE_TOO_BIG && nunk > SOLVE_MAX_UNKNOWNS) {
             diag_error(D->diag, st->span,
                        "system too large to solve: %ld unknowns (at most %d)",

@@ -14,8 +14,24 @@
  */
 #include "compiler/linsolve.h"
 
+/* x in the normal form; 0, or -1 with nf->err set */
+static int normal(LinNormal *nf, RatFunStruct *x)
+{
+    if (!nf || nf->err)
+        return nf ? -1 : 0;
+    nf->err = nf->reduce(nf->ctx, x);
+    return nf->err ? -1 : 0;
+}
+
 LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
                         const RatFunStruct *b, slong m, slong n, const Ring *r)
+{
+    return linsolve_nf(x, rank, a, b, m, n, NULL, r);
+}
+
+LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank,
+                           const RatFunStruct *a, const RatFunStruct *b,
+                           slong m, slong n, LinNormal *nf, const Ring *r)
 {
     LinSolveResult res = LINSOLVE_UNIQUE;
     slong w = n + 1; /* row width: n coefficients and the right-hand side */
@@ -35,6 +51,9 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
         for (slong j = 0; j < n; j++)
             ratfun_set(row[i] + j, a + i * n + j, r);
         ratfun_set(row[i] + n, b + i, r);
+        for (slong c = 0; c < w; c++)
+            if (normal(nf, row[i] + c) < 0)
+                goto failed;
     }
 
     while (rk < m) {
@@ -67,8 +86,11 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
         ratfun_set(piv, row[rk] + bj, r);
         if (!ratfun_is_one(piv, r)) {
             for (slong c = 0; c < w; c++)
-                if (c != bj && !ratfun_is_zero(row[rk] + c, r))
+                if (c != bj && !ratfun_is_zero(row[rk] + c, r)) {
                     ratfun_div(row[rk] + c, row[rk] + c, piv, r); /* piv != 0 */
+                    if (normal(nf, row[rk] + c) < 0)
+                        goto failed;
+                }
             ratfun_one(row[rk] + bj, r);
         }
 
@@ -82,6 +104,8 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
                     continue;
                 ratfun_mul(t, f, row[rk] + c, r);
                 ratfun_sub(row[i] + c, row[i] + c, t, r);
+                if (normal(nf, row[i] + c) < 0)
+                    goto failed;
             }
             ratfun_zero(f, r);
         }
@@ -105,12 +129,17 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
                 continue;
             ratfun_mul(t, row[k] + qc, sol + qc, r);
             ratfun_sub(sol + pc, sol + pc, t, r);
+            if (normal(nf, sol + pc) < 0)
+                goto failed;
         }
     }
     for (slong j = 0; j < n; j++)
         ratfun_swap(x + j, sol + j, r);
     res = rk == n ? LINSOLVE_UNIQUE : LINSOLVE_UNDERDETERMINED;
+    goto cleanup;
 
+failed:
+    res = LINSOLVE_FAILED;
 cleanup:
     if (rank != NULL)
         *rank = rk;

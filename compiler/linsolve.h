@@ -19,12 +19,30 @@ typedef enum LinSolveResult {
     LINSOLVE_UNDERDETERMINED, // rank < n and consistent: x holds one solution
                               // (free unknowns set to 0)
     LINSOLVE_INCONSISTENT,    // no solution (x untouched)
+    LINSOLVE_FAILED,          // the normal form failed (LinNormal.err; x
+                              // untouched)
 } LinSolveResult;
+
+/* A normal form applied to every entry the elimination forms (the kernels'
+ * identities, kernel_reduce): pivots, rank and consistency are then decided
+ * on normal forms, in which a numerator is zero exactly when the value is.
+ * reduce returns 0, or an error code that stops the elimination (kept in
+ * err: LINSOLVE_FAILED). */
+typedef struct LinNormal {
+    int (*reduce)(void *ctx, RatFunStruct *x);
+    void *ctx;
+    int err;
+} LinNormal;
 
 /* x must have n initialised entries; a and b are not modified.  *rank (if
  * rank != NULL) receives the rank of the coefficient matrix a. */
 LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
                         const RatFunStruct *b, slong m, slong n,
                         const Ring *r);
+/* the same with every entry, those of a and b first, in the normal form
+ * nf (NULL: none) */
+LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank,
+                           const RatFunStruct *a, const RatFunStruct *b,
+                           slong m, slong n, LinNormal *nf, const Ring *r);
 
 #endif

@@ -291,6 +291,133 @@ done:
     return st;
 }
 
+/* Gauss-Jordan over the rational functions with every entry in the normal
+ * form nf (the kernels' identities): a pivot is non-zero, a row is
+ * consistent and an unknown is determined exactly when the identities say
+ * so, which the fraction-free path over the polynomial ring cannot see
+ * (1 - cos(t)^2 - sin(t)^2 is a non-zero polynomial).  Each pivot row is
+ * normalised to 1, so row i ends as X_pivcol[i] + sum_k R[i][k] K_k = 0. */
+static SolveStatus solve_normal(PointEq *x, System *S, char *undetermined,
+                                char *dependent, double deadline,
+                                LinNormal *nf, const Ring *r)
+{
+    slong n = S->nunk, w = S->width, rank = 0, m = S->neq;
+    slong *pivcol = pc_xmalloc(sizeof(slong) * (size_t)FLINT_MAX(m, 1));
+    char *used = pc_xcalloc((size_t)FLINT_MAX(n, 1), 1);
+    RatFunStruct *a = ratfun_vec_init(FLINT_MAX(m * w, 1), r);
+    RatFunStruct **row = pc_xmalloc(sizeof(RatFunStruct *) *
+                                    (size_t)FLINT_MAX(m, 1));
+    SolveStatus st = SOLVE_OK;
+    RatFun piv, t;
+
+    ratfun_init(piv, r);
+    ratfun_init(t, r);
+    for (slong i = 0; i < m; i++) {
+        row[i] = a + i * w;
+        for (slong c = 0; c < w && st == SOLVE_OK; c++) {
+            fmpz_mpoly_set(row[i][c].num, S->row[i] + c, r->ctx);
+            if ((nf->err = nf->reduce(nf->ctx, row[i] + c)))
+                st = SOLVE_FAILED;
+        }
+    }
+    while (st == SOLVE_OK && rank < m) {
+        slong bi = -1, bj = -1, blen = 0;
+        for (slong i = rank; i < m; i++)
+            for (slong j = 0; j < n; j++) {
+                slong len;
+                if (used[j] || ratfun_is_zero(row[i] + j, r))
+                    continue;
+                len = ratfun_length(row[i] + j, r);
+                if (bi < 0 || len < blen) {
+                    bi = i;
+                    bj = j;
+                    blen = len;
+                }
+            }
+        if (bi < 0)
+            break;
+        if (bi != rank) {
+            RatFunStruct *tr = row[bi];
+            slong to = S->orig[bi];
+            row[bi] = row[rank];
+            S->orig[bi] = S->orig[rank];
+            row[rank] = tr;
+            S->orig[rank] = to;
+        }
+        used[bj] = 1;
+        pivcol[rank] = bj;
+        ratfun_swap(piv, row[rank] + bj, r);
+        ratfun_one(row[rank] + bj, r);
+        for (slong c = 0; c < w && st == SOLVE_OK; c++)
+            if (c != bj && !ratfun_is_zero(row[rank] + c, r)) {
+                ratfun_div(row[rank] + c, row[rank] + c, piv, r);
+                if ((nf->err = nf->reduce(nf->ctx, row[rank] + c)))
+                    st = SOLVE_FAILED;
+            }
+        for (slong i = 0; i < m && st == SOLVE_OK; i++) {
+            RatFunStruct *f = row[i] + bj;
+            if (i == rank || ratfun_is_zero(f, r))
+                continue;
+            if (past(deadline)) {
+                st = SOLVE_TIME;
+                break;
+            }
+            for (slong c = 0; c < w && st == SOLVE_OK; c++) {
+                if (c == bj || ratfun_is_zero(row[rank] + c, r))
+                    continue;
+                ratfun_mul(t, f, row[rank] + c, r);
+                ratfun_sub(row[i] + c, row[i] + c, t, r);
+                if ((nf->err = nf->reduce(nf->ctx, row[i] + c)))
+                    st = SOLVE_FAILED;
+            }
+            ratfun_zero(f, r);
+        }
+        rank++;
+    }
+    if (st != SOLVE_OK)
+        goto done;
+    if (undetermined)
+        memset(undetermined, 0, (size_t)n);
+    if (dependent)
+        memset(dependent, 0, (size_t)m);
+    if (rank < m || rank < n) {
+        /* rows rank.. have no unknown left: each is 0 = its known part */
+        st = rank < n ? SOLVE_SINGULAR : SOLVE_OK;
+        for (slong i = rank; i < m; i++) {
+            int nonzero = 0;
+            for (slong c = n; c < w; c++)
+                if (!ratfun_is_zero(row[i] + c, r))
+                    nonzero = 1;
+            if (nonzero && st != SOLVE_INCONSISTENT) {
+                st = SOLVE_INCONSISTENT;
+                if (dependent)
+                    memset(dependent, 0, (size_t)m);
+            }
+            if (dependent && (nonzero || st != SOLVE_INCONSISTENT))
+                dependent[S->orig[i]] = 1;
+        }
+        if (undetermined)
+            for (slong j = 0; j < n; j++)
+                undetermined[j] = !used[j];
+        if (st != SOLVE_OK)
+            goto done;
+    }
+    for (slong i = 0; i < rank; i++) {
+        RatFunStruct *wts = row[i] + n;
+        for (slong k = 0; k < S->nknown; k++)
+            ratfun_neg(wts + k, wts + k, r);
+        pteq_set_weights(x[pivcol[i]], S->known, wts, S->nknown, r);
+    }
+done:
+    ratfun_clear(t, r);
+    ratfun_clear(piv, r);
+    ratfun_vec_clear(a, FLINT_MAX(m * w, 1), r);
+    free(row);
+    free(used);
+    free(pivcol);
+    return st;
+}
+
 SolveStatus solve_points(PointEq *x, const PointEq *eqs, slong neq,
                          const slong *cols, slong nunk, char *undetermined,
                          char *dependent, const Ring *r)
@@ -303,6 +430,15 @@ SolveStatus solve_points_ex(PointEq *x, const PointEq *eqs, slong neq,
                             const slong *cols, slong nunk, char *undetermined,
                             char *dependent, double deadline, const Ring *r)
 {
+    return solve_points_nf(x, eqs, neq, cols, nunk, undetermined, dependent,
+                           deadline, NULL, r);
+}
+
+SolveStatus solve_points_nf(PointEq *x, const PointEq *eqs, slong neq,
+                            const slong *cols, slong nunk, char *undetermined,
+                            char *dependent, double deadline, LinNormal *nf,
+                            const Ring *r)
+{
     System S;
     SolveStatus st;
     int numeric = neq == nunk;
@@ -311,7 +447,9 @@ SolveStatus solve_points_ex(PointEq *x, const PointEq *eqs, slong neq,
     for (slong e = 0; e < neq && numeric; e++)
         for (slong j = 0; j < nunk && numeric; j++)
             numeric = fmpz_mpoly_is_fmpz(S.row[e] + j, r->ctx);
-    if (numeric && nunk > 0 && solve_numeric(x, &S, r) == 0) {
+    if (nf) {
+        st = solve_normal(x, &S, undetermined, dependent, deadline, nf, r);
+    } else if (numeric && nunk > 0 && solve_numeric(x, &S, r) == 0) {
         st = SOLVE_OK;
         if (undetermined)
             memset(undetermined, 0, (size_t)nunk);

@@ -30,6 +30,7 @@
 #ifndef PC_SOLVE_H
 #define PC_SOLVE_H
 
+#include "compiler/linsolve.h"
 #include "compiler/pteq.h"
 
 typedef enum SolveStatus {
@@ -38,6 +39,7 @@ typedef enum SolveStatus {
     SOLVE_INCONSISTENT, // some equation contradicts the others
     SOLVE_TOO_BIG,      // an intermediate product would pass the size limit
     SOLVE_TIME,         // the deadline passed (solve_points_ex)
+    SOLVE_FAILED,       // the normal form failed (solve_points_nf: nf->err)
 } SolveStatus;
 
 /* the most unknowns of one system (point unknowns, or scalar unknowns of
@@ -59,5 +61,13 @@ SolveStatus solve_points(PointEq *x, const PointEq *eqs, slong neq,
 SolveStatus solve_points_ex(PointEq *x, const PointEq *eqs, slong neq,
                             const slong *cols, slong nunk, char *undetermined,
                             char *dependent, double deadline, const Ring *r);
+/* the same over the rational functions with every entry in the normal form
+ * nf (the kernels' identities, kernel_reduce) when nf is not NULL: pivots,
+ * rank and consistency decided modulo the identities (SOLVE_FAILED when the
+ * normal form fails: nf->err).  The solutions are not reduced. */
+SolveStatus solve_points_nf(PointEq *x, const PointEq *eqs, slong neq,
+                            const slong *cols, slong nunk, char *undetermined,
+                            char *dependent, double deadline, LinNormal *nf,
+                            const Ring *r);
 
 #endif

@@ -541,5 +541,30 @@ for f in README.md docs/*.md; do
     done
 done
 
+# solve in the normal form of the identities (issue 18): the rotation's
+# determinant cos^2 + sin^2 is 1, so its solution has no denominator and
+# evaluates exactly; a system singular by sin^2 + cos^2 = 1 is an error,
+# never a huge number with exit 0
+printf 'point A, B, C\nparam t\nunknown X, Y\nsolve cos(t)*(X - A) + sin(t)*(Y - A) = B - A, -sin(t)*(X - A) + cos(t)*(Y - A) = C - A for X, Y\noutput X\n' >"$tmp/rot.pcs"
+"$PC" derive "$tmp/rot.pcs" --format json >"$tmp/rot.json"
+check "solve by identity: no denominator" python3 -c "
+import json
+t=json.load(open('$tmp/rot.json'))['outputs'][0]['terms']
+assert sorted(t)==['A','B','C'] and not any('/' in w for w in t.values()), t
+"
+"$PC" eval "$tmp/rot.pcs" --at A=0,0 --at B=1,0 --at C=0,1 --param t=0.3 >"$tmp/rot.csv"
+check "solve by identity: eval" python3 -c "
+import math
+r=open('$tmp/rot.csv').read().split()[1].split(',')
+assert abs(float(r[1])-math.cos(0.3))<1e-15 and abs(float(r[2])+math.sin(0.3))<1e-15, r
+"
+printf 'point A, B, C\nparam t\nunknown X, Y\nsolve (1 - cos(t))*(X - A) + sin(t)*(Y - A) = B - A, sin(t)*(X - A) + (1 + cos(t))*(Y - A) = C - A for X, Y\noutput X\n' >"$tmp/sing.pcs"
+"$PC" eval "$tmp/sing.pcs" --at A=0,0 --at B=1,0 --at C=0,1 --param t=0.3 >"$tmp/out" 2>"$tmp/err"
+check "singular by identity: eval exits 1" test $? -eq 1
+check "singular by identity: nothing on stdout" test ! -s "$tmp/out"
+check "singular by identity: located" grep -q "^$tmp/sing.pcs:4:54: error: singular system" "$tmp/err"
+"$PC" emit-c "$tmp/sing.pcs" -o "$tmp/sing.c" >/dev/null 2>&1
+check "singular by identity: emit-c exits 1" test $? -eq 1
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

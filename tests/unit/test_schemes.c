@@ -13,7 +13,8 @@
  * NAME must be an output of the scheme or any definition: the runner derives
  * a copy of the scheme with `output NAME` appended.  Every .pcs under
  * tests/errors/ must fail, and its `# expect-error: LINE:COL: MESSAGE` lines
- * must match the diagnostics, in order, exactly.
+ * must match the diagnostics, in order, exactly; each `# expect-note:
+ * LINE:COL: MESSAGE` must be among the notes.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -339,6 +340,23 @@ static void check_errors(const char *path)
               want, out);
         if (hit)
             pos = hit + strlen(want);
+    }
+    /* expected notes "# expect-note: LINE:COL: MESSAGE", anywhere */
+    free(lines);
+    lines = strdup(text);
+    for (char *save = NULL, *ln = strtok_r(lines, "\n", &save); ln;
+         ln = strtok_r(NULL, "\n", &save)) {
+        char *c = strstr(ln, "# expect-note:");
+        if (!c)
+            continue;
+        char want[1024], *msg = trim(c + 14), *p = strchr(msg, ':');
+        p = p ? strchr(p + 1, ':') : NULL;
+        if (!p)
+            continue;
+        snprintf(want, sizeof want, "%s:%.*s: note:%s", path,
+                 (int)(p - msg), msg, p + 1);
+        CHECK(out && strstr(out, want), "%s: expected note\n  %s\ngot\n%s",
+              path, want, out);
     }
     int reported = 0;
     for (char *q = out; q && (q = strstr(q, ": error: ")); q++)
