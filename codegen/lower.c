@@ -507,6 +507,92 @@ static int kernel_reg(Lower *L, slong var)
     return reg;
 }
 
+/* a bound's value as a double (a constant: 2*pi by its enclosure) */
+static double bound_value(const Lower *L, const RatFunStruct *b)
+{
+    fmpq_t q, lo, hi;
+    int lo_open, hi_open;
+    double v = 0;
+    fmpq_init(q);
+    fmpq_init(lo);
+    fmpq_init(hi);
+    if (ratfun_get_fmpq(q, b, L->r))
+        v = fmpq_get_d(q);
+    else if (L->K && kernel_bounds(L->K, b, lo, &lo_open, hi, &hi_open) == 3)
+        v = 0.5 * (fmpq_get_d(lo) + fmpq_get_d(hi));
+    fmpq_clear(hi);
+    fmpq_clear(lo);
+    fmpq_clear(q);
+    return v;
+}
+
+/* what the Plan says of input v's assumed bounds (PlanBound): the ends
+ * a (1 lower, 2 upper) that an output assumed, with the others' */
+static void plan_bound(Lower *L, const Derived *d, slong v, unsigned char a)
+{
+    Plan *p = L->p;
+    unsigned char f = d->bound_flags[v];
+    if (!p->bound)
+        p->bound = pc_xcalloc((size_t)(p->nparams + p->nconsts),
+                              sizeof(PlanBound));
+    PlanBound *b = &p->bound[v];
+    b->flags |= (unsigned char)((a & 1 ? PLAN_BOUND_LO : 0) |
+                                (a & 2 ? PLAN_BOUND_HI : 0) |
+                                (f & DERIVED_BOUND_LO_OPEN ? PLAN_BOUND_LO_OPEN
+                                                           : 0) |
+                                (f & DERIVED_BOUND_HI_OPEN ? PLAN_BOUND_HI_OPEN
+                                                           : 0));
+    if (b->text)
+        return;
+    int has_lo = f & DERIVED_BOUND_LO, has_hi = f & DERIVED_BOUND_HI;
+    b->lo = has_lo ? bound_value(L, d->bound + 2 * v) : -INFINITY;
+    b->hi = has_hi ? bound_value(L, d->bound + 2 * v + 1) : INFINITY;
+    char *lo = has_lo ? ratfun_get_str(d->bound + 2 * v, L->r) : NULL;
+    char *hi = has_hi ? ratfun_get_str(d->bound + 2 * v + 1, L->r) : NULL;
+    b->text = pc_xasprintf("%c%s, %s%c",
+                           (f & DERIVED_BOUND_LO_OPEN) || !lo ? '(' : '[',
+                           lo ? lo : "-inf", hi ? hi : "inf",
+                           (f & DERIVED_BOUND_HI_OPEN) || !hi ? ')' : ']');
+    flint_free(lo);
+    flint_free(hi);
+}
+
+/* The flags of the declared bounds an output's value rests on (Derived
+ * bound_flags: DERIVED_BOUND_ASSUMED): for each such param or const that
+ * the weights depend on, x - lo < 0 (<= 0 for an open end) and hi - x < 0
+ * (<= 0) are domain flags, so a value outside the declared interval is
+ * status 4, never a value the derivation did not promise (abs(t) = t on
+ * [0, 1] is wrong at t = -1/2).  The comparisons are the Plan's DOMAIN
+ * tests of sqrt (x < 0) and ln (x <= 0). */
+static int bound_flags(Lower *L, const Derived *d, const DerivedOutput *o,
+                       int bad)
+{
+    for (slong v = 0; o->assumed && v < d->nparams + d->nconsts; v++) {
+        unsigned char a = o->assumed[v];
+        if (!a)
+            continue;
+        int x = plan_input(L->p, (int)v);
+        plan_bound(L, d, v, a);
+        for (int upper = 0; upper < 2; upper++) {
+            if (!(a & (upper ? 2 : 1)))
+                continue;
+            const RatFunStruct *w[1] = {d->bound + 2 * v + upper};
+            int e, ebad = -1;
+            lower_weights(L, w, 1, &e, &ebad);
+            int diff = upper ? plan_sub(L->p, e, x) : plan_sub(L->p, x, e);
+            int open = d->bound_flags[v] &
+                       (upper ? DERIVED_BOUND_HI_OPEN : DERIVED_BOUND_LO_OPEN);
+            int dom = plan_mul(L->p,
+                               plan_domain(L->p,
+                                           open ? PLAN_FN_LOG : PLAN_FN_SQRT,
+                                           diff),
+                               plan_const(L->p, PLAN_DOMAIN_FLAG));
+            bad = bad < 0 ? dom : plan_add(L->p, bad, dom);
+        }
+    }
+    return bad;
+}
+
 /* the highest degree of x's numerator or denominator in any variable, or
  * -1 when it does not even fit a slong */
 static slong max_degree(const Lower *L, const RatFunStruct *x)
@@ -626,6 +712,7 @@ Plan *lower_derived(const Derived *d, FILE *err)
                     }
             }
             free(added);
+            bad = bound_flags(&L, d, out, bad);
             if (L.error != LOWER_OK)
                 derived_error(
                     d, err, out->span,

@@ -54,6 +54,10 @@ typedef struct Deriver {
     slong *uvar;       // per unknown scalar: its ring variable (else -1)
     int *usolved;      // per unknown: 1 once its solve succeeded
     Kernels *K;        // functions and pi (kernel.h), or NULL: none used
+    unsigned char **dassume; // per definition and per unknown: the ends of
+    unsigned char **uassume; // declared bounds its value rests on (K->cur
+                             // while it was derived, and its names'), or
+                             // NULL: none
 } Deriver;
 
 /* the ring variable of a param, a const or an unknown scalar */
@@ -255,6 +259,53 @@ static const Node *nth(const Node *call, int i)
     while (a && i-- > 0)
         a = a->next;
     return a;
+}
+
+/* ---- assumptions: the declared bounds a value rests on ---------------- */
+
+/* the bounds a value read here rests on are those of what reads it */
+static void assume_from(Deriver *D, const unsigned char *a)
+{
+    slong nv = D->info->nparams + D->info->nconsts;
+    for (slong v = 0; a && D->K && v < nv; v++)
+        D->K->cur[v] |= a[v];
+}
+
+/* *dst |= what the kernels' sign proofs assumed since K->cur was cleared */
+static void assume_into(Deriver *D, unsigned char **dst)
+{
+    slong nv = D->info->nparams + D->info->nconsts;
+    slong v;
+    if (!D->K)
+        return;
+    for (v = 0; v < nv && !D->K->cur[v]; v++)
+        ;
+    if (v == nv)
+        return;
+    if (!*dst)
+        *dst = pc_xcalloc((size_t)nv, 1);
+    for (v = 0; v < nv; v++)
+        (*dst)[v] |= D->K->cur[v];
+}
+
+static void assume_clear(Deriver *D)
+{
+    if (D->K)
+        memset(D->K->cur, 0, (size_t)D->K->first);
+}
+
+/* 1 when value v uses ring variable var (directly) */
+static int value_has_var(const Value *v, slong var, const Ring *r)
+{
+    if (!v->is_point)
+        return fmpz_mpoly_degree_si(v->s->num, var, r->ctx) > 0 ||
+               fmpz_mpoly_degree_si(v->s->den, var, r->ctx) > 0;
+    if (fmpz_mpoly_degree_si(v->p->den, var, r->ctx) > 0)
+        return 1;
+    for (slong i = 0; i < v->p->len; i++)
+        if (fmpz_mpoly_degree_si(v->p->terms[i].num, var, r->ctx) > 0)
+            return 1;
+    return 0;
 }
 
 /* prints a RatFun into a diagnostic-sized string (caller frees) */
@@ -1115,8 +1166,11 @@ static int eval_node(Deriver *D, Value *res, const Node *n)
             if (D->state[s->index] != 1)
                 return -1; /* its own error was reported */
             value_set(res, &D->defs[s->index], r);
+            assume_from(D, D->dassume[s->index]);
             return 0;
         case SYM_UNKNOWN:
+            if (D->usolved[s->index])
+                assume_from(D, D->uassume[s->index]);
             res->is_point = s->is_point;
             if (!s->is_point && D->usolved[s->index])
                 ratfun_set(res->s, D->ssol + s->index, r);
@@ -1235,11 +1289,13 @@ static void derive_def(Deriver *D, Sym *s)
     Value *v = &D->defs[s->index];
     double t0 = D->verbose ? now_seconds() : 0;
     budget_statement(D->src, s->def->expr->span);
+    assume_clear(D);
     if (s->bad || D->expired || eval(D, v, s->def->expr) < 0) {
         D->state[s->index] = -1;
         return;
     }
     D->state[s->index] = 1;
+    assume_into(D, &D->dassume[s->index]);
     if (D->verbose) {
         slong terms, deg, bits;
         int line, col;
@@ -1294,6 +1350,8 @@ static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
         int rc;
         if (D->state[i] != 1)
             continue;
+        if (value_has_var(d, var, r)) /* the solve's assumptions too */
+            assume_into(D, &D->dassume[i]);
         if (d->is_point)
             rc = pteq_compose_var(d->p, d->p, var, v, r);
         else
@@ -1352,6 +1410,7 @@ static void substitute_solved(Deriver *D, const slong *cols, Sym *const *syms,
     for (int i = 0; i < D->info->ndefs; i++) {
         Value *v = &D->defs[i];
         if (D->state[i] == 1 && v->is_point && has_any(v->p, cols, n)) {
+            assume_into(D, &D->dassume[i]); /* the solve's assumptions */
             pteq_subst_points(v->p, v->p, cols, (const PointEq *)sol, n, r);
             if (reduce_value(D, v, D->info->defs[i]->def->expr) < 0)
                 D->state[i] = -1;
@@ -1604,6 +1663,8 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
                 pteq_set_weights(D->usol[u->index], known,
                                  x + xi * nknown, nknown, r);
             }
+            for (slong j = 0; j < nunk; j++)
+                assume_into(D, &D->uassume[syms[j]->index]);
             for (slong m = 0; m < nk; m++) {
                 Sym *u = syms[ksym[m]];
                 D->usolved[u->index] = 1;
@@ -1629,6 +1690,113 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
     free(xcol);
 }
 
+/* one end of a declared bound of ring variable var (a param or a const):
+ * the exact value into d->bound, its flags, and what it tells the kernels'
+ * sign proofs (kernels_set_range: an exact number, or rational bounds of
+ * a constant expression; for a param's end in terms of consts, only its
+ * sign).  upper: the upper end.  Returns -1 on an error (reported). */
+static int declare_end(Deriver *D, Derived *d, slong var, const Node *end,
+                       int open, int upper, int is_const)
+{
+    const Ring *r = D->r;
+    RatFun *vb = (RatFun *)(d->bound + 2 * var + upper);
+    if (eval_scalar(D, *vb, end) < 0)
+        return -1;
+    fmpq_t q, lo, hi;
+    fmpq_init(q);
+    fmpq_init(lo);
+    fmpq_init(hi);
+    int lo_open = 0, hi_open = 0, found = 0, rc = 0;
+    if (ratfun_get_fmpq(q, *vb, r)) {
+        fmpq_set(lo, q);
+        fmpq_set(hi, q);
+        found = 3;
+    } else if (D->K) {
+        found = kernel_bounds(D->K, *vb, lo, &lo_open, hi, &hi_open);
+    }
+    int constant = found || ratfun_get_fmpq(q, *vb, r);
+    if (!constant && is_const) {
+        diag_error(D->diag, end->span,
+                   "expected a number as the bound of a const (like 0, 1/2 "
+                   "or pi): a bound cannot depend on a param or a const");
+        rc = -1;
+    } else if (D->K && found) {
+        /* var >= value >= lo (strict when either is), or var <= value <=
+         * hi */
+        if (!upper && (found & 1))
+            kernels_set_range(D->K, var, lo, open || lo_open, NULL, 0);
+        if (upper && (found & 2))
+            kernels_set_range(D->K, var, NULL, 0, hi, open || hi_open);
+    } else if (D->K && !constant) {
+        /* a param's end in terms of consts: its sign, where it is known */
+        int sg = kernel_sign(D->K, *vb);
+        if (!upper && sg > 0)
+            kernels_set_sign(D->K, var,
+                             sg == 2 || open ? KSIGN_POS : KSIGN_NONNEG);
+        if (upper && sg < 0) {
+            fmpq_zero(q);
+            kernels_set_range(D->K, var, NULL, 0, q, sg == -2 || open);
+        }
+    }
+    if (rc == 0)
+        d->bound_flags[var] |=
+            (unsigned char)(upper ? DERIVED_BOUND_HI |
+                                        (open ? DERIVED_BOUND_HI_OPEN : 0)
+                                  : DERIVED_BOUND_LO |
+                                        (open ? DERIVED_BOUND_LO_OPEN : 0));
+    fmpq_clear(hi);
+    fmpq_clear(lo);
+    fmpq_clear(q);
+    return rc;
+}
+
+/* The declared bounds of the params (`param t in [0, 1]`) and consts
+ * (`const e in (0, 1)`, `const a > 0`, `const k <= 1`): into d->bound and
+ * the kernels' sign proofs, which may then simplify abs(t), sqrt(a^2),
+ * sign(e^2 - 1) on them; a result that rests on them holds only there,
+ * and the numeric side checks it (DERIVED_BOUND_ASSUMED).  An empty
+ * interval is an error. */
+static void declare_bounds(Deriver *D, Derived *d)
+{
+    const SemaInfo *info = D->info;
+    slong nv = d->nparams + d->nconsts;
+    d->bound = ratfun_vec_init(2 * nv, D->r);
+    d->bound_flags = pc_xcalloc((size_t)(nv ? nv : 1), 1);
+    /* the consts first: a param's range may be in terms of them */
+    for (slong i = 0; i < nv; i++) {
+        slong v = (i + d->nparams) % (nv ? nv : 1);
+        int is_const = v >= d->nparams;
+        const Sym *s = is_const ? info->consts[v - d->nparams] : info->params[v];
+        const Stmt *st = s->decl;
+        /* (a bound with an error of its own was reported by sema: its
+         * names may be unresolved) */
+        if (!st || st->bad)
+            continue;
+        int ok = 1;
+        if (st->lo)
+            ok &= declare_end(D, d, v, st->lo, st->lo_open, 0, is_const) == 0;
+        if (st->hi)
+            ok &= declare_end(D, d, v, st->hi, st->hi_open, 1, is_const) == 0;
+        fmpq_t a, b;
+        fmpq_init(a);
+        fmpq_init(b);
+        if (ok && st->lo && st->hi &&
+            ratfun_get_fmpq(a, d->bound + 2 * v, D->r) &&
+            ratfun_get_fmpq(b, d->bound + 2 * v + 1, D->r)) {
+            int c = fmpq_cmp(a, b);
+            if (c > 0 || (c == 0 && (st->lo_open || st->hi_open)))
+                diag_error(D->diag, st->hi->span,
+                           "empty interval for '%s': expected an upper end "
+                           "%s the lower one",
+                           s->name, st->lo_open || st->hi_open
+                                        ? "greater than"
+                                        : "at least");
+        }
+        fmpq_clear(b);
+        fmpq_clear(a);
+    }
+}
+
 /* `solve EQ, ... for X, ...`: the equations as combinations that vanish,
  * solved for the unknown columns (solve.c); the solutions replace the
  * unknowns in everything derived so far and in every later use */
@@ -1639,6 +1807,7 @@ static void derive_solve(Deriver *D, Stmt *st)
     if (st->bad || D->expired)
         return;
     budget_statement(D->src, st->span);
+    assume_clear(D);
     for (Equation *e = st->eqs; e; e = e->next)
         neq++;
     for (Name *nm = st->names; nm; nm = nm->next)
@@ -1777,6 +1946,7 @@ static void derive_solve(Deriver *D, Stmt *st)
             for (j = 0; j < nunk; j++) {
                 pteq_swap(D->usol[syms[j]->index], x[j], r);
                 D->usolved[syms[j]->index] = 1;
+                assume_into(D, &D->uassume[syms[j]->index]);
             }
             substitute_solved(D, cols, syms, nunk);
         } else if (ss == SOLVE_SINGULAR) {
@@ -1939,6 +2109,7 @@ static void output_clear(DerivedOutput *o, const Ring *r)
     pteq_clear(o->eq, r);
     ratfun_clear(o->scalar, r);
     free((char *)o->name);
+    free(o->assumed);
     free(o->diff_of);
     free(o->diff_var);
 }
@@ -2305,13 +2476,16 @@ retry:
                 count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
             }
         }
-        /* the params' ranges are derived too (Derived.range) */
-        for (int i = 0; i < info->nparams; i++) {
-            const Stmt *st = info->params[i]->decl;
-            if (st && st->lo && !st->bad) {
+        /* the params' ranges and the consts' bounds are derived too
+         * (Derived.range, Derived.bound) */
+        for (int i = 0; i < info->nparams + info->nconsts; i++) {
+            const Stmt *st = i < info->nparams
+                                 ? info->params[i]->decl
+                                 : info->consts[i - info->nparams]->decl;
+            if (st && st->lo && !st->bad)
                 count_kernel_uses(st->lo, &calls, &ops, &pis, &metric);
+            if (st && st->hi && !st->bad)
                 count_kernel_uses(st->hi, &calls, &ops, &pis, &metric);
-            }
         }
         slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
         if (metric)
@@ -2354,6 +2528,10 @@ retry:
     D.ucol0 = info->npoints;
     D.usol = pc_xmalloc(sizeof(PointEq) * (size_t)(info->nunknowns ? info->nunknowns : 1));
     D.usolved = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1), sizeof(int));
+    D.dassume = pc_xcalloc((size_t)(info->ndefs ? info->ndefs : 1),
+                           sizeof(unsigned char *));
+    D.uassume = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1),
+                           sizeof(unsigned char *));
     D.ssol = ratfun_vec_init(info->nunknowns, r);
     D.uvar = pc_xmalloc(sizeof(slong) * (size_t)(info->nunknowns ? info->nunknowns : 1));
     for (int k = 0, m = 0; k < info->nunknowns; k++) {
@@ -2362,28 +2540,7 @@ retry:
                         ? -1
                         : d->nparams + d->nconsts + m++;
     }
-    /* what is known of the signs: `const a > 0`, param ranges with a
-     * lower end >= 0 (abs() and sqrt() of squares use it, kernel.h) */
-    for (int i = 0; D.K && i < info->nconsts; i++)
-        if (info->consts[i]->decl && info->consts[i]->decl->lo)
-            kernels_set_sign(D.K, d->nparams + i, KSIGN_POS);
-    for (int i = 0; D.K && i < info->nparams; i++) {
-        const Stmt *st = info->params[i]->decl;
-        RatFun lo;
-        ratfun_init(lo, r);
-        /* (a range with an error of its own was reported by sema: its
-         * names may be unresolved) */
-        if (st && st->lo && !st->bad && eval_scalar(&D, lo, st->lo) == 0) {
-            fmpq_t q;
-            fmpq_init(q);
-            int sg = ratfun_get_fmpq(q, lo, r) ? 2 * fmpq_sgn(q) + !fmpq_sgn(q)
-                                               : kernel_sign(D.K, lo);
-            fmpq_clear(q);
-            if (sg > 0)
-                kernels_set_sign(D.K, i, sg == 2 ? KSIGN_POS : KSIGN_NONNEG);
-        }
-        ratfun_clear(lo, r);
-    }
+    declare_bounds(&D, d);
     for (int i = 0; i < info->nsteps; i++) {
         if (info->steps[i]->kind == ST_SOLVE)
             derive_solve(&D, info->steps[i]);
@@ -2403,6 +2560,15 @@ retry:
             check_no_unknown(&D, s, &uv);
         }
     }
+
+    for (slong v = 0; D.K && v < d->nparams + d->nconsts; v++)
+        d->bound_flags[v] |=
+            (unsigned char)((kernels_assumed(D.K, v) & 1
+                                 ? DERIVED_BOUND_LO_ASSUMED
+                                 : 0) |
+                            (kernels_assumed(D.K, v) & 2
+                                 ? DERIVED_BOUND_HI_ASSUMED
+                                 : 0));
 
     /* the declared ranges, exact (a range that does not reduce is left
      * out: sema has reported what is wrong with it) */
@@ -2431,6 +2597,14 @@ retry:
                 v = &uv;
             }
             output_fill(o, s->name, s->span, v, &src, r);
+            const unsigned char *as = s->kind == SYM_UNKNOWN
+                                          ? D.uassume[s->index]
+                                          : D.dassume[s->index];
+            if (as) {
+                size_t nv = (size_t)(d->nparams + d->nconsts);
+                o->assumed = pc_xmalloc(nv ? nv : 1);
+                memcpy(o->assumed, as, nv);
+            }
             output_diff_of(o, s);
         }
         if (opt->keep_steps)
@@ -2444,6 +2618,12 @@ retry:
     ratfun_vec_clear(D.ssol, info->nunknowns, r);
     free(D.uvar);
     free(D.usolved);
+    for (int i = 0; i < info->ndefs; i++)
+        free(D.dassume[i]);
+    for (int i = 0; i < info->nunknowns; i++)
+        free(D.uassume[i]);
+    free(D.dassume);
+    free(D.uassume);
     free(D.defs);
     free(D.state);
     if (diag.nerrors) {
@@ -2562,6 +2742,9 @@ void derived_free(Derived *d)
     if (d->range)
         ratfun_vec_clear(d->range, 2 * d->nparams, &d->ring);
     free(d->has_range);
+    if (d->bound)
+        ratfun_vec_clear(d->bound, 2 * (d->nparams + d->nconsts), &d->ring);
+    free(d->bound_flags);
     ring_clear(&d->ring);
     for (slong i = 0; i < d->npoints; i++)
         free(d->points[i]);

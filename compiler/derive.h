@@ -37,6 +37,10 @@ typedef struct DerivedOutput {
     char *diff_of;   // defined as diff(NAME, t[, n]) of a name: NAME (owned),
     char *diff_var;  // t (owned) and n; else both NULL and diff_order 0
     int diff_order;  // (the printers write dM/dt for it)
+    unsigned char *assumed; // per param and const (nparams + nconsts): the
+                            // ends of its declared bounds this value rests
+                            // on (1 lower, 2 upper: the derivation simplified
+                            // on them), or NULL: none
 } DerivedOutput;
 
 /* What produced a step's value (derive --steps, docs/language.md). */
@@ -106,6 +110,20 @@ typedef struct DerivedStep {
     RatFun det;             // a + b (has_sv), else 0
 } DerivedStep;
 
+/* Derived.bound_flags: which bounds a param or const has, which ends are
+ * open, and whether a result rests on them (a sign proved from them,
+ * kernel.h: abs(t) = t for t in [0, 1]): the numeric side then checks
+ * that a value lies within them (status 4, docs/eval.md). */
+enum {
+    DERIVED_BOUND_LO = 1,
+    DERIVED_BOUND_HI = 2,
+    DERIVED_BOUND_LO_OPEN = 4,
+    DERIVED_BOUND_HI_OPEN = 8,
+    DERIVED_BOUND_LO_ASSUMED = 16,
+    DERIVED_BOUND_HI_ASSUMED = 32,
+    DERIVED_BOUND_ASSUMED = 48,
+};
+
 typedef struct Derived {
     char *scheme;   // scheme name (`scheme NAME` or the file's base name)
     char *filename; // as given
@@ -124,6 +142,11 @@ typedef struct Derived {
                              // functions and pi (kernel.h), or NULL
     RatFunStruct *range;      // 2 * nparams: each param's declared range
     unsigned char *has_range; // (lo, hi), exact; has_range[i] = 0: none
+    /* the declared bounds of every param and const (ring variables 0 ..
+     * nparams + nconsts - 1): lower and upper, exact numbers or constant
+     * expressions (2*pi), and what the derivation assumed of them */
+    RatFunStruct *bound;        // 2 per variable: lower, upper
+    unsigned char *bound_flags; // per variable: DERIVED_BOUND_* bits
     slong noutputs; // `output` list (default: the last definition)
     DerivedOutput *outputs;
     slong nsteps;       // DeriveOptions.keep_steps: the steps in source

@@ -79,7 +79,13 @@ void kernels_init(Kernels *K, Ring *r, slong first, slong cap)
     K->full = 0;
     K->deadline = 0;
     K->why = NULL;
-    K->sign = pc_xcalloc((size_t)(first > 0 ? first : 1), 1);
+    K->range = pc_xcalloc((size_t)(first > 0 ? first : 1), sizeof(KRange));
+    for (slong v = 0; v < first; v++) {
+        fmpq_init(K->range[v].lo);
+        fmpq_init(K->range[v].hi);
+    }
+    K->used = pc_xcalloc((size_t)(first > 0 ? first : 1), 1);
+    K->cur = pc_xcalloc((size_t)(first > 0 ? first : 1), 1);
     K->points = NULL;
     K->npoints = 0;
     if (cap > 0 && !r->latex)
@@ -98,8 +104,16 @@ void kernels_clear(Kernels *K)
         free(k->latex);
     }
     free(K->k);
-    free(K->sign);
-    K->sign = NULL;
+    for (slong v = 0; K->range && v < K->first; v++) {
+        fmpq_clear(K->range[v].lo);
+        fmpq_clear(K->range[v].hi);
+    }
+    free(K->range);
+    free(K->used);
+    free(K->cur);
+    K->cur = NULL;
+    K->range = NULL;
+    K->used = NULL;
     K->k = NULL;
     K->n = K->cap = 0;
 }
@@ -166,90 +180,6 @@ static char *cat3(const char *a, const char *b, const char *c)
 }
 
 /* ---- signs --------------------------------------------------------------- */
-
-void kernels_set_sign(Kernels *K, slong var, int sign)
-{
-    if (var >= 0 && var < K->first)
-        K->sign[var] = (unsigned char)sign;
-}
-
-/* KSIGN_* of a variable */
-static int var_sign(const Kernels *K, slong v)
-{
-    if (v < K->first)
-        return K->sign[v];
-    const Kernel *k = kernels_of_var(K, v);
-    if (!k)
-        return KSIGN_UNKNOWN;
-    switch (k->fn) {
-    case KF_PI:
-    case KF_EXP:
-    case KF_COSH:
-    case KF_DIST:
-        return KSIGN_POS;
-    case KF_SQRT:
-    case KF_ACOS:
-        return KSIGN_NONNEG;
-    case KF_ROOT:
-        return k->q % 2 == 0 ? KSIGN_NONNEG : KSIGN_UNKNOWN;
-    default:
-        return KSIGN_UNKNOWN;
-    }
-}
-
-/* the sign of a polynomial as kernel_sign says it */
-static int poly_sign(const Kernels *K, const fmpz_mpoly_t P)
-{
-    const Ring *r = K->r;
-    slong nv = r->ctx->minfo->nvars;
-    if (P->length == 0)
-        return 0;
-    ulong *e = flint_malloc(sizeof(ulong) * (size_t)nv);
-    fmpz_t c;
-    fmpz_init(c);
-    int s = 0, strict = 0;
-    for (slong i = 0; i < P->length; i++) {
-        fmpz_mpoly_get_term_coeff_fmpz(c, P, i, r->ctx);
-        fmpz_mpoly_get_term_exp_ui(e, P, i, r->ctx);
-        int cs = fmpz_sgn(c);
-        if (s == 0)
-            s = cs;
-        if (cs != s) {
-            s = 0;
-            break;
-        }
-        int pos = 1, ok = 1;
-        for (slong v = 0; v < nv && ok; v++) {
-            if (!e[v])
-                continue;
-            int vs = var_sign(K, v);
-            if (vs != KSIGN_POS)
-                pos = 0;
-            if (e[v] % 2 && vs == KSIGN_UNKNOWN)
-                ok = 0;
-        }
-        if (!ok) {
-            s = 0;
-            break;
-        }
-        strict |= pos;
-    }
-    fmpz_clear(c);
-    flint_free(e);
-    return s * (strict ? 2 : 1);
-}
-
-int kernel_sign(const Kernels *K, const RatFun x)
-{
-    if (!K || ratfun_is_zero(x, K->r))
-        return 0;
-    int n = poly_sign(K, x->num), d = poly_sign(K, x->den);
-    if (n == 0 || d == 0)
-        return 0;
-    int s = (n > 0) == (d > 0) ? 1 : -1;
-    /* strict when both are: n/d > 0 needs n != 0; d is never 0 */
-    return s * (abs(n) == 2 ? 2 : 1);
-}
 
 /* ---- making kernels ----------------------------------------------------- */
 
@@ -693,7 +623,7 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
                 continue;
             /* |f|^h = f^h * sign(f)^h, sign(f) = +-1 where it is known */
             mul_poly_pow(acc, f->poly + i, part ? -h : h, r);
-            int fs = poly_sign(K, f->poly + i);
+            int fs = kernel_sign_poly(K, f->poly + i);
             if (h % 2 && fs < 0)
                 ratfun_neg(acc, acc, r);
             if (h % 2 && fs == 0) {

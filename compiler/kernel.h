@@ -78,6 +78,13 @@ typedef struct Kernel {
     char *latex; // LaTeX
 } Kernel;
 
+/* a declared interval of a param or const: [lo, hi], each end present or
+ * not, open or closed (kernels_set_range) */
+typedef struct KRange {
+    fmpq_t lo, hi;
+    unsigned char has_lo, has_hi, lo_open, hi_open;
+} KRange;
+
 typedef struct Kernels {
     Ring *r;
     slong first; // the first kernel variable
@@ -90,8 +97,12 @@ typedef struct Kernels {
                      // budget), 0: none; KERNEL_ETIME past it
     const char *const *points; // base point names (for dist names)
     slong npoints;
-    unsigned char *sign; // per ring variable before the kernels: what is
-                         // known of its sign, KSIGN_* (kernels_set_sign)
+    KRange *range;       // per ring variable before the kernels: the
+                         // declared interval (kernels_set_range)
+    unsigned char *used; // per such variable: the ends of its declared
+                         // interval a sign proof rested on (kernels_assumed)
+    unsigned char *cur;  // the same, since the caller last cleared it (the
+                         // assumptions of one definition: derive.c)
     /* an error message of the last failed call (static storage) */
     const char *why;
 } Kernels;
@@ -124,17 +135,36 @@ slong kernels_metric_slots(slong metric, slong npoints);
 void kernels_init(Kernels *K, Ring *r, slong first, slong cap);
 void kernels_clear(Kernels *K);
 
-/* What is known of a value's sign: declared (`const a > 0`, a param range
- * with lo >= 0) for variables, proved by kernel_sign for expressions. */
+/* What is known of a value's sign (kernel_sign.c): the declared intervals
+ * of params and consts (`param t in [0, 1]`, `const e in (0, 1)`, `const a
+ * > 0`) and the ranges of the kernels (sin in [-1, 1], exp > 0, ...). */
 enum { KSIGN_UNKNOWN = 0, KSIGN_NONNEG = 1, KSIGN_POS = 2 };
+/* var >= 0 (KSIGN_NONNEG) or > 0 (KSIGN_POS), intersected with what is
+ * declared already */
 void kernels_set_sign(Kernels *K, slong var, int sign);
+/* var in the interval lo..hi (an end NULL: unbounded; *_open: excluded),
+ * intersected with what is declared already */
+void kernels_set_range(Kernels *K, slong var, const fmpq_t lo, int lo_open,
+                       const fmpq_t hi, int hi_open);
+/* which ends of var's declared interval a sign that kernel_sign proved
+ * rested on (1: the lower, 2: the upper, 3: both): the derivation assumed
+ * them (the numeric side checks them) */
+int kernels_assumed(const Kernels *K, slong var);
 /* +1 when x >= 0 is proved (+2: x > 0), -1 / -2 for x <= 0 / x < 0, 0 when
- * unknown: every term of the numerator and of the denominator has the
- * same sign, each variable of odd degree in it being known >= 0
- * (declared, or a kernel that is: sqrt, exp, pi, cosh, acos, even roots).
- * abs() and the squares pulled out of sqrt() use it: sqrt(a^2) = a for
- * `const a > 0`, sign(a)*a otherwise. */
+ * unknown, by interval arithmetic over the declared and intrinsic
+ * intervals, and factor by factor where that fails.  abs(), sign() and
+ * the squares pulled out of sqrt() use it: sqrt(a^2) = a for `const a >
+ * 0`, sign(a)*a otherwise.  A proved sign records the declared intervals
+ * it used (kernels_assumed). */
 int kernel_sign(const Kernels *K, const RatFun x);
+/* the same for a polynomial */
+int kernel_sign_poly(const Kernels *K, const fmpz_mpoly_t p);
+/* Rational bounds lo <= x <= hi (strict where *_open) of a constant x:
+ * a value with no variable but kernels (2*pi, sqrt(2)/2), by the kernels'
+ * intervals.  Returns 1 | 2 for the bounds found (lo, hi), 0 for none (x
+ * depends on a param or const, or has a kernel in its denominator). */
+int kernel_bounds(const Kernels *K, const RatFun x, fmpq_t lo, int *lo_open,
+                  fmpq_t hi, int *hi_open);
 
 /* the kernel of ring variable var, or NULL (a param, a const ...) */
 const Kernel *kernels_of_var(const Kernels *K, slong var);

@@ -655,18 +655,12 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
             break;
         case ST_CONST:
             declare_list(&S, st, SYM_CONST);
-            if (st->lo) { /* only `> 0` */
-                int zero = st->lo->kind == ND_NUM;
-                for (const char *c = zero ? st->lo->text : ""; *c; c++)
-                    zero &= *c == '0' || *c == '.';
-                if (!zero) {
-                    diag_error(S.diag, st->lo->span,
-                               "expected 0: a constant can be declared "
-                               "positive ('const a, b > 0'), with no other "
-                               "bound");
-                    st->lo = NULL;
-                }
-            }
+            /* bounds: scalars (derive checks that they are numbers);
+             * bad: derive does not read a bound with an error */
+            if (st->lo && expect(&S, st->lo, 0, "the lower bound") < 0)
+                st->bad = 1;
+            else if (st->hi && expect(&S, st->hi, 0, "the upper bound") < 0)
+                st->bad = 1;
             break;
         case ST_UNKNOWN:
             declare_list(&S, st, SYM_UNKNOWN);

@@ -110,7 +110,10 @@ struct Stmt {
     Name *name;   // ST_SCHEME, ST_DEF: the defined name
     Node *expr;   // ST_DEF
     Node *lo, *hi; // ST_PARAM range (both NULL when absent); ST_CONST:
-                   // lo the bound of `const a > 0` (hi NULL)
+                   // its bounds (`const e in (0, 1)`, `const a > 0`: lo
+                   // only, `const k < 1`: hi only)
+    int lo_open, hi_open; // ST_PARAM, ST_CONST: an end that is excluded
+                          // ('(' or ')', '>' or '<')
     Equation *eqs; // ST_SOLVE
 
     // filled by sema

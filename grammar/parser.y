@@ -106,7 +106,7 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
 %token NEWLINE "end of line"
 %token SCHEME "'scheme'" POINT "'point'" PARAM "'param'" CONST "'const'"
 %token UNKNOWN "'unknown'" SOLVE "'solve'" FOR "'for'" OUTPUT "'output'"
-%token IN "'in'" DOTDOT "'..'"
+%token IN "'in'" DOTDOT "'..'" LE "'<='" GE "'>='"
 
 %left '+' '-'
 %left '*' '/'
@@ -116,6 +116,7 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
 %type <Node *> expr args
 %type <Name *> names name
 %type <Stmt *> stmt
+%type <int> lbr rbr
 
 %%
 
@@ -137,11 +138,21 @@ stmt:
                       $$->name = ast_new_namelist(p->arena, $2, @2); }
 | POINT names       { $$ = stmt_names(p, ST_POINT, $2, @$); }
 | PARAM names       { $$ = stmt_names(p, ST_PARAM, $2, @$); }
-| PARAM names IN '[' expr ',' expr ']'
-                    { $$ = stmt_names(p, ST_PARAM, $2, @$); $$->lo = $5; $$->hi = $7; }
+| PARAM names IN lbr expr ',' expr rbr
+                    { $$ = stmt_names(p, ST_PARAM, $2, @$); $$->lo = $5; $$->hi = $7;
+                      $$->lo_open = $4; $$->hi_open = $8; }
 | CONST names       { $$ = stmt_names(p, ST_CONST, $2, @$); }
+| CONST names IN lbr expr ',' expr rbr /* `const e in (0, 1)` */
+                    { $$ = stmt_names(p, ST_CONST, $2, @$); $$->lo = $5; $$->hi = $7;
+                      $$->lo_open = $4; $$->hi_open = $8; }
 | CONST names '>' expr /* `const a, b > 0`: positive constants */
+                    { $$ = stmt_names(p, ST_CONST, $2, @$); $$->lo = $4; $$->lo_open = 1; }
+| CONST names GE expr
                     { $$ = stmt_names(p, ST_CONST, $2, @$); $$->lo = $4; }
+| CONST names '<' expr
+                    { $$ = stmt_names(p, ST_CONST, $2, @$); $$->hi = $4; $$->hi_open = 1; }
+| CONST names LE expr
+                    { $$ = stmt_names(p, ST_CONST, $2, @$); $$->hi = $4; }
 | UNKNOWN names     { $$ = stmt_names(p, ST_UNKNOWN, $2, @$); }
 | UNKNOWN IDENT names /* `unknown scalar k`: scalar is a keyword only here */
                     { if (strcmp($2, "scalar") != 0) {
@@ -174,6 +185,17 @@ stmt:
 | SOLVE             { p->seqs = NULL; p->snames = NULL; }
   solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;
                       p->seqs = NULL; p->snames = NULL; }
+;
+
+/* the ends of an interval: '[' and ']' include them, '(' and ')' do not */
+lbr:
+  '['               { $$ = 0; }
+| '('               { $$ = 1; }
+;
+
+rbr:
+  ']'               { $$ = 0; }
+| ')'               { $$ = 1; }
 ;
 
 /* NAME, a family NAME[lo..hi], or one member NAME[i] */

@@ -93,10 +93,27 @@ void plan_free(Plan *p)
         free(p->outputs[o].reg);
     }
     free(p->outputs);
+    for (int i = 0; p->bound && i < p->nparams + p->nconsts; i++)
+        free(p->bound[i].text);
+    free(p->bound);
     free(p->ins);
     free(p->k);
     free(p->hash);
     free(p);
+}
+
+int plan_out_of_bounds(const Plan *p, int i, double x)
+{
+    if (!p->bound || i < 0 || i >= p->nparams + p->nconsts)
+        return 0;
+    const PlanBound *b = &p->bound[i];
+    if ((b->flags & PLAN_BOUND_LO) &&
+        (b->flags & PLAN_BOUND_LO_OPEN ? !(x > b->lo) : !(x >= b->lo)))
+        return 1;
+    if ((b->flags & PLAN_BOUND_HI) &&
+        (b->flags & PLAN_BOUND_HI_OPEN ? !(x < b->hi) : !(x <= b->hi)))
+        return 1;
+    return 0;
 }
 
 /* ---- hash-consing ------------------------------------------------------ */

@@ -152,6 +152,23 @@ typedef struct PlanOutput {
     int bad;    // register of pole flags + 0.5 overflow flag, or -1 (no den)
 } PlanOutput;
 
+/* A declared bound of a param or const that the derivation assumed (a
+ * result simplified on it: abs(t) = t for t in [0, 1]); the outputs that
+ * rest on it flag a value outside as status 4 (their bad register does),
+ * and this says which input it was, for messages. */
+enum {
+    PLAN_BOUND_LO = 1,      // lo is assumed: the input is >= lo
+    PLAN_BOUND_HI = 2,      // hi is assumed: the input is <= hi
+    PLAN_BOUND_LO_OPEN = 4, // ... > lo
+    PLAN_BOUND_HI_OPEN = 8, // ... < hi
+};
+typedef struct PlanBound {
+    double lo, hi;
+    unsigned char flags; // PLAN_BOUND_*; 0: nothing assumed
+    char *text;          // owned: the declared interval as written by
+                         // the derivation ("[0, 1]", "(0, 2*pi]"), or NULL
+} PlanBound;
+
 typedef struct Plan {
     char *name; // scheme name (owned): prefix of generated C names
     int nparams, nconsts, npoints;
@@ -162,6 +179,8 @@ typedef struct Plan {
     double *k; // constant pool
     int noutputs;
     PlanOutput *outputs;
+    PlanBound *bound; // nparams + nconsts entries (params, then consts), or
+                      // NULL: no bound assumed
     /* builder state */
     int32_t *hash; // open addressing table of instruction indices, or NULL
     int hcap;
@@ -173,6 +192,10 @@ Plan *plan_new(const char *name, int nparams, const char *const *params,
                int nconsts, const char *const *consts, int npoints,
                const char *const *points);
 void plan_free(Plan *p);
+
+/* 1 when value x of input i (params, then consts) lies outside the bounds
+ * p assumed of it (PlanBound) */
+int plan_out_of_bounds(const Plan *p, int i, double x);
 
 /* What the bad register says of a sample. */
 typedef enum PlanStatus {

@@ -566,5 +566,50 @@ check "singular by identity: located" grep -q "^$tmp/sing.pcs:4:54: error: singu
 "$PC" emit-c "$tmp/sing.pcs" -o "$tmp/sing.c" >/dev/null 2>&1
 check "singular by identity: emit-c exits 1" test $? -eq 1
 
+# declared ranges are promises (issue 18): an output that rests on one
+# flags a value outside it (status 4, NaN, exit 1), the message names it;
+# only the ends a simplification used, only in the outputs resting on them
+printf 'point A, B\nparam t in [0, 1]\nr = abs(t)\nM = along(A, B, r)\nN = along(A, B, t)\noutput r, M, N\n' >"$tmp/rng.pcs"
+"$PC" derive "$tmp/rng.pcs" --format json >"$tmp/rng.json"
+check "range: abs(t) = t on [0, 1]" python3 -c "
+import json
+o=json.load(open('$tmp/rng.json'))['outputs']
+assert o[0]['value']=='t', o
+"
+"$PC" eval "$tmp/rng.pcs" --at A=0,0 --at B=1,0 --param t=-0.5,0.5,1.5 >"$tmp/rng.csv" 2>"$tmp/rng.err"
+check "range: outside exits 1" test $? -eq 1
+check "range: t=-0.5 is nan" grep -qx -- '-0.5,nan,nan,nan,-0.5,0' "$tmp/rng.csv"
+check "range: inside evaluates" grep -qx -- '0.5,0.5,0.5,0,0.5,0' "$tmp/rng.csv"
+check "range: the upper end was not used" grep -qx -- '1.5,1.5,1.5,0,1.5,0' "$tmp/rng.csv"
+check "range: the message names the range" grep -qx "pointcalc: eval: r at t=-0.5 is undefined: t is outside \[0, 1\], its declared range, on which the derivation simplified the equation; written as nan" "$tmp/rng.err"
+check "range: N does not rest on it" test -z "$(grep ' N at' "$tmp/rng.err")"
+# a const interval; a value that became a constant still rests on it
+printf 'point A, B\nconst e in (0, 1)\nparam t\ns = sign(e^2 - 1)\nM = along(A, B, t*s)\noutput s, M\n' >"$tmp/crng.pcs"
+"$PC" eval "$tmp/crng.pcs" --at A=0,0 --at B=1,0 --set e=0.5,1.5 --param t=1 >"$tmp/crng.csv" 2>"$tmp/crng.err"
+check "range: const outside exits 1" test $? -eq 1
+check "range: e=0.5 gives -1" grep -qx -- '1,0.5,-1,-1,0' "$tmp/crng.csv"
+check "range: e=1.5 is nan" grep -qx -- '1,1.5,nan,nan,nan' "$tmp/crng.csv"
+check "range: the const message" grep -q "s at t=1, e=1.5 is undefined: e is outside (0, 1), its declared range" "$tmp/crng.err"
+# generated C: _checked returns 4 outside, 0 inside; the value is NaN
+"$PC" emit-c "$tmp/rng.pcs" -o "$tmp/rng.c" --header "$tmp/rng.h" --prefix rg
+cat >"$tmp/rng_main.c" <<'CEOF'
+#include <math.h>
+#include <stdio.h>
+#include "rng.h"
+int main(void)
+{
+    double A[2] = {0, 0}, B[2] = {1, 0}, o[2];
+    int s1 = rg_M_checked(-0.5, A, B, 2, o);
+    int nan1 = isnan(o[0]);
+    int s2 = rg_M_checked(0.5, A, B, 2, o);
+    double v2 = o[0];
+    int s3 = rg_N_checked(-0.5, A, B, 2, o);
+    printf("%d %d %d %g %d %g\n", s1, nan1, s2, v2, s3, o[0]);
+    return 0;
+}
+CEOF
+cc -std=c99 -Wall -Wextra -Werror -O2 -I"$tmp" -o "$tmp/rng_main" "$tmp/rng_main.c" "$tmp/rng.c" -lm
+check "range: generated C flags outside, not inside" test "$("$tmp/rng_main")" = "4 1 0 0.5 0 -0.5"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

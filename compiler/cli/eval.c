@@ -176,6 +176,21 @@ static void report(FILE *err, const Plan *p, const EvalSetup *s, const Block *b,
             st == PLAN_STATUS_POLE ? "pole of " : "",
             p->outputs[s->sel[j]].name);
     where(err, p, s, b, r);
+    /* outside a declared range that the derivation assumed? */
+    for (int i = 0; st == PLAN_STATUS_DOMAIN && p->bound &&
+                    i < p->nparams + p->nconsts;
+         i++) {
+        double x = i < p->nparams ? b->pv[i][r] : b->consts[i - p->nparams];
+        if (plan_out_of_bounds(p, i, x)) {
+            fprintf(err,
+                    " is undefined: %s is outside %s, its declared range, "
+                    "on which the derivation simplified the equation; "
+                    "written as nan\n",
+                    i < p->nparams ? p->params[i] : p->consts[i - p->nparams],
+                    p->bound[i].text ? p->bound[i].text : "its range");
+            return;
+        }
+    }
     fputs(status_message(st), err);
 }
 
