@@ -526,6 +526,22 @@ static void test_emit_c_examples_match_exact_and_runtime(void **state)
     }
 }
 
+/* Functions at the edges of their domains, in generated C against exact
+ * values and statuses: odd roots of negative numbers keep their sign
+ * (t^(1/5), t^(3/7) at t = -0.75), ln at 0 and below is status 4 like
+ * sqrt of a negative number, an even root of a negative number too. */
+static void test_emit_c_function_edges(void **state)
+{
+    (void)state;
+    check_scheme_text("edges.pcs",
+                      "point A, B\nparam t\n"
+                      "M = along(A, B, t^(1/5))\n"
+                      "R = along(A, B, t^(3/7) + t^(1/9))\n"
+                      "L = ln(t)\n"
+                      "Q = along(A, B, t^(1/4))\n"
+                      "output M, R, L, Q\n");
+}
+
 /* An interpolation scheme passes through its nodes (issue: evaluation at
  * the nodes): output o at the node parameters is the node points, in the
  * generated C (one point and batch) and in the runtime (what `eval` runs),
@@ -1021,6 +1037,7 @@ int main(void)
         cmocka_unit_test(test_lower_keeps_powers_of_factors),
         cmocka_unit_test(test_emit_c_denominator_overflow_is_reported),
         cmocka_unit_test(test_emit_c_examples_match_exact_and_runtime),
+        cmocka_unit_test(test_emit_c_function_edges),
         cmocka_unit_test(test_emit_c_interpolation_passes_through_nodes),
     };
     int rc = cmocka_run_group_tests(tests, NULL, teardown);
