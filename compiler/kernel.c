@@ -652,6 +652,290 @@ static void mul_poly_pow(RatFun res, const fmpz_mpoly_t P, slong e,
     ratfun_clear(t, r);
 }
 
+/* ---- squares modulo the relations --------------------------------------- */
+
+/* The normal form hides squares: (1 + cos(t))^2 is 2 + 2*cos(t) - sin(t)^2,
+ * cos(t)^2 is 1 - sin(t)^2, (a + sqrt(a^2 - b^2)*cos(t))^2 has no square
+ * factor as a polynomial.  A square f^2 modulo the relations is found by
+ * denesting, one quadratic kernel v (v^2 = R) at a time, from the last:
+ * P = A + B v is (g + h v)^2 = g^2 + h^2 R + 2 g h v exactly when
+ *
+ *   N = A^2 - B^2 R = (g^2 - h^2 R)^2          (the norm is a square m^2)
+ *   g^2 = (A + m)/2,  h^2 R = (A - m)/2,  h = B/(2 g)   (for m or -m)
+ *
+ * where N, g^2 and h^2 R involve only the kernels before v: the same
+ * question one level down.  Without any quadratic kernel, P must be a
+ * square of the rational functions, or a square times one relation R
+ * (1 - sin(t)^2 = cos(t)^2: f = h v).  Whatever is found is checked:
+ * f^2 reduces to P exactly, so the search can only miss, never lie. */
+
+enum {
+    SQUARE_MAX_TERMS = 4000, // larger arguments are not searched
+    SQUARE_MAX_CALLS = 64,   // searches (levels and signs) in one
+};
+
+/* f = sqrt(P) in Q(vars), the relations ignored: 1 when P is a square */
+static int square_plain(RatFun f, const RatFun P, const Ring *r)
+{
+    if (ratfun_is_zero(P, r)) {
+        ratfun_zero(f, r);
+        return 1;
+    }
+    int ok = 0;
+    fmpz_t cn, cd, s;
+    fmpz_init(cn);
+    fmpz_init(cd);
+    fmpz_init(s);
+    fmpz_mpoly_t pn, pd;
+    fmpz_mpoly_init(pn, r->ctx);
+    fmpz_mpoly_init(pd, r->ctx);
+    /* P = (cn/cd) * pn/pd, pn and pd primitive with positive leading
+     * coefficients: squares exactly when cn*cd is a square and pn, pd are */
+    _fmpz_vec_content(cn, P->num->coeffs, P->num->length);
+    _fmpz_vec_content(cd, P->den->coeffs, P->den->length);
+    fmpz_mpoly_scalar_divexact_fmpz(pn, P->num, cn, r->ctx);
+    fmpz_mpoly_scalar_divexact_fmpz(pd, P->den, cd, r->ctx);
+    if (fmpz_sgn(pn->coeffs) < 0) {
+        fmpz_mpoly_neg(pn, pn, r->ctx);
+        fmpz_neg(cn, cn);
+    }
+    fmpz_mul(s, cn, cd);
+    if (fmpz_sgn(s) > 0 && fmpz_is_square(s) &&
+        fmpz_mpoly_sqrt(pn, pn, r->ctx) && fmpz_mpoly_sqrt(pd, pd, r->ctx)) {
+        /* sqrt(cn/cd) = sqrt(cn*cd)/cd */
+        fmpz_sqrt(s, s);
+        fmpz_mpoly_scalar_mul_fmpz(f->num, pn, s, r->ctx);
+        fmpz_mpoly_scalar_mul_fmpz(f->den, pd, cd, r->ctx);
+        ratfun_canonicalise(f, r);
+        ok = 1;
+    }
+    fmpz_mpoly_clear(pd, r->ctx);
+    fmpz_mpoly_clear(pn, r->ctx);
+    fmpz_clear(s);
+    fmpz_clear(cd);
+    fmpz_clear(cn);
+    return ok;
+}
+
+/* the last kernel before top with a quadratic relation that x uses, or -1;
+ * -2 when x uses one in a way the search does not handle (its square in
+ * the numerator, or any power in the denominator) */
+static slong last_quadratic(const Kernels *K, const RatFun x, slong top)
+{
+    const Ring *r = K->r;
+    for (slong i = top - 1; i >= 0; i--) {
+        const Kernel *k = &K->k[i];
+        if (k->deg != 2 || !rf_has(x, k->var, r))
+            continue;
+        if (poly_has(x->den, k->var, r) ||
+            fmpz_mpoly_degree_si(x->num, k->var, r->ctx) > 1)
+            return -2;
+        return i;
+    }
+    return -1;
+}
+
+/* x = the coefficient of var^e in num(P), over den(P) */
+static void coeff_of(RatFun x, const RatFun P, slong var, ulong e,
+                     const Ring *r)
+{
+    fmpz_mpoly_get_coeff_vars_ui(x->num, P->num, &var, &e, 1, r->ctx);
+    fmpz_mpoly_set(x->den, P->den, r->ctx);
+    ratfun_canonicalise(x, r);
+}
+
+static int square_search(Kernels *K, RatFun f, const RatFun P, slong top,
+                         int *work);
+
+/* 1 when f^2 reduces to P exactly (the check of every candidate) */
+static int squares_to(Kernels *K, const RatFun f, const RatFun P)
+{
+    RatFun s;
+    ratfun_init(s, K->r);
+    ratfun_mul(s, f, f, K->r);
+    int rc = kernel_reduce(K, s);
+    if (rc == 0)
+        rc = ratfun_equal(s, P, K->r);
+    ratfun_clear(s, K->r);
+    return rc;
+}
+
+/* one candidate of the denesting of P = A + B v (v kernel i, v^2 = R) for
+ * the root m of the norm: g^2 = (A + m)/2, h = B/(2g); or, when that is
+ * 0, g = 0 and h^2 = A/R.  1 (f = g + h v squares to P), 0, or an error */
+static int denest_one(Kernels *K, RatFun f, const RatFun P, const RatFun A,
+                      const RatFun B, const RatFun m, slong i, int *work)
+{
+    const Ring *r = K->r;
+    const Kernel *k = &K->k[i];
+    RatFun G, g, h;
+    ratfun_init(G, r);
+    ratfun_init(g, r);
+    ratfun_init(h, r);
+    ratfun_add(G, A, m, r);
+    ratfun_set_si(h, 2, r);
+    ratfun_div(G, G, h, r);
+    int rc = kernel_reduce(K, G);
+    if (rc == 0 && ratfun_is_zero(G, r)) {
+        /* g = 0: P = h^2 R */
+        rc = ratfun_div(G, A, k->rel, r) == 0 ? kernel_reduce(K, G) : 1;
+        if (rc == 0)
+            rc = square_search(K, h, G, i, work);
+        if (rc == 1) {
+            ratfun_gen(f, k->var, r);
+            ratfun_mul(f, f, h, r);
+        } else if (rc > 0) {
+            rc = 0;
+        }
+    } else if (rc == 0) {
+        rc = square_search(K, g, G, i, work);
+        if (rc == 1) {
+            ratfun_mul_si(h, g, 2, r);
+            rc = ratfun_div(h, B, h, r) == 0 ? kernel_reduce(K, h) : 1;
+            if (rc == 0) {
+                ratfun_gen(f, k->var, r);
+                ratfun_mul(f, f, h, r);
+                ratfun_add(f, f, g, r);
+                rc = kernel_reduce(K, f);
+            }
+            rc = rc == 0 ? 1 : rc > 0 ? 0 : rc;
+        }
+    }
+    if (rc == 1)
+        rc = squares_to(K, f, P);
+    ratfun_clear(h, r);
+    ratfun_clear(g, r);
+    ratfun_clear(G, r);
+    return rc;
+}
+
+/* P = A + B v with v kernel i: the norm's root m, then both signs of it */
+static int square_denest(Kernels *K, RatFun f, const RatFun P, slong i,
+                         int *work)
+{
+    const Ring *r = K->r;
+    const Kernel *k = &K->k[i];
+    RatFun A, B, N, m;
+    ratfun_init(A, r);
+    ratfun_init(B, r);
+    ratfun_init(N, r);
+    ratfun_init(m, r);
+    coeff_of(A, P, k->var, 0, r);
+    coeff_of(B, P, k->var, 1, r);
+    /* N = A^2 - B^2 R, a square m^2 one level down */
+    ratfun_mul(N, B, B, r);
+    ratfun_mul(N, N, k->rel, r);
+    ratfun_mul(m, A, A, r);
+    ratfun_sub(N, m, N, r);
+    int rc = kernel_reduce(K, N);
+    if (rc == 0)
+        rc = guard(K, N->num);
+    if (rc == 0)
+        rc = square_search(K, m, N, i, work);
+    if (rc == 1) {
+        rc = denest_one(K, f, P, A, B, m, i, work);
+        if (rc == 0) {
+            ratfun_neg(m, m, r);
+            rc = denest_one(K, f, P, A, B, m, i, work);
+        }
+    }
+    ratfun_clear(m, r);
+    ratfun_clear(N, r);
+    ratfun_clear(B, r);
+    ratfun_clear(A, r);
+    return rc;
+}
+
+/* no quadratic kernel in P: P = f^2 in Q(vars), or P = h^2 R for the
+ * relation R of one quadratic kernel v (f = h v) whose R uses none */
+static int square_base(Kernels *K, RatFun f, const RatFun P)
+{
+    const Ring *r = K->r;
+    if (square_plain(f, P, r))
+        return 1;
+    RatFun Q, h;
+    ratfun_init(Q, r);
+    ratfun_init(h, r);
+    int rc = 0;
+    for (slong i = K->n - 1; i >= 0 && rc == 0; i--) {
+        const Kernel *k = &K->k[i];
+        if (k->deg != 2 || last_quadratic(K, k->rel, K->n) != -1 ||
+            ratfun_is_constant(k->rel, r))
+            continue;
+        if (ratfun_div(Q, P, k->rel, r) != 0 || !square_plain(h, Q, r))
+            continue;
+        ratfun_gen(f, k->var, r);
+        ratfun_mul(f, f, h, r);
+        rc = kernel_reduce(K, f);
+        if (rc == 0)
+            rc = squares_to(K, f, P);
+    }
+    ratfun_clear(h, r);
+    ratfun_clear(Q, r);
+    return rc;
+}
+
+/* f with f^2 = P modulo the relations of the kernels before top: 1 (found),
+ * 0 (none found), or an error of the guard */
+static int square_search(Kernels *K, RatFun f, const RatFun P, slong top,
+                         int *work)
+{
+    if (--*work < 0 || P->num->length + P->den->length > SQUARE_MAX_TERMS)
+        return 0;
+    int rc = guard(K, NULL);
+    if (rc != 0)
+        return rc;
+    slong i = last_quadratic(K, P, top);
+    if (i == -2)
+        return 0;
+    if (i == -1)
+        return square_base(K, f, P);
+    return square_denest(K, f, P, i, work);
+}
+
+/* rest = the square-free part of a square root's argument (sqrt_poly):
+ * each of its numerator and denominator that is a square f^2 modulo the
+ * relations leaves the root as |f| (acc *= |f|, or /= for the
+ * denominator) */
+static int squares_out(Kernels *K, RatFun acc, RatFun rest)
+{
+    const Ring *r = K->r;
+    if (K->nrel == 0)
+        return 0;
+    RatFun part, f, fa;
+    ratfun_init(part, r);
+    ratfun_init(f, r);
+    ratfun_init(fa, r);
+    int rc = 0;
+    for (int den = 0; den < 2 && rc == 0; den++) {
+        fmpz_mpoly_set(part->num, den ? rest->den : rest->num, r->ctx);
+        fmpz_mpoly_one(part->den, r->ctx);
+        if (fmpz_mpoly_is_fmpz(part->num, r->ctx))
+            continue;
+        rc = kernel_reduce(K, part);
+        int work = SQUARE_MAX_CALLS;
+        if (rc == 0)
+            rc = square_search(K, f, part, K->n, &work);
+        if (rc != 1)
+            continue;
+        rc = kernel_abs(K, fa, f);
+        if (rc != 0)
+            break;
+        if (den) {
+            ratfun_div(acc, acc, fa, r);
+            fmpz_mpoly_one(rest->den, r->ctx);
+        } else {
+            ratfun_mul(acc, acc, fa, r);
+            fmpz_mpoly_one(rest->num, r->ctx);
+        }
+        ratfun_canonicalise(rest, r);
+    }
+    ratfun_clear(fa, r);
+    ratfun_clear(f, r);
+    ratfun_clear(part, r);
+    return rc;
+}
+
 /* sqrt(x) for a non-constant x = n/d: squares pulled out as |f|^k =
  * f^k sign(f)^k, the positive numeric content as a surd */
 static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
@@ -717,6 +1001,8 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
         if (rc == 0)
             ratfun_mul(acc, acc, t, r);
     }
+    if (rc == 0)
+        rc = squares_out(K, acc, rest);
     if (rc == 0) {
         fmpq_t c;
         fmpq_init(c);
