@@ -893,46 +893,132 @@ static int square_search(Kernels *K, RatFun f, const RatFun P, slong top,
     return square_denest(K, f, P, i, work);
 }
 
-/* rest = the square-free part of a square root's argument (sqrt_poly):
- * each of its numerator and denominator that is a square f^2 modulo the
- * relations leaves the root as |f| (acc *= |f|, or /= for the
- * denominator) */
-static int squares_out(Kernels *K, RatFun acc, RatFun rest)
+/* 1 when f uses a root (sqrt, root) that x does not: f^2 = x holds only
+ * where that root is real, which x does not promise (t = sqrt(t)^2, but
+ * sqrt(t*u) is not sqrt(t)*sqrt(u)) */
+static int adds_root(const Kernels *K, const RatFun f, const RatFun x)
+{
+    for (slong i = 0; i < K->n; i++) {
+        const Kernel *k = &K->k[i];
+        if ((k->fn == KF_SQRT || k->fn == KF_ROOT) &&
+            rf_has(f, k->var, K->r) && !rf_has(x, k->var, K->r))
+            return 1;
+    }
+    return 0;
+}
+
+/* 1 when the polynomial p is a square f^2 modulo the relations (f set),
+ * 0, or an error of the guard */
+static int poly_square(Kernels *K, RatFun f, const fmpz_mpoly_t p)
 {
     const Ring *r = K->r;
+    if (fmpz_mpoly_is_fmpz(p, r->ctx))
+        return 0;
+    RatFun x;
+    ratfun_init(x, r);
+    fmpz_mpoly_set(x->num, p, r->ctx);
+    fmpz_mpoly_one(x->den, r->ctx);
+    ratfun_canonicalise(x, r);
+    int work = SQUARE_MAX_CALLS;
+    int rc = kernel_reduce(K, x);
+    if (rc == 0)
+        rc = square_search(K, f, x, K->n, &work);
+    if (rc == 1 && adds_root(K, f, x))
+        rc = 0;
+    ratfun_clear(x, r);
+    return rc;
+}
+
+/* acc *= |f|^e */
+static int mul_abs_pow(Kernels *K, RatFun acc, const RatFun f, slong e)
+{
+    RatFun fa;
+    ratfun_init(fa, K->r);
+    int rc = kernel_abs(K, fa, f);
+    if (rc == 0 && ratfun_pow_si(fa, fa, e, K->r) != 0)
+        rc = KERNEL_EZERO;
+    if (rc == 0)
+        ratfun_mul(acc, acc, fa, K->r);
+    ratfun_clear(fa, K->r);
+    return rc;
+}
+
+/* the part p (numerator, e = 1, or denominator, e = -1) of the square-free
+ * rest of a square root's argument: when p, or some of its irreducible
+ * factors, is a square f^2 modulo the relations, acc *= |f|^e and the
+ * square leaves p (rest = the product of what is left) */
+static int squares_out_part(Kernels *K, RatFun acc, fmpz_mpoly_t p, slong e)
+{
+    const Ring *r = K->r;
+    RatFun f;
+    ratfun_init(f, r);
+    int rc = poly_square(K, f, p);
+    if (rc == 1) {
+        rc = mul_abs_pow(K, acc, f, e);
+        fmpz_mpoly_one(p, r->ctx);
+    } else if (rc == 0) {
+        /* p = -f^2 (s^2 - 1 = -cos^2): the sign stays under the root */
+        fmpz_mpoly_t q;
+        fmpz_mpoly_init(q, r->ctx);
+        fmpz_mpoly_neg(q, p, r->ctx);
+        rc = poly_square(K, f, q);
+        if (rc == 1) {
+            rc = mul_abs_pow(K, acc, f, e);
+            fmpz_mpoly_set_si(p, -1, r->ctx);
+        }
+        fmpz_mpoly_clear(q, r->ctx);
+    }
+    fmpz_mpoly_factor_t fac;
+    fmpz_mpoly_factor_init(fac, r->ctx);
+    if (rc == 0 && ring_factor_affordable(p, r) && ring_factor(fac, p, r) &&
+        fac->num > 1) {
+        /* p = c * prod f_i^e_i: the factors that are squares leave */
+        fmpz_mpoly_t left, pw;
+        fmpz_mpoly_init(left, r->ctx);
+        fmpz_mpoly_init(pw, r->ctx);
+        fmpz_mpoly_set_fmpz(left, fac->constant, r->ctx);
+        int any = 0;
+        for (slong i = 0; i < fac->num && rc >= 0; i++) {
+            slong ei = fmpz_get_si(fac->exp + i);
+            rc = poly_square(K, f, fac->poly + i);
+            if (rc == 0) {
+                /* factors have a positive leading coefficient: -(2 + 2 cos
+                 * - sin^2) is sin^2 - 2 cos - 2; its sign joins c */
+                fmpz_mpoly_neg(pw, fac->poly + i, r->ctx);
+                rc = poly_square(K, f, pw);
+                if (rc == 1 && ei % 2)
+                    fmpz_mpoly_neg(left, left, r->ctx);
+            }
+            if (rc == 1) {
+                rc = mul_abs_pow(K, acc, f, e * ei);
+                any = 1;
+                continue;
+            }
+            fmpz_mpoly_pow_ui(pw, fac->poly + i, (ulong)ei, r->ctx);
+            fmpz_mpoly_mul(left, left, pw, r->ctx);
+        }
+        if (rc == 0 && any)
+            fmpz_mpoly_swap(p, left, r->ctx);
+        fmpz_mpoly_clear(pw, r->ctx);
+        fmpz_mpoly_clear(left, r->ctx);
+    }
+    fmpz_mpoly_factor_clear(fac, r->ctx);
+    ratfun_clear(f, r);
+    return rc;
+}
+
+/* rest = the square-free part of a square root's argument (sqrt_poly):
+ * the squares modulo the relations in its numerator and denominator leave
+ * the root as |f| (acc *= |f|, or /= for the denominator) */
+static int squares_out(Kernels *K, RatFun acc, RatFun rest)
+{
     if (K->nrel == 0)
         return 0;
-    RatFun part, f, fa;
-    ratfun_init(part, r);
-    ratfun_init(f, r);
-    ratfun_init(fa, r);
-    int rc = 0;
-    for (int den = 0; den < 2 && rc == 0; den++) {
-        fmpz_mpoly_set(part->num, den ? rest->den : rest->num, r->ctx);
-        fmpz_mpoly_one(part->den, r->ctx);
-        if (fmpz_mpoly_is_fmpz(part->num, r->ctx))
-            continue;
-        rc = kernel_reduce(K, part);
-        int work = SQUARE_MAX_CALLS;
-        if (rc == 0)
-            rc = square_search(K, f, part, K->n, &work);
-        if (rc != 1)
-            continue;
-        rc = kernel_abs(K, fa, f);
-        if (rc != 0)
-            break;
-        if (den) {
-            ratfun_div(acc, acc, fa, r);
-            fmpz_mpoly_one(rest->den, r->ctx);
-        } else {
-            ratfun_mul(acc, acc, fa, r);
-            fmpz_mpoly_one(rest->num, r->ctx);
-        }
-        ratfun_canonicalise(rest, r);
-    }
-    ratfun_clear(fa, r);
-    ratfun_clear(f, r);
-    ratfun_clear(part, r);
+    int rc = squares_out_part(K, acc, rest->num, 1);
+    if (rc == 0)
+        rc = squares_out_part(K, acc, rest->den, -1);
+    if (rc == 0)
+        ratfun_canonicalise(rest, K->r);
     return rc;
 }
 

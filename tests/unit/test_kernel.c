@@ -121,6 +121,21 @@ static void test_identities_reduce_to_zero(void **state)
         "subst(dist(A, along(A, B, t)), t, 1/3) - dist(A, B)/3",
         "cos(angle(A, B, A + (B - A)*2)) + 1",
         "angle(B, A, 2*B - A)",
+        /* squares modulo the relations come out of roots as |f| */
+        "sqrt((1 + cos(t))^2) - abs(1 + cos(t))",
+        "sqrt(cos(t)^2) - abs(cos(t))",
+        "sqrt(1 - sin(t)^2) - abs(cos(t))",
+        "sqrt((sin(t) + cos(t))^2) - abs(sin(t) + cos(t))",
+        "sqrt((a + sqrt(a^2 - b^2)*cos(t))^2) - "
+        "abs(a + sqrt(a^2 - b^2)*cos(t))",
+        "sqrt((2*cos(t) - 3*sin(t)*cos(u))^2) - abs(2*cos(t) - "
+        "3*sin(t)*cos(u))",
+        "sqrt(1 + sinh(u)^2) - cosh(u)",
+        "sqrt((sign(t) + 2)^2) - abs(sign(t) + 2)",
+        "sqrt((sqrt(t) + 1)^2) - sqrt(t) - 1",
+        "sqrt(u*(1 + cos(t))^2) - sqrt(u)*abs(1 + cos(t))",
+        "sqrt(u^2*(1 + cos(t))^2) - abs(u)*abs(1 + cos(t))",
+        "sqrt(1/cos(t)^2) - 1/abs(cos(t))",
     };
     size_t n = sizeof zero / sizeof zero[0];
     for (size_t i = 0; i < n; i++) {
@@ -152,6 +167,10 @@ static void test_non_identities_stay(void **state)
         "sin(1) - 1",
         "cosh(t)^2 + sinh(t)^2 - 1",
         "pi - 3",
+        "sqrt(cos(t)^2) - cos(t)",
+        "sqrt((sin(t) + cos(t))^2) - sin(t) - cos(t)",
+        "sqrt(2 + 2*cos(t)) - 1 - cos(t)",
+        "sqrt(1 + sin(t)^2) - 1 - sin(t)",
     };
     for (size_t i = 0; i < sizeof nonzero / sizeof nonzero[0]; i++) {
         char defs[512];
@@ -221,6 +240,14 @@ static double r_tan(double t, double u, double a, double b)
     return tan(t) / (1 + tan(t) * tan(t)) + tan(t / 2);
 }
 
+static double r_squares(double t, double u, double a, double b)
+{
+    /* the roots of squares modulo the identities: |f|, whatever f's sign */
+    return fabs(cos(2 * t)) + fabs(sin(2 * t) + cos(2 * t)) +
+           sqrt(u) * (1 + cos(t)) + fabs(a + sqrt(a * a - b * b) * cos(3 * t)) +
+           sqrt(u) / (1 + cos(t)) + 1 / fabs(cos(2 * t));
+}
+
 static void test_values_match_libm(void **state)
 {
     (void)state;
@@ -237,6 +264,10 @@ static void test_values_match_libm(void **state)
         {"subst(sin(t)*sqrt(t) + exp(t*u), t, u^2 + t)", r_subst},
         {"diff(sqrt(1 + t^2), t, 2)", r_d2},
         {"tan(t)/(1 + tan(t)^2) + tan(t/2)", r_tan},
+        {"sqrt(cos(2*t)^2) + sqrt((sin(2*t) + cos(2*t))^2) + "
+         "sqrt(u*(1 + cos(t))^2) + sqrt((a + sqrt(a^2 - b^2)*cos(3*t))^2) + "
+         "sqrt(u/(1 + cos(t))^2) + sqrt(1/cos(2*t)^2)",
+         r_squares},
     };
     const double ts[] = {0.3, 0.71, 1.37, -0.45};
     const double us[] = {0.9, 1.7, 0.25, 2.3};
