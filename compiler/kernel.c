@@ -670,8 +670,8 @@ static void mul_poly_pow(RatFun res, const fmpz_mpoly_t P, slong e,
  * f^2 reduces to P exactly, so the search can only miss, never lie. */
 
 enum {
-    SQUARE_MAX_TERMS = 4000, // larger arguments are not searched
-    SQUARE_MAX_CALLS = 64,   // searches (levels and signs) in one
+    SQUARE_MAX_TERMS = 10000, // larger arguments are not searched
+    SQUARE_MAX_CALLS = 64,    // searches (levels and signs) in one
 };
 
 /* f = sqrt(P) in Q(vars), the relations ignored: 1 when P is a square */
@@ -846,37 +846,61 @@ static int square_denest(Kernels *K, RatFun f, const RatFun P, slong i,
     return rc;
 }
 
-/* no quadratic kernel in P: P = f^2 in Q(vars), or P = h^2 R for the
- * relation R of one quadratic kernel v (f = h v) whose R uses none */
-static int square_base(Kernels *K, RatFun f, const RatFun P)
+/* P = h^2 R for the relation R of a quadratic kernel v before top
+ * (f = h v): 1 - sin^2 = cos^2, x = sqrt(x)^2 inside a denesting
+ * ((sqrt(x) - sqrt(y))^2 needs g^2 = x).  Tried where R divides P (a
+ * number R: where P is a rational square once divided by it) */
+static int square_by_relation(Kernels *K, RatFun f, const RatFun P,
+                              slong top, int *work)
 {
     const Ring *r = K->r;
-    if (square_plain(f, P, r))
-        return 1;
     RatFun Q, h;
     ratfun_init(Q, r);
     ratfun_init(h, r);
+    fmpz_mpoly_t t, u;
+    fmpz_mpoly_init(t, r->ctx);
+    fmpz_mpoly_init(u, r->ctx);
     int rc = 0;
-    for (slong i = K->n - 1; i >= 0 && rc == 0; i--) {
+    for (slong i = top - 1; i >= 0 && rc == 0; i--) {
         const Kernel *k = &K->k[i];
-        if (k->deg != 2 || last_quadratic(K, k->rel, K->n) != -1 ||
-            ratfun_is_constant(k->rel, r))
+        if (k->deg != 2 || k->fn == KF_SIGN)
             continue;
-        if (ratfun_div(Q, P, k->rel, r) != 0 || !square_plain(h, Q, r))
-            continue;
+        if (ratfun_is_constant(k->rel, r)) {
+            /* sqrt(2): P/2 a rational square */
+            if (ratfun_div(Q, P, k->rel, r) != 0 || !square_plain(h, Q, r))
+                continue;
+        } else {
+            /* R = rn/rd divides P = n/d: n*rd = rn*(...) */
+            fmpz_mpoly_mul(t, P->num, k->rel->den, r->ctx);
+            if (!fmpz_mpoly_divides(u, t, k->rel->num, r->ctx))
+                continue;
+            if (ratfun_div(Q, P, k->rel, r) != 0)
+                continue;
+            rc = kernel_reduce(K, Q);
+            if (rc == 0)
+                rc = square_search(K, h, Q, top, work);
+            if (rc != 1) {
+                rc = rc < 0 ? rc : 0;
+                continue;
+            }
+        }
         ratfun_gen(f, k->var, r);
         ratfun_mul(f, f, h, r);
         rc = kernel_reduce(K, f);
         if (rc == 0)
             rc = squares_to(K, f, P);
     }
+    fmpz_mpoly_clear(u, r->ctx);
+    fmpz_mpoly_clear(t, r->ctx);
     ratfun_clear(h, r);
     ratfun_clear(Q, r);
     return rc;
 }
 
 /* f with f^2 = P modulo the relations of the kernels before top: 1 (found),
- * 0 (none found), or an error of the guard */
+ * 0 (none found), or an error of the guard.  Without a quadratic kernel in
+ * P: a square of the rational functions; with one: the denesting by the
+ * last; then P = h^2 R for a relation R. */
 static int square_search(Kernels *K, RatFun f, const RatFun P, slong top,
                          int *work)
 {
@@ -889,8 +913,12 @@ static int square_search(Kernels *K, RatFun f, const RatFun P, slong top,
     if (i == -2)
         return 0;
     if (i == -1)
-        return square_base(K, f, P);
-    return square_denest(K, f, P, i, work);
+        rc = square_plain(f, P, K->r);
+    else
+        rc = square_denest(K, f, P, i, work);
+    if (rc == 0)
+        rc = square_by_relation(K, f, P, top, work);
+    return rc;
 }
 
 /* 1 when f uses a root (sqrt, root) that x does not: f^2 = x holds only
@@ -929,17 +957,153 @@ static int poly_square(Kernels *K, RatFun f, const fmpz_mpoly_t p)
     return rc;
 }
 
-/* acc *= |f|^e */
-static int mul_abs_pow(Kernels *K, RatFun acc, const RatFun f, slong e)
+/* 1 when x = w g^2 modulo the relations for a root w = sqrt(R) of x
+ * (so x >= 0): x w / R is a square; 2 when x = -w g^2 (x <= 0).  |W (sqrt(u) - sqrt(v))^2| = the
+ * same, though reduced the product has no factor W. */
+static int root_times_square(Kernels *K, const RatFun x)
 {
-    RatFun fa;
-    ratfun_init(fa, K->r);
-    int rc = kernel_abs(K, fa, f);
-    if (rc == 0 && ratfun_pow_si(fa, fa, e, K->r) != 0)
+    enum { ROOTS_TRIED = 4 };
+    const Ring *r = K->r;
+    RatFun q, g;
+    ratfun_init(q, r);
+    ratfun_init(g, r);
+    int rc = 0, tried = 0;
+    for (slong i = K->n - 1; i >= 0 && rc == 0 && tried < ROOTS_TRIED; i--) {
+        const Kernel *k = &K->k[i];
+        if (k->fn != KF_SQRT || !rf_has(x, k->var, r))
+            continue;
+        tried++;
+        ratfun_gen(q, k->var, r);
+        ratfun_mul(q, q, x, r);
+        if (ratfun_div(q, q, k->rel, r) != 0)
+            continue;
+        rc = kernel_reduce(K, q);
+        for (int sg = 1; rc == 0 && sg >= -1; sg -= 2) {
+            if (sg < 0)
+                ratfun_neg(q, q, r);
+            int work = SQUARE_MAX_CALLS;
+            rc = square_search(K, g, q, K->n, &work);
+            if (rc == 1 && adds_root(K, g, q))
+                rc = 0;
+            if (rc == 1 && sg < 0)
+                rc = 2;
+        }
+    }
+    ratfun_clear(g, r);
+    ratfun_clear(q, r);
+    return rc;
+}
+
+/* acc *= |p|^e for one factor p: p itself when kernel_sign knows it is
+ * >= 0 or when p is a square modulo the relations (W^2 sin^2 ... is
+ * never negative), -p for minus a square, p*sign(p) otherwise */
+static int mul_abs_factor(Kernels *K, RatFun acc, const fmpz_mpoly_t p,
+                          slong e)
+{
+    const Ring *r = K->r;
+    RatFun x, g;
+    ratfun_init(x, r);
+    ratfun_init(g, r);
+    fmpz_mpoly_set(x->num, p, r->ctx);
+    fmpz_mpoly_one(x->den, r->ctx);
+    ratfun_canonicalise(x, r);
+    int rc = 0, s = kernel_sign(K, x);
+    if (s == 0 && !fmpz_mpoly_is_fmpz(p, r->ctx)) {
+        rc = poly_square(K, g, x->num);
+        if (rc == 1) {
+            s = 1;
+        } else if (rc == 0) {
+            fmpz_mpoly_t q;
+            fmpz_mpoly_init(q, r->ctx);
+            fmpz_mpoly_neg(q, x->num, r->ctx);
+            rc = poly_square(K, g, q);
+            s = rc == 1 ? -1 : 0;
+            fmpz_mpoly_clear(q, r->ctx);
+        }
+        if (rc == 0) {
+            rc = root_times_square(K, x);
+            if (rc > 0)
+                s = rc == 1 ? 1 : -1;
+        }
+        rc = rc < 0 ? rc : 0;
+    }
+    if (rc == 0) {
+        if (s < 0)
+            ratfun_neg(x, x, r);
+        else if (s == 0)
+            rc = kernel_abs(K, x, x);
+    }
+    if (rc == 0 && ratfun_pow_si(x, x, e, r) != 0)
         rc = KERNEL_EZERO;
     if (rc == 0)
-        ratfun_mul(acc, acc, fa, K->r);
-    ratfun_clear(fa, K->r);
+        ratfun_mul(acc, acc, x, r);
+    ratfun_clear(g, r);
+    ratfun_clear(x, r);
+    return rc;
+}
+
+/* acc *= |p|^e for a polynomial p: |c| prod |p_i|^e_i over its
+ * irreducible factors where factoring is affordable, else over the
+ * variables of its term content and the rest, so that each factor's sign
+ * is decided on its own (|(1 + sqrt(u))(a + cos(t))| is
+ * (1 + sqrt(u))*|a + cos(t)|) */
+static int mul_abs_poly(Kernels *K, RatFun acc, const fmpz_mpoly_t p,
+                        slong e)
+{
+    const Ring *r = K->r;
+    fmpz_mpoly_factor_t fac;
+    fmpz_mpoly_factor_init(fac, r->ctx);
+    int rc = 0;
+    if (ring_factor_affordable(p, r) && ring_factor(fac, p, r)) {
+        fmpq_t c;
+        fmpq_init(c);
+        fmpq_set_fmpz_frac(c, fac->constant, fac->constant_den);
+        fmpq_abs(c, c);
+        RatFun x;
+        ratfun_init(x, r);
+        ratfun_set_fmpq(x, c, r);
+        ratfun_pow_si(x, x, e, r);
+        ratfun_mul(acc, acc, x, r);
+        ratfun_clear(x, r);
+        fmpq_clear(c);
+        for (slong i = 0; i < fac->num && rc == 0; i++)
+            rc = mul_abs_factor(K, acc, fac->poly + i,
+                                e * fmpz_get_si(fac->exp + i));
+    } else {
+        /* p = M q, M the monomial content */
+        fmpz_mpoly_t M, q, v;
+        fmpz_mpoly_init(M, r->ctx);
+        fmpz_mpoly_init(q, r->ctx);
+        fmpz_mpoly_init(v, r->ctx);
+        fmpz_mpoly_term_content(M, p, r->ctx);
+        if (!fmpz_mpoly_divides(q, p, M, r->ctx))
+            fmpz_mpoly_one(M, r->ctx), fmpz_mpoly_set(q, p, r->ctx);
+        slong nv = r->ctx->minfo->nvars;
+        for (slong i = 0; i < nv && rc == 0; i++) {
+            slong d = fmpz_mpoly_degree_si(M, i, r->ctx);
+            if (d <= 0)
+                continue;
+            fmpz_mpoly_gen(v, i, r->ctx);
+            rc = mul_abs_factor(K, acc, v, e * d);
+        }
+        if (rc == 0)
+            rc = mul_abs_factor(K, acc, q, e);
+        fmpz_mpoly_clear(v, r->ctx);
+        fmpz_mpoly_clear(q, r->ctx);
+        fmpz_mpoly_clear(M, r->ctx);
+    }
+    fmpz_mpoly_factor_clear(fac, r->ctx);
+    return rc;
+}
+
+/* acc *= |f|^e, reduced */
+static int mul_abs_pow(Kernels *K, RatFun acc, const RatFun f, slong e)
+{
+    int rc = mul_abs_poly(K, acc, f->num, e);
+    if (rc == 0)
+        rc = mul_abs_poly(K, acc, f->den, -e);
+    if (rc == 0)
+        rc = kernel_reduce(K, acc);
     return rc;
 }
 

@@ -137,6 +137,13 @@ static void test_identities_reduce_to_zero(void **state)
         "sqrt((sqrt(t) + 1)^2) - sqrt(t) - 1",
         "sqrt(u*(1 + cos(t))^2) - sqrt(u)*abs(1 + cos(t))",
         "sqrt(u^2*(1 + cos(t))^2) - abs(u)*abs(1 + cos(t))",
+        /* |f| of a square, or of a root times a square, is itself */
+        "sqrt(((sqrt(t) - sqrt(u))^2)^2) - (sqrt(t) - sqrt(u))^2",
+        "sqrt((2*sqrt(t)*sqrt(u) - t - u)^2) - (sqrt(t) - sqrt(u))^2",
+        "sqrt((sqrt(a^2 + b^2)*(sqrt(t) - sqrt(u))^2)^2) - "
+        "sqrt(a^2 + b^2)*(sqrt(t) - sqrt(u))^2",
+        "sqrt(1/(sqrt(t) + sqrt(u))^4) - 1/(sqrt(t) + sqrt(u))^2",
+        "sqrt((1 + sqrt(u))^2*(a + cos(t))^2) - (1 + sqrt(u))*abs(a + cos(t))",
         "sqrt(1/cos(t)^2) - 1/abs(cos(t))",
     };
     size_t n = sizeof zero / sizeof zero[0];
@@ -247,7 +254,9 @@ static double r_squares(double t, double u, double a, double b)
     /* the roots of squares modulo the identities: |f|, whatever f's sign */
     return fabs(cos(2 * t)) + fabs(sin(2 * t) + cos(2 * t)) +
            sqrt(u) * (1 + cos(t)) + fabs(a + sqrt(a * a - b * b) * cos(3 * t)) +
-           sqrt(u) / (1 + cos(t)) + 1 / fabs(cos(2 * t));
+           sqrt(u) / (1 + cos(t)) + 1 / fabs(cos(2 * t)) +
+           2 * (sqrt(u) - sqrt(2)) * (sqrt(u) - sqrt(2)) +
+           sqrt(a) * pow(sqrt(u) - sqrt(a * u + 1), 2);
 }
 
 static void test_values_match_libm(void **state)
@@ -268,7 +277,9 @@ static void test_values_match_libm(void **state)
         {"tan(t)/(1 + tan(t)^2) + tan(t/2)", r_tan},
         {"sqrt(cos(2*t)^2) + sqrt((sin(2*t) + cos(2*t))^2) + "
          "sqrt(u*(1 + cos(t))^2) + sqrt((a + sqrt(a^2 - b^2)*cos(3*t))^2) + "
-         "sqrt(u/(1 + cos(t))^2) + sqrt(1/cos(2*t)^2)",
+         "sqrt(u/(1 + cos(t))^2) + sqrt(1/cos(2*t)^2) + "
+         "sqrt(((sqrt(u) - sqrt(2))^2)^2) + sqrt((2*sqrt(2)*sqrt(u) - 2 - "
+         "u)^2) + sqrt((sqrt(a)*(sqrt(u) - sqrt(a*u + 1))^2)^2)",
          r_squares},
     };
     const double ts[] = {0.3, 0.71, 1.37, -0.45};
