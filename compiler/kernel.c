@@ -870,15 +870,18 @@ static int square_by_relation(Kernels *K, RatFun f, const RatFun P,
             if (ratfun_div(Q, P, k->rel, r) != 0 || !square_plain(h, Q, r))
                 continue;
         } else {
-            /* R = rn/rd divides P = n/d: n*rd = rn*(...) */
-            fmpz_mpoly_mul(t, P->num, k->rel->den, r->ctx);
-            if (!fmpz_mpoly_divides(u, t, k->rel->num, r->ctx))
-                continue;
+            /* R divides P modulo the relations: P/R reduced has no new
+             * denominator ((w c - q s)(1 + 2 s c) reduced is no multiple
+             * of w c - q s as a polynomial) */
             if (ratfun_div(Q, P, k->rel, r) != 0)
                 continue;
             rc = kernel_reduce(K, Q);
-            if (rc == 0)
-                rc = square_search(K, h, Q, top, work);
+            if (rc != 0)
+                break;
+            fmpz_mpoly_mul(t, P->den, k->rel->den, r->ctx);
+            if (!fmpz_mpoly_divides(u, t, Q->den, r->ctx))
+                continue;
+            rc = square_search(K, h, Q, top, work);
             if (rc != 1) {
                 rc = rc < 0 ? rc : 0;
                 continue;
@@ -994,11 +997,10 @@ static int root_times_square(Kernels *K, const RatFun x)
     return rc;
 }
 
-/* acc *= |p|^e for one factor p: p itself when kernel_sign knows it is
- * >= 0 or when p is a square modulo the relations (W^2 sin^2 ... is
- * never negative), -p for minus a square, p*sign(p) otherwise */
-static int mul_abs_factor(Kernels *K, RatFun acc, const fmpz_mpoly_t p,
-                          slong e)
+/* the sign of the polynomial p as far as it is decided: kernel_sign, or
+ * a square modulo the relations (never negative), or minus one, or a root
+ * times a square: *s = 1, -1 or 0 (unknown); 0 or an error */
+static int poly_abs_sign(Kernels *K, int *s, const fmpz_mpoly_t p)
 {
     const Ring *r = K->r;
     RatFun x, g;
@@ -1007,68 +1009,120 @@ static int mul_abs_factor(Kernels *K, RatFun acc, const fmpz_mpoly_t p,
     fmpz_mpoly_set(x->num, p, r->ctx);
     fmpz_mpoly_one(x->den, r->ctx);
     ratfun_canonicalise(x, r);
-    int rc = 0, s = kernel_sign(K, x);
-    if (s == 0 && !fmpz_mpoly_is_fmpz(p, r->ctx)) {
+    int rc = 0;
+    *s = kernel_sign(K, x);
+    *s = *s > 0 ? 1 : *s < 0 ? -1 : 0;
+    if (*s == 0 && !fmpz_mpoly_is_fmpz(p, r->ctx)) {
         rc = poly_square(K, g, x->num);
         if (rc == 1) {
-            s = 1;
+            *s = 1;
         } else if (rc == 0) {
             fmpz_mpoly_t q;
             fmpz_mpoly_init(q, r->ctx);
             fmpz_mpoly_neg(q, x->num, r->ctx);
             rc = poly_square(K, g, q);
-            s = rc == 1 ? -1 : 0;
+            *s = rc == 1 ? -1 : 0;
             fmpz_mpoly_clear(q, r->ctx);
         }
         if (rc == 0) {
             rc = root_times_square(K, x);
             if (rc > 0)
-                s = rc == 1 ? 1 : -1;
+                *s = rc == 1 ? 1 : -1;
         }
         rc = rc < 0 ? rc : 0;
     }
-    if (rc == 0) {
-        if (s < 0)
-            ratfun_neg(x, x, r);
-        else if (s == 0)
-            rc = kernel_abs(K, x, x);
-    }
-    if (rc == 0 && ratfun_pow_si(x, x, e, r) != 0)
-        rc = KERNEL_EZERO;
-    if (rc == 0)
-        ratfun_mul(acc, acc, x, r);
     ratfun_clear(g, r);
     ratfun_clear(x, r);
     return rc;
 }
 
-/* acc *= |p|^e for a polynomial p: |c| prod |p_i|^e_i over its
- * irreducible factors where factoring is affordable, else over the
- * variables of its term content and the rest, so that each factor's sign
- * is decided on its own (|(1 + sqrt(u))(a + cos(t))| is
- * (1 + sqrt(u))*|a + cos(t)|) */
-static int mul_abs_poly(Kernels *K, RatFun acc, const fmpz_mpoly_t p,
-                        slong e)
+/* The signs a square root still owes: sqrt(f^2 g) = |f| sqrt(g) =
+ * f sgn(f) sqrt(g).  They are collected over the whole root and decided
+ * at once, since a square may come out in pieces that are not squares
+ * (sin(t) * (sin(t) (sqrt(x) - sqrt(y))^2 ...)), then one by one. */
+typedef struct SignDebt {
+    slong n, alloc;
+    fmpz_mpoly_struct *p;  // owned: the polynomials f
+    unsigned char *split;  // 1: decided by its factors when alone
+} SignDebt;
+
+static void debt_init(SignDebt *d)
+{
+    d->n = d->alloc = 0;
+    d->p = NULL;
+    d->split = NULL;
+}
+
+static void debt_clear(SignDebt *d, const Ring *r)
+{
+    for (slong i = 0; i < d->n; i++)
+        fmpz_mpoly_clear(d->p + i, r->ctx);
+    free(d->p);
+    free(d->split);
+    debt_init(d);
+}
+
+static void debt_push(SignDebt *d, const fmpz_mpoly_t p, int split,
+                      const Ring *r)
+{
+    /* a positive number owes nothing; a negative one stays (-1) */
+    if (fmpz_mpoly_is_fmpz(p, r->ctx) &&
+        (fmpz_mpoly_is_zero(p, r->ctx) || fmpz_sgn(p->coeffs) > 0))
+        return;
+    if (d->n == d->alloc) {
+        d->alloc = d->alloc ? 2 * d->alloc : 4;
+        d->p = pc_xrealloc(d->p, sizeof *d->p * (size_t)d->alloc);
+        d->split = pc_xrealloc(d->split, (size_t)d->alloc);
+    }
+    fmpz_mpoly_init(d->p + d->n, r->ctx);
+    fmpz_mpoly_set(d->p + d->n, p, r->ctx);
+    d->split[d->n++] = (unsigned char)split;
+}
+
+/* acc *= sgn(p) for one polynomial: +-1 where poly_abs_sign decides it,
+ * else sign(p) */
+static int mul_sign_whole(Kernels *K, RatFun acc, const fmpz_mpoly_t p)
 {
     const Ring *r = K->r;
+    int s = 0, rc = poly_abs_sign(K, &s, p);
+    if (rc != 0)
+        return rc;
+    if (s < 0)
+        ratfun_neg(acc, acc, r);
+    if (s != 0)
+        return 0;
+    RatFun x;
+    ratfun_init(x, r);
+    fmpz_mpoly_set(x->num, p, r->ctx);
+    fmpz_mpoly_one(x->den, r->ctx);
+    ratfun_canonicalise(x, r);
+    rc = kernel_apply(K, x, KF_SIGN, x, NULL);
+    if (rc == 0)
+        ratfun_mul(acc, acc, x, r);
+    ratfun_clear(x, r);
+    return rc;
+}
+
+/* acc *= sgn(p), decided whole, else factor by factor (irreducible
+ * factors where affordable, else the variables of the term content and
+ * the rest): sgn((1 + sqrt(u))(a + cos(t))) = sign(a + cos(t)) */
+static int mul_sign_split(Kernels *K, RatFun acc, const fmpz_mpoly_t p)
+{
+    const Ring *r = K->r;
+    int s = 0, rc = poly_abs_sign(K, &s, p);
+    if (rc != 0 || s != 0) {
+        if (s < 0)
+            ratfun_neg(acc, acc, r);
+        return rc;
+    }
     fmpz_mpoly_factor_t fac;
     fmpz_mpoly_factor_init(fac, r->ctx);
-    int rc = 0;
     if (ring_factor_affordable(p, r) && ring_factor(fac, p, r)) {
-        fmpq_t c;
-        fmpq_init(c);
-        fmpq_set_fmpz_frac(c, fac->constant, fac->constant_den);
-        fmpq_abs(c, c);
-        RatFun x;
-        ratfun_init(x, r);
-        ratfun_set_fmpq(x, c, r);
-        ratfun_pow_si(x, x, e, r);
-        ratfun_mul(acc, acc, x, r);
-        ratfun_clear(x, r);
-        fmpq_clear(c);
+        if (fmpz_sgn(fac->constant) < 0)
+            ratfun_neg(acc, acc, r);
         for (slong i = 0; i < fac->num && rc == 0; i++)
-            rc = mul_abs_factor(K, acc, fac->poly + i,
-                                e * fmpz_get_si(fac->exp + i));
+            if (fmpz_get_si(fac->exp + i) % 2)
+                rc = mul_sign_whole(K, acc, fac->poly + i);
     } else {
         /* p = M q, M the monomial content */
         fmpz_mpoly_t M, q, v;
@@ -1076,18 +1130,19 @@ static int mul_abs_poly(Kernels *K, RatFun acc, const fmpz_mpoly_t p,
         fmpz_mpoly_init(q, r->ctx);
         fmpz_mpoly_init(v, r->ctx);
         fmpz_mpoly_term_content(M, p, r->ctx);
-        if (!fmpz_mpoly_divides(q, p, M, r->ctx))
-            fmpz_mpoly_one(M, r->ctx), fmpz_mpoly_set(q, p, r->ctx);
+        if (!fmpz_mpoly_divides(q, p, M, r->ctx)) {
+            fmpz_mpoly_one(M, r->ctx);
+            fmpz_mpoly_set(q, p, r->ctx);
+        }
         slong nv = r->ctx->minfo->nvars;
         for (slong i = 0; i < nv && rc == 0; i++) {
-            slong d = fmpz_mpoly_degree_si(M, i, r->ctx);
-            if (d <= 0)
+            if (fmpz_mpoly_degree_si(M, i, r->ctx) % 2 == 0)
                 continue;
             fmpz_mpoly_gen(v, i, r->ctx);
-            rc = mul_abs_factor(K, acc, v, e * d);
+            rc = mul_sign_whole(K, acc, v);
         }
         if (rc == 0)
-            rc = mul_abs_factor(K, acc, q, e);
+            rc = mul_sign_whole(K, acc, q);
         fmpz_mpoly_clear(v, r->ctx);
         fmpz_mpoly_clear(q, r->ctx);
         fmpz_mpoly_clear(M, r->ctx);
@@ -1096,14 +1151,55 @@ static int mul_abs_poly(Kernels *K, RatFun acc, const fmpz_mpoly_t p,
     return rc;
 }
 
-/* acc *= |f|^e, reduced */
-static int mul_abs_pow(Kernels *K, RatFun acc, const RatFun f, slong e)
+/* acc *= the signs owed: +-1 when the product of the debts is decided
+ * (a square, minus one, a root times one), else each on its own */
+static int debt_settle(Kernels *K, RatFun acc, const SignDebt *d)
 {
-    int rc = mul_abs_poly(K, acc, f->num, e);
-    if (rc == 0)
-        rc = mul_abs_poly(K, acc, f->den, -e);
+    const Ring *r = K->r;
+    int rc = 0;
+    if (d->n >= 2) {
+        double len = 1;
+        for (slong i = 0; i < d->n; i++)
+            len *= (double)d->p[i].length;
+        if (len <= SQUARE_MAX_TERMS) {
+            fmpz_mpoly_t prod;
+            fmpz_mpoly_init(prod, r->ctx);
+            fmpz_mpoly_one(prod, r->ctx);
+            for (slong i = 0; i < d->n; i++)
+                fmpz_mpoly_mul(prod, prod, d->p + i, r->ctx);
+            int s = 0;
+            rc = poly_abs_sign(K, &s, prod);
+            fmpz_mpoly_clear(prod, r->ctx);
+            if (rc == 0 && s != 0) {
+                if (s < 0)
+                    ratfun_neg(acc, acc, r);
+                return kernel_reduce(K, acc);
+            }
+        }
+    }
+    for (slong i = 0; i < d->n && rc == 0; i++)
+        rc = d->split[i] ? mul_sign_split(K, acc, d->p + i)
+                         : mul_sign_whole(K, acc, d->p + i);
     if (rc == 0)
         rc = kernel_reduce(K, acc);
+    return rc;
+}
+
+/* acc *= |f|^e = f^e sgn(f)^e, the sign owed (e odd) */
+static int mul_abs_pow(Kernels *K, RatFun acc, const RatFun f, slong e,
+                       SignDebt *debt)
+{
+    RatFun x;
+    ratfun_init(x, K->r);
+    int rc = ratfun_pow_si(x, f, e, K->r) == 0 ? 0 : KERNEL_EZERO;
+    if (rc == 0) {
+        ratfun_mul(acc, acc, x, K->r);
+        if (e % 2) {
+            debt_push(debt, f->num, 1, K->r);
+            debt_push(debt, f->den, 1, K->r);
+        }
+    }
+    ratfun_clear(x, K->r);
     return rc;
 }
 
@@ -1111,14 +1207,15 @@ static int mul_abs_pow(Kernels *K, RatFun acc, const RatFun f, slong e)
  * rest of a square root's argument: when p, or some of its irreducible
  * factors, is a square f^2 modulo the relations, acc *= |f|^e and the
  * square leaves p (rest = the product of what is left) */
-static int squares_out_part(Kernels *K, RatFun acc, fmpz_mpoly_t p, slong e)
+static int squares_out_part(Kernels *K, RatFun acc, fmpz_mpoly_t p, slong e,
+                            SignDebt *debt)
 {
     const Ring *r = K->r;
     RatFun f;
     ratfun_init(f, r);
     int rc = poly_square(K, f, p);
     if (rc == 1) {
-        rc = mul_abs_pow(K, acc, f, e);
+        rc = mul_abs_pow(K, acc, f, e, debt);
         fmpz_mpoly_one(p, r->ctx);
     } else if (rc == 0) {
         /* p = -f^2 (s^2 - 1 = -cos^2): the sign stays under the root */
@@ -1127,7 +1224,7 @@ static int squares_out_part(Kernels *K, RatFun acc, fmpz_mpoly_t p, slong e)
         fmpz_mpoly_neg(q, p, r->ctx);
         rc = poly_square(K, f, q);
         if (rc == 1) {
-            rc = mul_abs_pow(K, acc, f, e);
+            rc = mul_abs_pow(K, acc, f, e, debt);
             fmpz_mpoly_set_si(p, -1, r->ctx);
         }
         fmpz_mpoly_clear(q, r->ctx);
@@ -1154,7 +1251,7 @@ static int squares_out_part(Kernels *K, RatFun acc, fmpz_mpoly_t p, slong e)
                     fmpz_mpoly_neg(left, left, r->ctx);
             }
             if (rc == 1) {
-                rc = mul_abs_pow(K, acc, f, e * ei);
+                rc = mul_abs_pow(K, acc, f, e * ei, debt);
                 any = 1;
                 continue;
             }
@@ -1174,13 +1271,13 @@ static int squares_out_part(Kernels *K, RatFun acc, fmpz_mpoly_t p, slong e)
 /* rest = the square-free part of a square root's argument (sqrt_poly):
  * the squares modulo the relations in its numerator and denominator leave
  * the root as |f| (acc *= |f|, or /= for the denominator) */
-static int squares_out(Kernels *K, RatFun acc, RatFun rest)
+static int squares_out(Kernels *K, RatFun acc, RatFun rest, SignDebt *debt)
 {
     if (K->nrel == 0)
         return 0;
-    int rc = squares_out_part(K, acc, rest->num, 1);
+    int rc = squares_out_part(K, acc, rest->num, 1, debt);
     if (rc == 0)
-        rc = squares_out_part(K, acc, rest->den, -1);
+        rc = squares_out_part(K, acc, rest->den, -1, debt);
     if (rc == 0)
         ratfun_canonicalise(rest, K->r);
     return rc;
@@ -1200,6 +1297,8 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
     fmpq_t content;
     fmpq_init(content);
     fmpq_one(content);
+    SignDebt debt;
+    debt_init(&debt);
     int rc = 0;
     for (int part = 0; part < 2 && rc == 0; part++) {
         const fmpz_mpoly_struct *P = part ? x->den : x->num;
@@ -1230,14 +1329,8 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
             int fs = poly_sign(K, f->poly + i);
             if (h % 2 && fs < 0)
                 ratfun_neg(acc, acc, r);
-            if (h % 2 && fs == 0) {
-                fmpz_mpoly_set(t->num, f->poly + i, r->ctx);
-                fmpz_mpoly_one(t->den, r->ctx);
-                ratfun_canonicalise(t, r);
-                rc = kernel_apply(K, t, KF_SIGN, t, NULL);
-                if (rc == 0)
-                    ratfun_mul(acc, acc, t, r);
-            }
+            if (h % 2 && fs == 0)
+                debt_push(&debt, f->poly + i, 0, r); /* owed: below */
         }
         fmpz_mpoly_factor_clear(f, r->ctx);
     }
@@ -1252,7 +1345,9 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
             ratfun_mul(acc, acc, t, r);
     }
     if (rc == 0)
-        rc = squares_out(K, acc, rest);
+        rc = squares_out(K, acc, rest, &debt);
+    if (rc == 0)
+        rc = debt_settle(K, acc, &debt);
     if (rc == 0) {
         fmpq_t c;
         fmpq_init(c);
@@ -1271,6 +1366,7 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
     }
     if (rc == 0)
         ratfun_swap(res, acc, r);
+    debt_clear(&debt, r);
     fmpq_clear(content);
     ratfun_clear(t, r);
     ratfun_clear(rest, r);

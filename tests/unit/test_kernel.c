@@ -144,6 +144,12 @@ static void test_identities_reduce_to_zero(void **state)
         "sqrt(a^2 + b^2)*(sqrt(t) - sqrt(u))^2",
         "sqrt(1/(sqrt(t) + sqrt(u))^4) - 1/(sqrt(t) + sqrt(u))^2",
         "sqrt((1 + sqrt(u))^2*(a + cos(t))^2) - (1 + sqrt(u))*abs(a + cos(t))",
+        /* a square that reduces to sin(t) times a non-square */
+        "sqrt((((sqrt(a*cos(t) - b*sin(t)) - sqrt(sin(t)))*(a*cos(t) + "
+        "(b + 1)*sin(t)))^2)^2) - ((sqrt(a*cos(t) - b*sin(t)) - "
+        "sqrt(sin(t)))*(a*cos(t) + (b + 1)*sin(t)))^2",
+        "sqrt(1/(sqrt(a*cos(t) - b*sin(t)) + sqrt(sin(t)))^4) - "
+        "1/(sqrt(a*cos(t) - b*sin(t)) + sqrt(sin(t)))^2",
         "sqrt(1/cos(t)^2) - 1/abs(cos(t))",
     };
     size_t n = sizeof zero / sizeof zero[0];
