@@ -415,6 +415,52 @@ static void test_abs_pieces_keep_digits(void **state)
     pc_scheme_free(s);
 }
 
+/* angle(A, C, M) - phi for the angular one-ratio curve of 2.4.1 (a, b,
+ * gamma measured on the triangle): |CM| is the root of a square modulo
+ * the identities (a b sin(gamma)/D, D = (sqrt(x) + sqrt(y))^2), found, so
+ * the value stays small (12 KB printed; 1.4 MB and errors of 4e-11 when
+ * the square was missed) and evaluates to 0 within rounding. */
+static void test_angle_one_ratio_stays_small(void **state)
+{
+    (void)state;
+    static const char text[] =
+        "point A, B, C\nparam phi in [0, pi]\n"
+        "a = dist(C, B)\nb = dist(C, A)\ngamma = angle(A, C, B)\n"
+        "t = sqrt(b*sin(phi))/(sqrt(a*sin(gamma - phi)) + sqrt(b*sin(phi)))\n"
+        "P = along(A, C, t)\nQ = along(C, B, t)\nM = along(P, Q, t)\n"
+        "chk = angle(A, C, M) - phi\noutput chk\n";
+    char *diag = NULL;
+    pc_scheme *s = pc_scheme_parse("angle.pcs", text, strlen(text), &diag);
+    if (!s)
+        fprintf(stderr, "%s", diag ? diag : "");
+    free(diag);
+    assert_non_null(s);
+    char *v = value_str(s, "chk");
+    if (!(strlen(v) < 50000))
+        fprintf(stderr, "angle check: %zu characters\n", strlen(v));
+    assert_true(strlen(v) < 50000);
+    free(v);
+    pc_plan *p = pc_compile(s, &diag);
+    free(diag);
+    assert_non_null(p);
+    const double phis[] = {0.1, 0.3, 0.5, 0.7, 0.9, 1.1};
+    const double *params[1] = {phis};
+    const double A[2] = {3, 0}, B[2] = {1, 2}, C[2] = {0, 0};
+    const double *pts[3] = {A, B, C};
+    double out[6];
+    unsigned char st[6];
+    assert_int_equal(pc_eval(p, 0, 6, params, NULL, pts, 2, out, st, NULL),
+                     PC_OK);
+    for (int i = 0; i < 6; i++) {
+        if (!(fabs(out[i]) < 1e-14))
+            fprintf(stderr, "angle check at phi=%g: %g\n", phis[i], out[i]);
+        assert_int_equal(st[i], 0);
+        assert_true(fabs(out[i]) < 1e-14);
+    }
+    pc_plan_free(p);
+    pc_scheme_free(s);
+}
+
 /* diff(f) against central differences of f, both through the runtime */
 static void test_derivatives_match_differences(void **state)
 {
@@ -633,6 +679,7 @@ int main(void)
         cmocka_unit_test(test_non_identities_stay),
         cmocka_unit_test(test_values_match_libm),
         cmocka_unit_test(test_abs_pieces_keep_digits),
+        cmocka_unit_test(test_angle_one_ratio_stays_small),
         cmocka_unit_test(test_derivatives_match_differences),
         cmocka_unit_test(test_point_with_function_weights),
         cmocka_unit_test(test_domain_status),
