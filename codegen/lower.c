@@ -349,6 +349,7 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
         fmpz_init(d);
         fmpz_mpoly_t Pj;
         fmpz_mpoly_init(Pj, ctx);
+        int failed = 0;
         RatFun Q, s, c;
         ratfun_init(Q, L->r);
         ratfun_init(s, L->r);
@@ -371,7 +372,7 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
             ratfun_add(s, s, c, L->r);
             if (ratfun_compose_var(Q, Q, t, s, L->r) != 0 ||
                 !fmpz_mpoly_is_fmpz(Q->den, ctx)) {
-                reg = -1;
+                failed = 1; /* (a polynomial: never) the plain form */
                 break;
             }
             fmpz_mpoly_get_fmpz(d, Q->den, ctx);
@@ -390,7 +391,9 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
             }
             reg = reg < 0 ? q : plan_add(L->p, reg, q);
         }
-        if (reg < 0)
+        if (failed)
+            reg = -1;
+        else if (reg < 0)
             reg = plan_const(L->p, 0);
         ratfun_clear(c, L->r);
         ratfun_clear(s, L->r);
