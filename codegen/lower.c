@@ -42,6 +42,8 @@ typedef struct Lower {
     int *kbad;         // per kernel: its flags (poles of its argument's
                        // denominator, domain), or -1: none
     unsigned char *used; // per kernel: the current output uses it
+    slong shift_var;     // horner reads this param as shift_reg (the
+    int shift_reg;       // shifted form below), or -1: none
 } Lower;
 
 static int kernel_reg(Lower *L, slong var);
@@ -231,6 +233,183 @@ static slong main_var(Lower *L, const slong *degs)
     return best;
 }
 
+static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale);
+
+/* 1 when kernel kn is sign(a*t + b), t a param and a, b numbers: t and
+ * the root k = -b/a set */
+static int shift_sign(Lower *L, const Kernel *kn, slong *t, fmpq_t k)
+{
+    const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
+    const fmpz_mpoly_struct *a = kn->arg->num;
+    if (kn->fn != KF_SIGN || !fmpz_mpoly_is_fmpz(kn->arg->den, ctx) ||
+        fmpz_mpoly_total_degree_si(a, ctx) != 1 || a->length > 2)
+        return 0;
+    slong v = -1;
+    for (slong u = 0; u < L->nparams && v < 0; u++)
+        if (fmpz_mpoly_degree_si(a, u, ctx) == 1)
+            v = u;
+    if (v < 0)
+        return 0;
+    /* a = c1*t + c0, c1 and c0 numbers */
+    fmpz_mpoly_t C;
+    fmpz_mpoly_init(C, ctx);
+    ulong e0 = 0, e1 = 1;
+    fmpz_t c1, c0;
+    fmpz_init(c1);
+    fmpz_init(c0);
+    fmpz_mpoly_get_coeff_vars_ui(C, a, &v, &e1, 1, ctx);
+    int ok = fmpz_mpoly_is_fmpz(C, ctx);
+    if (ok)
+        fmpz_mpoly_get_fmpz(c1, C, ctx);
+    fmpz_mpoly_get_coeff_vars_ui(C, a, &v, &e0, 1, ctx);
+    ok = ok && fmpz_mpoly_is_fmpz(C, ctx) && !fmpz_is_zero(c1);
+    if (ok) {
+        fmpz_mpoly_get_fmpz(c0, C, ctx);
+        fmpz_neg(c0, c0);
+        fmpq_set_fmpz_frac(k, c0, c1);
+        *t = v;
+    }
+    fmpz_clear(c0);
+    fmpz_clear(c1);
+    fmpz_mpoly_clear(C, ctx);
+    return ok;
+}
+
+enum { PIECES_MAX = 16 }; // sign(t - k) kernels of one polynomial
+
+typedef struct Knot {
+    slong var; // the sign kernel's variable
+    int reg;   // its register
+    fmpq_t k;  // its root
+} Knot;
+
+static int cmp_knot(const void *x, const void *y)
+{
+    return fmpq_cmp(((const Knot *)x)->k, ((const Knot *)y)->k);
+}
+
+/* P in the signs sign(t - k_1) < ... < sign(t - k_m) of one param t
+ * (abs(t - k)^3 = (t - k)^3 sign(t - k)), lowered piece by piece:
+ *
+ *   P = sum_j chi_j p_j(t - c_j),  chi_j = prod_{i <= j} (1 + s_i)/2
+ *                                          prod_{i > j} (1 - s_i)/2
+ *
+ * p_j is P on the j-th interval (its signs set to +-1, combined exactly),
+ * written in powers of t - c_j, c_j the nearest knot.  chi_j is exactly 1
+ * on its interval and 0 elsewhere (1/2 for the two pieces at a knot: P is
+ * linear in each sign, so their mean is P at sign 0), so no two pieces
+ * cancel.  Expanded, (6t^2 - 39t + 64)(t - 2)^3 |t - 2| and its three
+ * companions of the C^2 square have coefficients up to 4320 cancelling
+ * to about 0.01 at t = 3.9; piecewise the square is 1 - (t - 3)^3 (...)
+ * in powers of t - 3.  The register, or -1 (P has no such signs, others
+ * too, or a shift is being lowered). */
+static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
+{
+    const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
+    if (L->shift_var >= 0 || !L->K)
+        return -1;
+    Knot kn[PIECES_MAX];
+    slong m = 0, t = -1;
+    int ok = 1;
+    for (slong i = 0; i < L->K->n && ok; i++) {
+        const Kernel *ke = &L->K->k[i];
+        if (fmpz_mpoly_degree_si(P, ke->var, ctx) <= 0)
+            continue;
+        slong ti = -1;
+        fmpq_t q;
+        fmpq_init(q);
+        ok = ke->fn == KF_SIGN && m < PIECES_MAX &&
+             fmpz_mpoly_degree_si(P, ke->var, ctx) == 1 &&
+             shift_sign(L, ke, &ti, q) && (t < 0 || ti == t);
+        if (ok) {
+            t = ti;
+            kn[m].var = ke->var;
+            fmpq_init(kn[m].k);
+            fmpq_swap(kn[m].k, q);
+            m++;
+        }
+        fmpq_clear(q);
+    }
+    if (ok && m > 0)
+        qsort(kn, (size_t)m, sizeof kn[0], cmp_knot);
+    for (slong i = 1; ok && i < m; i++)
+        ok = !fmpq_equal(kn[i - 1].k, kn[i].k);
+    int reg = -1;
+    if (ok && m > 0) {
+        for (slong i = 0; i < m; i++)
+            kn[i].reg = kernel_reg(L, kn[i].var);
+        fmpq_t h, sc, mc;
+        fmpq_init(h);
+        fmpq_init(sc);
+        fmpq_init(mc);
+        fmpq_set_si(h, 1, 2);
+        int half = const_fmpq(L, h), one = plan_const(L->p, 1);
+        fmpz_t sv, d;
+        fmpz_init(sv);
+        fmpz_init(d);
+        fmpz_mpoly_t Pj;
+        fmpz_mpoly_init(Pj, ctx);
+        int failed = 0;
+        RatFun Q, s, c;
+        ratfun_init(Q, L->r);
+        ratfun_init(s, L->r);
+        ratfun_init(c, L->r);
+        for (slong j = 0; j <= m; j++) {
+            /* interval j: t above knots 0..j-1, below knots j..m-1 */
+            fmpz_mpoly_set(Pj, P, ctx);
+            for (slong i = 0; i < m; i++) {
+                fmpz_set_si(sv, i < j ? 1 : -1);
+                fmpz_mpoly_evaluate_one_fmpz(Pj, Pj, kn[i].var, sv, ctx);
+            }
+            if (fmpz_mpoly_is_zero(Pj, ctx))
+                continue;
+            const fmpq *cj = kn[j > 0 ? j - 1 : 0].k;
+            /* Pj(t) = Q(t - cj): Q = Pj(t + cj) */
+            fmpz_mpoly_set(Q->num, Pj, ctx);
+            fmpz_mpoly_one(Q->den, ctx);
+            ratfun_gen(s, t, L->r);
+            ratfun_set_fmpq(c, cj, L->r);
+            ratfun_add(s, s, c, L->r);
+            if (ratfun_compose_var(Q, Q, t, s, L->r) != 0 ||
+                !fmpz_mpoly_is_fmpz(Q->den, ctx)) {
+                failed = 1; /* (a polynomial: never) the plain form */
+                break;
+            }
+            fmpz_mpoly_get_fmpz(d, Q->den, ctx);
+            fmpq_div_fmpz(sc, scale, d);
+            fmpq_neg(mc, cj);
+            L->shift_var = t;
+            L->shift_reg =
+                plan_add(L->p, plan_input(L->p, (int)t), const_fmpq(L, mc));
+            int q = horner(L, Q->num, sc);
+            L->shift_var = -1;
+            L->shift_reg = -1;
+            for (slong i = 0; i < m; i++) {
+                int f = i < j ? plan_add(L->p, one, kn[i].reg)
+                              : plan_sub(L->p, one, kn[i].reg);
+                q = plan_mul(L->p, q, plan_mul(L->p, f, half));
+            }
+            reg = reg < 0 ? q : plan_add(L->p, reg, q);
+        }
+        if (failed)
+            reg = -1;
+        else if (reg < 0)
+            reg = plan_const(L->p, 0);
+        ratfun_clear(c, L->r);
+        ratfun_clear(s, L->r);
+        ratfun_clear(Q, L->r);
+        fmpz_mpoly_clear(Pj, ctx);
+        fmpz_clear(d);
+        fmpz_clear(sv);
+        fmpq_clear(mc);
+        fmpq_clear(sc);
+        fmpq_clear(h);
+    }
+    for (slong i = 0; i < m; i++)
+        fmpq_clear(kn[i].k);
+    return reg;
+}
+
 /* P * scale in recursive Horner form:
  *   P = sum_k c_k x^k  ->  ((c_n x^(n-m) + c_m) x^(m-l) + c_l) ... x^low
  * with the gaps of a sparse P as shared powers, coefficients recursively. */
@@ -249,6 +428,9 @@ static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
         fmpz_clear(c);
         return reg;
     }
+    int shifted = horner_shifted(L, P, scale);
+    if (shifted >= 0)
+        return shifted;
     slong nv = ctx->minfo->nvars;
     slong *degs = flint_malloc(sizeof *degs * (size_t)nv);
     fmpz_mpoly_degrees_si(degs, P, ctx);
@@ -258,8 +440,9 @@ static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
 
     fmpz_mpoly_t C;
     fmpz_mpoly_init(C, ctx);
-    int x = var < L->nparams + L->nconsts ? plan_input(L->p, (int)var)
-                                          : kernel_reg(L, var);
+    int x = var == L->shift_var              ? L->shift_reg
+            : var < L->nparams + L->nconsts ? plan_input(L->p, (int)var)
+                                            : kernel_reg(L, var);
     int acc = -1;
     slong prev = 0;
     for (slong k = deg; k >= 0; k--) {
@@ -648,6 +831,8 @@ Plan *lower_derived(const Derived *d, FILE *err)
     L.error_exp10 = 0;
     L.K = d->kernels;
     slong nk = L.K ? L.K->n : 0;
+    L.shift_var = -1;
+    L.shift_reg = -1;
     L.kreg = pc_xmalloc(sizeof(int) * (size_t)(nk ? nk : 1));
     L.kbad = pc_xmalloc(sizeof(int) * (size_t)(nk ? nk : 1));
     L.used = pc_xcalloc((size_t)(nk ? nk : 1), 1);

@@ -20,7 +20,9 @@
  * rationalises denominators that are linear in a quadratic kernel (multiply
  * by the conjugate).  With squares pulled out of square roots
  * (sqrt(x^2*y) = abs(x)*sqrt(y), abs(x) = x*sign(x)), the relations form a
- * triangular set of irreducible polynomials, so a reduced numerator is zero
+ * triangular set of irreducible polynomials (and squares modulo the
+ * relations come out too: sqrt((1 + cos(t))^2) = abs(1 + cos(t)), whose
+ * argument reduces to 2 + 2*cos(t) - sin(t)^2), so a reduced numerator is zero
  * exactly when the value is zero: weight sums and degenerate geometry are
  * decided exactly where these identities decide them.  Identities beyond
  * them (sin(2a) = 2 sin(a) cos(a), sqrt(x)*sqrt(y) = sqrt(x*y)) are not
