@@ -696,7 +696,10 @@ static void count_kernel_uses(const Node *n, slong *calls, slong *ops,
         for (const Node *a = n->args; a; a = a->next)
             count_kernel_uses(a, calls, ops, pis, metric);
     }
-    if (n->kind == ND_POW && n->rhs->kind != ND_NUM)
+    /* a power that is not a whole number may be a root: t^(1/2), and
+     * t^0.5 (a decimal exponent) */
+    if (n->kind == ND_POW &&
+        (n->rhs->kind != ND_NUM || strpbrk(n->rhs->text, ".eE")))
         ++*calls;
     count_kernel_uses(n->lhs, calls, ops, pis, metric);
     count_kernel_uses(n->rhs, calls, ops, pis, metric);
