@@ -1,16 +1,24 @@
 #include "compiler/diag.h"
 
 #include <stdarg.h>
+#include <limits.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "compiler/mem.h"
 #include "compiler/numfmt.h"
+
+static void put_file(void *ctx, const char *s, size_t n);
+static void put_escaped(DiagSink *k, const char *s, size_t n);
 
 void diag_init(Diag *d, const Source *src, FILE *out)
 {
     d->src = src;
     d->out = out;
     d->nerrors = 0;
+    d->shown = 0;
+    d->reported = 0;
+    d->muted = 0;
     d->hold = 0;
     d->msgs = NULL;
     d->nmsgs = d->amsgs = 0;
@@ -35,18 +43,48 @@ void diag_rollback(Diag *d, int nmsgs, int nerrors)
         free(d->msgs[i].text);
     if (nmsgs < d->nmsgs)
         d->nmsgs = nmsgs;
+    d->reported -= d->nerrors - nerrors; /* (errors since count both) */
+    if (d->reported < 0)
+        d->reported = 0;
     d->nerrors = nerrors;
+}
+
+/* "NAME: note: N more errors are not shown" once the cap is passed
+ * (unshown INT_MAX: "further errors", while they still come) */
+static void note_unshown(Diag *d, int unshown)
+{
+    if (!d->out || unshown <= 0)
+        return;
+    DiagSink k = {put_file, d->out};
+    put_escaped(&k, d->src->name, strlen(d->src->name));
+    if (unshown == INT_MAX) /* streaming: the count is not known yet */
+        pc_fprintf(d->out,
+                   ": note: further errors are not shown (at most %d are); "
+                   "fix the first ones and run again\n",
+                   DIAG_MAX_ERRORS);
+    else
+        pc_fprintf(d->out,
+                   ": note: %d more error%s not shown (at most %d are); fix "
+                   "the first ones and run again\n",
+                   unshown, unshown == 1 ? " is" : "s are", DIAG_MAX_ERRORS);
 }
 
 void diag_flush(Diag *d)
 {
     if (d->nmsgs > 1)
         qsort(d->msgs, (size_t)d->nmsgs, sizeof *d->msgs, msg_cmp);
+    int errors = 0, mute = 0;
     for (int i = 0; i < d->nmsgs; i++) {
-        if (d->out)
+        if (!d->msgs[i].note) /* an error: shown while under the cap */
+            mute = ++errors > DIAG_MAX_ERRORS;
+        if (d->out && !mute)
             fputs(d->msgs[i].text, d->out);
         free(d->msgs[i].text);
     }
+    note_unshown(d, d->reported - (errors < DIAG_MAX_ERRORS
+                                       ? errors
+                                       : DIAG_MAX_ERRORS));
+    d->reported = 0;
     free(d->msgs);
     d->msgs = NULL;
     d->nmsgs = d->amsgs = 0;
@@ -60,12 +98,22 @@ static void emit(Diag *d, Span span, const char *what, const char *fmt,
 static void report(Diag *d, Span span, const char *what, const char *fmt,
                    va_list ap)
 {
+    int is_note = what[0] == 'n';
     if (!d->out)
         return;
+    d->reported += !is_note;
     if (!d->hold) {
-        emit(d, span, what, fmt, ap);
+        if (!is_note) {
+            d->muted = d->shown >= DIAG_MAX_ERRORS;
+            if (d->shown++ == DIAG_MAX_ERRORS)
+                note_unshown(d, INT_MAX); /* the first one not shown */
+        }
+        if (!d->muted)
+            emit(d, span, what, fmt, ap);
         return;
     }
+    if (d->nmsgs >= DIAG_MAX_HELD)
+        return; /* counted, never shown: the cap is far below */
     char *text = NULL;
     size_t len = 0;
     FILE *m = open_memstream(&text, &len);
@@ -79,7 +127,7 @@ static void report(Diag *d, Span span, const char *what, const char *fmt,
         d->msgs = pc_xrealloc(d->msgs, sizeof *d->msgs * (size_t)d->amsgs);
     }
     DiagMsg *g = &d->msgs[d->nmsgs];
-    int is_note = what[0] == 'n';
+    g->note = is_note;
     g->start = is_note && d->nmsgs ? d->msgs[d->nmsgs - 1].start : span.start;
     g->seq = d->nmsgs;
     g->text = text;
@@ -175,6 +223,15 @@ void diag_put_location(DiagSink *k, const Source *s, Span span,
     put_str(k, ": ");
 }
 
+/* the first byte of the character that holds byte i of text (UTF-8: not
+ * a continuation byte 10xxxxxx) */
+static int char_start(const char *text, int i)
+{
+    while (i > 0 && ((unsigned char)text[i] & 0xc0) == 0x80)
+        i--;
+    return i;
+}
+
 void diag_put_excerpt(DiagSink *k, const Source *s, Span span)
 {
     int line, col, len;
@@ -184,8 +241,30 @@ void diag_put_excerpt(DiagSink *k, const Source *s, Span span)
     const char *text = source_line(s, line, &len);
     int from = (int)(s->text + span.start - text); /* byte offset in line */
     int to = (int)(s->text + span.end - text);
+    /* a long line is shown around the span: DIAG_EXCERPT_BEFORE bytes
+     * before it, DIAG_EXCERPT_WIDTH in all, "..." where it is cut */
+    int cut_left = 0, cut_right = 0;
+    if (len > DIAG_EXCERPT_WIDTH) {
+        int ws = from > DIAG_EXCERPT_BEFORE ? from - DIAG_EXCERPT_BEFORE : 0;
+        ws = char_start(text, ws);
+        int we = ws + DIAG_EXCERPT_WIDTH < len ? ws + DIAG_EXCERPT_WIDTH : len;
+        if (we < len)
+            we = char_start(text, we);
+        cut_left = ws > 0;
+        cut_right = we < len;
+        text += ws;
+        len = we - ws;
+        from -= ws;
+        to -= ws;
+    }
+    if (cut_left)
+        put_str(k, "...");
     put_escaped(k, text, (size_t)len);
+    if (cut_right)
+        put_str(k, "...");
     put_str(k, "\n");
+    if (cut_left)
+        put_str(k, "   ");
     /* the caret under the first cell of the span, '~' under the rest;
      * tabs kept so that it lines up under tabbed text */
     int i = 0, marks = 0;

@@ -19,13 +19,23 @@
 /* a held message (diag_hold) */
 typedef struct DiagMsg {
     int start, seq; // sort key: its position, then the order of reports
+    int note;       // a note (follows its error), not an error
     char *text;     // owned, complete with source line and caret
 } DiagMsg;
+
+/* the most errors a file reports (compilers stop after 20-100): the rest
+ * are counted, and one note says how many were not shown */
+#define DIAG_MAX_ERRORS 50
+/* the most messages held for sorting (diag_hold) */
+#define DIAG_MAX_HELD 2000
 
 typedef struct Diag {
     const Source *src; // borrowed
     FILE *out;         // borrowed; NULL = count only
     int nerrors;
+    int shown;         // errors written (not held) so far
+    int reported;      // errors reported while held (shown or not)
+    int muted;         // the last error was not shown: neither are its notes
     int hold;          // 1: messages wait in msgs until diag_flush
     DiagMsg *msgs;     // owned
     int nmsgs, amsgs;
@@ -65,7 +75,11 @@ typedef struct DiagSink {
 /* "NAME:LINE:COL: WHAT: " */
 void diag_put_location(DiagSink *k, const Source *s, Span span,
                        const char *what);
-/* the source line of span, then its caret line, each ending in '\n' */
+/* the source line of span, then its caret line, each ending in '\n'; a
+ * line longer than DIAG_EXCERPT_WIDTH bytes is shown around the span,
+ * cut ends marked "..." */
+#define DIAG_EXCERPT_WIDTH 160
+#define DIAG_EXCERPT_BEFORE 60
 void diag_put_excerpt(DiagSink *k, const Source *s, Span span);
 
 #endif

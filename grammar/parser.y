@@ -33,6 +33,8 @@ typedef struct LexState {
     Diag *diag;    // lexical errors
     int offset;    // byte offset of the next token
     int eof_nl;    // the synthetic final NEWLINE was returned
+    int line_bad;  // a bad character was reported on this line: the
+                   // rest of its bad characters are not (no cascade)
 } LexState;
 
 /* parser state */

@@ -611,5 +611,26 @@ CEOF
 cc -std=c99 -Wall -Wextra -Werror -O2 -I"$tmp" -o "$tmp/rng_main" "$tmp/rng_main.c" "$tmp/rng.c" -lm
 check "range: generated C flags outside, not inside" test "$("$tmp/rng_main")" = "4 1 0 0.5 0 -0.5"
 
+# diagnostics are bounded (issue 23): one lexical error a line (no
+# cascade), a long line shown around the span, at most 50 errors a file
+python3 -c "
+import random
+random.seed(2)
+print(''.join(random.choice('@!\$%&?~') for _ in range(10000)))" >"$tmp/garb.pcs"
+"$PC" derive "$tmp/garb.pcs" >/dev/null 2>"$tmp/garb.err"
+check "garbage line: exit 1" test $? -eq 1
+check "garbage line: one error" test "$(grep -c ': error: ' "$tmp/garb.err")" -eq 1
+check "garbage line: a short excerpt" test "$(wc -c <"$tmp/garb.err")" -lt 400
+head -c 3000 /dev/zero >"$tmp/nul.pcs"
+"$PC" derive "$tmp/nul.pcs" >/dev/null 2>"$tmp/nul.err"
+check "NUL bytes: one error" test "$(grep -c ': error: ' "$tmp/nul.err")" -eq 1
+python3 -c "print('point A, B\nM = along(A, B, ' + 'a+'*100 + 'q)')" >"$tmp/many.pcs"
+"$PC" derive "$tmp/many.pcs" >/dev/null 2>"$tmp/many.err"
+check "many errors: 50 shown" test "$(grep -c ': error: ' "$tmp/many.err")" -eq 50
+check "many errors: the rest counted" grep -qx "$tmp/many.pcs: note: 51 more errors are not shown (at most 50 are); fix the first ones and run again" "$tmp/many.err"
+check "long line: cut after 160 bytes" test "$(sed -n 2p "$tmp/many.err")" = "M = along(A, B, $(python3 -c "print('a+'*72)")..."
+check "long line: the caret under the span" test "$(sed -n 3p "$tmp/many.err")" = "                ^"
+check "long line: cut on both sides" test "$(grep -m1 -A1 ':2:63: error' "$tmp/many.err" | tail -1)" = "...= along(A, B, $(python3 -c "print('a+'*73)")..."
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

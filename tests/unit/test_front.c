@@ -261,18 +261,21 @@ static void test_diag_escapes_and_utf8_columns(void **state)
                         "M = A + \\x1b[2J\n"
                         "        ^~~~\n");
     free(out);
-    /* two 2-byte letters, then an invalid byte: columns 5 and 10 */
-    static const char u8[] = "point A\nM = \xc3\xa9\xc3\xa9 + \xff\n";
+    /* two 2-byte letters (two cells), then an invalid byte (four); one
+     * lexical error a line: the invalid byte after the letters is not
+     * reported again (no cascade), the one on the next line is */
+    static const char u8[] =
+        "point A\nM = \xc3\xa9\xc3\xa9 + \xff\nN = A + \xff\n";
     out = diagnose("u.pcs", u8, sizeof u8 - 1);
     assert_string_equal(out,
                         "u.pcs:2:5: error: unexpected non-ASCII text; names "
                         "are ASCII letters, digits and '_'\n"
                         "M = \xc3\xa9\xc3\xa9 + \\xff\n"
                         "    ^~\n"
-                        "u.pcs:2:10: error: unexpected non-ASCII text; names "
+                        "u.pcs:3:9: error: unexpected non-ASCII text; names "
                         "are ASCII letters, digits and '_'\n"
-                        "M = \xc3\xa9\xc3\xa9 + \\xff\n"
-                        "         ^~~~\n");
+                        "N = A + \\xff\n"
+                        "        ^~~~\n");
     free(out);
 }
 
