@@ -9,6 +9,8 @@
 #include <flint/fmpz_vec.h>
 #include <flint/nmod_poly.h>
 
+#include "compiler/absform.h"
+#include "compiler/kernel.h"
 #include "compiler/mem.h"
 #include "compiler/ring.h"
 #include "compiler/strbuf.h"
@@ -110,6 +112,7 @@ typedef enum AtomKind {
     AT_BAR,   // 1 - x of a param or const
     AT_SUM,   // a parenthesised sum
     AT_POINT, // a point name, or a difference of two (point2)
+    AT_ABS,   // |x| of the sign kernel var = sign(x) (absform.h)
 } AtomKind;
 
 typedef struct PSum PSum;
@@ -145,6 +148,11 @@ typedef struct Ctx {
     long *work; // the printing work spent on this output (RENDER_WORK)
     struct Memo *memo; // forms already chosen: this output's, or the
                        // scheme's (BookOptions.memo)
+    const Kernels *K;  // the functions (NULL: none)
+    int has_sign;      // K has a sign kernel: polynomials are read for |x|
+    const unsigned char *is_abs; // rendering a polynomial rewritten by
+                                 // absform_rewrite: its vars meaning |x|
+    ulong mode;        // 0, or a key of is_abs (memo entries differ by it)
 } Ctx;
 
 /* render() of a polynomial at a depth, kept: the same coefficients and
@@ -152,6 +160,7 @@ typedef struct Ctx {
 typedef struct MemoEntry {
     fmpz_mpoly_t poly;
     int depth;
+    ulong mode; // Ctx.mode it was rendered in
     struct PSum *sum;
 } MemoEntry;
 
@@ -282,6 +291,8 @@ static int atom_class(const Ctx *c, const Atom *a)
         if (is_param(c, a->var))
             return 2;
         return a->var < c->nparams + c->nconsts ? 0 : 3;
+    case AT_ABS:
+        return 3;
     case AT_POINT:
         return a->point2 ? -1 : 1; /* (A - C)*kp*..., as the book */
     case AT_SUM:
@@ -295,11 +306,11 @@ static int atom_cmp(const Ctx *c, const Atom *a, const Atom *b)
     int ka = atom_class(c, a), kb = atom_class(c, b);
     if (ka != kb)
         return ka < kb ? -1 : 1;
-    if (a->kind == AT_VAR || a->kind == AT_BAR) {
+    if (a->kind == AT_VAR || a->kind == AT_BAR || a->kind == AT_ABS) {
         if (a->var != b->var)
             return a->var < b->var ? -1 : 1;
         if (a->kind != b->kind)
-            return a->kind == AT_VAR ? -1 : 1;
+            return a->kind < b->kind ? -1 : 1;
         return 0;
     }
     if (a->kind == AT_SUM) {
@@ -424,6 +435,14 @@ static void put_atom(StrBuf *b, const Atom *a, const Ctx *c)
         put_sum(b, a->sum, c);
         sb_puts(b, close);
         break;
+    case AT_ABS: {
+        char *x = absform_arg_text(kernels_of_var(c->K, a->var), c->latex);
+        sb_puts(b, c->latex ? "\\left|" : "abs(");
+        sb_puts(b, x);
+        sb_puts(b, c->latex ? "\\right|" : ")");
+        free(x);
+        break;
+    }
     case AT_POINT:
         if (a->point2) {
             sb_puts(b, open);
@@ -501,6 +520,19 @@ static void sum_finish(PSum *s, const fmpz_mpoly_t p, const Ctx *c)
         term_sort(&s->t[i], c);
 }
 
+/* the total degree of p's term k */
+static slong term_degree(const fmpz_mpoly_t p, slong k, const Ctx *c)
+{
+    const Ring *r = c->r;
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
+    slong d = 0;
+    for (slong v = 0; v < r->nvars; v++)
+        d += (slong)e[v];
+    free(e);
+    return d;
+}
+
 /* expanded, ascending (the reverse of FLINT's degrevlex) */
 static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c)
 {
@@ -508,7 +540,29 @@ static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c)
     PSum *s = sum_new(c);
     slong len = fmpz_mpoly_length(p, r->ctx);
     ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
-    for (slong k = len - 1; k >= 0; k--) {
+    for (slong kk = len - 1; kk >= 0; kk--) {
+        slong k = kk;
+        if (c->is_abs) {
+            /* |t| - 2*|t - 1| + |t - 2|: the terms of one degree in
+             * the order of their vars (the kernels' order of creation) */
+            slong deg = term_degree(p, kk, c), lo = kk;
+            while (lo > 0 &&
+                   term_degree(p, lo - 1, c) == deg)
+                lo--;
+            for (slong j = lo; j <= kk; j++) {
+                PTerm *t = sum_push(s);
+                fmpz_mpoly_get_term_coeff_fmpz(t->coeff, p, j, r->ctx);
+                t->neg = fmpz_sgn(t->coeff) < 0;
+                fmpz_abs(t->coeff, t->coeff);
+                fmpz_mpoly_get_term_exp_ui(e, p, j, r->ctx);
+                for (slong v = 0; v < r->nvars; v++)
+                    if (e[v])
+                        term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL,
+                                            e[v]});
+            }
+            kk = lo;
+            continue;
+        }
         PTerm *t = sum_push(s);
         fmpz_mpoly_get_term_coeff_fmpz(t->coeff, p, k, r->ctx);
         t->neg = fmpz_sgn(t->coeff) < 0;
@@ -1292,14 +1346,58 @@ static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth,
 }
 
 /* p in its best form (see book.h), remembered per output */
+static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+/* the atoms of s (and of its sums) that are vars marked in is_abs become
+ * |x| */
+static void mark_abs(PSum *s, const unsigned char *is_abs)
+{
+    for (slong i = 0; i < s->n; i++)
+        for (slong j = 0; j < s->t[i].n; j++) {
+            Atom *a = &s->t[i].a[j];
+            if (a->kind == AT_VAR && is_abs[a->var])
+                a->kind = AT_ABS;
+            else if (a->kind == AT_SUM)
+                mark_abs(a->sum, is_abs);
+        }
+}
+
+/* p in its best form; a p with x*sign(x) in it is written through |x|
+ * (absform.h) */
 static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    if (!c->has_sign || c->is_abs)
+        return render_memo(p, depth, c);
+    const Ring *r = c->r;
+    unsigned char *mask = pc_xcalloc((size_t)(r->nvars ? r->nvars : 1), 1);
+    fmpz_mpoly_t q;
+    fmpz_mpoly_init(q, r->ctx);
+    PSum *s;
+    if (absform_rewrite(q, mask, p, c->K, r) > 0) {
+        Ctx a = *c;
+        a.is_abs = mask;
+        a.mode = 1;
+        for (slong v = 0; v < r->nvars; v++)
+            a.mode = a.mode * 31 + mask[v];
+        a.mode |= 1;
+        s = render_memo(q, depth, &a);
+        mark_abs(s, mask);
+    } else {
+        s = render_memo(p, depth, c);
+    }
+    fmpz_mpoly_clear(q, r->ctx);
+    free(mask);
+    return s;
+}
+
+static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     Memo *m = c->memo;
     slong len = fmpz_mpoly_length(p, c->r->ctx);
     if (len < 2 || !m)
         return render_new(p, depth, c);
     for (slong i = 0; i < m->n; i++)
-        if (m->e[i].depth == depth &&
+        if (m->e[i].depth == depth && m->e[i].mode == c->mode &&
             fmpz_mpoly_length(m->e[i].poly, c->r->ctx) == len &&
             fmpz_mpoly_equal(m->e[i].poly, p, c->r->ctx))
             return sum_copy(m->e[i].sum, c);
@@ -1313,6 +1411,7 @@ static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
         fmpz_mpoly_init(e->poly, c->r->ctx);
         fmpz_mpoly_set(e->poly, p, c->r->ctx);
         e->depth = depth;
+        e->mode = c->mode;
         e->sum = sum_copy(s, c);
     }
     return s;
@@ -1678,6 +1777,10 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
     c->nparams = d->nparams;
     c->nconsts = d->nconsts;
     c->latex = opt->latex;
+    c->K = d->kernels;
+    c->has_sign = absform_any(d->kernels);
+    c->is_abs = NULL;
+    c->mode = 0;
 }
 
 static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,

@@ -670,6 +670,44 @@ static void test_conic_of_2_1_6(void **state)
     free(got);
 }
 
+/* abs(x) is x*sign(x) inside (kernel.h); every x*sign(x) prints as abs(x)
+ * in text, LaTeX and JSON (absform.h): the square of the composite-curve
+ * text, 2.2.2 ex. 1, its weights P(t,k-1,1) - P(t,k,1) by hand; x^3 sign(x)
+ * is |x|^3; a sign(x) without the factor x stays sign(x) */
+#define SQUARE                                                              \
+    "point O, A, B, C\nparam t\n"                                           \
+    "R = O + (A - O)*(1 + abs(t) - abs(t - 1))/2"                           \
+    " + (B - A)*(1 + abs(t - 1) - abs(t - 2))/2"                            \
+    " + (C - B)*(1 + abs(t - 2) - abs(t - 3))/2"                            \
+    " + (O - C)*(1 + abs(t - 3) - abs(t - 4))/2\n"
+
+static void test_abs(void **state)
+{
+    (void)state;
+    expect(SQUARE, FMT_TEXT,
+           "R = (O*(2 - abs(t) + abs(t - 1) + abs(t - 3) - abs(t - 4))"
+           " + A*(abs(t) - 2*abs(t - 1) + abs(t - 2))"
+           " + B*(abs(t - 1) - 2*abs(t - 2) + abs(t - 3))"
+           " + C*(abs(t - 2) - 2*abs(t - 3) + abs(t - 4)))/2\n");
+    expect("param t\nr = t^2*abs(t)\nq = sign(t)\n"
+           "w = (1 - t)*abs(t - 1)\noutput r, q, w\n",
+           FMT_TEXT, "r = abs(t)^3\nq = sign(t)\nw = (1 - t)*abs(t - 1)\n");
+    expect("param t\nr = t^2*abs(t)\nw = (1 - t)*abs(t - 1)\n"
+           "output r, w\n",
+           FMT_LATEX,
+           "\\[ r = \\left|t\\right|^{3} \\]\n"
+           "\\[ w = \\bar{t} \\left|t - 1\\right| \\]\n");
+    char *js = printed_ex("point A, B\nparam t\n"
+                          "M = A + (B - A)*(abs(t) - t^3*sign(t))\n"
+                          "q = sign(t)\noutput M, q\n",
+                          FMT_JSON, 0, -1);
+    assert_non_null(strstr(js, "\"B\": \"abs(t)*(t+1)*(1-t)\""));
+    assert_non_null(strstr(js, "\"value\": \"sign(t)\""));
+    assert_null(strstr(js, "sign(t)*"));
+    assert_null(strstr(js, "*sign("));
+    free(js);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -687,6 +725,7 @@ int main(void)
         cmocka_unit_test(test_multline),
         cmocka_unit_test(test_origin),
         cmocka_unit_test(test_conic_of_2_1_6),
+        cmocka_unit_test(test_abs),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
