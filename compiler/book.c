@@ -68,7 +68,8 @@ static void latex_name(StrBuf *b, const char *name)
         if (gl == alpha && strncmp(greek[g], name, gl) == 0 &&
             (name[gl] == '\0' || all_digits(name + gl))) {
             sb_puts(b, "\\");
-            sb_puts(b, greek[g]);
+            /* the book's (and most texts') angle: \varphi */
+            sb_puts(b, strcmp(greek[g], "phi") == 0 ? "varphi" : greek[g]);
             if (name[gl]) {
                 sb_puts(b, "_{");
                 sb_puts(b, name + gl);
@@ -411,14 +412,158 @@ static void put_exp(StrBuf *b, ulong e, const Ctx *c)
         sb_puts(b, "}");
 }
 
+static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c);
+static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c);
+static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+/* the part of a kernel's text between open and close (its argument as
+ * kernel.c wrote it: expanded), malloc'd, or NULL */
+static char *inner_text(const char *name, const char *open, const char *close)
+{
+    const char *o = strstr(name, open);
+    size_t n = strlen(name), lc = strlen(close);
+    if (!o || n < lc || strcmp(name + n - lc, close) != 0)
+        return NULL;
+    const char *a = o + strlen(open), *e = name + n - lc;
+    if (e < a)
+        return NULL;
+    return pc_xstrndup(a, (size_t)(e - a));
+}
+
+/* a kernel's argument x: its best form (expanded: its terms only), a
+ * positive term first (sqrt(a^2 - b^2), not sqrt(-b^2 + a^2)) */
+static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
+{
+    if (!fmpz_mpoly_is_one(x->den, c->r->ctx)) {
+        rhs_scalar(b, x, c);
+        return;
+    }
+    PSum *s = expanded ? form_expanded(x->num, c) : render(x->num, 0, c);
+    slong i = 0;
+    while (i < s->n && s->t[i].neg)
+        i++;
+    if (i > 0 && i < s->n) {
+        PTerm t = s->t[i];
+        memmove(s->t + 1, s->t, sizeof(PTerm) * (size_t)i);
+        s->t[0] = t;
+    }
+    put_sum(b, s, c);
+    sum_free(s, c);
+}
+
+/* the argument of kernel k in its best form (book.c), or expanded as
+ * kernel.c names it when that is shorter in text: sqrt(a^2*sin(phi)^2 +
+ * b^2*cos(phi)^2) for sqrt(a^2*sin(phi)^2 - b^2*sin(phi)^2 + b^2) */
+static char *kernel_arg(const Kernel *k, const char *open, const char *close,
+                        const Ctx *c)
+{
+    char *own = inner_text(k->name, open, close);
+    if (!own)
+        return NULL;
+    Ctx t = *c;
+    t.latex = 0;
+    t.is_abs = NULL;
+    t.mode = 0;
+    StrBuf bk = {0};
+    put_arg(&bk, k->arg, 0, &t);
+    int book = bk.len <= strlen(own);
+    if (!c->latex) {
+        if (book) {
+            free(own);
+            return sb_take(&bk);
+        }
+        free(bk.s);
+        return own;
+    }
+    free(own);
+    free(bk.s);
+    t.latex = 1;
+    StrBuf lb = {0};
+    put_arg(&lb, k->arg, !book, &t);
+    return sb_take(&lb);
+}
+
+/* kernel k to the power e, as the book writes it: sqrt(X) with X in its
+ * best form; in LaTeX \sin^{2}\varphi (a one-name argument without
+ * parentheses, the power on the function's name), \sqrt{X}^{2} */
+static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
+{
+    static const char *const lx[KF_COUNT] = {
+        [KF_SIN] = "\\sin",     [KF_COS] = "\\cos",
+        [KF_SINH] = "\\sinh",   [KF_COSH] = "\\cosh",
+        [KF_LN] = "\\ln",       [KF_ASIN] = "\\arcsin",
+        [KF_ACOS] = "\\arccos", [KF_ATAN] = "\\arctan",
+    };
+    char *a;
+    if (k->fn == KF_SQRT) {
+        a = kernel_arg(k, "sqrt(", ")", c);
+        if (!a)
+            return 0;
+        sb_puts(b, c->latex ? "\\sqrt{" : "sqrt(");
+        sb_puts(b, a);
+        sb_puts(b, c->latex ? "}" : ")");
+        put_exp(b, e, c);
+        free(a);
+        return 1;
+    }
+    if (k->fn >= KF_COUNT || !lx[k->fn])
+        return 0;
+    char open[16];
+    static const char *const names[] = {
+#define X(id, name, cfn) name,
+        PC_KERNEL_FNS(X)
+#undef X
+    };
+    snprintf(open, sizeof open, "%s(", names[k->fn]);
+    a = kernel_arg(k, open, ")", c);
+    if (!a)
+        return 0;
+    if (!c->latex) {
+        sb_puts(b, open);
+        sb_puts(b, a);
+        sb_puts(b, ")");
+        put_exp(b, e, c);
+        free(a);
+        return 1;
+    }
+    sb_puts(b, lx[k->fn]);
+    if (e > 1 && k->fn != KF_ASIN && k->fn != KF_ACOS && k->fn != KF_ATAN)
+        put_exp(b, e, c);
+    slong v;
+    int one = fmpz_mpoly_is_one(k->arg->den, c->r->ctx) &&
+              fmpz_mpoly_length(k->arg->num, c->r->ctx) == 1 &&
+              fmpz_mpoly_total_degree_si(k->arg->num, c->r->ctx) == 1 &&
+              fmpz_is_one(k->arg->num->coeffs);
+    for (v = 0; one && v < c->r->nvars; v++)
+        if (fmpz_mpoly_degree_si(k->arg->num, v, c->r->ctx) > 0)
+            break;
+    one = one && !kernels_of_var(c->K, v);
+    if (one) {
+        sb_puts(b, a[0] == '\\' ? "" : " ");
+        sb_puts(b, a);
+    } else {
+        sb_puts(b, "\\left(");
+        sb_puts(b, a);
+        sb_puts(b, "\\right)");
+    }
+    if (e > 1 && (k->fn == KF_ASIN || k->fn == KF_ACOS || k->fn == KF_ATAN))
+        put_exp(b, e, c); /* \arcsin^{2} would read as a power of the map */
+    free(a);
+    return 1;
+}
+
 static void put_atom(StrBuf *b, const Atom *a, const Ctx *c)
 {
     const char *open = c->latex ? "\\left(" : "(";
     const char *close = c->latex ? "\\right)" : ")";
     switch (a->kind) {
-    case AT_VAR:
+    case AT_VAR: {
+        const Kernel *k = kernels_of_var(c->K, a->var);
+        if (k && put_kernel(b, k, a->exp, c))
+            return;
         put_var(b, a->var, c);
         break;
+    }
     case AT_BAR:
         if (c->latex) {
             sb_puts(b, "\\bar{");
@@ -1219,6 +1364,66 @@ static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
     return s;
 }
 
+/* the cos kernel of the same argument as sin kernel var v (its companion:
+ * cos^2 = 1 - sin^2), or -1 */
+static slong cos_companion(slong v, const Ctx *c)
+{
+    const Kernel *k = kernels_of_var(c->K, v);
+    if (!k || k->fn != KF_SIN)
+        return -1;
+    for (slong i = 0; i < c->K->n; i++) {
+        const Kernel *w = &c->K->k[i];
+        if (w->fn == KF_COS && ratfun_equal(w->arg, k->arg, c->r))
+            return w->var;
+    }
+    return -1;
+}
+
+/* p (even in s = sin(x), free of w = cos(x)) as a polynomial in y = s^2,
+ * in the basis y^k (1 - y)^(n-k) with 1 - y = cos(x)^2: the book's
+ * a^2*sin(phi)^2 + b^2*cos(phi)^2 for the normal form's b^2 - b^2*sin(phi)^2
+ * + a^2*sin(phi)^2 (form_bernstein in y); NULL when p is not such */
+static PSum *form_sin2(const fmpz_mpoly_t p, slong s, slong w, int depth,
+                       const Ctx *c)
+{
+    const Ring *r = c->r;
+    slong n2 = fmpz_mpoly_degree_si(p, s, r->ctx);
+    if (n2 < 2 || (n2 & 1) || fmpz_mpoly_degree_si(p, w, r->ctx) > 0)
+        return NULL;
+    fmpz_mpoly_struct *a = coeffs_in(p, s, n2, c);
+    for (slong i = 1; i <= n2; i += 2)
+        if (!fmpz_mpoly_is_zero(a + i, r->ctx)) {
+            coeffs_clear(a, n2, c);
+            return NULL;
+        }
+    slong n = n2 / 2;
+    PSum *sum = sum_new(c);
+    fmpz_mpoly_t bk, tmp;
+    fmpz_mpoly_init(bk, r->ctx);
+    fmpz_mpoly_init(tmp, r->ctx);
+    fmpz_t bin;
+    fmpz_init(bin);
+    for (slong k = 0; k <= n; k++) {
+        fmpz_mpoly_zero(bk, r->ctx);
+        for (slong i = 0; i <= k; i++) {
+            fmpz_bin_uiui(bin, (ulong)(n - i), (ulong)(k - i));
+            fmpz_mpoly_scalar_mul_fmpz(tmp, a + 2 * i, bin, r->ctx);
+            fmpz_mpoly_add(bk, bk, tmp, r->ctx);
+        }
+        if (fmpz_mpoly_is_zero(bk, r->ctx))
+            continue;
+        Atom xs[2] = {{AT_VAR, s, NULL, NULL, NULL, (ulong)(2 * k)},
+                      {AT_VAR, w, NULL, NULL, NULL, (ulong)(2 * (n - k))}};
+        push_collected(sum, bk, xs, 2, depth, c);
+    }
+    fmpz_clear(bin);
+    fmpz_mpoly_clear(tmp, r->ctx);
+    fmpz_mpoly_clear(bk, r->ctx);
+    coeffs_clear(a, n2, c);
+    sum_finish(sum, p, c);
+    return sum;
+}
+
 /* the length of s's text form (whatever the style): measured only when a
  * tie between two collected forms needs it */
 static size_t text_len(const PSum *s, const Ctx *c)
@@ -1450,10 +1655,232 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
         if (is_param(c, v))
             keep_better(&best, &rank, &blen, form_bernstein(p, v, depth, c),
                         R_BERNSTEIN, c);
+        slong w = c->K ? cos_companion(v, c) : -1;
+        if (w >= 0)
+            keep_better(&best, &rank, &blen, form_sin2(p, v, w, depth, c),
+                        R_BERNSTEIN, c);
         keep_better(&best, &rank, &blen, form_powers(p, v, depth, c),
                     R_POWERS, c);
     }
     return best;
+}
+
+
+/* ---- roots where the user put them ---------------------------------------- */
+
+/* The normal form rationalises: b*cos(phi)/sqrt(X) is kept as
+ * b*cos(phi)*sqrt(X)/X, and 1/(a - c*cos(phi)) (c a root) as
+ * (a + c*cos(phi))/(a^2 - c^2*cos(phi)^2) reduced.  The printer undoes it
+ * where that is shorter: for a root kernel s (s^2 = X) and a multiplier
+ * Lb = P - Q*s (the conjugate of L = P + Q*s),
+ *     N/D = reduce(N*Lb)/(D*Lb),
+ * and G = reduce(L*Lb) = P^2 - Q^2*X (free of s) cancels when it divides D
+ * and every reduce(N*Lb): the weight becomes M/(D1*Lb), D = G*D1.  The
+ * multipliers tried: s itself (P = 0: N*s/X -> N/s), and the conjugates of
+ * the numerators' factors of degree 1 in s.  Every candidate is exactly
+ * equal (the relations are identities); the shortest text wins. */
+
+/* p modulo the kernels' relations v^q = rel, for polynomial rels; 0 when
+ * a relation with a denominator would be needed (p then unusable) */
+static int reduce_rel(fmpz_mpoly_t p, const Ctx *c)
+{
+    const Ring *r = c->r;
+    const Kernels *K = c->K;
+    if (!K)
+        return 1;
+    int ok = 1;
+    fmpz_mpoly_t res, cj, rp, m;
+    fmpz_mpoly_init(res, r->ctx);
+    fmpz_mpoly_init(cj, r->ctx);
+    fmpz_mpoly_init(rp, r->ctx);
+    fmpz_mpoly_init(m, r->ctx);
+    /* later kernels first: a relation uses only earlier variables */
+    for (slong i = K->n - 1; i >= 0 && ok; i--) {
+        const Kernel *k = &K->k[i];
+        slong v = k->var, q = k->deg;
+        if (q < 2 || fmpz_mpoly_degree_si(p, v, r->ctx) < q)
+            continue;
+        if (!fmpz_mpoly_is_one(k->rel->den, r->ctx)) {
+            ok = 0;
+            break;
+        }
+        slong n = fmpz_mpoly_degree_si(p, v, r->ctx);
+        fmpz_mpoly_zero(res, r->ctx);
+        for (slong j = 0; j <= n; j++) {
+            ulong e = (ulong)j;
+            fmpz_mpoly_get_coeff_vars_ui(cj, p, &v, &e, 1, r->ctx);
+            if (fmpz_mpoly_is_zero(cj, r->ctx))
+                continue;
+            /* v^j = v^(j mod q) * rel^(j div q) */
+            fmpz_mpoly_pow_ui(rp, k->rel->num, (ulong)(j / q), r->ctx);
+            fmpz_mpoly_gen(m, v, r->ctx);
+            fmpz_mpoly_pow_ui(m, m, (ulong)(j % q), r->ctx);
+            fmpz_mpoly_mul(rp, rp, m, r->ctx);
+            fmpz_mpoly_mul(rp, rp, cj, r->ctx);
+            fmpz_mpoly_add(res, res, rp, r->ctx);
+            if (fmpz_mpoly_length(res, r->ctx) > 4096)
+                ok = 0;
+        }
+        fmpz_mpoly_swap(p, res, r->ctx);
+    }
+    fmpz_mpoly_clear(m, r->ctx);
+    fmpz_mpoly_clear(rp, r->ctx);
+    fmpz_mpoly_clear(cj, r->ctx);
+    fmpz_mpoly_clear(res, r->ctx);
+    return ok;
+}
+
+/* res = L with s replaced by -s */
+static void conj_root(fmpz_mpoly_t res, const fmpz_mpoly_t L, slong s,
+                      const Ctx *c)
+{
+    const Ring *r = c->r;
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    fmpz_t k;
+    fmpz_init(k);
+    fmpz_mpoly_zero(res, r->ctx);
+    for (slong i = 0; i < fmpz_mpoly_length(L, r->ctx); i++) {
+        fmpz_mpoly_get_term_exp_ui(e, L, i, r->ctx);
+        fmpz_mpoly_get_term_coeff_fmpz(k, L, i, r->ctx);
+        if (e[s] & 1)
+            fmpz_neg(k, k);
+        fmpz_mpoly_push_term_fmpz_ui(res, k, e, r->ctx);
+    }
+    fmpz_mpoly_sort_terms(res, r->ctx);
+    fmpz_mpoly_combine_like_terms(res, r->ctx);
+    fmpz_clear(k);
+    free(e);
+}
+
+/* One form of n numerators over one denominator (the printers' input) */
+typedef struct Cand {
+    slong n;
+    fmpz_mpoly_struct *num; // n numerators
+    fmpz_mpoly_t den;
+} Cand;
+
+static void cand_init(Cand *x, slong n, const Ctx *c)
+{
+    x->n = n;
+    x->num = pc_xmalloc(sizeof(fmpz_mpoly_struct) * (size_t)(n ? n : 1));
+    for (slong i = 0; i < n; i++)
+        fmpz_mpoly_init(x->num + i, c->r->ctx);
+    fmpz_mpoly_init(x->den, c->r->ctx);
+}
+
+static void cand_clear(Cand *x, const Ctx *c)
+{
+    for (slong i = 0; i < x->n; i++)
+        fmpz_mpoly_clear(x->num + i, c->r->ctx);
+    free(x->num);
+    fmpz_mpoly_clear(x->den, c->r->ctx);
+}
+
+/* N/D with the multiplier lb of root kernel s (above): 1 and *out when G
+ * cancels */
+static int unroot_with(Cand *out, const fmpz_mpoly_struct *const *N, slong n,
+                       const fmpz_mpoly_t D, const fmpz_mpoly_t lb, slong s,
+                       const Ctx *c)
+{
+    const Ring *r = c->r;
+    fmpz_mpoly_t L, G, q;
+    fmpz_mpoly_init(L, r->ctx);
+    fmpz_mpoly_init(G, r->ctx);
+    fmpz_mpoly_init(q, r->ctx);
+    conj_root(L, lb, s, c);
+    fmpz_mpoly_mul(G, L, lb, r->ctx);
+    int ok = reduce_rel(G, c) && !fmpz_mpoly_is_fmpz(G, r->ctx) &&
+             fmpz_mpoly_degree_si(G, s, r->ctx) == 0;
+    if (ok) {
+        fmpz_t g;
+        fmpz_init(g);
+        _fmpz_vec_content(g, G->coeffs, fmpz_mpoly_length(G, r->ctx));
+        fmpz_mpoly_scalar_divexact_fmpz(G, G, g, r->ctx);
+        fmpz_clear(g);
+        cand_init(out, n, c);
+        ok = fmpz_mpoly_divides(q, D, G, r->ctx);
+        if (ok)
+            fmpz_mpoly_mul(out->den, q, lb, r->ctx);
+        for (slong i = 0; i < n && ok; i++) {
+            fmpz_mpoly_mul(q, N[i], lb, r->ctx);
+            ok = reduce_rel(q, c) && fmpz_mpoly_divides(out->num + i, q, G,
+                                                         r->ctx);
+        }
+        if (!ok)
+            cand_clear(out, c);
+    }
+    fmpz_mpoly_clear(q, r->ctx);
+    fmpz_mpoly_clear(G, r->ctx);
+    fmpz_mpoly_clear(L, r->ctx);
+    return ok;
+}
+
+enum { MAX_UNROOT = 6, MAX_UNROOT_TERMS = 200 };
+
+/* the un-rationalised forms of N/D (at most MAX_UNROOT): returns their
+ * number, *out malloc'd (cand_clear each, then free) */
+static slong unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
+                          slong n, const fmpz_mpoly_t D,
+                          const fmpz_mpoly_struct *const *H, slong nh,
+                          const Ctx *c)
+{
+    const Ring *r = c->r;
+    const Kernels *K = c->K;
+    *out = NULL;
+    if (!K || fmpz_mpoly_is_fmpz(D, r->ctx) || c->is_abs)
+        return 0;
+    slong len = fmpz_mpoly_length(D, r->ctx);
+    for (slong i = 0; i < n; i++)
+        len += fmpz_mpoly_length(N[i], r->ctx);
+    if (len > MAX_UNROOT_TERMS)
+        return 0;
+    Cand *cs = pc_xmalloc(sizeof(Cand) * MAX_UNROOT);
+    slong nc = 0;
+    fmpz_mpoly_t lb;
+    fmpz_mpoly_init(lb, r->ctx);
+    for (slong ki = 0; ki < K->n && nc < MAX_UNROOT; ki++) {
+        const Kernel *k = &K->k[ki];
+        slong s = k->var;
+        if (k->fn != KF_SQRT || k->deg != 2)
+            continue;
+        int used = 0;
+        for (slong i = 0; i < n; i++)
+            used |= fmpz_mpoly_degree_si(N[i], s, r->ctx) > 0;
+        if (!used)
+            continue;
+        /* s itself */
+        fmpz_mpoly_gen(lb, s, r->ctx);
+        if (unroot_with(&cs[nc], N, n, D, lb, s, c))
+            nc++;
+        /* the conjugates of the numerators' factors linear in s (of N,
+         * then of the hints: the other weights of the equation) */
+        for (slong i = 0; i < n + nh && nc < MAX_UNROOT; i++) {
+            const fmpz_mpoly_struct *x = i < n ? N[i] : H[i - n];
+            if (fmpz_mpoly_degree_si(x, s, r->ctx) != 1 ||
+                fmpz_mpoly_length(x, r->ctx) > MAX_UNROOT_TERMS ||
+                !ring_factor_affordable(x, r))
+                continue;
+            fmpz_mpoly_factor_t f;
+            fmpz_mpoly_factor_init(f, r->ctx);
+            if (factor_compact(f, x, r))
+                for (slong j = 0; j < f->num && nc < MAX_UNROOT; j++) {
+                    if (fmpz_mpoly_degree_si(f->poly + j, s, r->ctx) != 1 ||
+                        fmpz_mpoly_length(f->poly + j, r->ctx) < 2)
+                        continue;
+                    conj_root(lb, f->poly + j, s, c);
+                    if (unroot_with(&cs[nc], N, n, D, lb, s, c))
+                        nc++;
+                }
+            fmpz_mpoly_factor_clear(f, r->ctx);
+        }
+    }
+    fmpz_mpoly_clear(lb, r->ctx);
+    if (nc == 0) {
+        free(cs);
+        return 0;
+    }
+    *out = cs;
+    return nc;
 }
 
 /* ---- equations ------------------------------------------------------------ */
@@ -1541,16 +1968,18 @@ static void put_quotient(StrBuf *b, PSum *items, const PSum *den,
     free(n.s);
 }
 
-static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c)
+/* num/den as a scalar */
+static void rhs_frac(StrBuf *b, const fmpz_mpoly_t xnum, const fmpz_mpoly_t xden,
+                     const Ctx *c)
 {
     const Ring *r = c->r;
     int flip = 0;
     PSum *den = NULL;
     fmpz_mpoly_t num;
     fmpz_mpoly_init(num, r->ctx);
-    fmpz_mpoly_set(num, x->num, r->ctx);
-    if (!fmpz_mpoly_is_one(x->den, r->ctx)) {
-        den = render_den(x->den, c, &flip);
+    fmpz_mpoly_set(num, xnum, r->ctx);
+    if (!fmpz_mpoly_is_one(xden, r->ctx)) {
+        den = render_den(xden, c, &flip);
         if (flip)
             fmpz_mpoly_neg(num, num, r->ctx);
     }
@@ -1564,69 +1993,137 @@ static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c)
     fmpz_mpoly_clear(num, r->ctx);
 }
 
+/* the length of what put(b, num, den, c) writes in text */
+typedef void (*PutFrac)(StrBuf *b, const fmpz_mpoly_t num,
+                        const fmpz_mpoly_t den, const void *arg,
+                        const Ctx *c);
+
+/* puts num/den, or the un-rationalised form whose text is shortest */
+static void put_best(StrBuf *b, const fmpz_mpoly_t num, const fmpz_mpoly_t den,
+                     const fmpz_mpoly_struct *const *H, slong nh, PutFrac put,
+                     const void *arg, const Ctx *c)
+{
+    Cand *cs;
+    const fmpz_mpoly_struct *np = num;
+    slong nc = unroot_cands(&cs, &np, 1, den, H, nh, c);
+    slong best = -1;
+    if (nc > 0) {
+        Ctx t = *c;
+        t.latex = 0;
+        StrBuf m = {0};
+        put(&m, num, den, arg, &t);
+        size_t bl = m.len;
+        for (slong i = 0; i < nc; i++) {
+            m.len = 0;
+            put(&m, cs[i].num, cs[i].den, arg, &t);
+            if (m.len < bl) {
+                bl = m.len;
+                best = i;
+            }
+        }
+        free(m.s);
+    }
+    if (best < 0)
+        put(b, num, den, arg, c);
+    else
+        put(b, cs[best].num, cs[best].den, arg, c);
+    for (slong i = 0; i < nc; i++)
+        cand_clear(&cs[i], c);
+    free(cs);
+}
+
+static void put_scalar_frac(StrBuf *b, const fmpz_mpoly_t num,
+                            const fmpz_mpoly_t den, const void *arg,
+                            const Ctx *c)
+{
+    (void)arg;
+    rhs_frac(b, num, den, c);
+}
+
+static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c)
+{
+    put_best(b, x->num, x->den, NULL, 0, put_scalar_frac, NULL, c);
+}
+
+/* one item of the origin form: " + (A - C)*n/d" (first: no " + ") */
+typedef struct OriginItem {
+    const char *point, *origin;
+    int first;
+} OriginItem;
+
+static void put_origin_item(StrBuf *b, const fmpz_mpoly_t wnum,
+                            const fmpz_mpoly_t wden, const void *arg,
+                            const Ctx *c)
+{
+    const OriginItem *it = arg;
+    const Ring *r = c->r;
+    int flip = 0;
+    PSum *den = fmpz_mpoly_is_one(wden, r->ctx) ? NULL
+                                                 : render_den(wden, c, &flip);
+    fmpz_mpoly_t num;
+    fmpz_mpoly_init(num, r->ctx);
+    if (flip)
+        fmpz_mpoly_neg(num, wnum, r->ctx);
+    else
+        fmpz_mpoly_set(num, wnum, r->ctx);
+    Atom pa = {AT_POINT, -1, NULL, it->point, it->origin, 1};
+    PSum *one = sum_new(c);
+    push_item(one, num, pa, c);
+    int neg = one->t[0].neg;
+    one->t[0].neg = 0;
+    sb_puts(b, it->first ? (neg ? "-" : "") : (neg ? " - " : " + "));
+    StrBuf n = {0};
+    put_term(&n, &one->t[0], c);
+    if (den && c->latex) {
+        /* (A - C) \frac{n}{d}: the point outside the fraction */
+        StrBuf m = {0};
+        PSum *s = render(num, 0, c);
+        if (s->t[0].neg)
+            sum_neg(s, c);
+        put_sum(&m, s, c);
+        sum_free(s, c);
+        put_atom(b, &pa, c);
+        sb_puts(b, " \\frac{");
+        sb_puts(b, m.s);
+        sb_puts(b, "}{");
+        put_sum(b, den, c);
+        sb_puts(b, "}");
+        free(m.s);
+    } else {
+        sb_puts(b, n.s);
+        if (den) {
+            int pd = den->n > 1 ||
+                     den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
+            sb_puts(b, pd ? "/(" : "/");
+            put_sum(b, den, c);
+            if (pd)
+                sb_puts(b, ")");
+        }
+    }
+    free(n.s);
+    sum_free(one, c);
+    sum_free(den, c);
+    fmpz_mpoly_clear(num, r->ctx);
+}
+
 static void rhs_origin(StrBuf *b, const Derived *d, const DerivedOutput *o,
                        slong origin, const Ctx *c)
 {
-    const Ring *r = c->r;
     int first = 1;
+    slong nh = o->eq->len;
+    const fmpz_mpoly_struct **H = pc_xmalloc(sizeof(*H) * (size_t)(nh + 1));
+    for (slong i = 0; i < nh; i++)
+        H[i] = o->w[i].num;
     for (slong i = 0; i < o->eq->len; i++) {
         slong pt = o->eq->terms[i].point;
         if (pt == origin)
             continue;
-        const RatFunStruct *w = &o->w[i];
-        int flip = 0;
-        PSum *den = fmpz_mpoly_is_one(w->den, r->ctx)
-                        ? NULL
-                        : render_den(w->den, c, &flip);
-        fmpz_mpoly_t num;
-        fmpz_mpoly_init(num, r->ctx);
-        if (flip)
-            fmpz_mpoly_neg(num, w->num, r->ctx);
-        else
-            fmpz_mpoly_set(num, w->num, r->ctx);
-        PSum *one = sum_new(c);
-        push_item(one, num, (Atom){AT_POINT, -1, NULL, d->points[pt],
-                                   d->points[origin], 1},
-                  c);
-        int neg = one->t[0].neg;
-        one->t[0].neg = 0;
-        sb_puts(b, first ? (neg ? "-" : "") : (neg ? " - " : " + "));
-        StrBuf n = {0};
-        put_term(&n, &one->t[0], c);
-        if (den && c->latex) {
-            /* (A - C) \frac{n}{d}: the point outside the fraction */
-            StrBuf m = {0};
-            PSum *s = render(num, 0, c);
-            if (s->t[0].neg)
-                sum_neg(s, c);
-            put_sum(&m, s, c);
-            sum_free(s, c);
-            put_atom(b, &(Atom){AT_POINT, -1, NULL, d->points[pt],
-                                d->points[origin], 1},
-                     c);
-            sb_puts(b, " \\frac{");
-            sb_puts(b, m.s);
-            sb_puts(b, "}{");
-            put_sum(b, den, c);
-            sb_puts(b, "}");
-            free(m.s);
-        } else {
-            sb_puts(b, n.s);
-            if (den) {
-                int pd = den->n > 1 ||
-                         den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
-                sb_puts(b, pd ? "/(" : "/");
-                put_sum(b, den, c);
-                if (pd)
-                    sb_puts(b, ")");
-            }
-        }
-        free(n.s);
-        sum_free(one, c);
-        sum_free(den, c);
-        fmpz_mpoly_clear(num, r->ctx);
+        OriginItem it = {d->points[pt], d->points[origin], first};
+        put_best(b, o->w[i].num, o->w[i].den, H, nh, put_origin_item, &it,
+                 c);
         first = 0;
     }
+    free(H);
     if (o->kind == KIND_POINT) {
         sb_puts(b, first ? "" : " + ");
         put_point(b, d->points[origin], c);
@@ -1645,10 +2142,9 @@ typedef struct EqParts {
 } EqParts;
 
 static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
-                     const Ctx *c)
+                     const PointEqStruct *eq, const Ctx *c)
 {
     const Ring *r = c->r;
-    const PointEqStruct *eq = o->eq;
     int flip = 0;
     P->den = fmpz_mpoly_is_one(eq->den, r->ctx) ? NULL
                                                  : render_den(eq->den, c, &flip);
@@ -1707,6 +2203,93 @@ static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
     free(used);
     fmpz_mpoly_clear(q, r->ctx);
     fmpz_mpoly_clear(g, r->ctx);
+}
+
+static void eq_parts_clear(EqParts *P, const Ctx *c);
+static void rhs_equation(StrBuf *b, const EqParts *P, const Ctx *c);
+
+/* the text length of o's equation eq as printed */
+static size_t eq_text_len(const Derived *d, const DerivedOutput *o,
+                          const PointEqStruct *eq, const Ctx *c)
+{
+    Ctx t = *c;
+    t.latex = 0;
+    EqParts P;
+    eq_parts(&P, d, o, eq, &t);
+    StrBuf b = {0};
+    rhs_equation(&b, &P, &t);
+    eq_parts_clear(&P, &t);
+    size_t n = b.len;
+    free(b.s);
+    return n;
+}
+
+/* the form of o's equation to print: o->eq, or its un-rationalised form
+ * (*tmp, the points of o->eq over a denominator with the root) when that
+ * is shorter; eq_form_clear(tmp, result) after */
+static const PointEqStruct *eq_form(PointEqStruct *tmp, const Derived *d,
+                                    const DerivedOutput *o, const Ctx *c)
+{
+    const PointEqStruct *eq = o->eq;
+    tmp->terms = NULL;
+    tmp->len = 0;
+    slong n = eq->len;
+    const fmpz_mpoly_struct **N = pc_xmalloc(sizeof(*N) * (size_t)(n + 1));
+    for (slong i = 0; i < n; i++)
+        N[i] = eq->terms[i].num;
+    Cand *cs;
+    slong nc = unroot_cands(&cs, N, n, eq->den, NULL, 0, c);
+    free(N);
+    if (nc == 0)
+        return eq;
+    size_t best_len = eq_text_len(d, o, eq, c);
+    slong best = -1;
+    for (slong k = 0; k < nc; k++) {
+        PointEqStruct e;
+        e.len = n;
+        e.alloc = n;
+        e.terms = pc_xmalloc(sizeof(PtTerm) * (size_t)(n ? n : 1));
+        for (slong i = 0; i < n; i++) {
+            e.terms[i].point = eq->terms[i].point;
+            e.terms[i].num[0] = cs[k].num[i]; /* borrowed: read only */
+        }
+        e.den[0] = cs[k].den[0];
+        size_t len = eq_text_len(d, o, &e, c);
+        free(e.terms);
+        if (len < best_len) {
+            best_len = len;
+            best = k;
+        }
+    }
+    const PointEqStruct *res = eq;
+    if (best >= 0) {
+        /* the chosen one moves into tmp */
+        tmp->len = tmp->alloc = n;
+        tmp->terms = pc_xmalloc(sizeof(PtTerm) * (size_t)(n ? n : 1));
+        for (slong i = 0; i < n; i++) {
+            tmp->terms[i].point = eq->terms[i].point;
+            fmpz_mpoly_init(tmp->terms[i].num, c->r->ctx);
+            fmpz_mpoly_swap(tmp->terms[i].num, cs[best].num + i, c->r->ctx);
+        }
+        fmpz_mpoly_init(tmp->den, c->r->ctx);
+        fmpz_mpoly_swap(tmp->den, cs[best].den, c->r->ctx);
+        res = tmp;
+    }
+    for (slong k = 0; k < nc; k++)
+        cand_clear(&cs[k], c);
+    free(cs);
+    return res;
+}
+
+static void eq_form_clear(PointEqStruct *tmp, const PointEqStruct *used,
+                          const Ctx *c)
+{
+    if (used != tmp)
+        return;
+    for (slong i = 0; i < tmp->len; i++)
+        fmpz_mpoly_clear(tmp->terms[i].num, c->r->ctx);
+    free(tmp->terms);
+    fmpz_mpoly_clear(tmp->den, c->r->ctx);
 }
 
 static void eq_parts_clear(EqParts *P, const Ctx *c)
@@ -1791,10 +2374,13 @@ static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,
     } else if (opt->origin >= 0) {
         rhs_origin(b, d, o, opt->origin, c);
     } else {
+        PointEqStruct tmp;
+        const PointEqStruct *eq = eq_form(&tmp, d, o, c);
         EqParts P;
-        eq_parts(&P, d, o, c);
+        eq_parts(&P, d, o, eq, c);
         rhs_equation(b, &P, c);
         eq_parts_clear(&P, c);
+        eq_form_clear(&tmp, eq, c);
     }
 }
 
@@ -1898,8 +2484,10 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     int width = opt->width > 0 ? opt->width : 80;
     if (opt->latex && o->kind != KIND_SCALAR && opt->origin < 0) {
         /* a fraction is as wide as the longer of its two lines */
+        PointEqStruct tmp;
+        const PointEqStruct *eq = eq_form(&tmp, d, o, &c);
         EqParts P;
-        eq_parts(&P, d, o, &c);
+        eq_parts(&P, d, o, eq, &c);
         StrBuf n = {0}, dn = {0}, cm = {0};
         put_sum(&n, P.items, &c);
         if (P.den)
@@ -1912,12 +2500,14 @@ char *book_output(const Derived *d, const DerivedOutput *o,
         if ((int)wide > width && P.items->n > 1) {
             put_multline(&b, &lhs, &P, &c, width);
             eq_parts_clear(&P, &c);
+            eq_form_clear(&tmp, eq, &c);
             memo_clear(&memo, &c);
             free(rhs);
             free(lhs.s);
             return sb_take(&b);
         }
         eq_parts_clear(&P, &c);
+        eq_form_clear(&tmp, eq, &c);
     }
     if (opt->latex) {
         sb_puts(&b, "\\[ ");

@@ -708,6 +708,55 @@ static void test_abs(void **state)
     free(js);
 }
 
+/* Roots stay where the user put them (book 2.1.1.1, (2.10), (2.11)): the
+ * normal form keeps b*cos(phi)*sqrt(X)/X with X = b^2 - b^2*sin(phi)^2 +
+ * a^2*sin(phi)^2; printed, the root goes back to the denominator and X is
+ * written through cos^2 = 1 - sin^2 as b^2*cos(phi)^2 + a^2*sin(phi)^2.
+ * By a focus (2.18): 1/(a - c*cos(phi)), c = sqrt(a^2 - b^2), which the
+ * normal form rationalises to (a + c*cos(phi))/(b^2 + (a^2 - b^2)*sin^2),
+ * is written back, its A weight (a*cos(phi) - c)/(a - c*cos(phi)). */
+#define ELLIPSE                                                             \
+    "point A, B, C\nconst a, b > 0\nparam phi\n"                            \
+    "rho = a*b/sqrt(a^2*sin(phi)^2 + b^2*cos(phi)^2)\n"                     \
+    "M = C + (A - C)*(rho*cos(phi)/a) + (B - C)*(rho*sin(phi)/b)\n"
+#define FOCAL                                                               \
+    "point A, B, C\nconst a, b > 0\nparam phi\nc = sqrt(a^2 - b^2)\n"       \
+    "rho = b^2/(a - c*cos(phi))\n"                                          \
+    "M = C + (A - C)*(rho*cos(phi) - c)/a + (B - C)*rho*sin(phi)/b\n"
+
+static void test_roots_where_written(void **state)
+{
+    (void)state;
+    expect(ELLIPSE "output rho\n", FMT_TEXT,
+           "rho = a*b/sqrt(b^2*cos(phi)^2 + a^2*sin(phi)^2)\n");
+    char *o = printed_ex(ELLIPSE "output M\n", FMT_TEXT, 0, 2);
+    assert_string_equal(o, "M = (A - C)*b*cos(phi)/sqrt(b^2*cos(phi)^2 + "
+                           "a^2*sin(phi)^2) + (B - C)*a*sin(phi)/"
+                           "sqrt(b^2*cos(phi)^2 + a^2*sin(phi)^2) + C\n");
+    assert_true(strlen(o) - 1 <= 130); /* issue 18: the book's is 123 */
+    free(o);
+    /* over one denominator: weights b*cos(phi)/s, a*sin(phi)/s,
+     * 1 - (b*cos(phi) + a*sin(phi))/s */
+    expect(ELLIPSE "output M\n", FMT_TEXT,
+           "M = (b*A*cos(phi) + a*B*sin(phi) + C*(sqrt(b^2*cos(phi)^2 + "
+           "a^2*sin(phi)^2) - b*cos(phi) - a*sin(phi)))/"
+           "sqrt(b^2*cos(phi)^2 + a^2*sin(phi)^2)\n");
+    o = printed_ex(ELLIPSE "output M\n", FMT_LATEX, 0, 2);
+    assert_string_equal(
+        o, "\\[ M = \\left(A - C\\right) \\frac{b \\cos\\varphi}{\\sqrt{b^{2} "
+           "\\cos^{2}\\varphi + a^{2} \\sin^{2}\\varphi}} + \\left(B - "
+           "C\\right) \\frac{a \\sin\\varphi}{\\sqrt{b^{2} \\cos^{2}\\varphi "
+           "+ a^{2} \\sin^{2}\\varphi}} + C \\]\n");
+    free(o);
+    expect(FOCAL "output rho\n", FMT_TEXT,
+           "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n");
+    o = printed_ex(FOCAL "output M\n", FMT_TEXT, 0, 2);
+    assert_string_equal(o, "M = -(A - C)*(sqrt(a^2 - b^2) - a*cos(phi))/"
+                           "(a - sqrt(a^2 - b^2)*cos(phi)) + (B - C)*b*"
+                           "sin(phi)/(a - sqrt(a^2 - b^2)*cos(phi)) + C\n");
+    free(o);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -726,6 +775,7 @@ int main(void)
         cmocka_unit_test(test_origin),
         cmocka_unit_test(test_conic_of_2_1_6),
         cmocka_unit_test(test_abs),
+        cmocka_unit_test(test_roots_where_written),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
