@@ -1,6 +1,7 @@
 #include "compiler/book.h"
 
 #include <ctype.h>
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -154,6 +155,9 @@ typedef struct Ctx {
     const unsigned char *is_abs; // rendering a polynomial rewritten by
                                  // absform_rewrite: its vars meaning |x|
     ulong mode;        // 0, or a key of is_abs (memo entries differ by it)
+    const DerivedName *named; // the scheme's named kernel powers, and the
+    slong nnamed;             // line of the definition being printed:
+    int line;                 // names defined before it print for them
 } Ctx;
 
 /* render() of a polynomial at a depth, kept: the same coefficients and
@@ -281,6 +285,26 @@ static int is_param(const Ctx *c, slong v)
     return v < c->nparams;
 }
 
+/* the name to write var^e through: a definition before the one printed
+ * whose value is var^k, k dividing e (the largest such k), or NULL */
+static const DerivedName *named_for_line(slong var, ulong e, int line,
+                                         const Ctx *c)
+{
+    const DerivedName *best = NULL;
+    for (slong i = 0; i < c->nnamed; i++) {
+        const DerivedName *nm = &c->named[i];
+        if (nm->var == var && nm->line < line && nm->exp <= e &&
+            e % nm->exp == 0 && (!best || nm->exp > best->exp))
+            best = nm;
+    }
+    return best;
+}
+
+static const DerivedName *named_for(slong var, ulong e, const Ctx *c)
+{
+    return named_for_line(var, e, c->line, c);
+}
+
 /* the place of an atom in a product: a difference of points, consts (x
  * and 1 - x), the point, params, functions, then parenthesised sums (those
  * free of params first) */
@@ -291,6 +315,10 @@ static int atom_class(const Ctx *c, const Atom *a)
     case AT_BAR:
         if (is_param(c, a->var))
             return 2;
+        if (a->kind == AT_VAR && named_for_line(a->var, a->exp, INT_MAX, c))
+            return 0; /* a named scalar: with the consts (B*a*t); the
+                       * same place wherever it is written by its name
+                       * (forms are shared by a scheme's outputs) */
         return a->var < c->nparams + c->nconsts ? 0 : 3;
     case AT_ABS:
         return 3;
@@ -558,6 +586,16 @@ static void put_atom(StrBuf *b, const Atom *a, const Ctx *c)
     const char *close = c->latex ? "\\right)" : ")";
     switch (a->kind) {
     case AT_VAR: {
+        const DerivedName *nm = named_for(a->var, a->exp, c);
+        if (nm) {
+            /* dist(A, C)^4 = a^2 for a = dist(A, C)^2 */
+            if (c->latex)
+                latex_name(b, nm->name);
+            else
+                sb_puts(b, nm->name);
+            put_exp(b, a->exp / nm->exp, c);
+            return;
+        }
         const Kernel *k = kernels_of_var(c->K, a->var);
         if (k && put_kernel(b, k, a->exp, c))
             return;
@@ -1887,6 +1925,35 @@ static slong unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
 
 /* A numerator over the denominator: its sum, the item's atoms around the
  * point (or the point alone) */
+/* a sum whose first term is negative, made to lead with a positive term
+ * with the fewest minus signs: negated (1 for s's positive terms: returns
+ * 1, the caller writes the minus) or its leading negative terms moved to
+ * the end (s's negative terms: -c + a*cos(phi) as a*cos(phi) - c, not
+ * -(c - a*cos(phi)); -1 + t + t^2 as t + t^2 - 1); 0 otherwise */
+static int sum_lead(PSum *s, const Ctx *c)
+{
+    if (s->n == 0 || !s->t[0].neg)
+        return 0;
+    slong pos = 0, first = -1;
+    for (slong i = 0; i < s->n; i++)
+        if (!s->t[i].neg) {
+            pos++;
+            if (first < 0)
+                first = i;
+        }
+    if (first > 0 && s->n - pos <= pos) {
+        /* the leading negative terms go to the end: t + t^2 - 1 */
+        PTerm *head = pc_xmalloc(sizeof(PTerm) * (size_t)first);
+        memcpy(head, s->t, sizeof(PTerm) * (size_t)first);
+        memmove(s->t, s->t + first, sizeof(PTerm) * (size_t)(s->n - first));
+        memcpy(s->t + s->n - first, head, sizeof(PTerm) * (size_t)first);
+        free(head);
+        return 0;
+    }
+    sum_neg(s, c);
+    return 1;
+}
+
 static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt,
                       const Ctx *c)
 {
@@ -1896,10 +1963,8 @@ static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt,
         term_absorb(t, &s->t[0]);
         sum_free(s, c);
     } else {
-        if (s->t[0].neg) {
-            sum_neg(s, c);
+        if (sum_lead(s, c))
             t->neg = 1;
-        }
         term_push(t, (Atom){AT_SUM, -1, s, NULL, NULL, 1});
     }
     term_push(t, pt);
@@ -2078,8 +2143,7 @@ static void put_origin_item(StrBuf *b, const fmpz_mpoly_t wnum,
         /* (A - C) \frac{n}{d}: the point outside the fraction */
         StrBuf m = {0};
         PSum *s = render(num, 0, c);
-        if (s->t[0].neg)
-            sum_neg(s, c);
+        sum_lead(s, c);
         put_sum(&m, s, c);
         sum_free(s, c);
         put_atom(b, &pa, c);
@@ -2364,6 +2428,9 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
     c->has_sign = absform_any(d->kernels);
     c->is_abs = NULL;
     c->mode = 0;
+    c->named = d->named;
+    c->nnamed = d->nnamed;
+    c->line = 0; /* set per output: no names until then */
 }
 
 static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,
@@ -2391,6 +2458,7 @@ char *book_rhs(const Derived *d, const DerivedOutput *o,
     long work;
     Memo memo;
     ctx_init(&c, d, opt, &work, &memo);
+    c.line = o->line;
     StrBuf b = {0};
     rhs_into(&b, d, o, opt, &c);
     memo_clear(&memo, &c);
@@ -2477,6 +2545,7 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     long work;
     Memo memo;
     ctx_init(&c, d, opt, &work, &memo);
+    c.line = o->line;
     StrBuf b = {0}, lhs = {0}, rb = {0};
     put_lhs(&lhs, o, &c);
     rhs_into(&rb, d, o, opt, &c);

@@ -547,8 +547,9 @@ static void test_vector_differences(void **state)
     expect("point A, B, C\nparam t\nV = A*(t^2 + t - 1) - B*t + C*(1 - t^2)"
            "\n",
            FMT_TEXT,
-           /* no common factor; 1 - t^2 factored (as many terms) */
-           "V = -A*(1 - t - t^2) - B*t + C*(1 - t)*(1 + t)    (vector)\n");
+           /* no common factor; 1 - t^2 factored (as many terms); the
+            * fewest minus signs: t + t^2 - 1, not -(1 - t - t^2) */
+           "V = A*(t + t^2 - 1) - B*t + C*(1 - t)*(1 + t)    (vector)\n");
     expect("point A, C\nparam u\nV = 2*(C - A)*u\n", FMT_LATEX,
            "\\[ V = 2 u \\left(C - A\\right) \\]\n");
 }
@@ -748,13 +749,41 @@ static void test_roots_where_written(void **state)
            "C\\right) \\frac{a \\sin\\varphi}{\\sqrt{b^{2} \\cos^{2}\\varphi "
            "+ a^{2} \\sin^{2}\\varphi}} + C \\]\n");
     free(o);
-    expect(FOCAL "output rho\n", FMT_TEXT,
-           "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n");
+    /* (c = sqrt(a^2 - b^2) is named: results print through c) */
+    expect(FOCAL "output rho\n", FMT_TEXT, "rho = b^2/(a - c*cos(phi))\n");
     o = printed_ex(FOCAL "output M\n", FMT_TEXT, 0, 2);
-    assert_string_equal(o, "M = -(A - C)*(sqrt(a^2 - b^2) - a*cos(phi))/"
-                           "(a - sqrt(a^2 - b^2)*cos(phi)) + (B - C)*b*"
-                           "sin(phi)/(a - sqrt(a^2 - b^2)*cos(phi)) + C\n");
+    assert_string_equal(o, "M = (A - C)*(a*cos(phi) - c)/(a - c*cos(phi))"
+                           " + (B - C)*b*sin(phi)/(a - c*cos(phi)) + C\n");
     free(o);
+    expect("const a, b > 0\nparam phi\n"
+           "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n",
+           FMT_TEXT, "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n");
+}
+
+/* Results through the user's named scalars (the book's a, b, c): the circle
+ * through three points (article, eq. (5)) with a = |AC|^2, b = |BA|^2,
+ * c = |CB|^2; its denominator b*t^2 + (a - c - b)*t + c is (1 - t)*(c -
+ * b*t) + a*t.  A name prints only in what is defined after it, and a
+ * definition never prints as its own name; dist(A, C)^4 is a^2. */
+static void test_named_scalars(void **state)
+{
+    (void)state;
+    expect("point A, B, C\nparam t\n"
+           "a = dist(A, C)^2\nb = dist(B, A)^2\nc = dist(C, B)^2\n"
+           "M = (A*c*(1 - t) + B*a*t + C*b*t*(t - 1))/"
+           "(b*t^2 + (a - c - b)*t + c)\n"
+           "w = dist(A, C)^4 + t\nu = dist(A, C)^3\noutput a, M, w, u\n",
+           FMT_TEXT,
+           "a = dist(A, C)^2\n"
+           "M = (c*A*(1 - t) + a*B*t - b*C*t*(1 - t))/"
+           "((1 - t)*(c - b*t) + a*t)\n"
+           "w = t + a^2\nu = dist(A, C)^3\n");
+    expect("point A, B\nparam t\nM = A + (B - A)*t*dist(A, B)\n"
+           "q = dist(A, B)\nN = A + (B - A)*t*dist(A, B)\noutput M, q, N\n",
+           FMT_TEXT,
+           "M = A*(1 - dist(A, B)*t) + dist(A, B)*B*t\n"
+           "q = dist(A, B)\n"
+           "N = A*(1 - q*t) + q*B*t\n");
 }
 
 int main(void)
@@ -776,6 +805,7 @@ int main(void)
         cmocka_unit_test(test_conic_of_2_1_6),
         cmocka_unit_test(test_abs),
         cmocka_unit_test(test_roots_where_written),
+        cmocka_unit_test(test_named_scalars),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
