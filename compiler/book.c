@@ -12,6 +12,7 @@
 
 #include "compiler/absform.h"
 #include "compiler/kernel.h"
+#include "compiler/latexbreak.h"
 #include "compiler/mem.h"
 #include "compiler/ring.h"
 #include "compiler/strbuf.h"
@@ -2486,6 +2487,25 @@ static void put_lhs(StrBuf *b, const DerivedOutput *o, const Ctx *c)
     latex_name(b, o->name);
 }
 
+/* one line of a multline* (and the line break after it unless last),
+ * itself broken where it is wider than the page (latexbreak.h) */
+static void put_line(StrBuf *b, const char *line, int last)
+{
+    if (latex_width(line, strlen(line)) > LATEX_LINE_UNITS) {
+        char **ls;
+        size_t n = latex_break(&ls, line, LATEX_LINE_UNITS);
+        for (size_t i = 0; i < n; i++) {
+            sb_puts(b, ls[i]);
+            if (i + 1 < n)
+                sb_puts(b, " \\\\\n");
+        }
+        latex_lines_free(ls, n);
+    } else {
+        sb_puts(b, line);
+    }
+    sb_puts(b, last ? "\n" : " \\\\\n");
+}
+
 /* LaTeX lines of at most width columns: "lhs = \frac{1}{den} \Bigl(" then
  * the items, broken before a + or -, then "\Bigr)" */
 static void put_multline(StrBuf *b, const StrBuf *lhs, const EqParts *P,
@@ -2522,8 +2542,7 @@ static void put_multline(StrBuf *b, const StrBuf *lhs, const EqParts *P,
             sb_puts(&item, i == 0 ? "-" : neg ? "- " : "+ ");
         put_term(&item, &P->items->t[i], c);
         if (i > 0 && (int)(line.len + item.len + 1) > width) {
-            sb_puts(b, line.s);
-            sb_puts(b, " \\\\\n");
+            put_line(b, line.s, 0);
             line.len = 0;
             line.s[0] = '\0';
         } else if (i > 0) {
@@ -2533,8 +2552,8 @@ static void put_multline(StrBuf *b, const StrBuf *lhs, const EqParts *P,
         free(item.s);
     }
     sb_puts(&line, "\\Bigr)");
-    sb_puts(b, line.s);
-    sb_puts(b, "\n\\end{multline*}\n");
+    put_line(b, line.s, 1);
+    sb_puts(b, "\\end{multline*}\n");
     free(line.s);
 }
 
@@ -2579,11 +2598,21 @@ char *book_output(const Derived *d, const DerivedOutput *o,
         eq_form_clear(&tmp, eq, &c);
     }
     if (opt->latex) {
-        sb_puts(&b, "\\[ ");
-        sb_puts(&b, lhs.s);
-        sb_puts(&b, " = ");
-        sb_puts(&b, rhs);
-        sb_puts(&b, " \\]\n");
+        StrBuf eq = {0};
+        sb_puts(&eq, lhs.s);
+        sb_puts(&eq, " = ");
+        sb_puts(&eq, rhs);
+        if (latex_width(eq.s, eq.len) > LATEX_LINE_UNITS) {
+            /* wider than the page: broken (weights, scalars too) */
+            sb_puts(&b, "\\begin{multline*}\n");
+            put_line(&b, eq.s, 1);
+            sb_puts(&b, "\\end{multline*}\n");
+        } else {
+            sb_puts(&b, "\\[ ");
+            sb_puts(&b, eq.s);
+            sb_puts(&b, " \\]\n");
+        }
+        free(eq.s);
     } else {
         sb_puts(&b, lhs.s);
         sb_puts(&b, " = ");

@@ -18,6 +18,7 @@
 
 #include "compiler/book.h"
 #include "compiler/format.h"
+#include "compiler/latexbreak.h"
 #include "compiler/ring.h"
 #include "libpointcalc.h"
 
@@ -786,6 +787,53 @@ static void test_named_scalars(void **state)
            "N = A*(1 - q*t) + q*B*t\n");
 }
 
+/* LaTeX broken to the page (latexbreak.h): before the operators, a
+ * fraction too wide as 1/den times its numerator in \Bigl( \Bigr) whose
+ * terms part; every line balanced.  Widths by the rule: a letter 1, an
+ * operator 2.2, a space 0.5, \frac{1}{y} 1.6, \Bigl( 0.8. */
+static void expect_lines(const char *math, double width,
+                         const char *const *want, size_t nwant)
+{
+    char **ls;
+    size_t n = latex_break(&ls, math, width);
+    assert_int_equal(n, nwant);
+    for (size_t i = 0; i < n && i < nwant; i++)
+        assert_string_equal(ls[i], want[i]);
+    latex_lines_free(ls, n);
+}
+
+static void test_latex_break(void **state)
+{
+    (void)state;
+    static const char *const sum[] = {"a + b", "+ c", "+ d"};
+    expect_lines("a + b + c + d", 6, sum, 3);
+    static const char *const frac[] = {"x = \\frac{1}{y} \\Bigl( a",
+                                       "+ b + c", "+ d + e \\Bigr)"};
+    expect_lines("x = \\frac{a + b + c + d + e}{y}", 12, frac, 3);
+    static const char *const paren[] = {"2 \\Bigl( a + b", "+ c \\Bigr)^{2}"};
+    expect_lines("2 \\left(a + b + c\\right)^{2}", 9, paren, 2);
+    static const char *const fits[] = {"a + b"};
+    expect_lines("a + b", 56, fits, 1);
+    /* the hexagon of the composite-curve text set as a standalone
+     * document: six lines, each within the page */
+    char *o = printed_ex(
+        "point A0, A1, A2, A3, A4, A5\nparam t\n"
+        "R = A0 + (A1 - A0)*(1 + abs(t) - abs(t - 1))/2"
+        " + (A2 - A1)*(1 + abs(t - 1) - abs(t - 2))/2"
+        " + (A3 - A2)*(1 + abs(t - 2) - abs(t - 3))/2"
+        " + (A4 - A3)*(1 + abs(t - 3) - abs(t - 4))/2"
+        " + (A5 - A4)*(1 + abs(t - 4) - abs(t - 5))/2"
+        " + (A0 - A5)*(1 + abs(t - 5) - abs(t - 6))/2\n",
+        FMT_LATEX, 0, -1);
+    size_t lines = 0;
+    for (char *p = o; (p = strstr(p, "\\\\\n")); p++)
+        lines++;
+    assert_int_equal(lines, 5);
+    for (char *p = o, *e; (e = strchr(p, '\n')); p = e + 1)
+        assert_true(latex_width(p, (size_t)(e - p)) <= LATEX_LINE_UNITS);
+    free(o);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -806,6 +854,7 @@ int main(void)
         cmocka_unit_test(test_abs),
         cmocka_unit_test(test_roots_where_written),
         cmocka_unit_test(test_named_scalars),
+        cmocka_unit_test(test_latex_break),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
