@@ -665,11 +665,21 @@ static void put_sum(StrBuf *b, const PSum *s, const Ctx *c)
         return;
     }
     for (slong i = 0; i < s->n; i++) {
+        const PTerm *t = &s->t[i];
         if (i == 0)
-            sb_puts(b, s->t[i].neg ? "-" : "");
+            sb_puts(b, t->neg ? "-" : "");
         else
-            sb_puts(b, s->t[i].neg ? " - " : " + ");
-        put_term(b, &s->t[i], c);
+            sb_puts(b, t->neg ? " - " : " + ");
+        if (!c->latex && s->n > 1 && !t->neg && t->n == 1 &&
+            fmpz_is_one(t->coeff) &&
+            t->a[0].kind == AT_BAR && t->a[0].exp <= 1) {
+            /* 1 - v as a term of a sum needs no parentheses: (1 - v +
+             * u*v), not ((1 - v) + u*v) */
+            sb_puts(b, "1 - ");
+            put_var(b, t->a[0].var, c);
+            continue;
+        }
+        put_term(b, t, c);
     }
 }
 

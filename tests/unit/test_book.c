@@ -834,6 +834,18 @@ static void test_latex_break(void **state)
     free(o);
 }
 
+/* no stray parentheses: 1 - t as a term of a sum is written bare (it was
+ * ((1 - t) + k*t^2)); alone after a fraction bar it keeps them */
+static void test_bar_in_sum(void **state)
+{
+    (void)state;
+    expect("param t\nconst k\nx = 1/(1 - t + k*t^2)\ny = 1 - t + k*t^2\n"
+           "z = (1 - t + k*t^2)^2\nw = t^2/(t - 1)\noutput x, y, z, w\n",
+           FMT_TEXT,
+           "x = 1/(1 - t + k*t^2)\ny = 1 - t + k*t^2\n"
+           "z = (1 - t + k*t^2)^2\nw = -t^2/(1 - t)\n");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -855,6 +867,7 @@ int main(void)
         cmocka_unit_test(test_roots_where_written),
         cmocka_unit_test(test_named_scalars),
         cmocka_unit_test(test_latex_break),
+        cmocka_unit_test(test_bar_in_sum),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
