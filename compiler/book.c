@@ -1866,6 +1866,77 @@ static int unroot_with(Cand *out, const fmpz_mpoly_struct *const *N, slong n,
 
 enum { MAX_UNROOT = 6, MAX_UNROOT_TERMS = 200 };
 
+/* the multipliers P -+ Q*s read off D (unroot_cands), tried; returns the
+ * number of candidates put in cs (at most room) */
+static slong den_cands(Cand *cs, slong room, const fmpz_mpoly_struct *const *N,
+                       slong n, const fmpz_mpoly_t D, const Kernel *k,
+                       const Ctx *c)
+{
+    const Ring *r = c->r;
+    slong s = k->var, nc = 0;
+    slong nv = r->nvars;
+    fmpz_mpoly_t Dp, Q, T, P, lb, m;
+    fmpz_mpoly_init(Dp, r->ctx);
+    fmpz_mpoly_init(Q, r->ctx);
+    fmpz_mpoly_init(T, r->ctx);
+    fmpz_mpoly_init(P, r->ctx);
+    fmpz_mpoly_init(lb, r->ctx);
+    fmpz_mpoly_init(m, r->ctx);
+    fmpz_t g;
+    fmpz_init(g);
+    _fmpz_vec_content(g, D->coeffs, fmpz_mpoly_length(D, r->ctx));
+    fmpz_mpoly_scalar_divexact_fmpz(Dp, D, g, r->ctx);
+    for (slong q = -1; q < nv && nc < room; q++) {
+        if (q == s)
+            continue;
+        if (q >= 0) {
+            int in_d = fmpz_mpoly_degree_si(D, q, r->ctx) > 0;
+            slong cw = -1;
+            for (slong v = 0; v < nv && cw < 0; v++)
+                if (fmpz_mpoly_degree_si(D, v, r->ctx) > 0 &&
+                    cos_companion(v, c) == q)
+                    cw = q;
+            if (!in_d && cw < 0)
+                continue;
+            fmpz_mpoly_gen(Q, q, r->ctx);
+        } else {
+            fmpz_mpoly_one(Q, r->ctx);
+        }
+        for (int sg = 0; sg < 2 && nc < room; sg++) {
+            /* T = Q^2*X + D (D = Q^2*X - P^2 ... up to sign) */
+            fmpz_mpoly_mul(T, Q, Q, r->ctx);
+            fmpz_mpoly_mul(T, T, k->rel->num, r->ctx);
+            if (sg)
+                fmpz_mpoly_sub(T, T, Dp, r->ctx);
+            else
+                fmpz_mpoly_add(T, T, Dp, r->ctx);
+            if (!reduce_rel(T, c) || fmpz_mpoly_is_zero(T, r->ctx) ||
+                fmpz_mpoly_degree_si(T, s, r->ctx) > 0 ||
+                !fmpz_mpoly_sqrt(P, T, r->ctx))
+                continue;
+            /* lb = P - Q*s, then P + Q*s */
+            for (int pm = 0; pm < 2 && nc < room; pm++) {
+                fmpz_mpoly_gen(m, s, r->ctx);
+                fmpz_mpoly_mul(m, m, Q, r->ctx);
+                if (pm)
+                    fmpz_mpoly_add(lb, P, m, r->ctx);
+                else
+                    fmpz_mpoly_sub(lb, P, m, r->ctx);
+                if (unroot_with(&cs[nc], N, n, D, lb, s, c))
+                    nc++;
+            }
+        }
+    }
+    fmpz_clear(g);
+    fmpz_mpoly_clear(m, r->ctx);
+    fmpz_mpoly_clear(lb, r->ctx);
+    fmpz_mpoly_clear(P, r->ctx);
+    fmpz_mpoly_clear(T, r->ctx);
+    fmpz_mpoly_clear(Q, r->ctx);
+    fmpz_mpoly_clear(Dp, r->ctx);
+    return nc;
+}
+
 /* the un-rationalised forms of N/D (at most MAX_UNROOT): returns their
  * number, *out malloc'd (cand_clear each, then free) */
 static slong unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
@@ -1922,6 +1993,13 @@ static slong unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
                 }
             fmpz_mpoly_factor_clear(f, r->ctx);
         }
+        /* from the denominator: D = +-(P^2 - Q^2*X) up to its content,
+         * for Q = 1 or a variable of D (or the cos of a sin of D): P the
+         * square root of reduce(Q^2*X -+ D); 1/(a - c*cos(phi)) of a
+         * focal conic, whose numerators need not show a - c*cos(phi) */
+        if (fmpz_mpoly_is_one(k->rel->den, r->ctx) &&
+            fmpz_mpoly_length(D, r->ctx) <= MAX_UNROOT_TERMS / 4)
+            nc += den_cands(cs + nc, MAX_UNROOT - nc, N, n, D, k, c);
     }
     fmpz_mpoly_clear(lb, r->ctx);
     if (nc == 0) {
@@ -1941,7 +2019,10 @@ static slong unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
  * 1, the caller writes the minus) or its leading negative terms moved to
  * the end (s's negative terms: -c + a*cos(phi) as a*cos(phi) - c, not
  * -(c - a*cos(phi)); -1 + t + t^2 as t + t^2 - 1); 0 otherwise */
-static int sum_lead(PSum *s, const Ctx *c)
+/* s's leading negative terms moved to its end (t + t^2 - 1 for -1 + t +
+ * t^2) when it has no more negative terms than positive ones: 1 when
+ * moved */
+static int sum_rotate(PSum *s)
 {
     if (s->n == 0 || !s->t[0].neg)
         return 0;
@@ -1952,15 +2033,20 @@ static int sum_lead(PSum *s, const Ctx *c)
             if (first < 0)
                 first = i;
         }
-    if (first > 0 && s->n - pos <= pos) {
-        /* the leading negative terms go to the end: t + t^2 - 1 */
-        PTerm *head = pc_xmalloc(sizeof(PTerm) * (size_t)first);
-        memcpy(head, s->t, sizeof(PTerm) * (size_t)first);
-        memmove(s->t, s->t + first, sizeof(PTerm) * (size_t)(s->n - first));
-        memcpy(s->t + s->n - first, head, sizeof(PTerm) * (size_t)first);
-        free(head);
+    if (first <= 0 || s->n - pos > pos)
         return 0;
-    }
+    PTerm *head = pc_xmalloc(sizeof(PTerm) * (size_t)first);
+    memcpy(head, s->t, sizeof(PTerm) * (size_t)first);
+    memmove(s->t, s->t + first, sizeof(PTerm) * (size_t)(s->n - first));
+    memcpy(s->t + s->n - first, head, sizeof(PTerm) * (size_t)first);
+    free(head);
+    return 1;
+}
+
+static int sum_lead(PSum *s, const Ctx *c)
+{
+    if (s->n == 0 || !s->t[0].neg || sum_rotate(s))
+        return 0;
     sum_neg(s, c);
     return 1;
 }
@@ -2033,6 +2119,8 @@ static void put_quotient(StrBuf *b, PSum *items, const PSum *den,
     if (minus)
         for (slong i = 0; i < items->n; i++)
             items->t[i].neg = 0;
+    else if (den)
+        sum_rotate(items); /* (a*cos(phi) - c)/d, not (-c + a*cos(phi))/d */
     StrBuf n = {0};
     put_sum(&n, items, c);
     if (minus)

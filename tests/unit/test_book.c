@@ -759,6 +759,13 @@ static void test_roots_where_written(void **state)
     expect("const a, b > 0\nparam phi\n"
            "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n",
            FMT_TEXT, "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n");
+    /* a scalar alone: its normal form (b^2*cos(phi) -
+     * a*c*sin(phi)^2)/(b^2*cos(phi)^2 + a^2*sin(phi)^2) is (a*cos(phi) -
+     * c)/(a - c*cos(phi)), the conjugate read off the denominator:
+     * (a - c*cos)(a + c*cos) = a^2 - (a^2 - b^2)*cos^2 */
+    expect("const a, b > 0\nparam phi\nc = sqrt(a^2 - b^2)\n"
+           "x = (a*cos(phi) - c)/(a - c*cos(phi))\n",
+           FMT_TEXT, "x = (a*cos(phi) - c)/(a - c*cos(phi))\n");
 }
 
 /* Results through the user's named scalars (the book's a, b, c): the circle
