@@ -459,15 +459,10 @@ static char *inner_text(const char *name, const char *open, const char *close)
     return pc_xstrndup(a, (size_t)(e - a));
 }
 
-/* a kernel's argument x: its best form (expanded: its terms only), a
- * positive term first (sqrt(a^2 - b^2), not sqrt(-b^2 + a^2)) */
-static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
+/* s led by its first positive term (sqrt(a^2 - b^2), not sqrt(-b^2 +
+ * a^2)) */
+static void arg_lead(PSum *s)
 {
-    if (!fmpz_mpoly_is_one(x->den, c->r->ctx)) {
-        rhs_scalar(b, x, c);
-        return;
-    }
-    PSum *s = expanded ? form_expanded(x->num, c) : render(x->num, 0, c);
     slong i = 0;
     while (i < s->n && s->t[i].neg)
         i++;
@@ -476,7 +471,31 @@ static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
         memmove(s->t + 1, s->t, sizeof(PTerm) * (size_t)i);
         s->t[0] = t;
     }
-    put_sum(b, s, c);
+}
+
+static void put_frac(StrBuf *b, const char *num, int num_items,
+                     const PSum *den, const Ctx *c);
+
+/* a kernel's argument x: its best form (expanded: its terms only), a
+ * positive term first (sqrt(a^2 - b^2), not sqrt(-b^2 + a^2)) */
+static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
+{
+    PSum *s = expanded ? form_expanded(x->num, c) : render(x->num, 0, c);
+    arg_lead(s);
+    if (fmpz_mpoly_is_one(x->den, c->r->ctx)) {
+        put_sum(b, s, c);
+        sum_free(s, c);
+        return;
+    }
+    /* a quotient: both parts lead with a positive term, as written
+     * (sqrt((rho^2 - b^2)/(a^2 - b^2))) */
+    PSum *d = expanded ? form_expanded(x->den, c) : render(x->den, 0, c);
+    arg_lead(d);
+    StrBuf n = {0};
+    put_sum(&n, s, c);
+    put_frac(b, n.s, (int)s->n, d, c);
+    free(n.s);
+    sum_free(d, c);
     sum_free(s, c);
 }
 
@@ -495,7 +514,7 @@ static char *kernel_arg(const Kernel *k, const char *open, const char *close,
     t.mode = 0;
     StrBuf bk = {0};
     put_arg(&bk, k->arg, 0, &t);
-    int book = bk.len <= strlen(own);
+    int book = bk.len < strlen(own); /* ties: as kernel.c named it */
     if (!c->latex) {
         if (book) {
             free(own);
