@@ -155,7 +155,7 @@ typedef struct Ctx {
     int has_sign;      // K has a sign kernel: polynomials are read for |x|
     const unsigned char *is_abs; // rendering a polynomial rewritten by
                                  // absform_rewrite: its vars meaning |x|
-    ulong mode;        // 0, or a key of is_abs (memo entries differ by it)
+    ulong mode; // 0, or a key of is_abs (memo entries differ by it)
     const DerivedName *named; // the scheme's named kernel powers, and the
     slong nnamed;             // line of the definition being printed:
     int line;                 // names defined before it print for them
@@ -473,8 +473,8 @@ static void arg_lead(PSum *s)
     }
 }
 
-static void put_frac(StrBuf *b, const char *num, int num_items,
-                     const PSum *den, const Ctx *c);
+static void put_frac(StrBuf *b, const char *num, int num_items, const PSum *den,
+                     const Ctx *c);
 
 /* a kernel's argument x: its best form (expanded: its terms only), a
  * positive term first (sqrt(a^2 - b^2), not sqrt(-b^2 + a^2)) */
@@ -537,9 +537,8 @@ static char *kernel_arg(const Kernel *k, const char *open, const char *close,
 static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
 {
     static const char *const lx[KF_COUNT] = {
-        [KF_SIN] = "\\sin",     [KF_COS] = "\\cos",
-        [KF_SINH] = "\\sinh",   [KF_COSH] = "\\cosh",
-        [KF_LN] = "\\ln",       [KF_ASIN] = "\\arcsin",
+        [KF_SIN] = "\\sin",     [KF_COS] = "\\cos",     [KF_SINH] = "\\sinh",
+        [KF_COSH] = "\\cosh",   [KF_LN] = "\\ln",       [KF_ASIN] = "\\arcsin",
         [KF_ACOS] = "\\arccos", [KF_ATAN] = "\\arctan",
     };
     char *a;
@@ -690,8 +689,8 @@ static void put_sum(StrBuf *b, const PSum *s, const Ctx *c)
         else
             sb_puts(b, t->neg ? " - " : " + ");
         if (!c->latex && s->n > 1 && !t->neg && t->n == 1 &&
-            fmpz_is_one(t->coeff) &&
-            t->a[0].kind == AT_BAR && t->a[0].exp <= 1) {
+            fmpz_is_one(t->coeff) && t->a[0].kind == AT_BAR &&
+            t->a[0].exp <= 1) {
             /* 1 - v as a term of a sum needs no parentheses: (1 - v +
              * u*v), not ((1 - v) + u*v) */
             sb_puts(b, "1 - ");
@@ -759,8 +758,7 @@ static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c)
             /* |t| - 2*|t - 1| + |t - 2|: the terms of one degree in
              * the order of their vars (the kernels' order of creation) */
             slong deg = term_degree(p, kk, c), lo = kk;
-            while (lo > 0 &&
-                   term_degree(p, lo - 1, c) == deg)
+            while (lo > 0 && term_degree(p, lo - 1, c) == deg)
                 lo--;
             for (slong j = lo; j <= kk; j++) {
                 PTerm *t = sum_push(s);
@@ -770,8 +768,7 @@ static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c)
                 fmpz_mpoly_get_term_exp_ui(e, p, j, r->ctx);
                 for (slong v = 0; v < r->nvars; v++)
                     if (e[v])
-                        term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL,
-                                            e[v]});
+                        term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, e[v]});
             }
             kk = lo;
             continue;
@@ -1733,8 +1730,8 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return best;
 }
 
-
-/* ---- roots where the user put them ---------------------------------------- */
+/* ---- roots where the user put them ----------------------------------------
+ */
 
 /* The normal form rationalises: b*cos(phi)/sqrt(X) is kept as
  * b*cos(phi)*sqrt(X)/X, and 1/(a - c*cos(phi)) (c a root) as
@@ -1871,8 +1868,8 @@ static int unroot_with(Cand *out, const fmpz_mpoly_struct *const *N, slong n,
             fmpz_mpoly_mul(out->den, q, lb, r->ctx);
         for (slong i = 0; i < n && ok; i++) {
             fmpz_mpoly_mul(q, N[i], lb, r->ctx);
-            ok = reduce_rel(q, c) && fmpz_mpoly_divides(out->num + i, q, G,
-                                                         r->ctx);
+            ok = reduce_rel(q, c) &&
+                 fmpz_mpoly_divides(out->num + i, q, G, r->ctx);
         }
         if (!ok)
             cand_clear(out, c);
@@ -2152,8 +2149,8 @@ static void put_quotient(StrBuf *b, PSum *items, const PSum *den,
 }
 
 /* num/den as a scalar */
-static void rhs_frac(StrBuf *b, const fmpz_mpoly_t xnum, const fmpz_mpoly_t xden,
-                     const Ctx *c)
+static void rhs_frac(StrBuf *b, const fmpz_mpoly_t xnum,
+                     const fmpz_mpoly_t xden, const Ctx *c)
 {
     const Ring *r = c->r;
     int flip = 0;
@@ -2178,8 +2175,7 @@ static void rhs_frac(StrBuf *b, const fmpz_mpoly_t xnum, const fmpz_mpoly_t xden
 
 /* the length of what put(b, num, den, c) writes in text */
 typedef void (*PutFrac)(StrBuf *b, const fmpz_mpoly_t num,
-                        const fmpz_mpoly_t den, const void *arg,
-                        const Ctx *c);
+                        const fmpz_mpoly_t den, const void *arg, const Ctx *c);
 
 /* puts num/den, or the un-rationalised form whose text is shortest */
 static void put_best(StrBuf *b, const fmpz_mpoly_t num, const fmpz_mpoly_t den,
@@ -2241,8 +2237,8 @@ static void put_origin_item(StrBuf *b, const fmpz_mpoly_t wnum,
     const OriginItem *it = arg;
     const Ring *r = c->r;
     int flip = 0;
-    PSum *den = fmpz_mpoly_is_one(wden, r->ctx) ? NULL
-                                                 : render_den(wden, c, &flip);
+    PSum *den =
+        fmpz_mpoly_is_one(wden, r->ctx) ? NULL : render_den(wden, c, &flip);
     fmpz_mpoly_t num;
     fmpz_mpoly_init(num, r->ctx);
     if (flip)
@@ -2274,8 +2270,8 @@ static void put_origin_item(StrBuf *b, const fmpz_mpoly_t wnum,
     } else {
         sb_puts(b, n.s);
         if (den) {
-            int pd = den->n > 1 ||
-                     den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
+            int pd =
+                den->n > 1 || den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
             sb_puts(b, pd ? "/(" : "/");
             put_sum(b, den, c);
             if (pd)
@@ -2301,8 +2297,7 @@ static void rhs_origin(StrBuf *b, const Derived *d, const DerivedOutput *o,
         if (pt == origin)
             continue;
         OriginItem it = {d->points[pt], d->points[origin], first};
-        put_best(b, o->w[i].num, o->w[i].den, H, nh, put_origin_item, &it,
-                 c);
+        put_best(b, o->w[i].num, o->w[i].den, H, nh, put_origin_item, &it, c);
         first = 0;
     }
     free(H);

@@ -114,8 +114,8 @@ typedef struct DerivedName {
     char *name; // the defined name (owned)
     slong var;  // the value is var^exp
     ulong exp;
-    int line;   // 1-based line of the definition: names print only in
-                // what is defined after them
+    int line; // 1-based line of the definition: names print only in
+              // what is defined after them
 } DerivedName;
 
 typedef struct Derived {

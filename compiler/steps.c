@@ -497,7 +497,8 @@ static void latex_steps(FILE *out, const Derived *d, slong origin)
     latex_steps_rows(m, d, origin);
     fclose(m);
     /* the rows between \begin{align*} and \end{align*} */
-    static const char begin[] = "\\begin{align*}\n", end[] = "\n\\end{align*}\n";
+    static const char begin[] = "\\begin{align*}\n",
+                      end[] = "\n\\end{align*}\n";
     size_t lb = strlen(begin), le = strlen(end);
     if (len >= lb + le && strncmp(body, begin, lb) == 0 &&
         strcmp(body + len - le, end) == 0) {

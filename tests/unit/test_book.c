@@ -676,11 +676,11 @@ static void test_conic_of_2_1_6(void **state)
  * in text, LaTeX and JSON (absform.h): the square of the composite-curve
  * text, 2.2.2 ex. 1, its weights P(t,k-1,1) - P(t,k,1) by hand; x^3 sign(x)
  * is |x|^3; a sign(x) without the factor x stays sign(x) */
-#define SQUARE                                                              \
-    "point O, A, B, C\nparam t\n"                                           \
-    "R = O + (A - O)*(1 + abs(t) - abs(t - 1))/2"                           \
-    " + (B - A)*(1 + abs(t - 1) - abs(t - 2))/2"                            \
-    " + (C - B)*(1 + abs(t - 2) - abs(t - 3))/2"                            \
+#define SQUARE                                                                 \
+    "point O, A, B, C\nparam t\n"                                              \
+    "R = O + (A - O)*(1 + abs(t) - abs(t - 1))/2"                              \
+    " + (B - A)*(1 + abs(t - 1) - abs(t - 2))/2"                               \
+    " + (C - B)*(1 + abs(t - 2) - abs(t - 3))/2"                               \
     " + (O - C)*(1 + abs(t - 3) - abs(t - 4))/2\n"
 
 static void test_abs(void **state)
@@ -717,13 +717,13 @@ static void test_abs(void **state)
  * By a focus (2.18): 1/(a - c*cos(phi)), c = sqrt(a^2 - b^2), which the
  * normal form rationalises to (a + c*cos(phi))/(b^2 + (a^2 - b^2)*sin^2),
  * is written back, its A weight (a*cos(phi) - c)/(a - c*cos(phi)). */
-#define ELLIPSE                                                             \
-    "point A, B, C\nconst a, b > 0\nparam phi\n"                            \
-    "rho = a*b/sqrt(a^2*sin(phi)^2 + b^2*cos(phi)^2)\n"                     \
+#define ELLIPSE                                                                \
+    "point A, B, C\nconst a, b > 0\nparam phi\n"                               \
+    "rho = a*b/sqrt(a^2*sin(phi)^2 + b^2*cos(phi)^2)\n"                        \
     "M = C + (A - C)*(rho*cos(phi)/a) + (B - C)*(rho*sin(phi)/b)\n"
-#define FOCAL                                                               \
-    "point A, B, C\nconst a, b > 0\nparam phi\nc = sqrt(a^2 - b^2)\n"       \
-    "rho = b^2/(a - c*cos(phi))\n"                                          \
+#define FOCAL                                                                  \
+    "point A, B, C\nconst a, b > 0\nparam phi\nc = sqrt(a^2 - b^2)\n"          \
+    "rho = b^2/(a - c*cos(phi))\n"                                             \
     "M = C + (A - C)*(rho*cos(phi) - c)/a + (B - C)*rho*sin(phi)/b\n"
 
 static void test_roots_where_written(void **state)
@@ -814,8 +814,8 @@ static void test_latex_break(void **state)
     (void)state;
     static const char *const sum[] = {"a + b", "+ c", "+ d"};
     expect_lines("a + b + c + d", 6, sum, 3);
-    static const char *const frac[] = {"x = \\frac{1}{y} \\Bigl( a",
-                                       "+ b + c", "+ d + e \\Bigr)"};
+    static const char *const frac[] = {"x = \\frac{1}{y} \\Bigl( a", "+ b + c",
+                                       "+ d + e \\Bigr)"};
     expect_lines("x = \\frac{a + b + c + d + e}{y}", 12, frac, 3);
     static const char *const paren[] = {"2 \\Bigl( a + b", "+ c \\Bigr)^{2}"};
     expect_lines("2 \\left(a + b + c\\right)^{2}", 9, paren, 2);
@@ -823,15 +823,14 @@ static void test_latex_break(void **state)
     expect_lines("a + b", 56, fits, 1);
     /* the hexagon of the composite-curve text set as a standalone
      * document: six lines, each within the page */
-    char *o = printed_ex(
-        "point A0, A1, A2, A3, A4, A5\nparam t\n"
-        "R = A0 + (A1 - A0)*(1 + abs(t) - abs(t - 1))/2"
-        " + (A2 - A1)*(1 + abs(t - 1) - abs(t - 2))/2"
-        " + (A3 - A2)*(1 + abs(t - 2) - abs(t - 3))/2"
-        " + (A4 - A3)*(1 + abs(t - 3) - abs(t - 4))/2"
-        " + (A5 - A4)*(1 + abs(t - 4) - abs(t - 5))/2"
-        " + (A0 - A5)*(1 + abs(t - 5) - abs(t - 6))/2\n",
-        FMT_LATEX, 0, -1);
+    char *o = printed_ex("point A0, A1, A2, A3, A4, A5\nparam t\n"
+                         "R = A0 + (A1 - A0)*(1 + abs(t) - abs(t - 1))/2"
+                         " + (A2 - A1)*(1 + abs(t - 1) - abs(t - 2))/2"
+                         " + (A3 - A2)*(1 + abs(t - 2) - abs(t - 3))/2"
+                         " + (A4 - A3)*(1 + abs(t - 3) - abs(t - 4))/2"
+                         " + (A5 - A4)*(1 + abs(t - 4) - abs(t - 5))/2"
+                         " + (A0 - A5)*(1 + abs(t - 5) - abs(t - 6))/2\n",
+                         FMT_LATEX, 0, -1);
     size_t lines = 0;
     for (char *p = o; (p = strstr(p, "\\\\\n")); p++)
         lines++;

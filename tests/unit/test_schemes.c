@@ -402,8 +402,8 @@ static void put_renamed(char **buf, size_t *len, size_t *cap, const char *rhs,
 /* The text derive prints, read back by pointcalc's own front end: for every
  * output NAME = RHS, the scheme with `pb__K = (RHS) - (NAME)` added must
  * derive pb__K to exactly 0; both forms, over one denominator and relative
- * to the last base point (--origin).  (Family members print as M_1 and are read as
- * M[1].) */
+ * to the last base point (--origin).  (Family members print as M_1 and are read
+ * as M[1].) */
 static void check_print_back(const char *path)
 {
     size_t len;

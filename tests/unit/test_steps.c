@@ -814,13 +814,12 @@ static int teardown(void **state)
 static void test_steps_latex_rows_fit(void **state)
 {
     (void)state;
-    Derived *d = derive_text(
-        "point O, A, B, C\nparam t\n"
-        "R = O + (A - O)*(1 + abs(t) - abs(t - 1))/2"
-        " + (B - A)*(1 + abs(t - 1) - abs(t - 2))/2"
-        " + (C - B)*(1 + abs(t - 2) - abs(t - 3))/2"
-        " + (O - C)*(1 + abs(t - 3) - abs(t - 4))/2\n",
-        1, NULL);
+    Derived *d = derive_text("point O, A, B, C\nparam t\n"
+                             "R = O + (A - O)*(1 + abs(t) - abs(t - 1))/2"
+                             " + (B - A)*(1 + abs(t - 1) - abs(t - 2))/2"
+                             " + (C - B)*(1 + abs(t - 2) - abs(t - 3))/2"
+                             " + (O - C)*(1 + abs(t - 3) - abs(t - 4))/2\n",
+                             1, NULL);
     assert_non_null(d);
     char *out = NULL;
     size_t len = 0;
