@@ -1,6 +1,7 @@
 #include "compiler/book.h"
 
 #include <ctype.h>
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -9,6 +10,9 @@
 #include <flint/fmpz_vec.h>
 #include <flint/nmod_poly.h>
 
+#include "compiler/absform.h"
+#include "compiler/kernel.h"
+#include "compiler/latexbreak.h"
 #include "compiler/mem.h"
 #include "compiler/ring.h"
 #include "compiler/strbuf.h"
@@ -66,7 +70,8 @@ static void latex_name(StrBuf *b, const char *name)
         if (gl == alpha && strncmp(greek[g], name, gl) == 0 &&
             (name[gl] == '\0' || all_digits(name + gl))) {
             sb_puts(b, "\\");
-            sb_puts(b, greek[g]);
+            /* the book's (and most texts') angle: \varphi */
+            sb_puts(b, strcmp(greek[g], "phi") == 0 ? "varphi" : greek[g]);
             if (name[gl]) {
                 sb_puts(b, "_{");
                 sb_puts(b, name + gl);
@@ -110,6 +115,7 @@ typedef enum AtomKind {
     AT_BAR,   // 1 - x of a param or const
     AT_SUM,   // a parenthesised sum
     AT_POINT, // a point name, or a difference of two (point2)
+    AT_ABS,   // |x| of the sign kernel var = sign(x) (absform.h)
 } AtomKind;
 
 typedef struct PSum PSum;
@@ -145,6 +151,14 @@ typedef struct Ctx {
     long *work; // the printing work spent on this output (RENDER_WORK)
     struct Memo *memo; // forms already chosen: this output's, or the
                        // scheme's (BookOptions.memo)
+    const Kernels *K;  // the functions (NULL: none)
+    int has_sign;      // K has a sign kernel: polynomials are read for |x|
+    const unsigned char *is_abs; // rendering a polynomial rewritten by
+                                 // absform_rewrite: its vars meaning |x|
+    ulong mode; // 0, or a key of is_abs (memo entries differ by it)
+    const DerivedName *named; // the scheme's named kernel powers, and the
+    slong nnamed;             // line of the definition being printed:
+    int line;                 // names defined before it print for them
 } Ctx;
 
 /* render() of a polynomial at a depth, kept: the same coefficients and
@@ -152,6 +166,7 @@ typedef struct Ctx {
 typedef struct MemoEntry {
     fmpz_mpoly_t poly;
     int depth;
+    ulong mode; // Ctx.mode it was rendered in
     struct PSum *sum;
 } MemoEntry;
 
@@ -271,6 +286,26 @@ static int is_param(const Ctx *c, slong v)
     return v < c->nparams;
 }
 
+/* the name to write var^e through: a definition before the one printed
+ * whose value is var^k, k dividing e (the largest such k), or NULL */
+static const DerivedName *named_for_line(slong var, ulong e, int line,
+                                         const Ctx *c)
+{
+    const DerivedName *best = NULL;
+    for (slong i = 0; i < c->nnamed; i++) {
+        const DerivedName *nm = &c->named[i];
+        if (nm->var == var && nm->line < line && nm->exp <= e &&
+            e % nm->exp == 0 && (!best || nm->exp > best->exp))
+            best = nm;
+    }
+    return best;
+}
+
+static const DerivedName *named_for(slong var, ulong e, const Ctx *c)
+{
+    return named_for_line(var, e, c->line, c);
+}
+
 /* the place of an atom in a product: a difference of points, consts (x
  * and 1 - x), the point, params, functions, then parenthesised sums (those
  * free of params first) */
@@ -281,7 +316,13 @@ static int atom_class(const Ctx *c, const Atom *a)
     case AT_BAR:
         if (is_param(c, a->var))
             return 2;
+        if (a->kind == AT_VAR && named_for_line(a->var, a->exp, INT_MAX, c))
+            return 0; /* a named scalar: with the consts (B*a*t); the
+                       * same place wherever it is written by its name
+                       * (forms are shared by a scheme's outputs) */
         return a->var < c->nparams + c->nconsts ? 0 : 3;
+    case AT_ABS:
+        return 3;
     case AT_POINT:
         return a->point2 ? -1 : 1; /* (A - C)*kp*..., as the book */
     case AT_SUM:
@@ -295,11 +336,11 @@ static int atom_cmp(const Ctx *c, const Atom *a, const Atom *b)
     int ka = atom_class(c, a), kb = atom_class(c, b);
     if (ka != kb)
         return ka < kb ? -1 : 1;
-    if (a->kind == AT_VAR || a->kind == AT_BAR) {
+    if (a->kind == AT_VAR || a->kind == AT_BAR || a->kind == AT_ABS) {
         if (a->var != b->var)
             return a->var < b->var ? -1 : 1;
         if (a->kind != b->kind)
-            return a->kind == AT_VAR ? -1 : 1;
+            return a->kind < b->kind ? -1 : 1;
         return 0;
     }
     if (a->kind == AT_SUM) {
@@ -400,14 +441,186 @@ static void put_exp(StrBuf *b, ulong e, const Ctx *c)
         sb_puts(b, "}");
 }
 
+static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c);
+static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c);
+static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+/* the part of a kernel's text between open and close (its argument as
+ * kernel.c wrote it: expanded), malloc'd, or NULL */
+static char *inner_text(const char *name, const char *open, const char *close)
+{
+    const char *o = strstr(name, open);
+    size_t n = strlen(name), lc = strlen(close);
+    if (!o || n < lc || strcmp(name + n - lc, close) != 0)
+        return NULL;
+    const char *a = o + strlen(open), *e = name + n - lc;
+    if (e < a)
+        return NULL;
+    return pc_xstrndup(a, (size_t)(e - a));
+}
+
+/* s led by its first positive term (sqrt(a^2 - b^2), not sqrt(-b^2 +
+ * a^2)) */
+static void arg_lead(PSum *s)
+{
+    slong i = 0;
+    while (i < s->n && s->t[i].neg)
+        i++;
+    if (i > 0 && i < s->n) {
+        PTerm t = s->t[i];
+        memmove(s->t + 1, s->t, sizeof(PTerm) * (size_t)i);
+        s->t[0] = t;
+    }
+}
+
+static void put_frac(StrBuf *b, const char *num, int num_items, const PSum *den,
+                     const Ctx *c);
+
+/* a kernel's argument x: its best form (expanded: its terms only), a
+ * positive term first (sqrt(a^2 - b^2), not sqrt(-b^2 + a^2)) */
+static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
+{
+    PSum *s = expanded ? form_expanded(x->num, c) : render(x->num, 0, c);
+    arg_lead(s);
+    if (fmpz_mpoly_is_one(x->den, c->r->ctx)) {
+        put_sum(b, s, c);
+        sum_free(s, c);
+        return;
+    }
+    /* a quotient: both parts lead with a positive term, as written
+     * (sqrt((rho^2 - b^2)/(a^2 - b^2))) */
+    PSum *d = expanded ? form_expanded(x->den, c) : render(x->den, 0, c);
+    arg_lead(d);
+    StrBuf n = {0};
+    put_sum(&n, s, c);
+    put_frac(b, n.s, (int)s->n, d, c);
+    free(n.s);
+    sum_free(d, c);
+    sum_free(s, c);
+}
+
+/* the argument of kernel k in its best form (book.c), or expanded as
+ * kernel.c names it when that is shorter in text: sqrt(a^2*sin(phi)^2 +
+ * b^2*cos(phi)^2) for sqrt(a^2*sin(phi)^2 - b^2*sin(phi)^2 + b^2) */
+static char *kernel_arg(const Kernel *k, const char *open, const char *close,
+                        const Ctx *c)
+{
+    char *own = inner_text(k->name, open, close);
+    if (!own)
+        return NULL;
+    Ctx t = *c;
+    t.latex = 0;
+    t.is_abs = NULL;
+    t.mode = 0;
+    StrBuf bk = {0};
+    put_arg(&bk, k->arg, 0, &t);
+    int book = bk.len < strlen(own); /* ties: as kernel.c named it */
+    if (!c->latex) {
+        if (book) {
+            free(own);
+            return sb_take(&bk);
+        }
+        free(bk.s);
+        return own;
+    }
+    free(own);
+    free(bk.s);
+    t.latex = 1;
+    StrBuf lb = {0};
+    put_arg(&lb, k->arg, !book, &t);
+    return sb_take(&lb);
+}
+
+/* kernel k to the power e, as the book writes it: sqrt(X) with X in its
+ * best form; in LaTeX \sin^{2}\varphi (a one-name argument without
+ * parentheses, the power on the function's name), \sqrt{X}^{2} */
+static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
+{
+    static const char *const lx[KF_COUNT] = {
+        [KF_SIN] = "\\sin",     [KF_COS] = "\\cos",     [KF_SINH] = "\\sinh",
+        [KF_COSH] = "\\cosh",   [KF_LN] = "\\ln",       [KF_ASIN] = "\\arcsin",
+        [KF_ACOS] = "\\arccos", [KF_ATAN] = "\\arctan",
+    };
+    char *a;
+    if (k->fn == KF_SQRT) {
+        a = kernel_arg(k, "sqrt(", ")", c);
+        if (!a)
+            return 0;
+        sb_puts(b, c->latex ? "\\sqrt{" : "sqrt(");
+        sb_puts(b, a);
+        sb_puts(b, c->latex ? "}" : ")");
+        put_exp(b, e, c);
+        free(a);
+        return 1;
+    }
+    if (k->fn >= KF_COUNT || !lx[k->fn])
+        return 0;
+    char open[16];
+    static const char *const names[] = {
+#define X(id, name, cfn) name,
+        PC_KERNEL_FNS(X)
+#undef X
+    };
+    snprintf(open, sizeof open, "%s(", names[k->fn]);
+    a = kernel_arg(k, open, ")", c);
+    if (!a)
+        return 0;
+    if (!c->latex) {
+        sb_puts(b, open);
+        sb_puts(b, a);
+        sb_puts(b, ")");
+        put_exp(b, e, c);
+        free(a);
+        return 1;
+    }
+    sb_puts(b, lx[k->fn]);
+    if (e > 1 && k->fn != KF_ASIN && k->fn != KF_ACOS && k->fn != KF_ATAN)
+        put_exp(b, e, c);
+    slong v;
+    int one = fmpz_mpoly_is_one(k->arg->den, c->r->ctx) &&
+              fmpz_mpoly_length(k->arg->num, c->r->ctx) == 1 &&
+              fmpz_mpoly_total_degree_si(k->arg->num, c->r->ctx) == 1 &&
+              fmpz_is_one(k->arg->num->coeffs);
+    for (v = 0; one && v < c->r->nvars; v++)
+        if (fmpz_mpoly_degree_si(k->arg->num, v, c->r->ctx) > 0)
+            break;
+    one = one && !kernels_of_var(c->K, v);
+    if (one) {
+        sb_puts(b, a[0] == '\\' ? "" : " ");
+        sb_puts(b, a);
+    } else {
+        sb_puts(b, "\\left(");
+        sb_puts(b, a);
+        sb_puts(b, "\\right)");
+    }
+    if (e > 1 && (k->fn == KF_ASIN || k->fn == KF_ACOS || k->fn == KF_ATAN))
+        put_exp(b, e, c); /* \arcsin^{2} would read as a power of the map */
+    free(a);
+    return 1;
+}
+
 static void put_atom(StrBuf *b, const Atom *a, const Ctx *c)
 {
     const char *open = c->latex ? "\\left(" : "(";
     const char *close = c->latex ? "\\right)" : ")";
     switch (a->kind) {
-    case AT_VAR:
+    case AT_VAR: {
+        const DerivedName *nm = named_for(a->var, a->exp, c);
+        if (nm) {
+            /* dist(A, C)^4 = a^2 for a = dist(A, C)^2 */
+            if (c->latex)
+                latex_name(b, nm->name);
+            else
+                sb_puts(b, nm->name);
+            put_exp(b, a->exp / nm->exp, c);
+            return;
+        }
+        const Kernel *k = kernels_of_var(c->K, a->var);
+        if (k && put_kernel(b, k, a->exp, c))
+            return;
         put_var(b, a->var, c);
         break;
+    }
     case AT_BAR:
         if (c->latex) {
             sb_puts(b, "\\bar{");
@@ -424,6 +637,14 @@ static void put_atom(StrBuf *b, const Atom *a, const Ctx *c)
         put_sum(b, a->sum, c);
         sb_puts(b, close);
         break;
+    case AT_ABS: {
+        char *x = absform_arg_text(kernels_of_var(c->K, a->var), c->latex);
+        sb_puts(b, c->latex ? "\\left|" : "abs(");
+        sb_puts(b, x);
+        sb_puts(b, c->latex ? "\\right|" : ")");
+        free(x);
+        break;
+    }
     case AT_POINT:
         if (a->point2) {
             sb_puts(b, open);
@@ -462,11 +683,21 @@ static void put_sum(StrBuf *b, const PSum *s, const Ctx *c)
         return;
     }
     for (slong i = 0; i < s->n; i++) {
+        const PTerm *t = &s->t[i];
         if (i == 0)
-            sb_puts(b, s->t[i].neg ? "-" : "");
+            sb_puts(b, t->neg ? "-" : "");
         else
-            sb_puts(b, s->t[i].neg ? " - " : " + ");
-        put_term(b, &s->t[i], c);
+            sb_puts(b, t->neg ? " - " : " + ");
+        if (!c->latex && s->n > 1 && !t->neg && t->n == 1 &&
+            fmpz_is_one(t->coeff) && t->a[0].kind == AT_BAR &&
+            t->a[0].exp <= 1) {
+            /* 1 - v as a term of a sum needs no parentheses: (1 - v +
+             * u*v), not ((1 - v) + u*v) */
+            sb_puts(b, "1 - ");
+            put_var(b, t->a[0].var, c);
+            continue;
+        }
+        put_term(b, t, c);
     }
 }
 
@@ -501,6 +732,19 @@ static void sum_finish(PSum *s, const fmpz_mpoly_t p, const Ctx *c)
         term_sort(&s->t[i], c);
 }
 
+/* the total degree of p's term k */
+static slong term_degree(const fmpz_mpoly_t p, slong k, const Ctx *c)
+{
+    const Ring *r = c->r;
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
+    slong d = 0;
+    for (slong v = 0; v < r->nvars; v++)
+        d += (slong)e[v];
+    free(e);
+    return d;
+}
+
 /* expanded, ascending (the reverse of FLINT's degrevlex) */
 static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c)
 {
@@ -508,7 +752,27 @@ static PSum *form_expanded(const fmpz_mpoly_t p, const Ctx *c)
     PSum *s = sum_new(c);
     slong len = fmpz_mpoly_length(p, r->ctx);
     ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
-    for (slong k = len - 1; k >= 0; k--) {
+    for (slong kk = len - 1; kk >= 0; kk--) {
+        slong k = kk;
+        if (c->is_abs) {
+            /* |t| - 2*|t - 1| + |t - 2|: the terms of one degree in
+             * the order of their vars (the kernels' order of creation) */
+            slong deg = term_degree(p, kk, c), lo = kk;
+            while (lo > 0 && term_degree(p, lo - 1, c) == deg)
+                lo--;
+            for (slong j = lo; j <= kk; j++) {
+                PTerm *t = sum_push(s);
+                fmpz_mpoly_get_term_coeff_fmpz(t->coeff, p, j, r->ctx);
+                t->neg = fmpz_sgn(t->coeff) < 0;
+                fmpz_abs(t->coeff, t->coeff);
+                fmpz_mpoly_get_term_exp_ui(e, p, j, r->ctx);
+                for (slong v = 0; v < r->nvars; v++)
+                    if (e[v])
+                        term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, e[v]});
+            }
+            kk = lo;
+            continue;
+        }
         PTerm *t = sum_push(s);
         fmpz_mpoly_get_term_coeff_fmpz(t->coeff, p, k, r->ctx);
         t->neg = fmpz_sgn(t->coeff) < 0;
@@ -1165,6 +1429,66 @@ static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
     return s;
 }
 
+/* the cos kernel of the same argument as sin kernel var v (its companion:
+ * cos^2 = 1 - sin^2), or -1 */
+static slong cos_companion(slong v, const Ctx *c)
+{
+    const Kernel *k = kernels_of_var(c->K, v);
+    if (!k || k->fn != KF_SIN)
+        return -1;
+    for (slong i = 0; i < c->K->n; i++) {
+        const Kernel *w = &c->K->k[i];
+        if (w->fn == KF_COS && ratfun_equal(w->arg, k->arg, c->r))
+            return w->var;
+    }
+    return -1;
+}
+
+/* p (even in s = sin(x), free of w = cos(x)) as a polynomial in y = s^2,
+ * in the basis y^k (1 - y)^(n-k) with 1 - y = cos(x)^2: the book's
+ * a^2*sin(phi)^2 + b^2*cos(phi)^2 for the normal form's b^2 - b^2*sin(phi)^2
+ * + a^2*sin(phi)^2 (form_bernstein in y); NULL when p is not such */
+static PSum *form_sin2(const fmpz_mpoly_t p, slong s, slong w, int depth,
+                       const Ctx *c)
+{
+    const Ring *r = c->r;
+    slong n2 = fmpz_mpoly_degree_si(p, s, r->ctx);
+    if (n2 < 2 || (n2 & 1) || fmpz_mpoly_degree_si(p, w, r->ctx) > 0)
+        return NULL;
+    fmpz_mpoly_struct *a = coeffs_in(p, s, n2, c);
+    for (slong i = 1; i <= n2; i += 2)
+        if (!fmpz_mpoly_is_zero(a + i, r->ctx)) {
+            coeffs_clear(a, n2, c);
+            return NULL;
+        }
+    slong n = n2 / 2;
+    PSum *sum = sum_new(c);
+    fmpz_mpoly_t bk, tmp;
+    fmpz_mpoly_init(bk, r->ctx);
+    fmpz_mpoly_init(tmp, r->ctx);
+    fmpz_t bin;
+    fmpz_init(bin);
+    for (slong k = 0; k <= n; k++) {
+        fmpz_mpoly_zero(bk, r->ctx);
+        for (slong i = 0; i <= k; i++) {
+            fmpz_bin_uiui(bin, (ulong)(n - i), (ulong)(k - i));
+            fmpz_mpoly_scalar_mul_fmpz(tmp, a + 2 * i, bin, r->ctx);
+            fmpz_mpoly_add(bk, bk, tmp, r->ctx);
+        }
+        if (fmpz_mpoly_is_zero(bk, r->ctx))
+            continue;
+        Atom xs[2] = {{AT_VAR, s, NULL, NULL, NULL, (ulong)(2 * k)},
+                      {AT_VAR, w, NULL, NULL, NULL, (ulong)(2 * (n - k))}};
+        push_collected(sum, bk, xs, 2, depth, c);
+    }
+    fmpz_clear(bin);
+    fmpz_mpoly_clear(tmp, r->ctx);
+    fmpz_mpoly_clear(bk, r->ctx);
+    coeffs_clear(a, n2, c);
+    sum_finish(sum, p, c);
+    return sum;
+}
+
 /* the length of s's text form (whatever the style): measured only when a
  * tie between two collected forms needs it */
 static size_t text_len(const PSum *s, const Ctx *c)
@@ -1292,14 +1616,58 @@ static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth,
 }
 
 /* p in its best form (see book.h), remembered per output */
+static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+/* the atoms of s (and of its sums) that are vars marked in is_abs become
+ * |x| */
+static void mark_abs(PSum *s, const unsigned char *is_abs)
+{
+    for (slong i = 0; i < s->n; i++)
+        for (slong j = 0; j < s->t[i].n; j++) {
+            Atom *a = &s->t[i].a[j];
+            if (a->kind == AT_VAR && is_abs[a->var])
+                a->kind = AT_ABS;
+            else if (a->kind == AT_SUM)
+                mark_abs(a->sum, is_abs);
+        }
+}
+
+/* p in its best form; a p with x*sign(x) in it is written through |x|
+ * (absform.h) */
 static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    if (!c->has_sign || c->is_abs)
+        return render_memo(p, depth, c);
+    const Ring *r = c->r;
+    unsigned char *mask = pc_xcalloc((size_t)(r->nvars ? r->nvars : 1), 1);
+    fmpz_mpoly_t q;
+    fmpz_mpoly_init(q, r->ctx);
+    PSum *s;
+    if (absform_rewrite(q, mask, p, c->K, r) > 0) {
+        Ctx a = *c;
+        a.is_abs = mask;
+        a.mode = 1;
+        for (slong v = 0; v < r->nvars; v++)
+            a.mode = a.mode * 31 + mask[v];
+        a.mode |= 1;
+        s = render_memo(q, depth, &a);
+        mark_abs(s, mask);
+    } else {
+        s = render_memo(p, depth, c);
+    }
+    fmpz_mpoly_clear(q, r->ctx);
+    free(mask);
+    return s;
+}
+
+static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     Memo *m = c->memo;
     slong len = fmpz_mpoly_length(p, c->r->ctx);
     if (len < 2 || !m)
         return render_new(p, depth, c);
     for (slong i = 0; i < m->n; i++)
-        if (m->e[i].depth == depth &&
+        if (m->e[i].depth == depth && m->e[i].mode == c->mode &&
             fmpz_mpoly_length(m->e[i].poly, c->r->ctx) == len &&
             fmpz_mpoly_equal(m->e[i].poly, p, c->r->ctx))
             return sum_copy(m->e[i].sum, c);
@@ -1313,6 +1681,7 @@ static PSum *render(const fmpz_mpoly_t p, int depth, const Ctx *c)
         fmpz_mpoly_init(e->poly, c->r->ctx);
         fmpz_mpoly_set(e->poly, p, c->r->ctx);
         e->depth = depth;
+        e->mode = c->mode;
         e->sum = sum_copy(s, c);
     }
     return s;
@@ -1351,16 +1720,353 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
         if (is_param(c, v))
             keep_better(&best, &rank, &blen, form_bernstein(p, v, depth, c),
                         R_BERNSTEIN, c);
+        slong w = c->K ? cos_companion(v, c) : -1;
+        if (w >= 0)
+            keep_better(&best, &rank, &blen, form_sin2(p, v, w, depth, c),
+                        R_BERNSTEIN, c);
         keep_better(&best, &rank, &blen, form_powers(p, v, depth, c),
                     R_POWERS, c);
     }
     return best;
 }
 
+/* ---- roots where the user put them ----------------------------------------
+ */
+
+/* The normal form rationalises: b*cos(phi)/sqrt(X) is kept as
+ * b*cos(phi)*sqrt(X)/X, and 1/(a - c*cos(phi)) (c a root) as
+ * (a + c*cos(phi))/(a^2 - c^2*cos(phi)^2) reduced.  The printer undoes it
+ * where that is shorter: for a root kernel s (s^2 = X) and a multiplier
+ * Lb = P - Q*s (the conjugate of L = P + Q*s),
+ *     N/D = reduce(N*Lb)/(D*Lb),
+ * and G = reduce(L*Lb) = P^2 - Q^2*X (free of s) cancels when it divides D
+ * and every reduce(N*Lb): the weight becomes M/(D1*Lb), D = G*D1.  The
+ * multipliers tried: s itself (P = 0: N*s/X -> N/s), and the conjugates of
+ * the numerators' factors of degree 1 in s.  Every candidate is exactly
+ * equal (the relations are identities); the shortest text wins. */
+
+/* p modulo the kernels' relations v^q = rel, for polynomial rels; 0 when
+ * a relation with a denominator would be needed (p then unusable) */
+static int reduce_rel(fmpz_mpoly_t p, const Ctx *c)
+{
+    const Ring *r = c->r;
+    const Kernels *K = c->K;
+    if (!K)
+        return 1;
+    int ok = 1;
+    fmpz_mpoly_t res, cj, rp, m;
+    fmpz_mpoly_init(res, r->ctx);
+    fmpz_mpoly_init(cj, r->ctx);
+    fmpz_mpoly_init(rp, r->ctx);
+    fmpz_mpoly_init(m, r->ctx);
+    /* later kernels first: a relation uses only earlier variables */
+    for (slong i = K->n - 1; i >= 0 && ok; i--) {
+        const Kernel *k = &K->k[i];
+        slong v = k->var, q = k->deg;
+        if (q < 2 || fmpz_mpoly_degree_si(p, v, r->ctx) < q)
+            continue;
+        if (!fmpz_mpoly_is_one(k->rel->den, r->ctx)) {
+            ok = 0;
+            break;
+        }
+        slong n = fmpz_mpoly_degree_si(p, v, r->ctx);
+        fmpz_mpoly_zero(res, r->ctx);
+        for (slong j = 0; j <= n; j++) {
+            ulong e = (ulong)j;
+            fmpz_mpoly_get_coeff_vars_ui(cj, p, &v, &e, 1, r->ctx);
+            if (fmpz_mpoly_is_zero(cj, r->ctx))
+                continue;
+            /* v^j = v^(j mod q) * rel^(j div q) */
+            fmpz_mpoly_pow_ui(rp, k->rel->num, (ulong)(j / q), r->ctx);
+            fmpz_mpoly_gen(m, v, r->ctx);
+            fmpz_mpoly_pow_ui(m, m, (ulong)(j % q), r->ctx);
+            fmpz_mpoly_mul(rp, rp, m, r->ctx);
+            fmpz_mpoly_mul(rp, rp, cj, r->ctx);
+            fmpz_mpoly_add(res, res, rp, r->ctx);
+            if (fmpz_mpoly_length(res, r->ctx) > 4096)
+                ok = 0;
+        }
+        fmpz_mpoly_swap(p, res, r->ctx);
+    }
+    fmpz_mpoly_clear(m, r->ctx);
+    fmpz_mpoly_clear(rp, r->ctx);
+    fmpz_mpoly_clear(cj, r->ctx);
+    fmpz_mpoly_clear(res, r->ctx);
+    return ok;
+}
+
+/* res = L with s replaced by -s */
+static void conj_root(fmpz_mpoly_t res, const fmpz_mpoly_t L, slong s,
+                      const Ctx *c)
+{
+    const Ring *r = c->r;
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    fmpz_t k;
+    fmpz_init(k);
+    fmpz_mpoly_zero(res, r->ctx);
+    for (slong i = 0; i < fmpz_mpoly_length(L, r->ctx); i++) {
+        fmpz_mpoly_get_term_exp_ui(e, L, i, r->ctx);
+        fmpz_mpoly_get_term_coeff_fmpz(k, L, i, r->ctx);
+        if (e[s] & 1)
+            fmpz_neg(k, k);
+        fmpz_mpoly_push_term_fmpz_ui(res, k, e, r->ctx);
+    }
+    fmpz_mpoly_sort_terms(res, r->ctx);
+    fmpz_mpoly_combine_like_terms(res, r->ctx);
+    fmpz_clear(k);
+    free(e);
+}
+
+/* One form of n numerators over one denominator (the printers' input) */
+typedef struct Cand {
+    slong n;
+    fmpz_mpoly_struct *num; // n numerators
+    fmpz_mpoly_t den;
+} Cand;
+
+static void cand_init(Cand *x, slong n, const Ctx *c)
+{
+    x->n = n;
+    x->num = pc_xmalloc(sizeof(fmpz_mpoly_struct) * (size_t)(n ? n : 1));
+    for (slong i = 0; i < n; i++)
+        fmpz_mpoly_init(x->num + i, c->r->ctx);
+    fmpz_mpoly_init(x->den, c->r->ctx);
+}
+
+static void cand_clear(Cand *x, const Ctx *c)
+{
+    for (slong i = 0; i < x->n; i++)
+        fmpz_mpoly_clear(x->num + i, c->r->ctx);
+    free(x->num);
+    fmpz_mpoly_clear(x->den, c->r->ctx);
+}
+
+/* N/D with the multiplier lb of root kernel s (above): 1 and *out when G
+ * cancels */
+static int unroot_with(Cand *out, const fmpz_mpoly_struct *const *N, slong n,
+                       const fmpz_mpoly_t D, const fmpz_mpoly_t lb, slong s,
+                       const Ctx *c)
+{
+    const Ring *r = c->r;
+    fmpz_mpoly_t L, G, q;
+    fmpz_mpoly_init(L, r->ctx);
+    fmpz_mpoly_init(G, r->ctx);
+    fmpz_mpoly_init(q, r->ctx);
+    conj_root(L, lb, s, c);
+    fmpz_mpoly_mul(G, L, lb, r->ctx);
+    int ok = reduce_rel(G, c) && !fmpz_mpoly_is_fmpz(G, r->ctx) &&
+             fmpz_mpoly_degree_si(G, s, r->ctx) == 0;
+    if (ok) {
+        fmpz_t g;
+        fmpz_init(g);
+        _fmpz_vec_content(g, G->coeffs, fmpz_mpoly_length(G, r->ctx));
+        fmpz_mpoly_scalar_divexact_fmpz(G, G, g, r->ctx);
+        fmpz_clear(g);
+        cand_init(out, n, c);
+        ok = fmpz_mpoly_divides(q, D, G, r->ctx);
+        if (ok)
+            fmpz_mpoly_mul(out->den, q, lb, r->ctx);
+        for (slong i = 0; i < n && ok; i++) {
+            fmpz_mpoly_mul(q, N[i], lb, r->ctx);
+            ok = reduce_rel(q, c) &&
+                 fmpz_mpoly_divides(out->num + i, q, G, r->ctx);
+        }
+        if (!ok)
+            cand_clear(out, c);
+    }
+    fmpz_mpoly_clear(q, r->ctx);
+    fmpz_mpoly_clear(G, r->ctx);
+    fmpz_mpoly_clear(L, r->ctx);
+    return ok;
+}
+
+enum { MAX_UNROOT = 6, MAX_UNROOT_TERMS = 200 };
+
+/* the multipliers P -+ Q*s read off D (unroot_cands), tried; returns the
+ * number of candidates put in cs (at most room) */
+static slong den_cands(Cand *cs, slong room, const fmpz_mpoly_struct *const *N,
+                       slong n, const fmpz_mpoly_t D, const Kernel *k,
+                       const Ctx *c)
+{
+    const Ring *r = c->r;
+    slong s = k->var, nc = 0;
+    slong nv = r->nvars;
+    fmpz_mpoly_t Dp, Q, T, P, lb, m;
+    fmpz_mpoly_init(Dp, r->ctx);
+    fmpz_mpoly_init(Q, r->ctx);
+    fmpz_mpoly_init(T, r->ctx);
+    fmpz_mpoly_init(P, r->ctx);
+    fmpz_mpoly_init(lb, r->ctx);
+    fmpz_mpoly_init(m, r->ctx);
+    fmpz_t g;
+    fmpz_init(g);
+    _fmpz_vec_content(g, D->coeffs, fmpz_mpoly_length(D, r->ctx));
+    fmpz_mpoly_scalar_divexact_fmpz(Dp, D, g, r->ctx);
+    for (slong q = -1; q < nv && nc < room; q++) {
+        if (q == s)
+            continue;
+        if (q >= 0) {
+            int in_d = fmpz_mpoly_degree_si(D, q, r->ctx) > 0;
+            slong cw = -1;
+            for (slong v = 0; v < nv && cw < 0; v++)
+                if (fmpz_mpoly_degree_si(D, v, r->ctx) > 0 &&
+                    cos_companion(v, c) == q)
+                    cw = q;
+            if (!in_d && cw < 0)
+                continue;
+            fmpz_mpoly_gen(Q, q, r->ctx);
+        } else {
+            fmpz_mpoly_one(Q, r->ctx);
+        }
+        for (int sg = 0; sg < 2 && nc < room; sg++) {
+            /* T = Q^2*X + D (D = Q^2*X - P^2 ... up to sign) */
+            fmpz_mpoly_mul(T, Q, Q, r->ctx);
+            fmpz_mpoly_mul(T, T, k->rel->num, r->ctx);
+            if (sg)
+                fmpz_mpoly_sub(T, T, Dp, r->ctx);
+            else
+                fmpz_mpoly_add(T, T, Dp, r->ctx);
+            if (!reduce_rel(T, c) || fmpz_mpoly_is_zero(T, r->ctx) ||
+                fmpz_mpoly_degree_si(T, s, r->ctx) > 0 ||
+                !fmpz_mpoly_sqrt(P, T, r->ctx))
+                continue;
+            /* lb = P - Q*s, then P + Q*s */
+            for (int pm = 0; pm < 2 && nc < room; pm++) {
+                fmpz_mpoly_gen(m, s, r->ctx);
+                fmpz_mpoly_mul(m, m, Q, r->ctx);
+                if (pm)
+                    fmpz_mpoly_add(lb, P, m, r->ctx);
+                else
+                    fmpz_mpoly_sub(lb, P, m, r->ctx);
+                if (unroot_with(&cs[nc], N, n, D, lb, s, c))
+                    nc++;
+            }
+        }
+    }
+    fmpz_clear(g);
+    fmpz_mpoly_clear(m, r->ctx);
+    fmpz_mpoly_clear(lb, r->ctx);
+    fmpz_mpoly_clear(P, r->ctx);
+    fmpz_mpoly_clear(T, r->ctx);
+    fmpz_mpoly_clear(Q, r->ctx);
+    fmpz_mpoly_clear(Dp, r->ctx);
+    return nc;
+}
+
+/* the un-rationalised forms of N/D (at most MAX_UNROOT): returns their
+ * number, *out malloc'd (cand_clear each, then free) */
+static slong unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
+                          slong n, const fmpz_mpoly_t D,
+                          const fmpz_mpoly_struct *const *H, slong nh,
+                          const Ctx *c)
+{
+    const Ring *r = c->r;
+    const Kernels *K = c->K;
+    *out = NULL;
+    if (!K || fmpz_mpoly_is_fmpz(D, r->ctx) || c->is_abs)
+        return 0;
+    slong len = fmpz_mpoly_length(D, r->ctx);
+    for (slong i = 0; i < n; i++)
+        len += fmpz_mpoly_length(N[i], r->ctx);
+    if (len > MAX_UNROOT_TERMS)
+        return 0;
+    Cand *cs = pc_xmalloc(sizeof(Cand) * MAX_UNROOT);
+    slong nc = 0;
+    fmpz_mpoly_t lb;
+    fmpz_mpoly_init(lb, r->ctx);
+    for (slong ki = 0; ki < K->n && nc < MAX_UNROOT; ki++) {
+        const Kernel *k = &K->k[ki];
+        slong s = k->var;
+        if (k->fn != KF_SQRT || k->deg != 2)
+            continue;
+        int used = 0;
+        for (slong i = 0; i < n; i++)
+            used |= fmpz_mpoly_degree_si(N[i], s, r->ctx) > 0;
+        if (!used)
+            continue;
+        /* s itself */
+        fmpz_mpoly_gen(lb, s, r->ctx);
+        if (unroot_with(&cs[nc], N, n, D, lb, s, c))
+            nc++;
+        /* the conjugates of the numerators' factors linear in s (of N,
+         * then of the hints: the other weights of the equation) */
+        for (slong i = 0; i < n + nh && nc < MAX_UNROOT; i++) {
+            const fmpz_mpoly_struct *x = i < n ? N[i] : H[i - n];
+            if (fmpz_mpoly_degree_si(x, s, r->ctx) != 1 ||
+                fmpz_mpoly_length(x, r->ctx) > MAX_UNROOT_TERMS ||
+                !ring_factor_affordable(x, r))
+                continue;
+            fmpz_mpoly_factor_t f;
+            fmpz_mpoly_factor_init(f, r->ctx);
+            if (factor_compact(f, x, r))
+                for (slong j = 0; j < f->num && nc < MAX_UNROOT; j++) {
+                    if (fmpz_mpoly_degree_si(f->poly + j, s, r->ctx) != 1 ||
+                        fmpz_mpoly_length(f->poly + j, r->ctx) < 2)
+                        continue;
+                    conj_root(lb, f->poly + j, s, c);
+                    if (unroot_with(&cs[nc], N, n, D, lb, s, c))
+                        nc++;
+                }
+            fmpz_mpoly_factor_clear(f, r->ctx);
+        }
+        /* from the denominator: D = +-(P^2 - Q^2*X) up to its content,
+         * for Q = 1 or a variable of D (or the cos of a sin of D): P the
+         * square root of reduce(Q^2*X -+ D); 1/(a - c*cos(phi)) of a
+         * focal conic, whose numerators need not show a - c*cos(phi) */
+        if (fmpz_mpoly_is_one(k->rel->den, r->ctx) &&
+            fmpz_mpoly_length(D, r->ctx) <= MAX_UNROOT_TERMS / 4)
+            nc += den_cands(cs + nc, MAX_UNROOT - nc, N, n, D, k, c);
+    }
+    fmpz_mpoly_clear(lb, r->ctx);
+    if (nc == 0) {
+        free(cs);
+        return 0;
+    }
+    *out = cs;
+    return nc;
+}
+
 /* ---- equations ------------------------------------------------------------ */
 
 /* A numerator over the denominator: its sum, the item's atoms around the
  * point (or the point alone) */
+/* a sum whose first term is negative, made to lead with a positive term
+ * with the fewest minus signs: negated (1 for s's positive terms: returns
+ * 1, the caller writes the minus) or its leading negative terms moved to
+ * the end (s's negative terms: -c + a*cos(phi) as a*cos(phi) - c, not
+ * -(c - a*cos(phi)); -1 + t + t^2 as t + t^2 - 1); 0 otherwise */
+/* s's leading negative terms moved to its end (t + t^2 - 1 for -1 + t +
+ * t^2) when it has no more negative terms than positive ones: 1 when
+ * moved */
+static int sum_rotate(PSum *s)
+{
+    if (s->n == 0 || !s->t[0].neg)
+        return 0;
+    slong pos = 0, first = -1;
+    for (slong i = 0; i < s->n; i++)
+        if (!s->t[i].neg) {
+            pos++;
+            if (first < 0)
+                first = i;
+        }
+    if (first <= 0 || s->n - pos > pos)
+        return 0;
+    PTerm *head = pc_xmalloc(sizeof(PTerm) * (size_t)first);
+    memcpy(head, s->t, sizeof(PTerm) * (size_t)first);
+    memmove(s->t, s->t + first, sizeof(PTerm) * (size_t)(s->n - first));
+    memcpy(s->t + s->n - first, head, sizeof(PTerm) * (size_t)first);
+    free(head);
+    return 1;
+}
+
+static int sum_lead(PSum *s, const Ctx *c)
+{
+    if (s->n == 0 || !s->t[0].neg || sum_rotate(s))
+        return 0;
+    sum_neg(s, c);
+    return 1;
+}
+
 static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt,
                       const Ctx *c)
 {
@@ -1370,10 +2076,8 @@ static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt,
         term_absorb(t, &s->t[0]);
         sum_free(s, c);
     } else {
-        if (s->t[0].neg) {
-            sum_neg(s, c);
+        if (sum_lead(s, c))
             t->neg = 1;
-        }
         term_push(t, (Atom){AT_SUM, -1, s, NULL, NULL, 1});
     }
     term_push(t, pt);
@@ -1431,6 +2135,8 @@ static void put_quotient(StrBuf *b, PSum *items, const PSum *den,
     if (minus)
         for (slong i = 0; i < items->n; i++)
             items->t[i].neg = 0;
+    else if (den)
+        sum_rotate(items); /* (a*cos(phi) - c)/d, not (-c + a*cos(phi))/d */
     StrBuf n = {0};
     put_sum(&n, items, c);
     if (minus)
@@ -1442,16 +2148,18 @@ static void put_quotient(StrBuf *b, PSum *items, const PSum *den,
     free(n.s);
 }
 
-static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c)
+/* num/den as a scalar */
+static void rhs_frac(StrBuf *b, const fmpz_mpoly_t xnum,
+                     const fmpz_mpoly_t xden, const Ctx *c)
 {
     const Ring *r = c->r;
     int flip = 0;
     PSum *den = NULL;
     fmpz_mpoly_t num;
     fmpz_mpoly_init(num, r->ctx);
-    fmpz_mpoly_set(num, x->num, r->ctx);
-    if (!fmpz_mpoly_is_one(x->den, r->ctx)) {
-        den = render_den(x->den, c, &flip);
+    fmpz_mpoly_set(num, xnum, r->ctx);
+    if (!fmpz_mpoly_is_one(xden, r->ctx)) {
+        den = render_den(xden, c, &flip);
         if (flip)
             fmpz_mpoly_neg(num, num, r->ctx);
     }
@@ -1465,69 +2173,134 @@ static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c)
     fmpz_mpoly_clear(num, r->ctx);
 }
 
+/* the length of what put(b, num, den, c) writes in text */
+typedef void (*PutFrac)(StrBuf *b, const fmpz_mpoly_t num,
+                        const fmpz_mpoly_t den, const void *arg, const Ctx *c);
+
+/* puts num/den, or the un-rationalised form whose text is shortest */
+static void put_best(StrBuf *b, const fmpz_mpoly_t num, const fmpz_mpoly_t den,
+                     const fmpz_mpoly_struct *const *H, slong nh, PutFrac put,
+                     const void *arg, const Ctx *c)
+{
+    Cand *cs;
+    const fmpz_mpoly_struct *np = num;
+    slong nc = unroot_cands(&cs, &np, 1, den, H, nh, c);
+    slong best = -1;
+    if (nc > 0) {
+        Ctx t = *c;
+        t.latex = 0;
+        StrBuf m = {0};
+        put(&m, num, den, arg, &t);
+        size_t bl = m.len;
+        for (slong i = 0; i < nc; i++) {
+            m.len = 0;
+            put(&m, cs[i].num, cs[i].den, arg, &t);
+            if (m.len < bl) {
+                bl = m.len;
+                best = i;
+            }
+        }
+        free(m.s);
+    }
+    if (best < 0)
+        put(b, num, den, arg, c);
+    else
+        put(b, cs[best].num, cs[best].den, arg, c);
+    for (slong i = 0; i < nc; i++)
+        cand_clear(&cs[i], c);
+    free(cs);
+}
+
+static void put_scalar_frac(StrBuf *b, const fmpz_mpoly_t num,
+                            const fmpz_mpoly_t den, const void *arg,
+                            const Ctx *c)
+{
+    (void)arg;
+    rhs_frac(b, num, den, c);
+}
+
+static void rhs_scalar(StrBuf *b, const RatFun x, const Ctx *c)
+{
+    put_best(b, x->num, x->den, NULL, 0, put_scalar_frac, NULL, c);
+}
+
+/* one item of the origin form: " + (A - C)*n/d" (first: no " + ") */
+typedef struct OriginItem {
+    const char *point, *origin;
+    int first;
+} OriginItem;
+
+static void put_origin_item(StrBuf *b, const fmpz_mpoly_t wnum,
+                            const fmpz_mpoly_t wden, const void *arg,
+                            const Ctx *c)
+{
+    const OriginItem *it = arg;
+    const Ring *r = c->r;
+    int flip = 0;
+    PSum *den =
+        fmpz_mpoly_is_one(wden, r->ctx) ? NULL : render_den(wden, c, &flip);
+    fmpz_mpoly_t num;
+    fmpz_mpoly_init(num, r->ctx);
+    if (flip)
+        fmpz_mpoly_neg(num, wnum, r->ctx);
+    else
+        fmpz_mpoly_set(num, wnum, r->ctx);
+    Atom pa = {AT_POINT, -1, NULL, it->point, it->origin, 1};
+    PSum *one = sum_new(c);
+    push_item(one, num, pa, c);
+    int neg = one->t[0].neg;
+    one->t[0].neg = 0;
+    sb_puts(b, it->first ? (neg ? "-" : "") : (neg ? " - " : " + "));
+    StrBuf n = {0};
+    put_term(&n, &one->t[0], c);
+    if (den && c->latex) {
+        /* (A - C) \frac{n}{d}: the point outside the fraction */
+        StrBuf m = {0};
+        PSum *s = render(num, 0, c);
+        sum_lead(s, c);
+        put_sum(&m, s, c);
+        sum_free(s, c);
+        put_atom(b, &pa, c);
+        sb_puts(b, " \\frac{");
+        sb_puts(b, m.s);
+        sb_puts(b, "}{");
+        put_sum(b, den, c);
+        sb_puts(b, "}");
+        free(m.s);
+    } else {
+        sb_puts(b, n.s);
+        if (den) {
+            int pd =
+                den->n > 1 || den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
+            sb_puts(b, pd ? "/(" : "/");
+            put_sum(b, den, c);
+            if (pd)
+                sb_puts(b, ")");
+        }
+    }
+    free(n.s);
+    sum_free(one, c);
+    sum_free(den, c);
+    fmpz_mpoly_clear(num, r->ctx);
+}
+
 static void rhs_origin(StrBuf *b, const Derived *d, const DerivedOutput *o,
                        slong origin, const Ctx *c)
 {
-    const Ring *r = c->r;
     int first = 1;
+    slong nh = o->eq->len;
+    const fmpz_mpoly_struct **H = pc_xmalloc(sizeof(*H) * (size_t)(nh + 1));
+    for (slong i = 0; i < nh; i++)
+        H[i] = o->w[i].num;
     for (slong i = 0; i < o->eq->len; i++) {
         slong pt = o->eq->terms[i].point;
         if (pt == origin)
             continue;
-        const RatFunStruct *w = &o->w[i];
-        int flip = 0;
-        PSum *den = fmpz_mpoly_is_one(w->den, r->ctx)
-                        ? NULL
-                        : render_den(w->den, c, &flip);
-        fmpz_mpoly_t num;
-        fmpz_mpoly_init(num, r->ctx);
-        if (flip)
-            fmpz_mpoly_neg(num, w->num, r->ctx);
-        else
-            fmpz_mpoly_set(num, w->num, r->ctx);
-        PSum *one = sum_new(c);
-        push_item(one, num, (Atom){AT_POINT, -1, NULL, d->points[pt],
-                                   d->points[origin], 1},
-                  c);
-        int neg = one->t[0].neg;
-        one->t[0].neg = 0;
-        sb_puts(b, first ? (neg ? "-" : "") : (neg ? " - " : " + "));
-        StrBuf n = {0};
-        put_term(&n, &one->t[0], c);
-        if (den && c->latex) {
-            /* (A - C) \frac{n}{d}: the point outside the fraction */
-            StrBuf m = {0};
-            PSum *s = render(num, 0, c);
-            if (s->t[0].neg)
-                sum_neg(s, c);
-            put_sum(&m, s, c);
-            sum_free(s, c);
-            put_atom(b, &(Atom){AT_POINT, -1, NULL, d->points[pt],
-                                d->points[origin], 1},
-                     c);
-            sb_puts(b, " \\frac{");
-            sb_puts(b, m.s);
-            sb_puts(b, "}{");
-            put_sum(b, den, c);
-            sb_puts(b, "}");
-            free(m.s);
-        } else {
-            sb_puts(b, n.s);
-            if (den) {
-                int pd = den->n > 1 ||
-                         den->t[0].n + !fmpz_is_one(den->t[0].coeff) > 1;
-                sb_puts(b, pd ? "/(" : "/");
-                put_sum(b, den, c);
-                if (pd)
-                    sb_puts(b, ")");
-            }
-        }
-        free(n.s);
-        sum_free(one, c);
-        sum_free(den, c);
-        fmpz_mpoly_clear(num, r->ctx);
+        OriginItem it = {d->points[pt], d->points[origin], first};
+        put_best(b, o->w[i].num, o->w[i].den, H, nh, put_origin_item, &it, c);
         first = 0;
     }
+    free(H);
     if (o->kind == KIND_POINT) {
         sb_puts(b, first ? "" : " + ");
         put_point(b, d->points[origin], c);
@@ -1546,10 +2319,9 @@ typedef struct EqParts {
 } EqParts;
 
 static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
-                     const Ctx *c)
+                     const PointEqStruct *eq, const Ctx *c)
 {
     const Ring *r = c->r;
-    const PointEqStruct *eq = o->eq;
     int flip = 0;
     P->den = fmpz_mpoly_is_one(eq->den, r->ctx) ? NULL
                                                  : render_den(eq->den, c, &flip);
@@ -1608,6 +2380,93 @@ static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
     free(used);
     fmpz_mpoly_clear(q, r->ctx);
     fmpz_mpoly_clear(g, r->ctx);
+}
+
+static void eq_parts_clear(EqParts *P, const Ctx *c);
+static void rhs_equation(StrBuf *b, const EqParts *P, const Ctx *c);
+
+/* the text length of o's equation eq as printed */
+static size_t eq_text_len(const Derived *d, const DerivedOutput *o,
+                          const PointEqStruct *eq, const Ctx *c)
+{
+    Ctx t = *c;
+    t.latex = 0;
+    EqParts P;
+    eq_parts(&P, d, o, eq, &t);
+    StrBuf b = {0};
+    rhs_equation(&b, &P, &t);
+    eq_parts_clear(&P, &t);
+    size_t n = b.len;
+    free(b.s);
+    return n;
+}
+
+/* the form of o's equation to print: o->eq, or its un-rationalised form
+ * (*tmp, the points of o->eq over a denominator with the root) when that
+ * is shorter; eq_form_clear(tmp, result) after */
+static const PointEqStruct *eq_form(PointEqStruct *tmp, const Derived *d,
+                                    const DerivedOutput *o, const Ctx *c)
+{
+    const PointEqStruct *eq = o->eq;
+    tmp->terms = NULL;
+    tmp->len = 0;
+    slong n = eq->len;
+    const fmpz_mpoly_struct **N = pc_xmalloc(sizeof(*N) * (size_t)(n + 1));
+    for (slong i = 0; i < n; i++)
+        N[i] = eq->terms[i].num;
+    Cand *cs;
+    slong nc = unroot_cands(&cs, N, n, eq->den, NULL, 0, c);
+    free(N);
+    if (nc == 0)
+        return eq;
+    size_t best_len = eq_text_len(d, o, eq, c);
+    slong best = -1;
+    for (slong k = 0; k < nc; k++) {
+        PointEqStruct e;
+        e.len = n;
+        e.alloc = n;
+        e.terms = pc_xmalloc(sizeof(PtTerm) * (size_t)(n ? n : 1));
+        for (slong i = 0; i < n; i++) {
+            e.terms[i].point = eq->terms[i].point;
+            e.terms[i].num[0] = cs[k].num[i]; /* borrowed: read only */
+        }
+        e.den[0] = cs[k].den[0];
+        size_t len = eq_text_len(d, o, &e, c);
+        free(e.terms);
+        if (len < best_len) {
+            best_len = len;
+            best = k;
+        }
+    }
+    const PointEqStruct *res = eq;
+    if (best >= 0) {
+        /* the chosen one moves into tmp */
+        tmp->len = tmp->alloc = n;
+        tmp->terms = pc_xmalloc(sizeof(PtTerm) * (size_t)(n ? n : 1));
+        for (slong i = 0; i < n; i++) {
+            tmp->terms[i].point = eq->terms[i].point;
+            fmpz_mpoly_init(tmp->terms[i].num, c->r->ctx);
+            fmpz_mpoly_swap(tmp->terms[i].num, cs[best].num + i, c->r->ctx);
+        }
+        fmpz_mpoly_init(tmp->den, c->r->ctx);
+        fmpz_mpoly_swap(tmp->den, cs[best].den, c->r->ctx);
+        res = tmp;
+    }
+    for (slong k = 0; k < nc; k++)
+        cand_clear(&cs[k], c);
+    free(cs);
+    return res;
+}
+
+static void eq_form_clear(PointEqStruct *tmp, const PointEqStruct *used,
+                          const Ctx *c)
+{
+    if (used != tmp)
+        return;
+    for (slong i = 0; i < tmp->len; i++)
+        fmpz_mpoly_clear(tmp->terms[i].num, c->r->ctx);
+    free(tmp->terms);
+    fmpz_mpoly_clear(tmp->den, c->r->ctx);
 }
 
 static void eq_parts_clear(EqParts *P, const Ctx *c)
@@ -1678,6 +2537,13 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
     c->nparams = d->nparams;
     c->nconsts = d->nconsts;
     c->latex = opt->latex;
+    c->K = d->kernels;
+    c->has_sign = absform_any(d->kernels);
+    c->is_abs = NULL;
+    c->mode = 0;
+    c->named = d->named;
+    c->nnamed = d->nnamed;
+    c->line = 0; /* set per output: no names until then */
 }
 
 static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,
@@ -1688,10 +2554,13 @@ static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,
     } else if (opt->origin >= 0) {
         rhs_origin(b, d, o, opt->origin, c);
     } else {
+        PointEqStruct tmp;
+        const PointEqStruct *eq = eq_form(&tmp, d, o, c);
         EqParts P;
-        eq_parts(&P, d, o, c);
+        eq_parts(&P, d, o, eq, c);
         rhs_equation(b, &P, c);
         eq_parts_clear(&P, c);
+        eq_form_clear(&tmp, eq, c);
     }
 }
 
@@ -1702,6 +2571,7 @@ char *book_rhs(const Derived *d, const DerivedOutput *o,
     long work;
     Memo memo;
     ctx_init(&c, d, opt, &work, &memo);
+    c.line = o->line;
     StrBuf b = {0};
     rhs_into(&b, d, o, opt, &c);
     memo_clear(&memo, &c);
@@ -1727,6 +2597,25 @@ static void put_lhs(StrBuf *b, const DerivedOutput *o, const Ctx *c)
         return;
     }
     latex_name(b, o->name);
+}
+
+/* one line of a multline* (and the line break after it unless last),
+ * itself broken where it is wider than the page (latexbreak.h) */
+static void put_line(StrBuf *b, const char *line, int last)
+{
+    if (latex_width(line, strlen(line)) > LATEX_LINE_UNITS) {
+        char **ls;
+        size_t n = latex_break(&ls, line, LATEX_LINE_UNITS);
+        for (size_t i = 0; i < n; i++) {
+            sb_puts(b, ls[i]);
+            if (i + 1 < n)
+                sb_puts(b, " \\\\\n");
+        }
+        latex_lines_free(ls, n);
+    } else {
+        sb_puts(b, line);
+    }
+    sb_puts(b, last ? "\n" : " \\\\\n");
 }
 
 /* LaTeX lines of at most width columns: "lhs = \frac{1}{den} \Bigl(" then
@@ -1765,8 +2654,7 @@ static void put_multline(StrBuf *b, const StrBuf *lhs, const EqParts *P,
             sb_puts(&item, i == 0 ? "-" : neg ? "- " : "+ ");
         put_term(&item, &P->items->t[i], c);
         if (i > 0 && (int)(line.len + item.len + 1) > width) {
-            sb_puts(b, line.s);
-            sb_puts(b, " \\\\\n");
+            put_line(b, line.s, 0);
             line.len = 0;
             line.s[0] = '\0';
         } else if (i > 0) {
@@ -1776,8 +2664,8 @@ static void put_multline(StrBuf *b, const StrBuf *lhs, const EqParts *P,
         free(item.s);
     }
     sb_puts(&line, "\\Bigr)");
-    sb_puts(b, line.s);
-    sb_puts(b, "\n\\end{multline*}\n");
+    put_line(b, line.s, 1);
+    sb_puts(b, "\\end{multline*}\n");
     free(line.s);
 }
 
@@ -1788,6 +2676,7 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     long work;
     Memo memo;
     ctx_init(&c, d, opt, &work, &memo);
+    c.line = o->line;
     StrBuf b = {0}, lhs = {0}, rb = {0};
     put_lhs(&lhs, o, &c);
     rhs_into(&rb, d, o, opt, &c);
@@ -1795,8 +2684,10 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     int width = opt->width > 0 ? opt->width : 80;
     if (opt->latex && o->kind != KIND_SCALAR && opt->origin < 0) {
         /* a fraction is as wide as the longer of its two lines */
+        PointEqStruct tmp;
+        const PointEqStruct *eq = eq_form(&tmp, d, o, &c);
         EqParts P;
-        eq_parts(&P, d, o, &c);
+        eq_parts(&P, d, o, eq, &c);
         StrBuf n = {0}, dn = {0}, cm = {0};
         put_sum(&n, P.items, &c);
         if (P.den)
@@ -1809,19 +2700,31 @@ char *book_output(const Derived *d, const DerivedOutput *o,
         if ((int)wide > width && P.items->n > 1) {
             put_multline(&b, &lhs, &P, &c, width);
             eq_parts_clear(&P, &c);
+            eq_form_clear(&tmp, eq, &c);
             memo_clear(&memo, &c);
             free(rhs);
             free(lhs.s);
             return sb_take(&b);
         }
         eq_parts_clear(&P, &c);
+        eq_form_clear(&tmp, eq, &c);
     }
     if (opt->latex) {
-        sb_puts(&b, "\\[ ");
-        sb_puts(&b, lhs.s);
-        sb_puts(&b, " = ");
-        sb_puts(&b, rhs);
-        sb_puts(&b, " \\]\n");
+        StrBuf eq = {0};
+        sb_puts(&eq, lhs.s);
+        sb_puts(&eq, " = ");
+        sb_puts(&eq, rhs);
+        if (latex_width(eq.s, eq.len) > LATEX_LINE_UNITS) {
+            /* wider than the page: broken (weights, scalars too) */
+            sb_puts(&b, "\\begin{multline*}\n");
+            put_line(&b, eq.s, 1);
+            sb_puts(&b, "\\end{multline*}\n");
+        } else {
+            sb_puts(&b, "\\[ ");
+            sb_puts(&b, eq.s);
+            sb_puts(&b, " \\]\n");
+        }
+        free(eq.s);
     } else {
         sb_puts(&b, lhs.s);
         sb_puts(&b, " = ");

@@ -2332,6 +2332,44 @@ static void record_steps(Deriver *D, Derived *d, const Source *src)
     }
 }
 
+/* Derived.named: the scalar definitions whose value is v^k, v a kernel */
+static void record_named(Deriver *D, Derived *d, const Source *src)
+{
+    const Ring *r = D->r;
+    const SemaInfo *info = D->info;
+    d->named = pc_xcalloc((size_t)info->nsteps + 1, sizeof(DerivedName));
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
+    for (int i = 0; i < info->nsteps && D->K; i++) {
+        const Stmt *st = info->steps[i];
+        if (st->kind == ST_SOLVE)
+            continue;
+        const Sym *s = st->sym;
+        const Value *v = &D->defs[s->index];
+        if (D->state[s->index] != 1 || v->is_point ||
+            !fmpz_mpoly_is_one(v->s->den, r->ctx) ||
+            fmpz_mpoly_length(v->s->num, r->ctx) != 1 ||
+            !fmpz_is_one(v->s->num->coeffs))
+            continue;
+        fmpz_mpoly_get_term_exp_ui(e, v->s->num, 0, r->ctx);
+        slong var = -1, nv = 0;
+        for (slong k = 0; k < r->nvars; k++)
+            if (e[k]) {
+                var = k;
+                nv++;
+            }
+        if (nv != 1 || !kernels_of_var(D->K, var))
+            continue;
+        int line, col;
+        source_locate(src, s->span.start, &line, &col);
+        DerivedName *nm = &d->named[d->nnamed++];
+        nm->name = pc_xstrdup(s->name);
+        nm->var = var;
+        nm->exp = e[var];
+        nm->line = line;
+    }
+    free(e);
+}
+
 static char **copy_names(Sym **syms, int n)
 {
     char **names = pc_xcalloc((size_t)(n ? n : 1), sizeof(char *));
@@ -2612,6 +2650,7 @@ retry:
         }
         if (opt->keep_steps)
             record_steps(&D, d, &src);
+        record_named(&D, d, &src);
     }
     for (int i = 0; i < info->ndefs; i++)
         value_clear(&D.defs[i], r);
@@ -2738,6 +2777,9 @@ void derived_free(Derived *d)
     for (slong i = 0; i < d->nsteps; i++)
         step_clear(&d->steps[i], &d->ring);
     free(d->steps);
+    for (slong i = 0; i < d->nnamed; i++)
+        free(d->named[i].name);
+    free(d->named);
     if (d->kernels) {
         kernels_clear(d->kernels);
         free(d->kernels);

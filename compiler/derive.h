@@ -124,6 +124,18 @@ enum {
     DERIVED_BOUND_ASSUMED = 48,
 };
 
+/* A scalar definition whose value is a power of one function or distance
+ * (a kernel, kernel.h): `a = dist(A, C)^2`, `c = sqrt(a^2 - b^2)`, `g =
+ * angle(A, C, B)`.  The printers write results through its name, as the
+ * book writes them through a, c, gamma (docs/language.md). */
+typedef struct DerivedName {
+    char *name; // the defined name (owned)
+    slong var;  // the value is var^exp
+    ulong exp;
+    int line; // 1-based line of the definition: names print only in
+              // what is defined after them
+} DerivedName;
+
 typedef struct Derived {
     char *scheme;   // scheme name (`scheme NAME` or the file's base name)
     char *filename; // as given
@@ -151,6 +163,8 @@ typedef struct Derived {
     DerivedOutput *outputs;
     slong nsteps;       // DeriveOptions.keep_steps: the steps in source
     DerivedStep *steps; // order (above); else 0 and NULL
+    slong nnamed;       // the named kernel powers (above), source order
+    DerivedName *named;
 } Derived;
 
 /* How a derivation runs (budget.h): a wall-clock budget checked between

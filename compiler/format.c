@@ -6,6 +6,7 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
+#include "compiler/absform.h"
 #include "compiler/book.h"
 #include "compiler/format_json.h"
 #include "compiler/mem.h"
@@ -254,6 +255,51 @@ static void put_den(StrBuf *b, const fmpz_mpoly_t den, const Ring *r,
 static int is_den_one(const RatFun w, const Ring *r)
 {
     return fmpz_mpoly_is_one(w->den, r->ctx);
+}
+
+/* w's num and den with x*sign(x) read as |x| (absform.h), in a copy of
+ * r whose names of those sign kernels are abs(x) */
+char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
+{
+    if (!absform_any(K))
+        return format_weight(w, r);
+    size_t nv = (size_t)(r->nvars ? r->nvars : 1);
+    unsigned char *mask = pc_xcalloc(nv, 1);
+    RatFun x;
+    fmpz_mpoly_init(x->num, r->ctx);
+    fmpz_mpoly_init(x->den, r->ctx);
+    slong n = absform_rewrite(x->num, mask, w->num, K, r);
+    n += absform_rewrite(x->den, mask, w->den, K, r);
+    char *res;
+    if (n == 0) {
+        res = format_weight(w, r);
+    } else {
+        Ring ra = *r; /* read-only: the same FLINT context */
+        const char **names = pc_xmalloc(sizeof(char *) * nv);
+        for (slong v = 0; v < r->nvars; v++) {
+            names[v] = r->names[v];
+            if (mask[v]) {
+                char *a = absform_arg_text(kernels_of_var(K, v), 0);
+                size_t la = strlen(a);
+                char *t = pc_xmalloc(la + 6);
+                memcpy(t, "abs(", 4);
+                memcpy(t + 4, a, la);
+                memcpy(t + 4 + la, ")", 2);
+                free(a);
+                names[v] = t;
+            }
+        }
+        ra.names = names;
+        res = format_weight(x, &ra);
+        for (slong v = 0; v < r->nvars; v++)
+            if (mask[v])
+                free((char *)names[v]);
+        free(names);
+    }
+    fmpz_mpoly_clear(x->den, r->ctx);
+    fmpz_mpoly_clear(x->num, r->ctx);
+    free(mask);
+    return res;
 }
 
 char *format_weight(const RatFun w, const Ring *r)

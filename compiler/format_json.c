@@ -30,9 +30,9 @@ static const char *kind_name(Kind k)
 
 /* "key": "WEIGHT" with w's reduced form */
 static void json_weight(FILE *out, const char *key, const RatFun w,
-                        const Ring *r)
+                        const Derived *d)
 {
-    char *s = format_weight(w, r);
+    char *s = format_weight_k(w, &d->ring, d->kernels);
     json_string(out, key);
     fputs(": ", out);
     json_string(out, s);
@@ -46,14 +46,14 @@ static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
     json_string(out, o->name);
     fprintf(out, ", \"kind\": \"%s\", ", kind_name(o->kind));
     if (o->kind == KIND_SCALAR) {
-        json_weight(out, "value", o->scalar, &d->ring);
+        json_weight(out, "value", o->scalar, d);
         fputs("}", out);
         return;
     }
     fputs("\"terms\": {", out);
     for (slong k = 0; k < o->eq->len; k++) {
         fputs(k ? ", " : "", out);
-        json_weight(out, d->points[o->eq->terms[k].point], &o->w[k], &d->ring);
+        json_weight(out, d->points[o->eq->terms[k].point], &o->w[k], d);
     }
     fputs("}}", out);
 }

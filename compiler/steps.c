@@ -20,6 +20,7 @@
 
 #include "compiler/book.h"
 #include "compiler/json.h"
+#include "compiler/latexbreak.h"
 #include "compiler/mem.h"
 
 /* the value x printed like a scalar output (malloc'd) */
@@ -420,7 +421,98 @@ static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
     fputs(" \\\\\n", out);
 }
 
+/* The rows of an align* body (separated by " \\" and a newline), each
+ * broken where it is wider than the page (latexbreak.h): what follows its
+ * alignment point ("R &= ...", "&\quad ...") in lines, continued under it
+ * ("&\qquad ..."), so every line is balanced. */
+static void put_rows(FILE *out, const char *body)
+{
+    /* the left column is as wide as its widest entry: every row's right
+     * part starts there */
+    double left = 0;
+    for (const char *q = body; q && *q;) {
+        const char *e = strstr(q, " \\\\\n");
+        size_t n = e ? (size_t)(e - q) : strlen(q);
+        const char *amp = memchr(q, '&', n);
+        if (amp) {
+            double w = latex_width(q, (size_t)(amp - q));
+            left = w > left ? w : left;
+        }
+        q = e ? e + 4 : NULL;
+    }
+    const char *p = body;
+    while (*p) {
+        const char *e = strstr(p, " \\\\\n");
+        size_t n = e ? (size_t)(e - p) : strlen(p);
+        char *row = pc_xstrndup(p, n);
+        /* (a trailing newline of the last row stays outside) */
+        size_t rn = strlen(row);
+        int nl = rn > 0 && row[rn - 1] == '\n';
+        if (nl)
+            row[--rn] = '\0';
+        char *amp = strchr(row, '&');
+        if (amp && left + latex_width(amp, strlen(amp)) > LATEX_LINE_UNITS) {
+            /* the head: through "&=" or "&\quad" */
+            char *rest = amp + 1;
+            if (*rest == '=')
+                rest++;
+            else if (strncmp(rest, "\\quad", 5) == 0)
+                rest += 5;
+            fwrite(row, 1, (size_t)(rest - row), out);
+            double head = left + latex_width(amp, (size_t)(rest - amp)) + 2;
+            char **ls;
+            size_t k = latex_break(&ls, rest, LATEX_LINE_UNITS - head);
+            for (size_t i = 0; i < k; i++) {
+                if (i > 0)
+                    fputs(" \\\\\n  &\\qquad ", out);
+                else
+                    fputs(" ", out);
+                fputs(ls[i], out);
+            }
+            latex_lines_free(ls, k);
+        } else {
+            fputs(row, out);
+        }
+        if (nl)
+            fputs("\n", out);
+        free(row);
+        if (!e)
+            break;
+        fputs(" \\\\\n", out);
+        p = e + 4;
+    }
+}
+
+static void latex_steps_rows(FILE *out, const Derived *d, slong origin);
+
 static void latex_steps(FILE *out, const Derived *d, slong origin)
+{
+    char *body = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&body, &len);
+    if (!m) {
+        latex_steps_rows(out, d, origin);
+        return;
+    }
+    latex_steps_rows(m, d, origin);
+    fclose(m);
+    /* the rows between \begin{align*} and \end{align*} */
+    static const char begin[] = "\\begin{align*}\n",
+                      end[] = "\n\\end{align*}\n";
+    size_t lb = strlen(begin), le = strlen(end);
+    if (len >= lb + le && strncmp(body, begin, lb) == 0 &&
+        strcmp(body + len - le, end) == 0) {
+        body[len - le] = '\0';
+        fputs(begin, out);
+        put_rows(out, body + lb);
+        fputs(end, out);
+    } else {
+        fputs(body, out);
+    }
+    free(body);
+}
+
+static void latex_steps_rows(FILE *out, const Derived *d, slong origin)
 {
     const char *solve = NULL;
     fputs("\\begin{align*}\n", out);

@@ -3,7 +3,8 @@
 # example, with and without --steps: always checked for balanced braces and
 # environments; compiled with pdflatex where it is installed (the optional
 # dependency texlive-latex-base): every body in one document, which must
-# compile without an error.
+# compile without an error, and no line may run more than 20 pt beyond
+# the page (an overfull \hbox: display math that was not broken).
 # Usage: tests/latex_test.sh build/pointcalc
 set -u
 pc=${1:-build/pointcalc}
@@ -68,8 +69,23 @@ if command -v pdflatex >/dev/null 2>&1; then
       printf '\\end{document}\n'; } > "$tmp/all.tex"
     if (cd "$tmp" && pdflatex -interaction=nonstopmode -halt-on-error all.tex \
             > /dev/null 2>&1); then
-        [ $wellformed = 1 ] &&
-            echo "latex: $n documents well-formed, all compiled with pdflatex"
+        # no line wider than the page: overfull boxes beyond 20 pt
+        # (TeX does not break display math; derive breaks it, book.c and
+        # latexbreak.c) fail, with the lines they come from
+        over=$(grep -E '^Overfull \\hbox \(([0-9.]+)pt too wide\)' "$tmp/all.log" |
+               awk -F'[(p]' '$2 + 0 > 20')
+        if [ -n "$over" ]; then
+            echo "FAIL: LaTeX lines wider than the page (over 20 pt):"
+            printf '%s\n' "$over" | head -10
+            printf '%s\n' "$over" | grep -oE 'lines? [0-9]+' | grep -oE '[0-9]+' |
+                head -5 | while read -r l; do
+                    sed -n "${l}p" "$tmp/all.tex" | cut -c1-200
+                done
+            fail=1
+        elif [ $wellformed = 1 ]; then
+            echo "latex: $n documents well-formed, all compiled with pdflatex," \
+                 "no line wider than the page"
+        fi
     else
         echo "FAIL: pdflatex on the examples' LaTeX:"
         grep -B2 -A6 '^!' "$tmp/all.log" | head -20

@@ -6,14 +6,18 @@ For every scheme given, the text form (book style) and the JSON form
 own expression parser - and evaluated at random values of the params and
 consts and random point coordinates: exactly (fractions) when the scheme
 has no scalar functions, in double precision (relative 1e-9) when it has.
-Every output must agree.  Usage: printback.py POINTCALC FILE.pcs...
+Every output must agree.  Names the text is written through (scalar
+definitions whose value is a function, derive prints results through them)
+are evaluated from their own JSON values first.  Usage: printback.py POINTCALC FILE.pcs...
 """
 import json
 import math
+import os
 import random
 import re
 import subprocess
 import sys
+import tempfile
 from fractions import Fraction
 
 FUNCS = {
@@ -63,6 +67,29 @@ def check(pc, path, rng):
         printed[name] = rhs.replace("    (vector)", "")
     exact = not any(f + "(" in js for f in FUNCS) and "pi" not in \
         WORD.findall(js)
+    # names the text is written through (a = dist(A, C)^2, c = sqrt(...),
+    # the book's a, c, gamma): their values, derived as outputs of a copy
+    # of the scheme, in JSON (which never uses them)
+    known = set(d["points"]) | set(d["params"]) | set(d["consts"]) | \
+        set(FUNCS)
+    named = sorted({w for rhs in printed.values() for w in WORD.findall(rhs)
+                    if w not in known})
+    named_values = {}
+    if named:
+        src = open(path).read()
+        src = re.sub(r"(?m)^(output[ \t])", r"# \1", src)
+        src += "\noutput " + ", ".join(named) + "\n"
+        with tempfile.NamedTemporaryFile("w", suffix=".pcs",
+                                         delete=False) as tf:
+            tf.write(src)
+        try:
+            nj = subprocess.run([pc, "derive", tf.name, "--format", "json"],
+                                capture_output=True, text=True,
+                                check=True).stdout
+        finally:
+            os.unlink(tf.name)
+        for o in json.loads(nj)["outputs"]:
+            named_values[o["name"]] = o["value"]
     fails = 0
     for o in d["outputs"]:
         rhs = printed.get(o["name"])
@@ -84,6 +111,8 @@ def check(pc, path, rng):
             for n in d["points"]:
                 env["v_" + n] = Fraction(rng.randint(-999, 999), 97)
             try:
+                for n, v in named_values.items():
+                    env["v_" + n] = value(v, env)
                 if o["kind"] == "scalar":
                     want = value(o["value"], env)
                 else:

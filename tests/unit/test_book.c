@@ -18,6 +18,7 @@
 
 #include "compiler/book.h"
 #include "compiler/format.h"
+#include "compiler/latexbreak.h"
 #include "compiler/ring.h"
 #include "libpointcalc.h"
 
@@ -547,8 +548,9 @@ static void test_vector_differences(void **state)
     expect("point A, B, C\nparam t\nV = A*(t^2 + t - 1) - B*t + C*(1 - t^2)"
            "\n",
            FMT_TEXT,
-           /* no common factor; 1 - t^2 factored (as many terms) */
-           "V = -A*(1 - t - t^2) - B*t + C*(1 - t)*(1 + t)    (vector)\n");
+           /* no common factor; 1 - t^2 factored (as many terms); the
+            * fewest minus signs: t + t^2 - 1, not -(1 - t - t^2) */
+           "V = A*(t + t^2 - 1) - B*t + C*(1 - t)*(1 + t)    (vector)\n");
     expect("point A, C\nparam u\nV = 2*(C - A)*u\n", FMT_LATEX,
            "\\[ V = 2 u \\left(C - A\\right) \\]\n");
 }
@@ -670,6 +672,186 @@ static void test_conic_of_2_1_6(void **state)
     free(got);
 }
 
+/* abs(x) is x*sign(x) inside (kernel.h); every x*sign(x) prints as abs(x)
+ * in text, LaTeX and JSON (absform.h): the square of the composite-curve
+ * text, 2.2.2 ex. 1, its weights P(t,k-1,1) - P(t,k,1) by hand; x^3 sign(x)
+ * is |x|^3; a sign(x) without the factor x stays sign(x) */
+#define SQUARE                                                                 \
+    "point O, A, B, C\nparam t\n"                                              \
+    "R = O + (A - O)*(1 + abs(t) - abs(t - 1))/2"                              \
+    " + (B - A)*(1 + abs(t - 1) - abs(t - 2))/2"                               \
+    " + (C - B)*(1 + abs(t - 2) - abs(t - 3))/2"                               \
+    " + (O - C)*(1 + abs(t - 3) - abs(t - 4))/2\n"
+
+static void test_abs(void **state)
+{
+    (void)state;
+    expect(SQUARE, FMT_TEXT,
+           "R = (O*(2 - abs(t) + abs(t - 1) + abs(t - 3) - abs(t - 4))"
+           " + A*(abs(t) - 2*abs(t - 1) + abs(t - 2))"
+           " + B*(abs(t - 1) - 2*abs(t - 2) + abs(t - 3))"
+           " + C*(abs(t - 2) - 2*abs(t - 3) + abs(t - 4)))/2\n");
+    expect("param t\nr = t^2*abs(t)\nq = sign(t)\n"
+           "w = (1 - t)*abs(t - 1)\noutput r, q, w\n",
+           FMT_TEXT, "r = abs(t)^3\nq = sign(t)\nw = (1 - t)*abs(t - 1)\n");
+    expect("param t\nr = t^2*abs(t)\nw = (1 - t)*abs(t - 1)\n"
+           "output r, w\n",
+           FMT_LATEX,
+           "\\[ r = \\left|t\\right|^{3} \\]\n"
+           "\\[ w = \\bar{t} \\left|t - 1\\right| \\]\n");
+    char *js = printed_ex("point A, B\nparam t\n"
+                          "M = A + (B - A)*(abs(t) - t^3*sign(t))\n"
+                          "q = sign(t)\noutput M, q\n",
+                          FMT_JSON, 0, -1);
+    assert_non_null(strstr(js, "\"B\": \"abs(t)*(t+1)*(1-t)\""));
+    assert_non_null(strstr(js, "\"value\": \"sign(t)\""));
+    assert_null(strstr(js, "sign(t)*"));
+    assert_null(strstr(js, "*sign("));
+    free(js);
+}
+
+/* Roots stay where the user put them (book 2.1.1.1, (2.10), (2.11)): the
+ * normal form keeps b*cos(phi)*sqrt(X)/X with X = b^2 - b^2*sin(phi)^2 +
+ * a^2*sin(phi)^2; printed, the root goes back to the denominator and X is
+ * written through cos^2 = 1 - sin^2 as b^2*cos(phi)^2 + a^2*sin(phi)^2.
+ * By a focus (2.18): 1/(a - c*cos(phi)), c = sqrt(a^2 - b^2), which the
+ * normal form rationalises to (a + c*cos(phi))/(b^2 + (a^2 - b^2)*sin^2),
+ * is written back, its A weight (a*cos(phi) - c)/(a - c*cos(phi)). */
+#define ELLIPSE                                                                \
+    "point A, B, C\nconst a, b > 0\nparam phi\n"                               \
+    "rho = a*b/sqrt(a^2*sin(phi)^2 + b^2*cos(phi)^2)\n"                        \
+    "M = C + (A - C)*(rho*cos(phi)/a) + (B - C)*(rho*sin(phi)/b)\n"
+#define FOCAL                                                                  \
+    "point A, B, C\nconst a, b > 0\nparam phi\nc = sqrt(a^2 - b^2)\n"          \
+    "rho = b^2/(a - c*cos(phi))\n"                                             \
+    "M = C + (A - C)*(rho*cos(phi) - c)/a + (B - C)*rho*sin(phi)/b\n"
+
+static void test_roots_where_written(void **state)
+{
+    (void)state;
+    expect(ELLIPSE "output rho\n", FMT_TEXT,
+           "rho = a*b/sqrt(b^2*cos(phi)^2 + a^2*sin(phi)^2)\n");
+    char *o = printed_ex(ELLIPSE "output M\n", FMT_TEXT, 0, 2);
+    assert_string_equal(o, "M = (A - C)*b*cos(phi)/sqrt(b^2*cos(phi)^2 + "
+                           "a^2*sin(phi)^2) + (B - C)*a*sin(phi)/"
+                           "sqrt(b^2*cos(phi)^2 + a^2*sin(phi)^2) + C\n");
+    assert_true(strlen(o) - 1 <= 130); /* issue 18: the book's is 123 */
+    free(o);
+    /* over one denominator: weights b*cos(phi)/s, a*sin(phi)/s,
+     * 1 - (b*cos(phi) + a*sin(phi))/s */
+    expect(ELLIPSE "output M\n", FMT_TEXT,
+           "M = (b*A*cos(phi) + a*B*sin(phi) + C*(sqrt(b^2*cos(phi)^2 + "
+           "a^2*sin(phi)^2) - b*cos(phi) - a*sin(phi)))/"
+           "sqrt(b^2*cos(phi)^2 + a^2*sin(phi)^2)\n");
+    o = printed_ex(ELLIPSE "output M\n", FMT_LATEX, 0, 2);
+    assert_string_equal(
+        o, "\\[ M = \\left(A - C\\right) \\frac{b \\cos\\varphi}{\\sqrt{b^{2} "
+           "\\cos^{2}\\varphi + a^{2} \\sin^{2}\\varphi}} + \\left(B - "
+           "C\\right) \\frac{a \\sin\\varphi}{\\sqrt{b^{2} \\cos^{2}\\varphi "
+           "+ a^{2} \\sin^{2}\\varphi}} + C \\]\n");
+    free(o);
+    /* (c = sqrt(a^2 - b^2) is named: results print through c) */
+    expect(FOCAL "output rho\n", FMT_TEXT, "rho = b^2/(a - c*cos(phi))\n");
+    o = printed_ex(FOCAL "output M\n", FMT_TEXT, 0, 2);
+    assert_string_equal(o, "M = (A - C)*(a*cos(phi) - c)/(a - c*cos(phi))"
+                           " + (B - C)*b*sin(phi)/(a - c*cos(phi)) + C\n");
+    free(o);
+    expect("const a, b > 0\nparam phi\n"
+           "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n",
+           FMT_TEXT, "rho = b^2/(a - sqrt(a^2 - b^2)*cos(phi))\n");
+    /* a scalar alone: its normal form (b^2*cos(phi) -
+     * a*c*sin(phi)^2)/(b^2*cos(phi)^2 + a^2*sin(phi)^2) is (a*cos(phi) -
+     * c)/(a - c*cos(phi)), the conjugate read off the denominator:
+     * (a - c*cos)(a + c*cos) = a^2 - (a^2 - b^2)*cos^2 */
+    expect("const a, b > 0\nparam phi\nc = sqrt(a^2 - b^2)\n"
+           "x = (a*cos(phi) - c)/(a - c*cos(phi))\n",
+           FMT_TEXT, "x = (a*cos(phi) - c)/(a - c*cos(phi))\n");
+}
+
+/* Results through the user's named scalars (the book's a, b, c): the circle
+ * through three points (article, eq. (5)) with a = |AC|^2, b = |BA|^2,
+ * c = |CB|^2; its denominator b*t^2 + (a - c - b)*t + c is (1 - t)*(c -
+ * b*t) + a*t.  A name prints only in what is defined after it, and a
+ * definition never prints as its own name; dist(A, C)^4 is a^2. */
+static void test_named_scalars(void **state)
+{
+    (void)state;
+    expect("point A, B, C\nparam t\n"
+           "a = dist(A, C)^2\nb = dist(B, A)^2\nc = dist(C, B)^2\n"
+           "M = (A*c*(1 - t) + B*a*t + C*b*t*(t - 1))/"
+           "(b*t^2 + (a - c - b)*t + c)\n"
+           "w = dist(A, C)^4 + t\nu = dist(A, C)^3\noutput a, M, w, u\n",
+           FMT_TEXT,
+           "a = dist(A, C)^2\n"
+           "M = (c*A*(1 - t) + a*B*t - b*C*t*(1 - t))/"
+           "((1 - t)*(c - b*t) + a*t)\n"
+           "w = t + a^2\nu = dist(A, C)^3\n");
+    expect("point A, B\nparam t\nM = A + (B - A)*t*dist(A, B)\n"
+           "q = dist(A, B)\nN = A + (B - A)*t*dist(A, B)\noutput M, q, N\n",
+           FMT_TEXT,
+           "M = A*(1 - dist(A, B)*t) + dist(A, B)*B*t\n"
+           "q = dist(A, B)\n"
+           "N = A*(1 - q*t) + q*B*t\n");
+}
+
+/* LaTeX broken to the page (latexbreak.h): before the operators, a
+ * fraction too wide as 1/den times its numerator in \Bigl( \Bigr) whose
+ * terms part; every line balanced.  Widths by the rule: a letter 1, an
+ * operator 2.2, a space 0.5, \frac{1}{y} 1.6, \Bigl( 0.8. */
+static void expect_lines(const char *math, double width,
+                         const char *const *want, size_t nwant)
+{
+    char **ls;
+    size_t n = latex_break(&ls, math, width);
+    assert_int_equal(n, nwant);
+    for (size_t i = 0; i < n && i < nwant; i++)
+        assert_string_equal(ls[i], want[i]);
+    latex_lines_free(ls, n);
+}
+
+static void test_latex_break(void **state)
+{
+    (void)state;
+    static const char *const sum[] = {"a + b", "+ c", "+ d"};
+    expect_lines("a + b + c + d", 6, sum, 3);
+    static const char *const frac[] = {"x = \\frac{1}{y} \\Bigl( a", "+ b + c",
+                                       "+ d + e \\Bigr)"};
+    expect_lines("x = \\frac{a + b + c + d + e}{y}", 12, frac, 3);
+    static const char *const paren[] = {"2 \\Bigl( a + b", "+ c \\Bigr)^{2}"};
+    expect_lines("2 \\left(a + b + c\\right)^{2}", 9, paren, 2);
+    static const char *const fits[] = {"a + b"};
+    expect_lines("a + b", 56, fits, 1);
+    /* the hexagon of the composite-curve text set as a standalone
+     * document: six lines, each within the page */
+    char *o = printed_ex("point A0, A1, A2, A3, A4, A5\nparam t\n"
+                         "R = A0 + (A1 - A0)*(1 + abs(t) - abs(t - 1))/2"
+                         " + (A2 - A1)*(1 + abs(t - 1) - abs(t - 2))/2"
+                         " + (A3 - A2)*(1 + abs(t - 2) - abs(t - 3))/2"
+                         " + (A4 - A3)*(1 + abs(t - 3) - abs(t - 4))/2"
+                         " + (A5 - A4)*(1 + abs(t - 4) - abs(t - 5))/2"
+                         " + (A0 - A5)*(1 + abs(t - 5) - abs(t - 6))/2\n",
+                         FMT_LATEX, 0, -1);
+    size_t lines = 0;
+    for (char *p = o; (p = strstr(p, "\\\\\n")); p++)
+        lines++;
+    assert_int_equal(lines, 5);
+    for (char *p = o, *e; (e = strchr(p, '\n')); p = e + 1)
+        assert_true(latex_width(p, (size_t)(e - p)) <= LATEX_LINE_UNITS);
+    free(o);
+}
+
+/* no stray parentheses: 1 - t as a term of a sum is written bare (it was
+ * ((1 - t) + k*t^2)); alone after a fraction bar it keeps them */
+static void test_bar_in_sum(void **state)
+{
+    (void)state;
+    expect("param t\nconst k\nx = 1/(1 - t + k*t^2)\ny = 1 - t + k*t^2\n"
+           "z = (1 - t + k*t^2)^2\nw = t^2/(t - 1)\noutput x, y, z, w\n",
+           FMT_TEXT,
+           "x = 1/(1 - t + k*t^2)\ny = 1 - t + k*t^2\n"
+           "z = (1 - t + k*t^2)^2\nw = -t^2/(1 - t)\n");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -687,6 +869,11 @@ int main(void)
         cmocka_unit_test(test_multline),
         cmocka_unit_test(test_origin),
         cmocka_unit_test(test_conic_of_2_1_6),
+        cmocka_unit_test(test_abs),
+        cmocka_unit_test(test_roots_where_written),
+        cmocka_unit_test(test_named_scalars),
+        cmocka_unit_test(test_latex_break),
+        cmocka_unit_test(test_bar_in_sum),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();

@@ -655,9 +655,9 @@ static void test_printed_functions(void **state)
         "\\[ s_{2} = e^{\\frac{t}{2}} \\]\n"
         "\\[ s_{3} = \\sqrt[5]{t} \\]\n"
         "\\[ s_{4} = \\left|AB\\right| \\]\n"
-        "\\[ s_{5} = \\sin\\left(t\\right)^{2} \\]\n"
+        "\\[ s_{5} = \\sin^{2} t \\]\n" /* the book's sin^2 t (book.c) */
         "\\[ s_{6} = \\operatorname{atan2}\\left(t, a\\right) \\]\n"
-        "\\[ s_{7} = \\pi \\arccos\\left(t\\right) \\]\n";
+        "\\[ s_{7} = \\pi \\arccos t \\]\n";
     Derived *d = derive_source("p.pcs", src, strlen(src), stderr, NULL);
     assert_non_null(d);
     for (int k = 0; k < 2; k++) {

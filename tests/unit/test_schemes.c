@@ -419,8 +419,9 @@ static void put_renamed(char **buf, size_t *len, size_t *cap, const char *rhs,
 
 /* The text derive prints, read back by pointcalc's own front end: for every
  * output NAME = RHS, the scheme with `pb__K = (RHS) - (NAME)` added must
- * derive pb__K to exactly 0.  (Family members print as M_1 and are read as
- * M[1].) */
+ * derive pb__K to exactly 0; both forms, over one denominator and relative
+ * to the last base point (--origin).  (Family members print as M_1 and are read
+ * as M[1].) */
 static void check_print_back(const char *path)
 {
     size_t len;
@@ -436,6 +437,10 @@ static void check_print_back(const char *path)
     size_t outlen = 0;
     FILE *mem = open_memstream(&out, &outlen);
     format_derived(mem, d, FMT_TEXT, -1);
+    /* and relative to the last base point (derive --origin), whose
+     * weights are printed (and un-rationalised) one by one */
+    if (d->npoints > 0)
+        format_derived(mem, d, FMT_TEXT, d->npoints - 1);
     fclose(mem);
     /* member names that the source spells NAME[k] */
     int nren = 0;

@@ -31,6 +31,7 @@
 
 #include "compiler/derive.h"
 #include "compiler/format.h"
+#include "compiler/latexbreak.h"
 #include "compiler/steps.h"
 
 static char tmpdir[64];
@@ -806,6 +807,46 @@ static int teardown(void **state)
     return rc;
 }
 
+/* --steps LaTeX within the page (latexbreak.h): the square of the
+ * composite-curve text, whose source line and value are each wider than
+ * the page, continues its row under the alignment point ("&\qquad"),
+ * every line balanced and within the width */
+static void test_steps_latex_rows_fit(void **state)
+{
+    (void)state;
+    Derived *d = derive_text("point O, A, B, C\nparam t\n"
+                             "R = O + (A - O)*(1 + abs(t) - abs(t - 1))/2"
+                             " + (B - A)*(1 + abs(t - 1) - abs(t - 2))/2"
+                             " + (C - B)*(1 + abs(t - 2) - abs(t - 3))/2"
+                             " + (O - C)*(1 + abs(t - 3) - abs(t - 4))/2\n",
+                             1, NULL);
+    assert_non_null(d);
+    char *out = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&out, &len);
+    steps_print(f, d, FMT_LATEX, -1);
+    fclose(f);
+    assert_non_null(strstr(out, "  R &= \\texttt{O + (A - O)*"));
+    assert_non_null(strstr(out, " \\\\\n  &\\qquad \\texttt{"));
+    assert_non_null(strstr(out, " \\\\\n  &\\qquad = \\frac{1}{2} \\Bigl( "));
+    int lines = 0;
+    for (char *p = out, *e; (e = strchr(p, '\n')); p = e + 1, lines++) {
+        size_t n = (size_t)(e - p);
+        assert_true(latex_width(p, n) <= LATEX_LINE_UNITS + 4);
+        int lr = 0;
+        for (char *q = p; q < e; q++) {
+            if (strncmp(q, "\\left", 5) == 0)
+                lr++;
+            else if (strncmp(q, "\\right", 6) == 0)
+                lr--;
+        }
+        assert_int_equal(lr, 0);
+    }
+    assert_true(lines > 8);
+    free(out);
+    derived_free(d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -821,6 +862,7 @@ int main(void)
         cmocka_unit_test(test_steps_mutations_never_crash),
         cmocka_unit_test(test_steps_print_desargues),
         cmocka_unit_test(test_steps_cli),
+        cmocka_unit_test(test_steps_latex_rows_fit),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
