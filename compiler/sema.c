@@ -251,6 +251,35 @@ static int check_flat(Sema *S, Node *n, int allow_plane)
     return ok;
 }
 
+/* coord(P, k): P a point or vector, k a whole number 1 .. SEMA_MAX_COORD
+ * (a literal, or an int constant that expand.c made one) */
+static int check_coord(Sema *S, Node *n)
+{
+    int ok = expect(S, arg(n, 0), 1, "the first argument of coord()");
+    Node *k = arg(n, 1);
+    int digits = k->kind == ND_NUM;
+    for (const char *c = digits ? k->text : ""; *c; c++)
+        if (*c < '0' || *c > '9')
+            digits = 0;
+    const char *c = digits ? k->text : "";
+    while (*c == '0')
+        c++;
+    if (digits && *c == '\0') {
+        diag_error(S->diag, k->span,
+                   "coordinates are numbered from 1 (coord(P, 1) is the "
+                   "first), so there is no coordinate 0");
+        return -1;
+    }
+    if (!digits || strlen(c) > 7 || atol(c) > SEMA_MAX_COORD) {
+        diag_error(S->diag, k->span,
+                   "expected the number of a coordinate as a whole number "
+                   "from 1 to %d (a literal or an int constant)",
+                   SEMA_MAX_COORD);
+        return -1;
+    }
+    return ok < 0 ? -1 : 0;
+}
+
 static int check_call(Sema *S, Node *n)
 {
     int b;
@@ -406,6 +435,8 @@ static int check_call(Sema *S, Node *n)
         }
         return ok < 0 ? -1 : 0;
     }
+    case BI_COORD:
+        return check_coord(S, n);
     default: { /* the scalar functions */
         char what[64];
         for (Node *a = n->args; a; a = a->next) {
