@@ -870,7 +870,14 @@ static int eval_coord(Deriver *D, Value *res, const Node *n)
     RatFun sum;
     ratfun_init(sum, r);
     res->is_point = 0;
-    int st = metric_arg(D, P, n, 0);
+    int st = eval_point(D, P, nth(n, 0));
+    for (slong i = 0; st == 0 && i < P->len; i++)
+        if (P->terms[i].point >= D->ucol0) {
+            diag_error(D->diag, nth(n, 0)->span,
+                       "coord() of an unknown point: solve it before taking "
+                       "its coordinates");
+            st = -1;
+        }
     if (st == 0) {
         pteq_weight_sum(sum, P, r);
         kernel_reduce(D->K, sum);
@@ -878,8 +885,8 @@ static int eval_coord(Deriver *D, Value *res, const Node *n)
             char *txt = show(sum, r);
             diag_error(D->diag, nth(n, 0)->span,
                        "coord() takes a point (weights summing to 1) or a "
-                       "vector (summing to 0), but the weights of this sum "
-                       "to %s",
+                       "vector (summing to 0), but the weights of this "
+                       "argument sum to %s",
                        txt);
             flint_free(txt);
             st = -1;

@@ -186,6 +186,7 @@ static int kernel_values(const Derived *d, int o, fmpq *vals,
         }
         switch (k->fn) {
         case KF_PI: v = 3.14159265358979323846; break;
+        case KF_COORD: v = k->pb <= dim ? pts[k->pa][k->pb - 1] : NAN; break;
         case KF_DIST: {
             double s2 = 0;
             for (int c = 0; c < dim; c++)
@@ -319,9 +320,12 @@ static void check_derived(const Derived *d, const Plan *p, const Compiled *c)
         static const int dims_fixed[] = {1, 2, 3, 7};
         for (int di = 0; di < 5; di++) {
             int dim = di < 4 ? dims_fixed[di] : npt; // last: unit points
-            if (dim < 1)
+            /* coord(P, k): the dims with k coordinates, for scalars too
+             * (dim < k: test_emit_c_coord_dim_too_small) */
+            int need = plan_output_min_dim(p, o, NULL);
+            if (dim < 1 || dim < need)
                 continue;
-            if (scalar && di > 0)
+            if (scalar && di > 0 && !need)
                 break;
             /* points: dyadic coordinates in [-8, 8], or e_k */
             double **pts = calloc((size_t)npt + 1, sizeof *pts);
