@@ -1381,6 +1381,11 @@ static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
             if (o->nterms == 0)
                 fputs("0", out);
         }
+        int need = plan_output_min_dim(p, i, NULL);
+        if (need) /* coord(P, k): dim >= k (docs/codegen.md) */
+            fprintf(out, "\n *   reads coordinate %d of the points: needs "
+                         "dim >= %d (else NaN, status 3)",
+                    need, need);
         fputs("\n", out);
     }
     fprintf(out,
