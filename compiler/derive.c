@@ -737,6 +737,20 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
     return st;
 }
 
+/* 1 when v (a point or a scalar) uses a distance to base point `point` */
+static int value_measures_point(const Deriver *D, const Value *v,
+                                slong point)
+{
+    if (v->is_point || !D->K)
+        return kernel_measures_point(D->K, v->p, point);
+    PointEq one; /* the scalar as the weight of a point: its variables */
+    pteq_init(one, D->r);
+    pteq_set_weight(one, 0, v->s, D->r);
+    int m = kernel_measures_point(D->K, one, point);
+    pteq_clear(one, D->r);
+    return m;
+}
+
 /* the coordinates' part of subst(E, A, P): every coord(A, k) in v becomes
  * coord(P, k) (kernel_subst_coords), in place; 0 or -1 reported at n */
 static int subst_coords(Deriver *D, Value *v, const Sym *x, const PointEq P,
@@ -764,8 +778,8 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
     }
     res->is_point = ve.is_point;
     int xpoint = x->sym->kind == SYM_POINT || x->sym->kind == SYM_UNKNOWN;
-    if (xpoint && ve.is_point && x->sym->kind == SYM_POINT &&
-        kernel_measures_point(D->K, ve.p, x->sym->index)) {
+    if (xpoint && x->sym->kind == SYM_POINT &&
+        value_measures_point(D, &ve, x->sym->index)) {
         diag_error(D->diag, x->span,
                    "subst() cannot replace base point '%s' here: the "
                    "expression measures distances to it (dist, dot, angle); "
