@@ -906,7 +906,11 @@ static int eval_coord(Deriver *D, Value *res, const Node *n)
             st = -1;
         }
     }
-    if (st == 0) {
+    if (st == 0 && !D->K) { /* derive_source counts every coord() */
+        diag_error(D->diag, n->span,
+                   "internal error: no variable reserved for coord()");
+        st = -1;
+    } else if (st == 0) {
         int rc = kernel_coord_pteq(D->K, res->s, P,
                                    strtol(nth(n, 1)->text, NULL, 10));
         st = rc ? kernel_error(D, rc, n, NULL) : 0;
@@ -2291,6 +2295,8 @@ retry:
             if (st && st->lo && !st->bad) {
                 count_kernel_uses(st->lo, &calls, &ops, &pis, &metric);
                 count_kernel_uses(st->hi, &calls, &ops, &pis, &metric);
+                count_coord_indices(st->lo, &coord_ks, &ncoord_ks);
+                count_coord_indices(st->hi, &coord_ks, &ncoord_ks);
             }
         }
         slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
