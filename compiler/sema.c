@@ -275,6 +275,8 @@ static int whole_number(const Node *n, long long *v)
     case ND_MUL:
         if (!whole_number(n->lhs, &a) || !whole_number(n->rhs, &b))
             return 0;
+        if (n->kind == ND_MUL && a != 0 && llabs(b) > lim / llabs(a))
+            return 0; /* |a*b| > 2^40, and it could overflow */
         *v = n->kind == ND_ADD ? a + b : n->kind == ND_SUB ? a - b : a * b;
         break;
     default:
