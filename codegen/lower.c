@@ -537,12 +537,14 @@ static slong max_degree(const Lower *L, const RatFunStruct *x)
 static int uses_atoms(const Lower *L, const RatFunStruct *x)
 {
     const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
-    slong nv = ctx->minfo->nvars, first = L->nparams + L->nconsts;
+    slong all = ctx->minfo->nvars, first = L->nparams + L->nconsts;
+    slong nv = all;
     if (L->K) /* the kernels' variables are evaluated; not what is before */
         nv = L->K->first;
     if (first >= nv)
         return 0;
-    slong *degs = flint_malloc(sizeof *degs * (size_t)nv);
+    /* fmpz_mpoly_degrees_si writes every variable's degree */
+    slong *degs = flint_malloc(sizeof *degs * (size_t)all);
     int found = 0;
     for (int k = 0; k < 2 && !found; k++) {
         fmpz_mpoly_degrees_si(degs, k ? x->den : x->num, ctx);

@@ -980,6 +980,12 @@ static void test_emit_c_coord_matches_exact(void **state)
                                "v = coord(B - A, 3)*t\n"
                                "output M, x, r, v\n";
     check_scheme_text("coord.pcs", text);
+    /* an unknown scalar and kernels in one ring (lower.c's uses_atoms
+     * wrote past its array: tests/fuzz/regressions/) */
+    check_scheme_text("us.pcs",
+                      "point A, B\nunknown scalar k\nparam t\n"
+                      "solve A*k + B*(1-k) = along(A, B, 1/2) for k\n"
+                      "M = along(A, B, sin(t)*k + coord(B, 1))\n");
 
     int nerr = 0;
     Derived *d = derive_source("coord.pcs", text, strlen(text), stderr, &nerr);
