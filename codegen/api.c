@@ -293,6 +293,8 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
     for (int i = 0; i < pl->nparams && n; i++)
         if (!params[i])
             return PC_EINVAL;
+    if (plan_output_min_dim(pl, output, NULL) > dim) /* coord(P, k), k > dim */
+        return PC_EINVAL;
     size_t np =
         plan_eval(pl, output, n, params, consts, points, dim, out, status);
     if (npoles)

@@ -529,6 +529,9 @@ static void instruction(const Ctx *C, int r, const char *indent)
         fprintf(out, "pcdist_%s(%s, %s, dim)", C->N->prefix,
                 C->N->pt[x->a], C->N->pt[x->b]);
         break;
+    case PLAN_COORD: /* coord(P, k): NaN when dim < k (docs/codegen.md) */
+        fprintf(out, "(dim > %d ? %s[%d] : (double)NAN)", x->b, C->N->pt[x->a], x->b);
+        break;
     case PLAN_ATAN2:
         fputs("atan2(", out);
         operand(C, x->a);
@@ -598,14 +601,17 @@ static void unused_args(const Ctx *C)
         if (!used)
             fprintf(C->out, "    (void)%s;\n", C->N->in[i]);
     }
-    int dist = 0; /* distances read points and dim (metric atoms) */
+    int dist = 0; /* distances and coordinates read points and dim */
     for (int r = 0; r < p->nins; r++)
-        dist |= C->live[r] && p->ins[r].op == PLAN_DIST;
+        dist |= C->live[r] &&
+                (p->ins[r].op == PLAN_DIST || p->ins[r].op == PLAN_COORD);
     for (int i = 0; i < C->N->npt; i++) {
         int used = C->o->kind != PLAN_SCALAR && uses_point(C->o, i);
         for (int r = 0; r < p->nins && !used; r++)
-            used = C->live[r] && p->ins[r].op == PLAN_DIST &&
-                   (p->ins[r].a == i || p->ins[r].b == i);
+            used = C->live[r] &&
+                   ((p->ins[r].op == PLAN_DIST &&
+                     (p->ins[r].a == i || p->ins[r].b == i)) ||
+                    (p->ins[r].op == PLAN_COORD && p->ins[r].a == i));
         if (!used)
             fprintf(C->out, "    (void)%s;\n", C->N->pt[i]);
     }
@@ -1375,6 +1381,11 @@ static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
             if (o->nterms == 0)
                 fputs("0", out);
         }
+        int need = plan_output_min_dim(p, i, NULL);
+        if (need) /* coord(P, k): dim >= k (docs/codegen.md) */
+            fprintf(out, "\n *   reads coordinate %d of the points: needs "
+                         "dim >= %d (else NaN, status 3)",
+                    need, need);
         fputs("\n", out);
     }
     fprintf(out,

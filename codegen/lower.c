@@ -659,6 +659,8 @@ static int kernel_reg(Lower *L, slong var)
         reg = plan_const(L->p, 3.14159265358979323846);
     } else if (k->fn == KF_DIST) {
         reg = plan_dist(L->p, (int)k->pa, (int)k->pb);
+    } else if (k->fn == KF_COORD) {
+        reg = plan_coord(L->p, (int)k->pa, (int)k->pb - 1);
     } else {
         int a, b = -1;
         const RatFunStruct *w[1] = {k->arg};

@@ -832,6 +832,33 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
     return st;
 }
 
+/* 1 when v (a point or a scalar) uses a distance to base point `point` */
+static int value_measures_point(const Deriver *D, const Value *v,
+                                slong point)
+{
+    if (v->is_point || !D->K)
+        return kernel_measures_point(D->K, v->p, point);
+    PointEq one; /* the scalar as the weight of a point: its variables */
+    pteq_init(one, D->r);
+    pteq_set_weight(one, 0, v->s, D->r);
+    int m = kernel_measures_point(D->K, one, point);
+    pteq_clear(one, D->r);
+    return m;
+}
+
+/* the coordinates' part of subst(E, A, P): every coord(A, k) in v becomes
+ * coord(P, k) (kernel_subst_coords), in place; 0 or -1 reported at n */
+static int subst_coords(Deriver *D, Value *v, const Sym *x, const PointEq P,
+                        const Node *n)
+{
+    if (!D->K || x->kind != SYM_POINT)
+        return 0;
+    int rc = v->is_point
+                 ? kernel_subst_coords_pteq(D->K, v->p, v->p, x->index, P)
+                 : kernel_subst_coords(D->K, v->s, v->s, x->index, P);
+    return rc ? kernel_error(D, rc, n, nth(n, 2)) : 0;
+}
+
 static int eval_subst(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
@@ -846,8 +873,8 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
     }
     res->is_point = ve.is_point;
     int xpoint = x->sym->kind == SYM_POINT || x->sym->kind == SYM_UNKNOWN;
-    if (xpoint && ve.is_point && x->sym->kind == SYM_POINT &&
-        kernel_measures_point(D->K, ve.p, x->sym->index)) {
+    if (xpoint && x->sym->kind == SYM_POINT &&
+        value_measures_point(D, &ve, x->sym->index)) {
         diag_error(D->diag, x->span,
                    "subst() cannot replace base point '%s' here: the "
                    "expression measures distances to it (dist, dot, angle); "
@@ -897,6 +924,8 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
                        x->sym->name, s);
             flint_free(s);
             st = -1;
+        } else if (subst_coords(D, &ve, x->sym, vb.p, n) < 0) {
+            st = -1;
         } else if (ve.is_point) {
             pteq_subst_point(res->p, ve.p, point_col(D, x->sym), vb.p, r);
         } else {
@@ -940,6 +969,75 @@ done:
     return st;
 }
 
+/* coord(P, k) = sum_i w_i coord(A_i, k): linear in P, one kernel per base
+ * point and k (kernel.h); P a point or a vector of base points */
+static int eval_coord(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    PointEq P;
+    pteq_init(P, r);
+    RatFun sum;
+    ratfun_init(sum, r);
+    res->is_point = 0;
+    int st = eval_point(D, P, nth(n, 0));
+    for (slong i = 0; st == 0 && i < P->len; i++)
+        if (P->terms[i].point >= D->ucol0) {
+            diag_error(D->diag, nth(n, 0)->span,
+                       "coord() of an unknown point: solve it before taking "
+                       "its coordinates");
+            st = -1;
+        }
+    if (st == 0) {
+        pteq_weight_sum(sum, P, r);
+        kernel_reduce(D->K, sum);
+        if (!ratfun_is_zero(sum, r) && !ratfun_is_one(sum, r)) {
+            char *txt = show(sum, r);
+            diag_error(D->diag, nth(n, 0)->span,
+                       "coord() takes a point (weights summing to 1) or a "
+                       "vector (summing to 0), but the weights of this "
+                       "argument sum to %s",
+                       txt);
+            flint_free(txt);
+            st = -1;
+        }
+    }
+    if (st == 0 && !D->K) { /* derive_source counts every coord() */
+        diag_error(D->diag, n->span,
+                   "internal error: no variable reserved for coord()");
+        st = -1;
+    } else if (st == 0) {
+        int rc = kernel_coord_pteq(D->K, res->s, P,
+                                   strtol(nth(n, 1)->text, NULL, 10));
+        st = rc ? kernel_error(D, rc, n, NULL) : 0;
+    }
+    ratfun_clear(sum, r);
+    pteq_clear(P, r);
+    return st;
+}
+
+/* the distinct k of the coord(P, k) in n, added to ks[0 .. *nks - 1] */
+static void count_coord_indices(const Node *n, long **ks, slong *nks)
+{
+    if (!n)
+        return;
+    if (n->kind == ND_CALL && n->builtin == BI_COORD && n->nargs == 2 &&
+        nth(n, 1)->kind == ND_NUM) {
+        long k = strtol(nth(n, 1)->text, NULL, 10);
+        slong i = 0;
+        while (i < *nks && (*ks)[i] != k)
+            i++;
+        if (i == *nks) {
+            *ks = pc_xrealloc(*ks, sizeof(long) * (size_t)(*nks + 1));
+            (*ks)[(*nks)++] = k;
+        }
+    }
+    if (n->kind == ND_CALL)
+        for (const Node *a = n->args; a; a = a->next)
+            count_coord_indices(a, ks, nks);
+    count_coord_indices(n->lhs, ks, nks);
+    count_coord_indices(n->rhs, ks, nks);
+}
+
 static int eval_call(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
@@ -949,6 +1047,8 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
     if (n->builtin == BI_DOT || n->builtin == BI_DIST ||
         n->builtin == BI_ANGLE)
         return eval_metric(D, res, n);
+    if (n->builtin == BI_COORD)
+        return eval_coord(D, res, n);
     switch ((Builtin)n->builtin) {
     case BI_ALONG:
     case BI_DIVIDE: {
@@ -2507,6 +2607,8 @@ retry:
                 d->extra[m++] = pc_xstrdup(info->unknowns[k]->name);
         /* kernel slots (functions, pi) after the extra variables */
         slong calls = 0, ops = 0, pis = 0, metric = 0;
+        long *coord_ks = NULL; /* the distinct k of coord(P, k) */
+        slong ncoord_ks = 0;
         for (int i = 0; i < info->nsteps; i++) {
             const Stmt *st = info->steps[i];
             if (st->kind == ST_DEF)
@@ -2515,6 +2617,13 @@ retry:
                  e; e = e->next) {
                 count_kernel_uses(e->lhs, &calls, &ops, &pis, &metric);
                 count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
+            }
+            if (st->kind == ST_DEF)
+                count_coord_indices(st->expr, &coord_ks, &ncoord_ks);
+            for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL;
+                 e; e = e->next) {
+                count_coord_indices(e->lhs, &coord_ks, &ncoord_ks);
+                count_coord_indices(e->rhs, &coord_ks, &ncoord_ks);
             }
         }
         /* the params' ranges and the consts' bounds are derived too
@@ -2527,10 +2636,16 @@ retry:
                 count_kernel_uses(st->lo, &calls, &ops, &pis, &metric);
             if (st && st->hi && !st->bad)
                 count_kernel_uses(st->hi, &calls, &ops, &pis, &metric);
+            if (st && st->lo && !st->bad)
+                count_coord_indices(st->lo, &coord_ks, &ncoord_ks);
+            if (st && st->hi && !st->bad)
+                count_coord_indices(st->hi, &coord_ks, &ncoord_ks);
         }
         slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
         if (metric)
             nslots += kernels_metric_slots(metric, d->npoints);
+        nslots += kernels_coord_slots(ncoord_ks, d->npoints);
+        free(coord_ks);
         if (nslots_try > 0)
             nslots = nslots_try;
         nslots_try = nslots;

@@ -246,10 +246,28 @@ static char *arg_text(const RatFun x, const Ring *r, FormatStyle st)
     return st == FMT_TEXT ? unwrap(s) : s;
 }
 
+/* coord(A, k): x_{A}, y_{A}, z_{A} for k = 1, 2, 3, A_{k} beyond */
+static void coord_names(const Kernels *K, Kernel *k)
+{
+    const char *p = K->points[k->pa];
+    char buf[32];
+    snprintf(buf, sizeof buf, ", %ld)", (long)k->pb);
+    char *t = cat3("coord(", p, "");
+    k->name = cat3(t, buf, "");
+    free(t);
+    if (k->pb <= 3) {
+        static const char *const xyz[] = {"x_{", "y_{", "z_{"};
+        k->latex = cat3(xyz[k->pb - 1], p, "}");
+    } else {
+        snprintf(buf, sizeof buf, "_{%ld}", (long)k->pb);
+        k->latex = cat3(p, buf, "");
+    }
+}
+
 static void set_names(Kernels *K, Kernel *k)
 {
     const Ring *r = K->r;
-    int noarg = k->fn == KF_PI || k->fn == KF_DIST;
+    int noarg = k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD;
     char *a = noarg ? NULL : arg_text(k->arg, r, FMT_TEXT);
     char *la = noarg ? NULL : arg_text(k->arg, r, FMT_LATEX);
     char buf[48];
@@ -268,6 +286,9 @@ static void set_names(Kernels *K, Kernel *k)
         free(t);
         break;
     }
+    case KF_COORD:
+        coord_names(K, k);
+        break;
     case KF_SQRT:
         k->name = cat3("sqrt(", a, ")");
         k->latex = cat3("\\sqrt{", la, "}");
@@ -2053,7 +2074,7 @@ int kernel_reduce_pteq(Kernels *K, PointEq x)
 
 static int kernel_arg_depends(const Kernels *K, const Kernel *k, slong var)
 {
-    if (k->fn == KF_PI || k->fn == KF_DIST)
+    if (k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD)
         return 0;
     return kernel_depends(K, k->arg, var) ||
            (k->fn == KF_ATAN2 && kernel_depends(K, k->arg2, var));
@@ -2415,6 +2436,175 @@ int kernel_compose_pteq(Kernels *K, PointEq res, const PointEq x, slong var,
     ComposeCtx c = {img};
     if (rc == 0)
         rc = map_weights(K, res, x, compose_one, &c);
+    free_images(img, nv, r);
+    return rc;
+}
+
+/* ---- coordinates --------------------------------------------------------- */
+
+slong kernels_coord_slots(slong nindices, slong npoints)
+{
+    return nindices * npoints;
+}
+
+int kernel_coord(Kernels *K, RatFun res, slong a, slong k)
+{
+    slong i;
+    for (i = 0; i < K->n; i++)
+        if (K->k[i].fn == KF_COORD && K->k[i].pa == a && K->k[i].pb == k)
+            break;
+    if (i == K->n) {
+        if (K->n + 1 > K->cap) {
+            K->why = "too many distinct functions in one scheme";
+            K->full = 1;
+            return KERNEL_EFULL;
+        }
+        Kernel *c = &K->k[K->n];
+        c->pa = a; /* set before add() names it */
+        c->pb = k;
+        add(K, KF_COORD, NULL, NULL, 0);
+    }
+    ratfun_gen(res, K->k[i].var, K->r);
+    return 0;
+}
+
+int kernel_coord_pteq(Kernels *K, RatFun res, const PointEq P, slong k)
+{
+    const Ring *r = K->r;
+    RatFun acc, c;
+    ratfun_init(acc, r);
+    ratfun_init(c, r);
+    int rc = 0;
+    /* (sum_i n_i coord(A_i, k)) / d: polynomial products, one division */
+    for (slong i = 0; i < P->len && rc == 0; i++) {
+        rc = kernel_coord(K, c, P->terms[i].point, k);
+        if (rc == 0) {
+            fmpz_mpoly_mul(c->num, c->num, P->terms[i].num, r->ctx);
+            fmpz_mpoly_add(acc->num, acc->num, c->num, r->ctx);
+            rc = guard(K, acc->num);
+        }
+    }
+    if (rc == 0) {
+        fmpz_mpoly_set(acc->den, P->den, r->ctx);
+        ratfun_canonicalise(acc, r);
+        ratfun_swap(res, acc, r);
+        rc = kernel_reduce(K, res);
+    }
+    ratfun_clear(c, r);
+    ratfun_clear(acc, r);
+    return rc;
+}
+
+/* the images of every coord(A_point, k) that x uses (x a RatFun, or a
+ * PointEq when xp is not NULL): coord(P, k); and of every kernel whose
+ * argument depends on one.  *any = 0 when x uses none. */
+static int coord_images(Kernels *K, RatFunStruct **img, const RatFun x,
+                        const PointEq xp, slong point, const PointEq P,
+                        int *any)
+{
+    const Ring *r = K->r;
+    slong n = K->n; /* the coordinates of P's points are made below */
+    int rc = 0;
+    *any = 0;
+    for (slong i = 0; i < n && rc == 0; i++) {
+        const Kernel *k = &K->k[i];
+        if (k->fn != KF_COORD || k->pa != point)
+            continue;
+        int used = 0;
+        if (xp) {
+            for (slong j = 0; j < xp->len && !used; j++) {
+                RatFunStruct w;
+                pteq_weight_view(&w, xp, j);
+                used = kernel_depends(K, &w, k->var);
+            }
+        } else {
+            used = kernel_depends(K, x, k->var);
+        }
+        if (!used)
+            continue;
+        for (slong j = 0; j < P->len && rc == 0; j++)
+            if (P->terms[j].point >= K->npoints) {
+                K->why = "coord() of an unknown point: this replacement "
+                         "has an unsolved unknown point, and the expression "
+                         "uses coordinates of the point it replaces; solve "
+                         "it first";
+                rc = KERNEL_EDOMAIN;
+            }
+        if (rc != 0)
+            break;
+        *any = 1;
+        slong kv = k->var, kk = k->pb;
+        img[kv] = ratfun_vec_init(1, r);
+        rc = kernel_coord_pteq(K, img[kv], P, kk);
+    }
+    /* the kernels over them, in order (their arguments use earlier
+     * variables only) */
+    RatFun a, b;
+    ratfun_init(a, r);
+    ratfun_init(b, r);
+    for (slong i = 0; i < n && rc == 0 && *any; i++) {
+        const Kernel *k = &K->k[i];
+        int dep = 0;
+        if (k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD)
+            continue;
+        for (slong j = 0; j < i && !dep; j++)
+            dep = img[K->k[j].var] &&
+                  (rf_has(k->arg, K->k[j].var, r) ||
+                   rf_has(k->arg2, K->k[j].var, r));
+        if (!dep)
+            continue;
+        KernelFn fn = k->fn;
+        slong q = k->q, kv = k->var;
+        rc = compose_img(K, a, k->arg, img);
+        if (rc == 0 && fn == KF_ATAN2)
+            rc = compose_img(K, b, k->arg2, img);
+        if (rc == 0)
+            rc = kernel_reduce(K, a);
+        if (rc != 0)
+            break;
+        RatFunStruct *v = ratfun_vec_init(1, r);
+        img[kv] = v;
+        if (fn == KF_ROOT)
+            rc = kernel_pow_q(K, v, a, 1, q);
+        else
+            rc = kernel_apply(K, v, fn, a, fn == KF_ATAN2 ? b : NULL);
+    }
+    ratfun_clear(b, r);
+    ratfun_clear(a, r);
+    return rc;
+}
+
+int kernel_subst_coords(Kernels *K, RatFun res, const RatFun x, slong point,
+                        const PointEq P)
+{
+    const Ring *r = K->r;
+    slong nv = r->ctx->minfo->nvars;
+    RatFunStruct **img = pc_xcalloc((size_t)nv, sizeof *img);
+    int any;
+    int rc = coord_images(K, img, x, NULL, point, P, &any);
+    if (rc == 0 && any)
+        rc = compose_img(K, res, x, img);
+    else if (rc == 0)
+        ratfun_set(res, x, r);
+    if (rc == 0 && any)
+        rc = kernel_reduce(K, res);
+    free_images(img, nv, r);
+    return rc;
+}
+
+int kernel_subst_coords_pteq(Kernels *K, PointEq res, const PointEq x,
+                             slong point, const PointEq P)
+{
+    const Ring *r = K->r;
+    slong nv = r->ctx->minfo->nvars;
+    RatFunStruct **img = pc_xcalloc((size_t)nv, sizeof *img);
+    int any;
+    int rc = coord_images(K, img, NULL, x, point, P, &any);
+    ComposeCtx c = {img};
+    if (rc == 0 && any)
+        rc = map_weights(K, res, x, compose_one, &c);
+    else if (rc == 0)
+        pteq_set(res, x, r);
     free_images(img, nv, r);
     return rc;
 }

@@ -58,7 +58,8 @@
     X(KF_ATAN, "atan", "atan")                                                 \
     X(KF_ATAN2, "atan2", "atan2")                                              \
     X(KF_SIGN, "sign", NULL)                                                   \
-    X(KF_DIST, "dist", NULL) /* |P_a P_b| of two base points: the metric */
+    X(KF_DIST, "dist", NULL) /* |P_a P_b| of two base points: the metric */ \
+    X(KF_COORD, "coord", NULL) /* coordinate pb (1-based) of base point pa */
 
 typedef enum KernelFn {
 #define X(id, name, cfn) id,
@@ -71,7 +72,8 @@ typedef struct Kernel {
     KernelFn fn;
     slong var;   // its ring variable
     slong q;     // KF_ROOT: the index of the root (>= 3); else 0
-    slong pa, pb; // KF_DIST: the base points, pa < pb
+    slong pa, pb; // KF_DIST: the base points, pa < pb; KF_COORD: the base
+                  // point and the coordinate's number k >= 1
     RatFun arg;  // the canonical argument (KF_ATAN2: y); 0 for pi
     RatFun arg2; // KF_ATAN2: x
     slong deg;   // the relation var^deg = rel, or 0: none
@@ -178,6 +180,26 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
 /* res = |P_a P_b|, the distance of base points a and b (named by
  * K->points); a variable that is > 0 (0 when a == b) */
 int kernel_dist(Kernels *K, RatFun res, slong a, slong b);
+
+/* Coordinates (coord(P, k), docs/language.md "Coordinates"): the k-th
+ * Cartesian coordinate of base point a is a variable with no relation and
+ * no known sign, whose derivative by every param is 0; coord is linear,
+ * so a combination's coordinate is the combination of its points'. */
+/* res = coord(A_a, k), k >= 1 */
+int kernel_coord(Kernels *K, RatFun res, slong a, slong k);
+/* res = coord(P, k) = sum_i w_i coord(A_i, k) for a combination P of base
+ * points (no unknown columns) */
+int kernel_coord_pteq(Kernels *K, RatFun res, const PointEq P, slong k);
+/* x with every coord(A_point, k) it uses (also inside functions'
+ * arguments) replaced by coord(P, k), all at once: the coordinates'
+ * part of subst(x, A, P); res = x when x uses none */
+int kernel_subst_coords(Kernels *K, RatFun res, const RatFun x, slong point,
+                        const PointEq P);
+int kernel_subst_coords_pteq(Kernels *K, PointEq res, const PointEq x,
+                             slong point, const PointEq P);
+/* the kernel slots the coordinates of npoints base points need, for
+ * nindices distinct k */
+slong kernels_coord_slots(slong nindices, slong npoints);
 
 /* res = x^(p/q), q > 1, gcd(p, q) = 1, |p| and q at most 1000 */
 int kernel_pow_q(Kernels *K, RatFun res, const RatFun x, slong p, slong q);

@@ -251,6 +251,73 @@ static int check_flat(Sema *S, Node *n, int allow_plane)
     return ok;
 }
 
+/* *v = the value of n, a whole-number expression: literals (int
+ * constants and comprehension variables are literals after expand.c),
+ * unary minus, + - *; 0 when it is not one or leaves [-2^40, 2^40] */
+static int whole_number(const Node *n, long long *v)
+{
+    const long long lim = 1LL << 40;
+    long long a, b;
+    switch (n->kind) {
+    case ND_NUM:
+        if (strspn(n->text, "0123456789") != strlen(n->text) ||
+            strlen(n->text) > 12)
+            return 0;
+        *v = atoll(n->text);
+        break;
+    case ND_NEG:
+        if (!whole_number(n->lhs, &a))
+            return 0;
+        *v = -a;
+        break;
+    case ND_ADD:
+    case ND_SUB:
+    case ND_MUL:
+        if (!whole_number(n->lhs, &a) || !whole_number(n->rhs, &b))
+            return 0;
+        if (n->kind == ND_MUL && a != 0 && llabs(b) > lim / llabs(a))
+            return 0; /* |a*b| > 2^40, and it could overflow */
+        *v = n->kind == ND_ADD ? a + b : n->kind == ND_SUB ? a - b : a * b;
+        break;
+    default:
+        return 0;
+    }
+    return *v >= -lim && *v <= lim;
+}
+
+/* coord(P, k): P a point or vector, k a whole number 1 .. SEMA_MAX_COORD
+ * (a whole-number expression of literals and int constants); sema leaves
+ * k as one literal, the number derive reads */
+static int check_coord(Sema *S, Node *n)
+{
+    int ok = expect(S, arg(n, 0), 1, "the first argument of coord()");
+    Node *k = arg(n, 1);
+    long long v = 0;
+    int whole = whole_number(k, &v);
+    if (whole && v < 1) {
+        diag_error(S->diag, k->span,
+                   "coordinates are numbered from 1 (coord(P, 1) is the "
+                   "first), so there is no coordinate %lld",
+                   v);
+        return -1;
+    }
+    if (!whole || v > SEMA_MAX_COORD) {
+        diag_error(S->diag, k->span,
+                   "expected the number of a coordinate: a whole number "
+                   "from 1 to %d, of literals and int constants",
+                   SEMA_MAX_COORD);
+        return -1;
+    }
+    if (k->kind != ND_NUM) { /* coord(P[i], i + 1) in a comprehension */
+        char buf[24];
+        snprintf(buf, sizeof buf, "%lld", v);
+        k->kind = ND_NUM;
+        k->text = arena_strdup(S->arena, buf);
+        k->lhs = k->rhs = NULL;
+    }
+    return ok < 0 ? -1 : 0;
+}
+
 static int check_call(Sema *S, Node *n)
 {
     int b;
@@ -406,6 +473,8 @@ static int check_call(Sema *S, Node *n)
         }
         return ok < 0 ? -1 : 0;
     }
+    case BI_COORD:
+        return check_coord(S, n);
     default: { /* the scalar functions */
         char what[64];
         for (Node *a = n->args; a; a = a->next) {

@@ -11,6 +11,8 @@
 
 /* the deepest expression tree sema accepts (every pass recurses over it) */
 #define SEMA_MAX_DEPTH 2000
+/* the largest k of coord(P, k) */
+#define SEMA_MAX_COORD 1000000
 
 #include "compiler/arena.h"
 #include "compiler/diag.h"
@@ -30,6 +32,7 @@
     X(BI_DOT, "dot", 2, 2, 0, 1)       /* metric: U . V */                     \
     X(BI_DIST, "dist", 2, 2, 0, 1)     /* metric: |PQ| */                      \
     X(BI_ANGLE, "angle", 3, 3, 0, 1)   /* metric: angle PQR at Q */            \
+    X(BI_COORD, "coord", 2, 2, 0, 1)   /* coordinate k of a point or vector */ \
     X(BI_SQRT, "sqrt", 1, 1, 0, 1) /* functions: BI_SQRT..BI_SIGN in a row */ \
     X(BI_SIN, "sin", 1, 1, 0, 1)                                               \
     X(BI_COS, "cos", 1, 1, 0, 1)                                               \

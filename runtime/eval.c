@@ -195,6 +195,8 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts,
             uval[i] = consts[x->a - p->nparams];
         else if (x->op == PLAN_DIST)
             uval[i] = plan_dist_eval(points[x->a], points[x->b], dim);
+        else if (x->op == PLAN_COORD)
+            uval[i] = plan_coord_eval(points[x->a], x->b, dim);
         else
             uval[i] = scalar_op(p, x, uval);
     }
@@ -346,18 +348,22 @@ int plan_output_uses_point(const Plan *p, int o, int point)
     for (int k = 0; k < out->nterms; k++)
         if (out->point[k] == point)
             return 1;
-    /* distances (metric atoms) read the points' coordinates too */
+    /* distances (metric atoms) and coordinates read the points'
+     * coordinates too */
     int uses_dist = 0;
     for (int i = 0; i < p->nins && !uses_dist; i++)
-        uses_dist = p->ins[i].op == PLAN_DIST &&
-                    (p->ins[i].a == point || p->ins[i].b == point);
+        uses_dist = (p->ins[i].op == PLAN_DIST &&
+                     (p->ins[i].a == point || p->ins[i].b == point)) ||
+                    (p->ins[i].op == PLAN_COORD && p->ins[i].a == point);
     if (uses_dist) {
         unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
         plan_live(p, o, live);
         int used = 0;
         for (int i = 0; i < p->nins && !used; i++)
-            used = live[i] && p->ins[i].op == PLAN_DIST &&
-                   (p->ins[i].a == point || p->ins[i].b == point);
+            used = live[i] &&
+                   ((p->ins[i].op == PLAN_DIST &&
+                     (p->ins[i].a == point || p->ins[i].b == point)) ||
+                    (p->ins[i].op == PLAN_COORD && p->ins[i].a == point));
         free(live);
         return used;
     }

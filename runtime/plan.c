@@ -195,6 +195,7 @@ static int intern(Plan *p, PlanOp op, int32_t a, int32_t b)
         x->uniform = a >= p->nparams;
         break;
     case PLAN_DIST:
+    case PLAN_COORD:
         x->uniform = 1;
         break;
     default:
@@ -229,6 +230,33 @@ int plan_dist(Plan *p, int a, int b)
 {
     assert(a >= 0 && a < b && b < p->npoints);
     return intern(p, PLAN_DIST, a, b);
+}
+
+int plan_coord(Plan *p, int a, int c)
+{
+    assert(a >= 0 && a < p->npoints && c >= 0);
+    return intern(p, PLAN_COORD, a, c);
+}
+
+int plan_output_min_dim(const Plan *p, int o, int *point)
+{
+    int need = 0, any = 0;
+    if (point)
+        *point = -1;
+    for (int i = 0; i < p->nins && !any; i++)
+        any = p->ins[i].op == PLAN_COORD;
+    if (!any)
+        return 0;
+    unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
+    plan_live(p, o, live);
+    for (int i = 0; i < p->nins; i++)
+        if (live[i] && p->ins[i].op == PLAN_COORD && p->ins[i].b + 1 > need) {
+            need = p->ins[i].b + 1;
+            if (point)
+                *point = p->ins[i].a;
+        }
+    free(live);
+    return need;
 }
 
 static int is_const(const Plan *p, int r, double *v)
@@ -597,6 +625,9 @@ void plan_dump(FILE *out, const Plan *p)
             break;
         case PLAN_DIST:
             fprintf(out, " %s %s", p->points[x->a], p->points[x->b]);
+            break;
+        case PLAN_COORD:
+            fprintf(out, " %s %d", p->points[x->a], x->b);
             break;
         default:
             fprintf(out, " r%d", x->a);

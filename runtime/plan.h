@@ -45,7 +45,8 @@
     X(FN, 1, NULL)    /* d = f(r[a]), f = b: a PlanFn (sqrt, sin, ...)      */ \
     X(ATAN2, 2, NULL) /* d = atan2(r[a], r[b])                              */ \
     X(DOMAIN, 1, NULL) /* d = (r[a] outside the domain of PlanFn b) ? 1 : 0 */ \
-    X(DIST, 0, NULL)  /* d = |P_a - P_b|: base points a < b (uniform)     */
+    X(DIST, 0, NULL)  /* d = |P_a - P_b|: base points a < b (uniform)     */ \
+    X(COORD, 0, NULL) /* d = P_a[b]: coordinate b >= 0 of point a (uniform) */
 
 /* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
  * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
@@ -232,6 +233,18 @@ int plan_fn(Plan *p, int fn, int a);     // f(a), fn a PlanFn | q << 8
 int plan_atan2(Plan *p, int y, int x);
 int plan_domain(Plan *p, int fn, int a); // the domain flag of f(a)
 int plan_dist(Plan *p, int a, int b);    // |P_a - P_b|, base points a < b
+int plan_coord(Plan *p, int a, int c);   // P_a[c], 0-based coordinate c
+
+/* P[c] when the points have dim > c coordinates, else NaN (never read
+ * beyond the point: eval and the C API refuse such a dim first) */
+static inline double plan_coord_eval(const double *P, int c, int dim)
+{
+    return c < dim ? P[c] : NAN;
+}
+/* the number of coordinates output o needs (the largest c + 1 of the
+ * coordinates it reads: coord(P, k)), 0 when it reads none; *point (if
+ * not NULL) = a base point whose coordinate c it reads, or -1 */
+int plan_output_min_dim(const Plan *p, int o, int *point);
 
 /* |P - Q| in dim coordinates (the metric atoms: the same sum everywhere) */
 static inline double plan_dist_eval(const double *P, const double *Q,

@@ -164,6 +164,9 @@ static void jet_run(const PlotEnv *env, const unsigned char *live, double t,
             d[0] = plan_dist_eval(env->points[x->a], env->points[x->b],
                                   env->dim);
             break;
+        case PLAN_COORD:
+            d[0] = plan_coord_eval(env->points[x->a], x->b, env->dim);
+            break;
         case PLAN_NEG:
             for (int k = 0; k < 3; k++)
                 d[k] = -a[k];

@@ -408,6 +408,56 @@ check "dist: eval 2*|AB|" test $? -eq 0 -a "$(tail -1 "$tmp/out")" = "2,10"
 "$PC" eval "$tmp/di.pcs" --at A=0,0 --param t=2 >"$tmp/out" 2>"$tmp/err"
 check "dist: B is needed" grep -q "^pointcalc: missing --at B=" "$tmp/err"
 
+# coord(M, k) evaluates to column k of M, at every sample (the Desargues
+# arc: x = coord(M, 1), y = coord(M, 2), z = coord(M, 3))
+cat examples/desargues_coordinates.pcs >"$tmp/xy.pcs"
+at="--at A=0.5,-1,2 --at B=3,0.25,-1 --at C=1,2,3 --at D=-2,1.5,0.75"
+"$PC" eval "$tmp/xy.pcs" $at --param t=0:1:9 --output M >"$tmp/m.csv" 2>"$tmp/err"
+check "coord: eval M" test $? -eq 0 -a ! -s "$tmp/err"
+"$PC" eval "$tmp/xy.pcs" $at --param t=0:1:9 --output x,y,z >"$tmp/xy.csv" 2>"$tmp/err"
+check "coord: eval x, y, z" test $? -eq 0 -a ! -s "$tmp/err"
+check "coord: header" test "$(head -1 "$tmp/xy.csv")" = "t,x,y,z"
+check "coord: x, y, z are the columns of M" python3 -c "
+import sys
+m = [l.split(',') for l in open(sys.argv[1]).read().split()[1:]]
+c = [l.split(',') for l in open(sys.argv[2]).read().split()[1:]]
+assert len(m) == len(c) == 9
+for a, b in zip(m, c):
+    assert a[0] == b[0]
+    for k in range(1, 4):
+        x, y = float(a[k]), float(b[k])
+        assert abs(x - y) <= 1e-15 * max(1.0, abs(x)), (a, b)
+" "$tmp/m.csv" "$tmp/xy.csv"
+"$PC" eval "$tmp/xy.pcs" --at A=0,0 --at B=1,0 --at C=1,1 --at D=3,2 --param t=0.5 --output x,y >"$tmp/out" 2>"$tmp/err"
+check "coord: 2D, the centroid at t = 1/2" test $? -eq 0 -a "$(tail -1 "$tmp/out")" = "0.5,1.25,0.75"
+"$PC" eval "$tmp/xy.pcs" --at A=0,0 --at B=1,0 --at C=1,1 --at D=3,2 --param t=0.5 --output z >"$tmp/out" 2>"$tmp/err"
+check "coord: dim below k is a usage error" test $? -eq 2 -a ! -s "$tmp/out"
+check "coord: the message names the point and the dimension" test "$(head -1 "$tmp/err")" = "pointcalc: output z reads coordinate 3 of base point A (coord(A, 3)), but the points have 2: give every --at point at least 3 coordinates"
+printf 'point A, B\nparam t\nM = along(A, B, coord(B, 2)*t)\noutput M\n' >"$tmp/cw.pcs"
+"$PC" eval "$tmp/cw.pcs" --at A=0 --at B=4 --param t=1 >"$tmp/out" 2>"$tmp/err"
+check "coord: a point's weights read coordinates: dim too small" test $? -eq 2 -a ! -s "$tmp/out"
+check "coord: ... says which" grep -q "^pointcalc: output M reads coordinate 2 of base point B" "$tmp/err"
+"$PC" eval "$tmp/cw.pcs" --at A=0,0 --at B=4,0.5 --param t=1 >"$tmp/out" 2>"$tmp/err"
+check "coord: a point's weights read coordinates" test $? -eq 0 -a "$(tail -1 "$tmp/out")" = "1,2,0.25"
+printf 'point A\nx = coord(A, 2)\n' >"$tmp/cx.pcs"
+"$PC" eval "$tmp/cx.pcs" --at A=7 >"$tmp/out" 2>"$tmp/err"
+check "coord: a scalar without params, dim 1" test $? -eq 2 -a ! -s "$tmp/out"
+"$PC" eval "$tmp/cx.pcs" --at A=7,8 >"$tmp/out" 2>"$tmp/err"
+check "coord: a scalar without params" test $? -eq 0 -a "$(tail -1 "$tmp/out")" = "8"
+"$PC" eval "$tmp/cx.pcs" >"$tmp/out" 2>"$tmp/err"
+check "coord: A is needed" grep -q "^pointcalc: missing --at A=" "$tmp/err"
+printf 'point A, B\nparam t in [0, 1]\nM = along(A, B, coord(B, 3)*t)\noutput M\n' >"$tmp/cp.pcs"
+"$PC" plot "$tmp/cp.pcs" --at A=0,0 --at B=1,0 -o "$tmp/cp.svg" >"$tmp/out" 2>"$tmp/err"
+check "coord: plot refuses dim below k" test $? -eq 2 -a ! -e "$tmp/cp.svg"
+check "coord: plot names the point" grep -q "^pointcalc: output M reads coordinate 3 of base point B (coord(B, 3)), but the points have 2" "$tmp/err"
+"$PC" plot "$tmp/cp.pcs" --at A=0,0,0 --at B=1,0,1 -o "$tmp/cp.svg" >"$tmp/out" 2>"$tmp/err"
+check "coord: plot" test $? -eq 0 -a -s "$tmp/cp.svg"
+# generated C: compiles warning-free, dim >= k documented in the file
+"$PC" emit-c "$tmp/xy.pcs" -o "$tmp/xy.c" 2>"$tmp/err"
+check "coord: emit-c" test $? -eq 0 -a ! -s "$tmp/err"
+check "coord: emit-c compiles warning-free" cc -std=c99 -Wall -Wextra -pedantic -Werror -O2 -c "$tmp/xy.c" -o "$tmp/xy.o"
+check "coord: emit-c documents dim >= 3 for z" grep -q '^ \*   reads coordinate 3 of the points: needs dim >= 3 (else NaN, status 3)$' "$tmp/xy.c"
+
 # ---- command-line friction (issue 9, item 4) ----------------------------
 
 # help for every command, help itself included: `help CMD` = `CMD --help`

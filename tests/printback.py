@@ -30,6 +30,7 @@ FUNCS = {
     "root": lambda x, q: math.copysign(abs(x) ** (1.0 / q), x),
     "pi": math.pi,
     "dist": None,  # per sample: a value for each pair of points
+    "coord": None,  # per sample: a value for each point and index
 }
 WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
@@ -101,6 +102,7 @@ def check(pc, path, rng):
             env = dict(FUNCS)
             env["F"] = Fraction
             env["dist"] = lambda p, q: abs(p - q) + Fraction(1, 3)
+            env["coord"] = lambda p, k: p * (k + 1) + k * k
             # params in (0, 1) first; later tries anywhere in (0, 4), as
             # ranges may depend on consts ([b, a])
             top = 99 if attempt < 20 else 399

@@ -273,6 +273,17 @@ static int check_points(const EvalSetup *s, const Plan *p, const char *usage,
                     "missing --at %s=x,y,...: output %s "
                     "depends on base point %s",
                     p->points[k], p->outputs[s->sel[j]].name, p->points[k]);
+    for (int j = 0; j < s->nsel; j++) {
+        int pt, need = plan_output_min_dim(p, s->sel[j], &pt);
+        if (need > s->dim)
+            return args_usage_error(
+                err, usage,
+                "output %s reads coordinate %d of base point %s "
+                "(coord(%s, %d)), but the points have %d: give every --at "
+                "point at least %d coordinates",
+                p->outputs[s->sel[j]].name, need, p->points[pt],
+                p->points[pt], need, s->dim, need);
+    }
     for (int j = 0; j < s->nsel && s->dim == 0; j++) {
         const PlanOutput *o = &p->outputs[s->sel[j]];
         if (o->kind != PLAN_SCALAR)

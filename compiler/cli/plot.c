@@ -345,6 +345,17 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                                    "depends on base point %s",
                                    p->points[k], p->outputs[r->sel[j]].name,
                                    p->points[k]);
+    for (int j = 0; j < r->nsel; j++) {
+        int pt, need = plan_output_min_dim(p, r->sel[j], &pt);
+        if (need > r->dim)
+            return usage_error(
+                err,
+                "output %s reads coordinate %d of base point %s "
+                "(coord(%s, %d)), but the points have %d: give every --at "
+                "point at least %d coordinates",
+                p->outputs[r->sel[j]].name, need, p->points[pt],
+                p->points[pt], need, r->dim, need);
+    }
     /* consts */
     r->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *r->consts);
     unsigned char *cseen = pc_xcalloc((size_t)p->nconsts + 1, 1);
@@ -579,7 +590,7 @@ static int points_given(const Run *r, int o)
     for (int k = 0; k < r->p->npoints; k++)
         if (!r->pt[k] && plan_output_uses_point(r->p, o, k))
             return 0;
-    return 1;
+    return plan_output_min_dim(r->p, o, NULL) <= r->dim;
 }
 
 static int find_mark(const Construction *c, const char *name)

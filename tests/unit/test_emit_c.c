@@ -186,6 +186,7 @@ static int kernel_values(const Derived *d, int o, fmpq *vals,
         }
         switch (k->fn) {
         case KF_PI: v = 3.14159265358979323846; break;
+        case KF_COORD: v = k->pb <= dim ? pts[k->pa][k->pb - 1] : NAN; break;
         case KF_DIST: {
             double s2 = 0;
             for (int c = 0; c < dim; c++)
@@ -358,9 +359,12 @@ static void check_derived(const Derived *d, const Plan *p, const Compiled *c)
         static const int dims_fixed[] = {1, 2, 3, 7};
         for (int di = 0; di < 5; di++) {
             int dim = di < 4 ? dims_fixed[di] : npt; // last: unit points
-            if (dim < 1)
+            /* coord(P, k): the dims with k coordinates, for scalars too
+             * (dim < k: test_emit_c_coord_dim_too_small) */
+            int need = plan_output_min_dim(p, o, NULL);
+            if (dim < 1 || dim < need)
                 continue;
-            if (scalar && di > 0)
+            if (scalar && di > 0 && !need)
                 break;
             /* points: dyadic coordinates in [-8, 8], or e_k */
             double **pts = calloc((size_t)npt + 1, sizeof *pts);
@@ -1017,6 +1021,77 @@ static void test_emit_c_denominator_overflow_is_reported(void **state)
     derived_free(d);
 }
 
+/* coord(P, k): a point whose weights read a coordinate, scalars of
+ * coordinates (under a function too), compared exactly in every dim that
+ * has k coordinates; with fewer, the generated functions read no memory
+ * beyond the point: NaN, status 3 (not finite), and the runtime NaN */
+static void test_emit_c_coord_matches_exact(void **state)
+{
+    (void)state;
+    static const char text[] = "scheme cc\n"
+                               "point A, B, C\n"
+                               "param t\n"
+                               "M = along(A, B, coord(C, 1)*t)\n"
+                               "x = coord(M, 2)\n"
+                               "r = sqrt(coord(A, 1)^2 + coord(A, 2)^2 + 1)\n"
+                               "v = coord(B - A, 3)*t\n"
+                               "output M, x, r, v\n";
+    check_scheme_text("coord.pcs", text);
+    /* an unknown scalar and kernels in one ring (lower.c's uses_atoms
+     * wrote past its array: tests/fuzz/regressions/) */
+    check_scheme_text("us.pcs",
+                      "point A, B\nunknown scalar k\nparam t\n"
+                      "solve A*k + B*(1-k) = along(A, B, 1/2) for k\n"
+                      "M = along(A, B, sin(t)*k + coord(B, 1))\n");
+
+    int nerr = 0;
+    Derived *d = derive_source("coord.pcs", text, strlen(text), stderr, &nerr);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    assert_non_null(p);
+    assert_int_equal(plan_output_min_dim(p, 0, NULL), 1);
+    assert_int_equal(plan_output_min_dim(p, 1, NULL), 2);
+    int pt = -2;
+    assert_int_equal(plan_output_min_dim(p, 3, &pt), 3);
+    assert_true(pt == 0 || pt == 1);
+    Compiled c;
+    compile_plan(&c, p);
+    double a[3] = {1, 2, 3}, b[3] = {4, 6, 8}, cc[3] = {0.5, 0, 0};
+    const double *pts[3] = {a, b, cc};
+    double prm[1] = {0.5}, row[3];
+    /* dim 3: x = coord(M, 2) = 2 + (6 - 2)*0.5*0.5 = 3, v = 5*0.5 */
+    one_fn x = (one_fn)(uintptr_t)dlsym(c.so, "w1_1");
+    one_fn v = (one_fn)(uintptr_t)dlsym(c.so, "w1_3");
+    assert_non_null(x);
+    assert_non_null(v);
+    assert_int_equal(x(prm, NULL, pts, 3, row, 1), 0);
+    assert_true(row[0] == 3.0);
+    assert_int_equal(v(prm, NULL, pts, 3, row, 1), 0);
+    assert_true(row[0] == 2.5);
+    /* too few coordinates: NaN, status 3 */
+    assert_int_equal(x(prm, NULL, pts, 1, row, 1), 3);
+    assert_true(isnan(row[0]));
+    x(prm, NULL, pts, 1, row, 0);
+    assert_true(isnan(row[0]));
+    assert_int_equal(v(prm, NULL, pts, 2, row, 1), 3);
+    assert_true(isnan(row[0]));
+    batch_fn vb = (batch_fn)(uintptr_t)dlsym(c.so, "wb_3");
+    assert_non_null(vb);
+    const double *prms[1] = {prm};
+    unsigned char st[1] = {0};
+    assert_int_equal(vb(1, prms, NULL, pts, 2, row, st, 1), 1);
+    assert_int_equal(st[0], 3);
+    assert_true(isnan(row[0]));
+    /* the runtime: NaN, never a read beyond the point */
+    plan_eval(p, 3, 1, prms, NULL, pts, 2, row, st);
+    assert_true(isnan(row[0]));
+    plan_eval(p, 3, 1, prms, NULL, pts, 3, row, st);
+    assert_true(row[0] == 2.5);
+    compiled_clear(&c);
+    plan_free(p);
+    derived_free(d);
+}
+
 static int teardown(void **state)
 {
     (void)state;
@@ -1036,6 +1111,7 @@ int main(void)
         cmocka_unit_test(test_lower_reports_unrepresentable_equations),
         cmocka_unit_test(test_lower_keeps_powers_of_factors),
         cmocka_unit_test(test_emit_c_denominator_overflow_is_reported),
+        cmocka_unit_test(test_emit_c_coord_matches_exact),
         cmocka_unit_test(test_emit_c_examples_match_exact_and_runtime),
         cmocka_unit_test(test_emit_c_function_edges),
         cmocka_unit_test(test_emit_c_interpolation_passes_through_nodes),

@@ -364,6 +364,31 @@ static void test_emit_c_options(void **state)
 }
 
 /* libpointcalc.h: parse, weights as text, compile, evaluate */
+/* pc_eval of an output that reads coordinate k (coord(P, k)): dim >= k,
+ * PC_EINVAL below, and nothing written */
+static void test_api_coord_needs_dim(void **state)
+{
+    (void)state;
+    static const char text[] = "point A, B\nparam t\n"
+                               "x = coord(along(A, B, t), 3)\n";
+    char *diag = NULL;
+    pc_scheme *s = pc_scheme_parse("c.pcs", text, strlen(text), &diag);
+    assert_non_null(s);
+    pc_plan *p = pc_compile(s, &diag);
+    assert_non_null(p);
+    double ts[2] = {0, 0.25}, out[2] = {7, 7};
+    double A[3] = {1, 2, 3}, B[3] = {5, 6, 11};
+    const double *prm[1] = {ts}, *pts[2] = {A, B};
+    assert_int_equal(pc_eval(p, 0, 2, prm, NULL, pts, 2, out, NULL, NULL),
+                     PC_EINVAL);
+    assert_true(out[0] == 7 && out[1] == 7);
+    assert_int_equal(pc_eval(p, 0, 2, prm, NULL, pts, 3, out, NULL, NULL),
+                     PC_OK);
+    assert_true(out[0] == 3 && out[1] == 5);
+    pc_plan_free(p);
+    pc_scheme_free(s);
+}
+
 static void test_api_roundtrip(void **state)
 {
     (void)state;
@@ -472,6 +497,7 @@ int main(void)
         cmocka_unit_test(test_eval_scheme_errors_exit_1),
         cmocka_unit_test(test_emit_c_options),
         cmocka_unit_test(test_api_roundtrip),
+        cmocka_unit_test(test_api_coord_needs_dim),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
