@@ -11,6 +11,7 @@
 
 #include "compiler/format.h"
 #include "compiler/json.h"
+#include "compiler/mem.h"
 
 /* "key": ["A","B"] */
 static void json_names(FILE *out, const char *key, char *const *names, slong n)
@@ -39,6 +40,34 @@ static void json_weight(FILE *out, const char *key, const RatFun w,
     free(s);
 }
 
+/* , "assumes": ["t >= 0", "e < 1"]: the ends of declared ranges the
+ * output's derivation rested on (docs/language.md, "Declared ranges");
+ * nothing when there are none */
+static void json_assumes(FILE *out, const Derived *d, const DerivedOutput *o)
+{
+    int first = 1;
+    for (slong v = 0; o->assumed && v < d->nparams + d->nconsts; v++)
+        for (int upper = 0; upper < 2; upper++) {
+            if (!(o->assumed[v] & (upper ? 2 : 1)))
+                continue;
+            int open = d->bound_flags[v] & (upper ? DERIVED_BOUND_HI_OPEN
+                                                  : DERIVED_BOUND_LO_OPEN);
+            char *b = format_weight_k(d->bound + 2 * v + upper, &d->ring,
+                                      d->kernels);
+            char *txt = pc_xasprintf(
+                "%s %s %s",
+                v < d->nparams ? d->params[v] : d->consts[v - d->nparams],
+                upper ? (open ? "<" : "<=") : (open ? ">" : ">="), b);
+            fputs(first ? ", \"assumes\": [" : ", ", out);
+            json_string(out, txt);
+            first = 0;
+            free(txt);
+            free(b);
+        }
+    if (!first)
+        fputs("]", out);
+}
+
 /* {"name": "M", "kind": "point", "terms": {"A": "..", ..}} */
 static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
 {
@@ -47,15 +76,16 @@ static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
     fprintf(out, ", \"kind\": \"%s\", ", kind_name(o->kind));
     if (o->kind == KIND_SCALAR) {
         json_weight(out, "value", o->scalar, d);
+    } else {
+        fputs("\"terms\": {", out);
+        for (slong k = 0; k < o->eq->len; k++) {
+            fputs(k ? ", " : "", out);
+            json_weight(out, d->points[o->eq->terms[k].point], &o->w[k], d);
+        }
         fputs("}", out);
-        return;
     }
-    fputs("\"terms\": {", out);
-    for (slong k = 0; k < o->eq->len; k++) {
-        fputs(k ? ", " : "", out);
-        json_weight(out, d->points[o->eq->terms[k].point], &o->w[k], d);
-    }
-    fputs("}}", out);
+    json_assumes(out, d, o);
+    fputs("}", out);
 }
 
 void format_json(FILE *out, const Derived *d)

@@ -625,6 +625,8 @@ check "range: abs(t) = t on [0, 1]" python3 -c "
 import json
 o=json.load(open('$tmp/rng.json'))['outputs']
 assert o[0]['value']=='t', o
+assert o[0]['assumes']==['t >= 0'] and o[1]['assumes']==['t >= 0'], o
+assert 'assumes' not in o[2], o
 "
 "$PC" eval "$tmp/rng.pcs" --at A=0,0 --at B=1,0 --param t=-0.5,0.5,1.5 >"$tmp/rng.csv" 2>"$tmp/rng.err"
 check "range: outside exits 1" test $? -eq 1
