@@ -120,4 +120,48 @@ static void fmpq_set_double(fmpq_t r, double v)
     fmpz_clear(num);
 }
 
+#ifdef PC_DERIVE_H
+#include "compiler/kernel.h"
+
+/* 4 when a param or const in vals lies outside a declared bound that
+ * output o rests on (DerivedOutput.assumed: docs/language.md, "Declared
+ * ranges"), compared exactly (a bound like 2*pi by its enclosure) */
+static int outside_assumed(const Derived *d, const DerivedOutput *out,
+                           const fmpq *vals)
+{
+    int st = 0;
+    fmpq_t b, lo, hi;
+    fmpq_init(b);
+    fmpq_init(lo);
+    fmpq_init(hi);
+    for (slong v = 0; out->assumed && v < d->nparams + d->nconsts; v++)
+        for (int upper = 0; upper < 2; upper++) {
+            if (!(out->assumed[v] & (upper ? 2 : 1)))
+                continue;
+            int lo_open, hi_open;
+            const RatFunStruct *e = d->bound + 2 * v + upper;
+            if (ratfun_get_fmpq(b, e, &d->ring)) {
+            } else if (kernel_bounds(d->kernels, e, lo, &lo_open, hi,
+                                     &hi_open) == 3) { /* 2*pi */
+                fmpq_add(b, lo, hi);
+                fmpq_div_2exp(b, b, 1);
+            } else { /* in terms of the consts: [b, a] */
+                assert_int_equal(ratfun_evaluate_fmpq(b, e, vals, &d->ring),
+                                 0);
+            }
+            int c = fmpq_cmp(vals + v, b), f = d->bound_flags[v];
+            int open = f & (upper ? DERIVED_BOUND_HI_OPEN
+                                  : DERIVED_BOUND_LO_OPEN);
+            if (upper ? (c > 0 || (open && c == 0))
+                      : (c < 0 || (open && c == 0)))
+                st = 4;
+        }
+    fmpq_clear(hi);
+    fmpq_clear(lo);
+    fmpq_clear(b);
+    return st;
+}
+
+#endif
+
 #endif
