@@ -76,10 +76,10 @@ pc_scheme *pc_scheme_parse_opts(const char *name, const char *text,
     char *msg = NULL;
     size_t mlen = 0;
     DeriveOptions o = derive_options(opt);
-    FILE *m = open_memstream(&msg, &mlen);
+    FILE *m = pc_xopen_memstream(&msg, &mlen);
     Derived *d = derive_source_ex(name ? name : "<string>", text, len, m,
                                   NULL, &o);
-    fclose(m);
+    pc_xclose_memstream(m);
     return wrap(d, msg, diagnostics);
 }
 
@@ -95,9 +95,9 @@ pc_scheme *pc_scheme_load_opts(const char *path, const pc_options *opt,
     char *msg = NULL;
     size_t mlen = 0;
     DeriveOptions o = derive_options(opt);
-    FILE *m = open_memstream(&msg, &mlen);
+    FILE *m = pc_xopen_memstream(&msg, &mlen);
     Derived *d = derive_file_ex(path, m, NULL, &o);
-    fclose(m);
+    pc_xclose_memstream(m);
     return wrap(d, msg, diagnostics);
 }
 
@@ -227,7 +227,7 @@ char *pc_weight_str(const pc_scheme *s, int output, int point)
  * final), or NULL when ok */
 static void hand_over(FILE *m, char **msg, int ok, char **diagnostics)
 {
-    fclose(m);
+    pc_xclose_memstream(m);
     if (diagnostics && !ok) {
         *diagnostics = *msg;
         return;
@@ -241,7 +241,7 @@ pc_plan *pc_compile(const pc_scheme *s, char **diagnostics)
 {
     char *msg = NULL;
     size_t mlen = 0;
-    FILE *m = open_memstream(&msg, &mlen);
+    FILE *m = pc_xopen_memstream(&msg, &mlen);
     Plan *p = lower_derived(s->d, m);
     hand_over(m, &msg, p != NULL, diagnostics);
     if (!p)
@@ -267,9 +267,9 @@ char *pc_plan_dump(const pc_plan *p)
 {
     char *text = NULL;
     size_t len = 0;
-    FILE *m = open_memstream(&text, &len);
+    FILE *m = pc_xopen_memstream(&text, &len);
     plan_dump(m, p->p);
-    fclose(m);
+    pc_xclose_memstream(m);
     return text;
 }
 
@@ -306,7 +306,7 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
 {
     char *msg = NULL;
     size_t mlen = 0;
-    FILE *m = open_memstream(&msg, &mlen);
+    FILE *m = pc_xopen_memstream(&msg, &mlen);
     Plan *p = NULL;
     if (prefix && !emit_c_valid_prefix(prefix))
         fprintf(m, "pointcalc: prefix '%s' is not a usable C identifier\n",
@@ -322,9 +322,9 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
         return NULL;
     char *text = NULL;
     size_t len = 0;
-    FILE *c = open_memstream(&text, &len);
+    FILE *c = pc_xopen_memstream(&text, &len);
     emit_c(c, p, prefix, s->d->filename);
-    fclose(c);
+    pc_xclose_memstream(c);
     plan_free(p);
     return text;
 }

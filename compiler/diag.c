@@ -116,12 +116,12 @@ static void report(Diag *d, Span span, const char *what, const char *fmt,
         return; /* counted, never shown: the cap is far below */
     char *text = NULL;
     size_t len = 0;
-    FILE *m = open_memstream(&text, &len);
+    FILE *m = pc_xopen_memstream(&text, &len);
     FILE *out = d->out;
     d->out = m;
     emit(d, span, what, fmt, ap);
     d->out = out;
-    fclose(m);
+    pc_xclose_memstream(m);
     if (d->nmsgs == d->amsgs) {
         d->amsgs = d->amsgs ? 2 * d->amsgs : 8;
         d->msgs = pc_xrealloc(d->msgs, sizeof *d->msgs * (size_t)d->amsgs);

@@ -99,6 +99,23 @@ char *pc_xasprintf(const char *fmt, ...)
     return r;
 }
 
+FILE *pc_xopen_memstream(char **buf, size_t *len)
+{
+    FILE *f = open_memstream(buf, len);
+    if (!f)
+        pc_out_of_memory(MEM_SYSTEM);
+    return f;
+}
+
+void pc_xclose_memstream(FILE *f)
+{
+    /* a memory stream's only failure: growing its buffer (a write that
+     * failed sets the error flag, flushed by fclose) */
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad)
+        pc_out_of_memory(MEM_SYSTEM);
+}
+
 /* ---- counted allocators for GMP and FLINT -------------------------------- */
 
 /* The block sizes come from malloc_usable_size (glibc, valgrind and the

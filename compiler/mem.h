@@ -32,6 +32,13 @@ __attribute__((format(printf, 1, 2)))
 #endif
 char *pc_xasprintf(const char *fmt, ...);
 
+/* open_memstream and its fclose under the same policy: a stream the
+ * system cannot make, or whose buffer it cannot grow (fclose reports it),
+ * is out of memory, never a NULL stream or a truncated text */
+#include <stdio.h>
+FILE *pc_xopen_memstream(char **buf, size_t *len);
+void pc_xclose_memstream(FILE *f);
+
 /* why the handler was called */
 typedef enum MemFailure {
     MEM_SYSTEM, // the system refused the allocation

@@ -489,13 +489,9 @@ static void latex_steps(FILE *out, const Derived *d, slong origin)
 {
     char *body = NULL;
     size_t len = 0;
-    FILE *m = open_memstream(&body, &len);
-    if (!m) {
-        latex_steps_rows(out, d, origin);
-        return;
-    }
+    FILE *m = pc_xopen_memstream(&body, &len);
     latex_steps_rows(m, d, origin);
-    fclose(m);
+    pc_xclose_memstream(m);
     /* the rows between \begin{align*} and \end{align*} */
     static const char begin[] = "\\begin{align*}\n",
                       end[] = "\n\\end{align*}\n";
@@ -673,12 +669,9 @@ static void json_steps(FILE *out, const Derived *d)
 {
     char *obj = NULL;
     size_t len = 0;
-    FILE *mem = open_memstream(&obj, &len);
-    if (!mem)
-        pc_out_of_memory(MEM_SYSTEM);
+    FILE *mem = pc_xopen_memstream(&obj, &len);
     format_derived(mem, d, FMT_JSON, -1);
-    if (fclose(mem) != 0 || !obj)
-        pc_out_of_memory(MEM_SYSTEM);
+    pc_xclose_memstream(mem);
     while (len > 0 && (obj[len - 1] == '\n' || obj[len - 1] == '}'))
         if (obj[--len] == '}')
             break;

@@ -115,29 +115,13 @@ static int check_names(const EmitArgs *a, const char *file, FILE *err)
     return 0;
 }
 
-/* a memory stream and its end, under the one out-of-memory policy (the
- * only way they fail) */
-static FILE *memstream(char **text, size_t *len)
-{
-    FILE *m = open_memstream(text, len);
-    if (!m)
-        pc_out_of_memory(MEM_SYSTEM);
-    return m;
-}
-
-static void memstream_close(FILE *m)
-{
-    if (fclose(m) != 0)
-        pc_out_of_memory(MEM_SYSTEM);
-}
-
 /* the C (or the plan dump) and the header, then the files */
 static int write_outputs(const EmitArgs *a, const Plan *p, const Derived *d,
                          const char *file, FILE *out, FILE *err)
 {
     char *ctext = NULL, *htext = NULL;
     size_t clen = 0, hlen = 0;
-    FILE *m = memstream(&ctext, &clen);
+    FILE *m = pc_xopen_memstream(&ctext, &clen);
     if (a->dump)
         plan_dump(m, p);
     else if (a->collapsed) {
@@ -146,11 +130,11 @@ static int write_outputs(const EmitArgs *a, const Plan *p, const Derived *d,
         collapse_free(col);
     } else
         emit_c_ex(m, p, a->prefix, file, a->functions);
-    memstream_close(m);
+    pc_xclose_memstream(m);
     if (a->hpath) {
-        m = memstream(&htext, &hlen);
+        m = pc_xopen_memstream(&htext, &hlen);
         emit_c_header_ex(m, p, a->prefix, file, a->functions);
-        memstream_close(m);
+        pc_xclose_memstream(m);
     }
     int rc = a->hpath ? outfile_write(a->hpath, htext, hlen, out, err) : 0;
     if (rc == 0)

@@ -810,23 +810,23 @@ int cli_plot(int argc, char **argv, FILE *out, FILE *err)
     s.nmarks = nm;
     char *title = NULL;
     size_t tlen = 0;
-    FILE *tm = open_memstream(&title, &tlen);
+    FILE *tm = pc_xopen_memstream(&title, &tlen);
     pc_fprintf(tm, "%s: ", p->name);
     for (int j = 0; j < r.nsel; j++)
         fprintf(tm, "%s%s", j ? ", " : "", p->outputs[r.sel[j]].name);
     pc_fprintf(tm, " over %s in [%.6g, %.6g]", p->params[r.sweep], r.lo, r.hi);
     if (r.have_at)
         pc_fprintf(tm, ", construction at %s = %.6g", p->params[r.sweep], r.at);
-    fclose(tm);
+    pc_xclose_memstream(tm);
     s.title = title;
 
     char *svg = NULL;
     size_t len = 0;
-    FILE *m = open_memstream(&svg, &len);
+    FILE *m = pc_xopen_memstream(&svg, &len);
     PlotStats st;
     memset(&st, 0, sizeof st);
     plot_svg(m, &s, &st);
-    fclose(m);
+    pc_xclose_memstream(m);
     rc = outfile_write(a.opath, svg, len, out, err);
     if (rc == 0 && st.samples == 0)
         fprintf(err, "pointcalc: plot: nothing of the curves is drawable "
