@@ -42,7 +42,7 @@ static const char *const tokens[] = {
     "bezier(", "point ", "param ", "const ", "output ", "scheme ", "in",
     "sin(", "pi", "unknown ", "solve ", " for ", "\t", "\xff", "\0", "$",
     "1/0", "t^-3", "A - A", "(t-t)", "sqrt(", "cos(", "exp(", "ln(",
-    "^(1/2)", " > 0", "dist(", "dot(", "angle(",
+    "^(1/2)", " > 0", "dist(", "dot(", "angle(", "coord(", ", 2)",
 };
 
 /* checks one input: success XOR errors, nothing else */
