@@ -530,7 +530,8 @@ static void instruction(const Ctx *C, int r, const char *indent)
                 C->N->pt[x->a], C->N->pt[x->b]);
         break;
     case PLAN_COORD: /* coord(P, k): NaN when dim < k (docs/codegen.md) */
-        fprintf(out, "(dim > %d ? %s[%d] : (double)NAN)", x->b, C->N->pt[x->a], x->b);
+        fprintf(out, "(dim > %d ? %s[%d] : (double)NAN)", x->b,
+                C->N->pt[x->a], x->b);
         break;
     case PLAN_ATAN2:
         fputs("atan2(", out);

@@ -456,6 +456,17 @@ static void poly_interval(const Kernels *K, const fmpz_mpoly_t P, QI *res,
     flint_free(e);
 }
 
+/* the sign a polynomial's interval proves */
+static int qi_sign_poly(const Kernels *K, const fmpz_mpoly_t P, Touched *t)
+{
+    QI x;
+    qi_init(&x);
+    poly_interval(K, P, &x, t);
+    int s = qi_sign(&x);
+    qi_clear(&x);
+    return s;
+}
+
 /* the sign of a polynomial: its interval, else its factors' */
 static int poly_sign(const Kernels *K, const fmpz_mpoly_t P, Touched *t,
                      int depth)
@@ -469,11 +480,22 @@ static int poly_sign(const Kernels *K, const fmpz_mpoly_t P, Touched *t,
     int s = qi_sign(&x);
     qi_clear(&x);
     if (s || depth > 0 || P->length < 2 || P->length > 64 ||
+        fmpz_mpoly_total_degree_si(P, r->ctx) < 2 ||
         !ring_factor_affordable(P, r))
         return s;
+    /* the square-free factors first (gcds: cheap), the irreducible ones
+     * only where those leave a factor of at most 16 terms undecided */
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
-    if (fmpz_mpoly_factor(f, P, r->ctx) && f->num > 1) {
+    int ok = ring_factor_compact(f, P, 0, r);
+    for (slong i = 0; ok && i < f->num; i++)
+        if (f->poly[i].length <= 16 &&
+            fmpz_mpoly_total_degree_si(f->poly + i, r->ctx) >= 2 &&
+            qi_sign_poly(K, f->poly + i, t) == 0) {
+            ok = ring_factor_compact(f, P, 1, r);
+            break;
+        }
+    if (ok && f->num > 1) {
         s = fmpz_sgn(f->constant) * 2;
         for (slong i = 0; i < f->num && s; i++) {
             int fs = poly_sign(K, f->poly + i, t, depth + 1);

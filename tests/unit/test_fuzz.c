@@ -43,7 +43,7 @@ static const char *const tokens[] = {
     "sin(", "pi", "unknown ", "solve ", " for ", "\t", "\xff", "\0", "$",
     "1/0", "t^-3", "A - A", "(t-t)", "sqrt(", "cos(", "exp(", "ln(",
     "^(1/2)", " > 0", "dist(", "dot(", "angle(", " in (0, 1)", " < 1",
-    ">= 2", "abs(", "sign(",
+    ">= 2", "abs(", "sign(", "coord(", ", 2)",
 };
 
 /* checks one input: success XOR errors, nothing else */
