@@ -1255,7 +1255,7 @@ static int sqrt_poly(Kernels *K, RatFun res, const RatFun x)
         const fmpz_mpoly_struct *P = part ? x->den : x->num;
         fmpz_mpoly_factor_t f;
         fmpz_mpoly_factor_init(f, r->ctx);
-        if (!fmpz_mpoly_factor_squarefree(f, P, r->ctx)) {
+        if (!ring_factor_compact(f, P, 0, r)) {
             /* cannot split: keep the polynomial whole */
             fmpz_mpoly_factor_clear(f, r->ctx);
             mul_poly_pow(rest, P, part ? -1 : 1, r);
