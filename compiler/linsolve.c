@@ -23,6 +23,25 @@ static int normal(LinNormal *nf, RatFunStruct *x)
     return nf->err ? -1 : 0;
 }
 
+slong linsolve_pivot(RatFunStruct *const *row, slong from, slong m, slong n,
+                     const char *used, slong *col, const Ring *r)
+{
+    slong bi = -1, blen = 0;
+    for (slong i = from; i < m; i++)
+        for (slong j = 0; j < n; j++) {
+            slong len;
+            if (used[j] || ratfun_is_zero(row[i] + j, r))
+                continue;
+            len = ratfun_length(row[i] + j, r);
+            if (bi < 0 || len < blen) {
+                bi = i;
+                *col = j;
+                blen = len;
+            }
+        }
+    return bi;
+}
+
 LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
                         const RatFunStruct *b, slong m, slong n, const Ring *r)
 {
@@ -57,21 +76,7 @@ LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank,
     }
 
     while (rk < m) {
-        slong bi = -1, bj = -1, blen = 0;
-
-        /* simplest non-zero pivot in rows rk.., unused columns */
-        for (slong i = rk; i < m; i++)
-            for (slong j = 0; j < n; j++) {
-                slong len;
-                if (used[j] || ratfun_is_zero(row[i] + j, r))
-                    continue;
-                len = ratfun_length(row[i] + j, r);
-                if (bi < 0 || len < blen) {
-                    bi = i;
-                    bj = j;
-                    blen = len;
-                }
-            }
+        slong bj, bi = linsolve_pivot(row, rk, m, n, used, &bj, r);
         if (bi < 0)
             break;
         if (bi != rk) {

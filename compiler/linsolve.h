@@ -45,4 +45,10 @@ LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank,
                            const RatFunStruct *a, const RatFunStruct *b,
                            slong m, slong n, LinNormal *nf, const Ring *r);
 
+/* The simplest non-zero pivot (fewest terms, ratfun_length) among rows
+ * from..m-1 and the columns 0..n-1 not used: its row, and its column in
+ * *col; -1 when every such entry is zero.  row[i] is row i's n entries. */
+slong linsolve_pivot(RatFunStruct *const *row, slong from, slong m, slong n,
+                     const char *used, slong *col, const Ring *r);
+
 #endif

@@ -18,6 +18,8 @@ typedef struct System {
     fmpz_mpoly_struct *a;         // neq * width entries
     fmpz_mpoly_struct **row;      // row pointers (rows are swapped, not copied)
     slong *orig;                  // orig[i]: the equation now in row i
+    char *nonzero;                // after elimination: row i's known part
+                                  // is not zero (classify)
 } System;
 
 static slong find_col(const slong *cols, slong n, slong point)
@@ -61,6 +63,7 @@ static void system_init(System *S, const PointEq *eqs, slong neq,
                       (size_t)FLINT_MAX(neq * S->width, 1));
     S->row = pc_xmalloc(sizeof(fmpz_mpoly_struct *) * (size_t)FLINT_MAX(neq, 1));
     S->orig = pc_xmalloc(sizeof(slong) * (size_t)FLINT_MAX(neq, 1));
+    S->nonzero = pc_xcalloc((size_t)FLINT_MAX(neq, 1), 1);
     for (slong e = 0; e < neq; e++) {
         S->row[e] = S->a + e * S->width;
         S->orig[e] = e;
@@ -84,6 +87,7 @@ static void system_clear(System *S, const Ring *r)
     free(S->a);
     free(S->row);
     free(S->orig);
+    free(S->nonzero);
     free(S->known);
 }
 
@@ -181,6 +185,38 @@ static int past(double deadline)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec > deadline;
 }
 
+/* After an elimination of rank `rank` (used[j]: unknown j has a pivot;
+ * S->nonzero[i] for rows rank..: row i, which has no unknown left, says 0 =
+ * a non-zero known part): SOLVE_OK, SOLVE_SINGULAR (an unknown without a
+ * pivot) or SOLVE_INCONSISTENT (a row 0 = non-zero), with the unknowns left
+ * undetermined and the equations that follow from (or contradict) the
+ * others marked by their original index. */
+static SolveStatus classify(const System *S, slong rank, const char *used,
+                            char *undetermined, char *dependent)
+{
+    slong n = S->nunk;
+    SolveStatus st = rank < n ? SOLVE_SINGULAR : SOLVE_OK;
+    if (undetermined)
+        memset(undetermined, 0, (size_t)n);
+    if (dependent)
+        memset(dependent, 0, (size_t)S->neq);
+    if (rank >= S->neq && rank >= n)
+        return st;
+    for (slong i = rank; i < S->neq; i++) {
+        if (S->nonzero[i] && st != SOLVE_INCONSISTENT) {
+            st = SOLVE_INCONSISTENT;
+            if (dependent)
+                memset(dependent, 0, (size_t)S->neq);
+        }
+        if (dependent && (S->nonzero[i] || st != SOLVE_INCONSISTENT))
+            dependent[S->orig[i]] = 1;
+    }
+    if (undetermined)
+        for (slong j = 0; j < n; j++)
+            undetermined[j] = !used[j];
+    return st;
+}
+
 static SolveStatus solve_general(PointEq *x, System *S, char *undetermined,
                                  char *dependent, double deadline,
                                  const Ring *r)
@@ -252,32 +288,15 @@ static SolveStatus solve_general(PointEq *x, System *S, char *undetermined,
         rank++;
     }
 
-    if (undetermined)
-        memset(undetermined, 0, (size_t)n);
-    if (dependent)
-        memset(dependent, 0, (size_t)S->neq);
-    if (rank < S->neq || rank < n) {
-        /* rows rank.. have no unknown left: each is 0 = its known part */
-        st = rank < n ? SOLVE_SINGULAR : SOLVE_OK;
-        for (slong i = rank; i < S->neq; i++) {
-            int nonzero = 0;
-            for (slong c = n; c < w; c++)
-                if (!fmpz_mpoly_is_zero(S->row[i] + c, r->ctx))
-                    nonzero = 1;
-            if (nonzero && st != SOLVE_INCONSISTENT) {
-                st = SOLVE_INCONSISTENT;
-                if (dependent)
-                    memset(dependent, 0, (size_t)S->neq);
-            }
-            if (dependent && (nonzero || st != SOLVE_INCONSISTENT))
-                dependent[S->orig[i]] = 1;
-        }
-        if (undetermined)
-            for (slong j = 0; j < n; j++)
-                undetermined[j] = !used[j];
-        if (st != SOLVE_OK)
-            goto done;
+    for (slong i = rank; i < S->neq; i++) {
+        S->nonzero[i] = 0;
+        for (slong c = n; c < w; c++)
+            if (!fmpz_mpoly_is_zero(S->row[i] + c, r->ctx))
+                S->nonzero[i] = 1;
     }
+    st = classify(S, rank, used, undetermined, dependent);
+    if (st != SOLVE_OK)
+        goto done;
     /* row i: prev * X_pivcol[i] + sum_k R[i][k] K_k = 0 */
     for (slong i = 0; i < rank; i++)
         set_solution(x[pivcol[i]], S, S->row[i] + n, prev, r);
@@ -321,19 +340,7 @@ static SolveStatus solve_normal(PointEq *x, System *S, char *undetermined,
         }
     }
     while (st == SOLVE_OK && rank < m) {
-        slong bi = -1, bj = -1, blen = 0;
-        for (slong i = rank; i < m; i++)
-            for (slong j = 0; j < n; j++) {
-                slong len;
-                if (used[j] || ratfun_is_zero(row[i] + j, r))
-                    continue;
-                len = ratfun_length(row[i] + j, r);
-                if (bi < 0 || len < blen) {
-                    bi = i;
-                    bj = j;
-                    blen = len;
-                }
-            }
+        slong bj, bi = linsolve_pivot(row, rank, m, n, used, &bj, r);
         if (bi < 0)
             break;
         if (bi != rank) {
@@ -376,32 +383,15 @@ static SolveStatus solve_normal(PointEq *x, System *S, char *undetermined,
     }
     if (st != SOLVE_OK)
         goto done;
-    if (undetermined)
-        memset(undetermined, 0, (size_t)n);
-    if (dependent)
-        memset(dependent, 0, (size_t)m);
-    if (rank < m || rank < n) {
-        /* rows rank.. have no unknown left: each is 0 = its known part */
-        st = rank < n ? SOLVE_SINGULAR : SOLVE_OK;
-        for (slong i = rank; i < m; i++) {
-            int nonzero = 0;
-            for (slong c = n; c < w; c++)
-                if (!ratfun_is_zero(row[i] + c, r))
-                    nonzero = 1;
-            if (nonzero && st != SOLVE_INCONSISTENT) {
-                st = SOLVE_INCONSISTENT;
-                if (dependent)
-                    memset(dependent, 0, (size_t)m);
-            }
-            if (dependent && (nonzero || st != SOLVE_INCONSISTENT))
-                dependent[S->orig[i]] = 1;
-        }
-        if (undetermined)
-            for (slong j = 0; j < n; j++)
-                undetermined[j] = !used[j];
-        if (st != SOLVE_OK)
-            goto done;
+    for (slong i = rank; i < m; i++) {
+        S->nonzero[i] = 0;
+        for (slong c = n; c < w; c++)
+            if (!ratfun_is_zero(row[i] + c, r))
+                S->nonzero[i] = 1;
     }
+    st = classify(S, rank, used, undetermined, dependent);
+    if (st != SOLVE_OK)
+        goto done;
     for (slong i = 0; i < rank; i++) {
         RatFunStruct *wts = row[i] + n;
         for (slong k = 0; k < S->nknown; k++)
