@@ -2,7 +2,11 @@
  * budget.c - the hard limits of the command line (budget.h).
  *
  * The current statement is kept in two slots and published by flipping an
- * index, so a signal handler never reads a half-written one.
+ * index, so a signal handler never reads a half-written one.  Both are
+ * per thread: threads deriving distinct schemes never share them, and the
+ * out-of-memory handler (which runs on the allocating thread) reports the
+ * statement of the derivation that ran out.  The timer's SIGALRM is the
+ * command line's, which has one thread.
  */
 #include "compiler/budget.h"
 
@@ -25,8 +29,8 @@ typedef struct Where {
     Span span;
 } Where;
 
-static Where slots[2];
-static volatile sig_atomic_t cur = 0;
+static _Thread_local Where slots[2];
+static _Thread_local volatile sig_atomic_t cur = 0;
 static char time_msg[160], mem_msg[160], oom_msg[96];
 
 void budget_statement(const Source *src, Span span)

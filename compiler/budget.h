@@ -28,8 +28,8 @@
 #define BUDGET_DEFAULT_SECONDS 60.0
 #define BUDGET_DEFAULT_MEMORY ((size_t)2 << 30) /* 2 GiB */
 
-/* The statement being derived (src NULL: none).  src must stay valid until
- * the next call. */
+/* The statement being derived by this thread (src NULL: none).  src must
+ * stay valid until the next call. */
 void budget_statement(const Source *src, Span span);
 
 /* Command line only (process-wide): a timer of max_seconds (0: none) and a
