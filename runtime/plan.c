@@ -43,18 +43,20 @@ static const struct {
 #undef PLAN_INFO
 };
 
+/* the names in lower case, as the dumps write them: a constant table (no
+ * state to build, so any thread may read it) kept in the order of PLAN_OPS
+ * by the assertion below and by test_plan's dumps */
+static const char *const op_lower[] = {
+    "const", "input", "neg",  "add",    "sub",  "mul",   "div",
+    "powi",  "pole",  "fn",   "atan2",  "domain", "dist", "coord",
+};
+_Static_assert(sizeof op_lower / sizeof *op_lower == PLAN_NOPS,
+               "op_lower: one name per PLAN_OPS entry");
+
 const char *plan_op_name(PlanOp op)
 {
-    static char lower[PLAN_NOPS][16];
     assert(op < PLAN_NOPS);
-    if (!lower[op][0]) {
-        const char *s = op_info[op].name;
-        size_t i;
-        for (i = 0; s[i] && i < sizeof lower[op] - 1; i++)
-            lower[op][i] = (char)(s[i] - 'A' + 'a');
-        lower[op][i] = '\0';
-    }
-    return lower[op];
+    return op_lower[op];
 }
 
 int plan_op_nargs(PlanOp op)
