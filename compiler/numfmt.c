@@ -1,21 +1,29 @@
 /*
  * numfmt.c - printing and reading numbers in the C locale (numfmt.h).
  *
- * POSIX.1-2008 per-thread locales: the C locale is made once and put in
- * force around each call with uselocale, then the caller's is restored;
- * nothing process-wide is touched, so this is safe in a library.
+ * POSIX.1-2008 per-thread locales: the C locale is made once
+ * (pthread_once: any thread may be the first) and put in force around each
+ * call with uselocale, then the caller's is restored; nothing process-wide
+ * is touched, so this is safe in a library and from several threads.
  */
 #include "compiler/numfmt.h"
 
 #include <locale.h>
+#include <pthread.h>
 #include <stdlib.h>
+
+static locale_t c_loc = (locale_t)0;
+static pthread_once_t c_once = PTHREAD_ONCE_INIT;
+
+static void make_c_locale(void)
+{
+    c_loc = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+}
 
 static locale_t c_locale(void)
 {
-    static locale_t c = (locale_t)0;
-    if (c == (locale_t)0)
-        c = newlocale(LC_ALL_MASK, "C", (locale_t)0);
-    return c;
+    pthread_once(&c_once, make_c_locale);
+    return c_loc;
 }
 
 /* the C locale in force until restore(old) */
