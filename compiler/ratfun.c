@@ -17,6 +17,7 @@
  * Results are computed into fresh polynomials when an input aliases the
  * result, then swapped in; FLINT objects are never struct-copied.
  */
+#define _DEFAULT_SOURCE // lgamma_r (lgamma writes the process-wide signgam)
 #include "compiler/ratfun.h"
 
 #include <stdlib.h>
@@ -1329,10 +1330,14 @@ static double prod_bits(const Shape *a, const Shape *b, slong nv)
     return lterms + log2(a->bits + b->bits + shorter + 1);
 }
 
-/* log2 of binomial(n, k) */
+/* log2 of binomial(n, k) (lgamma_r: lgamma sets the process-wide signgam,
+ * a data race between threads) */
 static double log2_binomial(double n, double k)
 {
-    return (lgamma(n + 1) - lgamma(k + 1) - lgamma(n - k + 1)) / log(2.0);
+    int sg;
+    return (lgamma_r(n + 1, &sg) - lgamma_r(k + 1, &sg) -
+            lgamma_r(n - k + 1, &sg)) /
+           log(2.0);
 }
 
 /* log2 of the number of terms of a^e at most: the multinomial count
