@@ -363,9 +363,11 @@ static void mark_row(char *need, const fmpz_mpoly_struct **G, slong i,
 
 /* reduce_side's threshold: below it the gcd that finds the multipliers
  * costs more than the products it saves (FLINT's gcd has a large constant
- * cost); construct_meet_set_reduce_min_terms changes it for tests */
-static slong meet_reduce_min_terms = MEET_REDUCE_MIN_TERMS;
-static slong meet_reductions, meet_fast;
+ * cost); construct_meet_set_reduce_min_terms changes it for tests.  The
+ * threshold and the statistics are the calling thread's: threads meeting
+ * distinct flats share nothing. */
+static _Thread_local slong meet_reduce_min_terms = MEET_REDUCE_MIN_TERMS;
+static _Thread_local slong meet_reductions, meet_fast;
 
 void construct_meet_set_reduce_min_terms(slong n)
 {

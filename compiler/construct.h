@@ -66,7 +66,7 @@ MeetStatus construct_meet_general_nf(PointEq res, const PointEq *a, slong na,
  * takes the tests' small flats down that path.  Results are the same
  * whatever n is.  construct_meet_stats: how many meets the fraction-free
  * form has solved so far (*fast) and how many columns it reduced
- * (*reduced).  Neither is thread-safe. */
+ * (*reduced).  Both are the calling thread's (_Thread_local). */
 void construct_meet_set_reduce_min_terms(slong n);
 void construct_meet_stats(slong *fast, slong *reduced);
 
