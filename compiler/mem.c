@@ -8,7 +8,9 @@
 
 #include <gmp.h>
 #include <malloc.h>
+#include <pthread.h>
 #include <stdarg.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,17 +18,20 @@
 
 #include <flint/flint.h>
 
+/* set before the threads (process-wide settings) */
 static MemOomHandler handler;
 static void *handler_arg;
-static void *reserve;
-static size_t limit, in_use, peak;
+/* the reserve: taken by one thread only (atomic exchange) */
+static _Atomic(void *) reserve;
+static _Atomic size_t limit;
 
 void mem_set_oom_handler(MemOomHandler fn, void *arg)
 {
     handler = fn;
     handler_arg = arg;
-    if (reserve == NULL)
-        reserve = malloc(64 * 1024);
+    void *r = malloc(64 * 1024), *none = NULL;
+    if (!atomic_compare_exchange_strong(&reserve, &none, r))
+        free(r);
 }
 
 _Noreturn void pc_out_of_memory(MemFailure why)
@@ -34,8 +39,7 @@ _Noreturn void pc_out_of_memory(MemFailure why)
     static const char msg[] = "pointcalc: error: out of memory\n";
     static const char budget[] =
         "pointcalc: error: the memory budget ran out\n";
-    free(reserve);
-    reserve = NULL;
+    free(atomic_exchange(&reserve, NULL));
     if (handler != NULL)
         handler(why, handler_arg);
     if (why == MEM_BUDGET) {
@@ -120,25 +124,58 @@ void pc_xclose_memstream(FILE *f)
 
 /* The block sizes come from malloc_usable_size (glibc, valgrind and the
  * sanitizers all provide it), so the pointers handed out are malloc's own:
- * leak checkers see ordinary blocks. */
+ * leak checkers see ordinary blocks.
+ *
+ * The counters are atomic: any thread may allocate.  A block is counted
+ * with its usable size when it is made and the same size when it is
+ * freed, so in_use returns exactly to where it was once everything made
+ * since is freed.  (It used to saturate at 0 and was updated without
+ * atomics: lost updates between threads, and a block of GMP's made before
+ * mem_use_for_gmp_flint and freed after it clamping the count, left it
+ * megabytes above what was in use, towards a spurious "memory budget ran
+ * out".)  A block made before mem_use_for_gmp_flint and freed after it
+ * takes its size off: in_use is signed and only ever too low then, which
+ * mem_in_use shows as 0. */
+static _Atomic long long in_use, peak;
 
-/* saturating: a block allocated before mem_use_for_gmp_flint and freed
- * after it was never counted */
-static void count(size_t add, size_t sub)
+/* in_use += n (either sign), and the peak */
+static void count(long long n)
 {
-    in_use = in_use + add > sub ? in_use + add - sub : 0;
-    if (in_use > peak)
-        peak = in_use;
+    long long now = atomic_fetch_add_explicit(&in_use, n,
+                                              memory_order_relaxed) +
+                    n;
+    long long p = atomic_load_explicit(&peak, memory_order_relaxed);
+    while (now > p && !atomic_compare_exchange_weak_explicit(
+                          &peak, &p, now, memory_order_relaxed,
+                          memory_order_relaxed))
+        ;
+}
+
+/* counts n bytes about to be allocated; out of memory (the budget) when
+ * they do not fit: the check and the count are one atomic step, so
+ * threads allocating at once cannot together exceed the budget */
+static void charge(size_t n)
+{
+    size_t lim = atomic_load_explicit(&limit, memory_order_relaxed);
+    if (lim && n > lim)
+        pc_out_of_memory(MEM_BUDGET);
+    long long now = atomic_fetch_add_explicit(&in_use, (long long)n,
+                                              memory_order_relaxed) +
+                    (long long)n;
+    if (lim && now > (long long)lim) {
+        count(-(long long)n);
+        pc_out_of_memory(MEM_BUDGET);
+    }
+    count(0); // the peak
 }
 
 static void *c_alloc(size_t n)
 {
-    if (limit && (n > limit || in_use > limit - n))
-        pc_out_of_memory(MEM_BUDGET);
+    charge(n);
     void *p = malloc(n ? n : 1);
     if (p == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    count(malloc_usable_size(p), 0);
+    count((long long)malloc_usable_size(p) - (long long)n);
     return p;
 }
 
@@ -146,7 +183,7 @@ static void c_free(void *p)
 {
     if (p == NULL)
         return;
-    count(0, malloc_usable_size(p));
+    count(-(long long)malloc_usable_size(p));
     free(p);
 }
 
@@ -155,12 +192,13 @@ static void *c_realloc(void *p, size_t n)
     if (p == NULL)
         return c_alloc(n);
     size_t old = malloc_usable_size(p);
-    if (limit && n > old && (n - old > limit || in_use > limit - (n - old)))
-        pc_out_of_memory(MEM_BUDGET);
+    size_t more = n > old ? n - old : 0;
+    charge(more);
     void *q = realloc(p, n ? n : 1);
     if (q == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    count(malloc_usable_size(q), old);
+    count((long long)malloc_usable_size(q) - (long long)old -
+          (long long)more);
     return q;
 }
 
@@ -168,12 +206,11 @@ static void *c_calloc(size_t n, size_t size)
 {
     if (size != 0 && n > (size_t)-1 / size)
         pc_out_of_memory(MEM_SYSTEM);
-    if (limit && (n * size > limit || in_use > limit - n * size))
-        pc_out_of_memory(MEM_BUDGET);
+    charge(n * size);
     void *p = calloc(n ? n : 1, size ? size : 1);
     if (p == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    count(malloc_usable_size(p), 0);
+    count((long long)malloc_usable_size(p) - (long long)(n * size));
     return p;
 }
 
@@ -189,34 +226,39 @@ static void gmp_free(void *q, size_t n)
     c_free(q);
 }
 
-void mem_use_for_gmp_flint(void)
+static void use_for_gmp_flint(void)
 {
-    static int done;
-    if (done)
-        return;
-    done = 1;
-    if (reserve == NULL)
-        reserve = malloc(64 * 1024);
+    void *r = malloc(64 * 1024), *none = NULL;
+    if (!atomic_compare_exchange_strong(&reserve, &none, r))
+        free(r);
     mp_set_memory_functions(c_alloc, gmp_realloc, gmp_free);
     __flint_set_memory_functions(c_alloc, c_calloc, c_realloc, c_free);
 }
 
+void mem_use_for_gmp_flint(void)
+{
+    static pthread_once_t once = PTHREAD_ONCE_INIT;
+    pthread_once(&once, use_for_gmp_flint);
+}
+
 void mem_set_limit(size_t bytes)
 {
-    limit = bytes;
+    atomic_store_explicit(&limit, bytes, memory_order_relaxed);
 }
 
 size_t mem_limit(void)
 {
-    return limit;
+    return atomic_load_explicit(&limit, memory_order_relaxed);
 }
 
 size_t mem_in_use(void)
 {
-    return in_use;
+    long long n = atomic_load_explicit(&in_use, memory_order_relaxed);
+    return n > 0 ? (size_t)n : 0;
 }
 
 size_t mem_peak(void)
 {
-    return peak;
+    long long n = atomic_load_explicit(&peak, memory_order_relaxed);
+    return n > 0 ? (size_t)n : 0;
 }
