@@ -137,6 +137,11 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics);
 /* Releases FLINT's global caches; call once before exit for a clean
  * valgrind report. */
 void pc_cleanup(void);
+/* Releases the calling thread's FLINT caches (FLINT keeps a cache of
+ * integers per thread, which a thread's exit does not free): a thread
+ * other than the main one calls it when it is done with the library,
+ * before it exits.  The main thread's are released by pc_cleanup. */
+void pc_thread_cleanup(void);
 
 #ifdef __cplusplus
 }

@@ -333,3 +333,8 @@ void pc_cleanup(void)
 {
     flint_cleanup_master();
 }
+
+void pc_thread_cleanup(void)
+{
+    flint_cleanup();
+}
