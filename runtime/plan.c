@@ -47,8 +47,8 @@ static const struct {
  * state to build, so any thread may read it) kept in the order of PLAN_OPS
  * by the assertion below and by test_plan's dumps */
 static const char *const op_lower[] = {
-    "const", "input", "neg",  "add",    "sub",  "mul",   "div",
-    "powi",  "pole",  "fn",   "atan2",  "domain", "dist", "coord",
+    "const", "input", "neg", "add",   "sub",    "mul",  "div",
+    "powi",  "pole",  "fn",  "atan2", "domain", "dist", "coord",
 };
 _Static_assert(sizeof op_lower / sizeof *op_lower == PLAN_NOPS,
                "op_lower: one name per PLAN_OPS entry");
