@@ -141,13 +141,12 @@ static _Atomic long long in_use, peak;
 /* in_use += n (either sign), and the peak */
 static void count(long long n)
 {
-    long long now = atomic_fetch_add_explicit(&in_use, n,
-                                              memory_order_relaxed) +
-                    n;
+    long long now =
+        atomic_fetch_add_explicit(&in_use, n, memory_order_relaxed) + n;
     long long p = atomic_load_explicit(&peak, memory_order_relaxed);
-    while (now > p && !atomic_compare_exchange_weak_explicit(
-                          &peak, &p, now, memory_order_relaxed,
-                          memory_order_relaxed))
+    while (now > p &&
+           !atomic_compare_exchange_weak_explicit(
+               &peak, &p, now, memory_order_relaxed, memory_order_relaxed))
         ;
 }
 
@@ -159,9 +158,9 @@ static void charge(size_t n)
     size_t lim = atomic_load_explicit(&limit, memory_order_relaxed);
     if (lim && n > lim)
         pc_out_of_memory(MEM_BUDGET);
-    long long now = atomic_fetch_add_explicit(&in_use, (long long)n,
-                                              memory_order_relaxed) +
-                    (long long)n;
+    long long now =
+        atomic_fetch_add_explicit(&in_use, (long long)n, memory_order_relaxed) +
+        (long long)n;
     if (lim && now > (long long)lim) {
         count(-(long long)n);
         pc_out_of_memory(MEM_BUDGET);
@@ -197,8 +196,7 @@ static void *c_realloc(void *p, size_t n)
     void *q = realloc(p, n ? n : 1);
     if (q == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    count((long long)malloc_usable_size(q) - (long long)old -
-          (long long)more);
+    count((long long)malloc_usable_size(q) - (long long)old - (long long)more);
     return q;
 }
 
