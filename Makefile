@@ -2,6 +2,7 @@
 #   make          build/pointcalc and build/libpointcalc.a
 #   make check    build and run every test (unit, schemes, codegen, fuzz-lite)
 #   make asan     the same tests built with AddressSanitizer + UBSan (build-asan/)
+#   make tsan     the threaded test under ThreadSanitizer (build-tsan/)
 #   make valgrind the same tests under valgrind's memcheck
 #   make fuzz     libFuzzer on derive_source for FUZZ_SECONDS (clang)
 #   make bench    in-process benchmarks (bench/)
@@ -20,7 +21,7 @@ WARN    = -Wall -Wextra -Wshadow -Wundef -Wwrite-strings -Wstrict-prototypes \
           -Wmissing-prototypes -Wold-style-definition
 ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) $(CFLAGS) $(SAN) \
              -I. -I$(B) -MMD -MP
-LDLIBS  = -lflint -lgmp -lm
+LDLIBS  = -lflint -lgmp -lm -lpthread
 TEST_LDLIBS = -lcmocka $(LDLIBS)
 # pointcalc itself links a static FLINT when .ci/flint-static has built one
 # (`make flint-static`): it then starts without loading libflint.so and what
@@ -116,6 +117,13 @@ asan:
 	PC_FUZZ_MUTATIONS=$${PC_FUZZ_MUTATIONS:-150} $(MAKE) B=build-asan OPT=-O1 \
 	  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" check
 
+# the library from several threads at once (tests/unit/test_threads.c)
+# under ThreadSanitizer: any data race fails it
+tsan:
+	$(MAKE) B=build-tsan OPT=-O1 \
+	  SAN="-fsanitize=thread -fno-omit-frame-pointer" build-tsan/tests/test_threads
+	TSAN_OPTIONS="halt_on_error=1 $${TSAN_OPTIONS:-}" build-tsan/tests/test_threads
+
 # the same suite under valgrind (fewer fuzz mutations: valgrind is ~30x slower)
 VALGRIND = valgrind -q --error-exitcode=1 --leak-check=full \
            --errors-for-leak-kinds=definite,indirect
@@ -189,7 +197,7 @@ flint-static:
 	.ci/flint-static
 
 clean:
-	rm -rf build build-asan build-fuzz
+	rm -rf build build-asan build-tsan build-fuzz
 
-.PHONY: all tests check asan valgrind fuzz bench figures format clean flint-static
+.PHONY: all tests check asan tsan valgrind fuzz bench figures format clean flint-static
 -include $(shell find $(B) -name '*.d' 2>/dev/null)
