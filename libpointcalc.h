@@ -11,7 +11,9 @@
  * printed: diagnostics come back as text.  Strings returned by the library
  * are malloc'ed; release them with free().  Objects are independent of each
  * other (a plan outlives its scheme); none is thread-safe to share while
- * being freed, but distinct objects may be used from distinct threads.
+ * being freed, but distinct objects may be used from distinct threads at
+ * once (docs/api.md, "Threads": pc_use_memory_budget before the threads,
+ * pc_thread_cleanup before a thread exits, pc_cleanup at the end).
  */
 #ifndef LIBPOINTCALC_H
 #define LIBPOINTCALC_H
