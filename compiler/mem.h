@@ -55,10 +55,14 @@ typedef void (*MemOomHandler)(MemFailure why, void *arg);
 void mem_set_oom_handler(MemOomHandler fn, void *arg);
 
 /* Routes GMP's (mp_set_memory_functions) and FLINT's allocators through
- * this policy, with accounting.  Idempotent. */
+ * this policy, with accounting.  Idempotent (pthread_once); call it before
+ * other threads use GMP or FLINT. */
 void mem_use_for_gmp_flint(void);
 /* The memory budget in bytes for what mem_use_for_gmp_flint counts (0: no
- * budget), and the bytes those allocators hold now and at most so far. */
+ * budget), and the bytes those allocators hold now and at most so far.
+ * The counters are atomic and shared by all threads, and exact: what is
+ * allocated after a reading and freed again leaves mem_in_use where it
+ * was.  Threads allocating at once cannot together exceed the budget. */
 void mem_set_limit(size_t bytes);
 size_t mem_limit(void);
 size_t mem_in_use(void);
