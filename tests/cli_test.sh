@@ -211,6 +211,96 @@ check "outputs get the usual mode" test "$(stat -c %a "$tmp/o.c")" = "$(umask -S
 for i in 1 2 3 4 5 6; do "$PC" emit-c "$tmp/s.pcs" -o "$tmp/race.c" & done; wait
 check "concurrent writers: a whole file" cmp -s "$tmp/race.c" "$tmp/o.c"
 
+# output paths are written as `>` writes them (issue 23 item 6)
+w=$tmp/w
+mkdir -p "$w"
+DA=examples/desargues_arc.pcs
+"$PC" emit-c $DA -o "$w/ref.c" --header "$w/ref.h"
+if mknod "$w/null" c 1 3 2>/dev/null; then
+    "$PC" emit-c $DA -o "$w/null" --header "$w/null" 2>"$tmp/err"
+    check "-o a device: exit 0" test $? -eq 0
+    check "-o a device: still a device" test -c "$w/null"
+    "$PC" plot $DA --at A=0,0 --at B=1,0 --at C=1,1 --at D=0,1 -o "$w/null" 2>/dev/null
+    check "plot -o a device: still a device" test -c "$w/null"
+else
+    echo "skip: mknod (not permitted here)"
+fi
+if mkfifo "$w/fifo" 2>/dev/null; then
+    cat "$w/fifo" >"$w/fromfifo" &
+    "$PC" emit-c $DA -o "$w/fifo"
+    check "-o a FIFO: exit 0" test $? -eq 0
+    wait
+    check "-o a FIFO: the C through it" cmp -s "$w/fromfifo" "$w/ref.c"
+    check "-o a FIFO: still a FIFO" test -p "$w/fifo"
+    # a signal while the FIFO waits for a reader: the other temporary goes
+    "$PC" emit-c $DA -o "$w/sig.c" --header "$w/fifo" 2>/dev/null &
+    pid=$!
+    sleep 0.5
+    check "a signal: a temporary exists meanwhile" test -n "$(ls -A "$w" | grep '^\.sig\.c\.')"
+    kill -TERM $pid
+    wait $pid
+    check "a signal: ends as by the signal" test $? -eq 143
+    check "a signal: no temporary left, no file" test -z "$(ls -A "$w" | grep 'sig\.c')"
+else
+    echo "skip: mkfifo"
+fi
+"$PC" emit-c $DA -o /dev/stdout >"$w/so.c"
+check "-o /dev/stdout: the C on stdout" cmp -s "$w/so.c" "$w/ref.c"
+check "-o /dev/stdout: still a link" test -L /dev/stdout
+"$PC" emit-c $DA -o /dev/stdout | cat >"$w/so2.c"
+check "-o /dev/stdout to a pipe" cmp -s "$w/so2.c" "$w/ref.c"
+# a symbolic link: the target replaced, the link kept
+echo old >"$w/target.c"
+ln -s target.c "$w/link.c"
+"$PC" emit-c $DA -o "$w/link.c"
+check "-o a link: still a link" test -L "$w/link.c"
+check "-o a link: the target written" cmp -s "$w/target.c" "$w/ref.c"
+check "-o a link: no temporary left" test -z "$(ls -A "$w" | grep '^\.')"
+mkdir -p "$w/sub"
+ln -s sub/new.c "$w/dangling.c"
+"$PC" emit-c $DA -o "$w/dangling.c"
+check "-o a dangling link: the target created" cmp -s "$w/sub/new.c" "$w/ref.c"
+check "-o a dangling link: still a link" test -L "$w/dangling.c"
+# a read-only file is refused; the mode of a writable one is kept
+echo keep >"$w/ro.c"
+chmod 444 "$w/ro.c"
+"$PC" emit-c $DA -o "$w/ro.c" >"$tmp/out" 2>"$tmp/err"
+check "-o a read-only file: exit 1" test $? -eq 1
+check "-o a read-only file: why" grep -qx "pointcalc: cannot write '$w/ro.c': Permission denied" "$tmp/err"
+check "-o a read-only file: untouched" test "$(cat "$w/ro.c")" = keep
+"$PC" plot $DA --at A=0,0 --at B=1,0 --at C=1,1 --at D=0,1 -o "$w/ro.c" 2>"$tmp/err"
+check "plot -o a read-only file: refused" grep -qx "pointcalc: cannot write '$w/ro.c': Permission denied" "$tmp/err"
+echo x >"$w/exe.c"
+chmod 751 "$w/exe.c"
+"$PC" emit-c $DA -o "$w/exe.c"
+check "-o keeps the mode" test "$(stat -c %a "$w/exe.c")" = 751
+check "-o keeps the mode: written" cmp -s "$w/exe.c" "$w/ref.c"
+# -o and --header: a failure of one leaves neither
+rm -f "$w/both.c"
+"$PC" emit-c $DA -o "$w/both.c" --header "$w/ro.c" 2>/dev/null
+check "--header fails: exit 1" test $? -eq 1
+check "--header fails: no -o file" test ! -e "$w/both.c"
+"$PC" emit-c $DA -o "$w/ro.c" --header "$w/both.h" 2>/dev/null
+check "-o fails: no --header file" test ! -e "$w/both.h"
+check "failures: no temporary left" test -z "$(ls -A "$w" | grep '^\.')"
+# the same file by two names, existing or not
+rm -f "$w/x.c"
+"$PC" emit-c $DA -o "$w/x.c" --header "$w/./x.c" >"$tmp/out" 2>"$tmp/err"
+check "-o x.c --header ./x.c: exit 2" test $? -eq 2
+check "-o x.c --header ./x.c: why" grep -q "^pointcalc: -o and --header name the same file '$w/x.c'" "$tmp/err"
+check "-o x.c --header ./x.c: nothing written" test ! -e "$w/x.c"
+"$PC" emit-c $DA -o "$w/x.c" --header "$w/sub/../x.c" 2>/dev/null
+check "-o x.c --header sub/../x.c: exit 2" test $? -eq 2
+ln -s x.c "$w/xl.c"
+"$PC" emit-c $DA -o "$w/xl.c" --header "$w/x.c" 2>/dev/null
+check "-o a link to --header (neither exists): exit 2" test $? -eq 2
+if [ -e /proc/version ]; then
+    "$PC" emit-c $DA -o /proc/version 2>"$tmp/err"
+    check "-o /proc/version: the real reason" grep -qx "pointcalc: cannot write '/proc/version': Permission denied" "$tmp/err"
+fi
+"$PC" emit-c $DA -o "$w" 2>"$tmp/err"
+check "-o a directory: why" grep -qx "pointcalc: cannot write '$w': Is a directory" "$tmp/err"
+
 # prefixes that C reserves are refused
 for pre in __x _Foo; do
     "$PC" emit-c examples/desargues_arc.pcs --prefix "$pre" >"$tmp/out" 2>"$tmp/err"

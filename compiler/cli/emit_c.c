@@ -6,7 +6,8 @@
  * (codegen/emit_c.h, contract section 5).
  *
  * The C and the header are formed in memory first and written whole
- * (outfile.h), the header first: when it fails, stdout stays empty.
+ * (outfile.h), both files at once: when one fails, neither is changed and
+ * stdout stays empty.
  */
 #include "compiler/cli/cli.h"
 
@@ -136,9 +137,10 @@ static int write_outputs(const EmitArgs *a, const Plan *p, const Derived *d,
         emit_c_header_ex(m, p, a->prefix, file, a->functions);
         pc_xclose_memstream(m);
     }
-    int rc = a->hpath ? outfile_write(a->hpath, htext, hlen, out, err) : 0;
-    if (rc == 0)
-        rc = outfile_write(a->cpath, ctext, clen, out, err);
+    /* both temporaries before either rename: a failure leaves neither */
+    OutFile f[2] = {{a->hpath, htext, hlen}, {a->cpath, ctext, clen}};
+    int rc = a->hpath ? outfile_write_all(f, 2, out, err)
+                      : outfile_write_all(f + 1, 1, out, err);
     free(ctext);
     free(htext);
     return rc;
