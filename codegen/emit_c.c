@@ -169,11 +169,10 @@ unsigned emit_c_parse_functions(const char *list, const char **bad)
 
 int emit_c_valid_prefix(const char *s)
 {
-    /* function names are PREFIX_OUTPUT: any identifier but a keyword or
-     * one that C reserves for the implementation (__x, _Foo) */
-    if (!s || !(isalpha((unsigned char)s[0]) || s[0] == '_'))
-        return 0;
-    if (s[0] == '_' && (s[1] == '_' || isupper((unsigned char)s[1])))
+    /* function names are PREFIX_OUTPUT, at file scope: any identifier but
+     * a keyword or one that C reserves there (any beginning with _, C11
+     * 7.1.3) */
+    if (!s || !isalpha((unsigned char)s[0]))
         return 0;
     for (const char *q = s; *q; q++)
         if (!(isalnum((unsigned char)*q) || *q == '_'))

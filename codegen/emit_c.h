@@ -88,7 +88,8 @@ void emit_c_double(FILE *out, double v);
  * e.g. "s =" or "chk[0] ="); uses the loop index j */
 void emit_c_chk_sum(FILE *out, const char *ind, const char *head);
 
-/* 1 if s is usable as a --prefix (a C identifier, not a keyword). */
+/* 1 if s is usable as a --prefix: a C identifier that is not a keyword
+ * and does not begin with _ (reserved at file scope, C11 7.1.3). */
 int emit_c_valid_prefix(const char *s);
 
 #endif

@@ -89,7 +89,7 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
     char *end;
     errno = 0;
     double x = pc_strtod(v, &end);
-    if (end == v || errno != 0 || !(x >= 0) || x > 1e9) {
+    if (end == v || errno != 0 || !(x >= 0) || (secs && x > 1e9)) {
         fprintf(err,
                 "pointcalc: %s '%s': expected a number of %s from 0 (no "
                 "budget) up\n",

@@ -96,10 +96,9 @@ static int check_names(const EmitArgs *a, const char *file, FILE *err)
     if (pre && !emit_c_valid_prefix(pre))
         return args_usage_error(
             err, a->usage, "--prefix '%s' is not a usable C identifier%s", pre,
-            pre[0] == '_' && (pre[1] == '_' || (pre[1] >= 'A' && pre[1] <= 'Z'))
-                ? " (names beginning with __ or with _ and a capital letter "
-                  "are reserved for the C implementation)"
-                : "");
+            pre[0] == '_' ? " (names beginning with _ are reserved for the C "
+                            "implementation at file scope)"
+                          : "");
     if (a->cpath && outfile_same(a->cpath, file))
         return args_usage_error(err, a->usage,
                                 "-o '%s' is the scheme itself; it would be "

@@ -445,6 +445,10 @@ static void test_budget_options(void **state)
     assert_true(b.max_memory == (size_t)3 << 30);
     assert_int_equal(budget_parse_option(&b, 10, ok, 8, stderr), 2);
     assert_true(b.max_memory == 4096);
+    /* plain bytes above 10^9 as well as 1G (issue 23 item 9) */
+    char *big[] = {(char *)"--max-memory", (char *)"1073741824"};
+    assert_int_equal(budget_parse_option(&b, 2, big, 0, stderr), 2);
+    assert_true(b.max_memory == (size_t)1 << 30);
     char *msg = NULL;
     size_t n = 0;
     FILE *mem = open_memstream(&msg, &n);
