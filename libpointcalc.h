@@ -126,7 +126,9 @@ char *pc_plan_dump(const pc_plan *p);
  * At a pole, an overflow or outside a domain the sample's coordinates are
  * NaN; a scalar output that measures points (dist, dot, angle) reads the
  * points and dim too.  Returns PC_OK
- * or PC_EINVAL; *npoles (if not NULL) receives the number of such samples. */
+ * or PC_EINVAL; *npoles (if not NULL) receives the number of such samples.
+ * n = 0 is nothing to do: PC_OK for any valid output, whatever the other
+ * arguments (out, params, points may be NULL), as the generated batch. */
 int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
             const double *consts, const double *const *points, int dim,
             double *out, unsigned char *status, size_t *npoles);

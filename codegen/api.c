@@ -278,7 +278,14 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
             double *out, unsigned char *status, size_t *npoles)
 {
     const Plan *pl = p->p;
-    if (output < 0 || output >= pl->noutputs || !out ||
+    if (output < 0 || output >= pl->noutputs)
+        return PC_EINVAL;
+    if (n == 0) { /* nothing to do, as the generated batch: nothing read */
+        if (npoles)
+            *npoles = 0;
+        return PC_OK;
+    }
+    if (!out ||
         (pl->nparams && n && !params) || (pl->nconsts && !consts))
         return PC_EINVAL;
     const PlanOutput *o = &pl->outputs[output];

@@ -385,6 +385,13 @@ static void test_api_coord_needs_dim(void **state)
     assert_int_equal(pc_eval(p, 0, 2, prm, NULL, pts, 3, out, NULL, NULL),
                      PC_OK);
     assert_true(out[0] == 3 && out[1] == 5);
+    /* n = 0: nothing to do, as the generated batch (issue 23 item 9) */
+    size_t np = 9;
+    assert_int_equal(pc_eval(p, 0, 0, NULL, NULL, NULL, 0, NULL, NULL, &np),
+                     PC_OK);
+    assert_true(np == 0);
+    assert_int_equal(pc_eval(p, 1, 0, NULL, NULL, NULL, 0, NULL, NULL, NULL),
+                     PC_EINVAL);
     pc_plan_free(p);
     pc_scheme_free(s);
 }
