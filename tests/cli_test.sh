@@ -301,6 +301,16 @@ fi
 "$PC" emit-c $DA -o "$w" 2>"$tmp/err"
 check "-o a directory: why" grep -qx "pointcalc: cannot write '$w': Is a directory" "$tmp/err"
 
+# a scheme path with "/*" and "*/" stays in the banner's comment (issue 23
+# item 9)
+mkdir -p "$tmp/cm/*"
+cp examples/desargues_arc.pcs "$tmp/cm/*/s.pcs"
+"$PC" emit-c "$tmp/cm/*/s.pcs" -o "$tmp/cm.c" --header "$tmp/cm.h"
+check "a /* path: the C compiles with -Werror=comment" cc -std=c99 -Wall -Wextra -Werror=comment -c "$tmp/cm.c" -o "$tmp/cm.o"
+printf '#include "cm.h"\n' >"$tmp/cmh.c"
+check "a /* path: the header compiles with -Werror=comment" cc -std=c99 -Wall -Wextra -Werror=comment -I"$tmp" -c "$tmp/cmh.c" -o "$tmp/cmh.o"
+check "a /* path: named in the banner" grep -qF "from $tmp/cm/\\*\\/s.pcs (scheme" "$tmp/cm.c"
+
 # plain byte counts above 10^9 are sizes too (issue 23 item 9)
 "$PC" derive examples/desargues_arc.pcs --max-memory 1073741824 >"$tmp/out" 2>"$tmp/err"
 check "--max-memory 1073741824 accepted" test $? -eq 0 -a -s "$tmp/out"
