@@ -10,12 +10,15 @@
 #include "compiler/derive.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
+#include <poll.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "compiler/arena.h"
 #include "compiler/budget.h"
@@ -2833,27 +2836,66 @@ Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
     char limit[32];
     struct stat sb;
     snprintf(limit, sizeof limit, "%d MiB", DERIVE_MAX_SOURCE >> 20);
-    FILE *f = fopen(filename, "rb");
-    if (!f)
-        return file_error(filename, err, nerrors,
-                          "cannot open the file: %s", strerror(errno));
-    if (fstat(fileno(f), &sb) == 0 && S_ISDIR(sb.st_mode)) {
-        fclose(f);
+    /* O_NONBLOCK: opening a FIFO no one writes to does not wait; reading
+     * anything but a regular file then waits (poll) within the time
+     * budget, so a silent FIFO ends with a message, not the budget's
+     * signal */
+    int fd = open(filename, O_RDONLY | O_NONBLOCK | O_NOCTTY);
+    if (fd < 0)
+        return file_error(filename, err, nerrors, "cannot open the file: %s",
+                          strerror(errno));
+    if (fstat(fd, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        close(fd);
         return file_error(filename, err, nerrors, "cannot read the file: %s",
                           "it is a directory");
     }
-    if (fstat(fileno(f), &sb) == 0 && S_ISREG(sb.st_mode) &&
-        sb.st_size > (off_t)DERIVE_MAX_SOURCE) {
-        fclose(f);
+    int regular = fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode);
+    if (regular && sb.st_size > (off_t)DERIVE_MAX_SOURCE) {
+        close(fd);
         return file_error(filename, err, nerrors,
                           "cannot read the file: it is larger than %s, the "
                           "limit of a scheme",
                           limit);
     }
-    size_t cap = 4096, len = 0, got;
+    if (regular)
+        fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    double budget = opt ? opt->max_seconds : 0;
+    double deadline = budget > 0 ? now_seconds() + budget : 0;
+    size_t cap = 4096, len = 0;
     char *buf = pc_xmalloc(cap);
-    while ((got = fread(buf + len, 1, cap - len, f)) > 0) {
-        len += got;
+    int e = 0, timeout = 0;
+    for (;;) {
+        if (!regular) {
+            int ms = -1;
+            if (deadline > 0) {
+                double left = deadline - now_seconds();
+                ms = left <= 0   ? 0
+                     : left > 1e6 ? 1000000000
+                                  : (int)(left * 1e3) + 1;
+            }
+            struct pollfd pfd = {.fd = fd, .events = POLLIN};
+            int r = poll(&pfd, 1, ms);
+            if (r < 0 && errno == EINTR)
+                continue;
+            if (r < 0) {
+                e = errno;
+                break;
+            }
+            if (r == 0) {
+                timeout = 1;
+                break;
+            }
+        }
+        ssize_t got = read(fd, buf + len, cap - len);
+        if (got < 0 && (errno == EINTR || errno == EAGAIN))
+            continue;
+        if (got < 0) {
+            e = errno;
+            break;
+        }
+        if (got == 0)
+            break;
+        len += (size_t)got;
         if (len > (size_t)DERIVE_MAX_SOURCE)
             break;
         if (len == cap) {
@@ -2863,8 +2905,7 @@ Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
             buf = pc_xrealloc(buf, cap);
         }
     }
-    int bad = ferror(f), e = errno;
-    fclose(f);
+    close(fd);
     if (len > (size_t)DERIVE_MAX_SOURCE) {
         free(buf);
         return file_error(filename, err, nerrors,
@@ -2872,7 +2913,17 @@ Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
                           "limit of a scheme",
                           limit);
     }
-    if (bad) {
+    if (timeout) {
+        char secs[32];
+        budget_format_seconds(secs, sizeof secs, budget);
+        free(buf);
+        return file_error(filename, err, nerrors,
+                          "cannot read the file: it did not end within the "
+                          "time budget of %s (a FIFO that no one writes "
+                          "to?); raise it with --max-seconds",
+                          secs);
+    }
+    if (e) {
         free(buf);
         return file_error(filename, err, nerrors, "cannot read the file: %s",
                           strerror(e));

@@ -192,6 +192,21 @@ fi
 check "/dev/zero refused" grep -qx "/dev/zero: error: cannot read the file: it is larger than 16 MiB, the limit of a scheme" "$tmp/err"
 "$PC" derive "$tmp" >"$tmp/out" 2>"$tmp/err"
 check "a directory refused" grep -q "error: cannot read the file: it is a directory" "$tmp/err"
+# a FIFO no one writes to: a message within the time budget (issue 23
+# item 9); a pipe is read as before
+if mkfifo "$tmp/silent.pcs" 2>/dev/null; then
+    timeout 10 "$PC" derive "$tmp/silent.pcs" --max-seconds 1 >"$tmp/out" 2>"$tmp/err"
+    check "a silent FIFO: exit 1" test $? -eq 1
+    check "a silent FIFO: why" grep -qx "$tmp/silent.pcs: error: cannot read the file: it did not end within the time budget of 1 s (a FIFO that no one writes to?); raise it with --max-seconds" "$tmp/err"
+    (sleep 0.2; cat examples/desargues_arc.pcs >"$tmp/silent.pcs") &
+    "$PC" derive "$tmp/silent.pcs" >"$tmp/out" 2>"$tmp/err"
+    check "a FIFO written later: read" grep -q '^M = ' "$tmp/out"
+    wait
+fi
+"$PC" derive /dev/stdin <examples/desargues_arc.pcs >"$tmp/out"
+check "/dev/stdin (a file) read" grep -q '^M = ' "$tmp/out"
+cat examples/desargues_arc.pcs | "$PC" derive /dev/stdin >"$tmp/out"
+check "/dev/stdin (a pipe) read" grep -q '^M = ' "$tmp/out"
 
 # safe outputs: never the scheme itself, never one file twice, reasons
 cp examples/desargues_arc.pcs "$tmp/s.pcs"
