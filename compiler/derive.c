@@ -2811,7 +2811,8 @@ static Derived *file_error(const char *filename, FILE *err, int *nerrors,
                            const char *fmt, const char *what)
 {
     if (err) {
-        fprintf(err, "%s: error: ", filename);
+        diag_fput_escaped(err, filename);
+        fputs(": error: ", err);
         fprintf(err, fmt, what);
         fputc('\n', err);
     }

@@ -136,19 +136,54 @@ static void report(Diag *d, Span span, const char *what, const char *fmt,
 
 /* ---- the location and the excerpt, through a sink ---------------------- */
 
-/* the display form of the byte(s) at p: a valid UTF-8 character or a tab as
- * themselves (one column), a control byte, DEL or a byte of no valid
- * sequence as \xNN (four columns) - so that printing a line can never drive
- * the terminal; *bytes receives how many bytes it covers */
-static int cell(char *out, const char *p, size_t n, int *bytes)
+/* 1 for a code point that drives a terminal or reorders text although it
+ * is valid UTF-8: the C1 controls (U+0080-U+009F, e.g. U+009B, the CSI)
+ * and the bidi embeddings, overrides and isolates (U+202A-U+202E,
+ * U+2066-U+2069: "Trojan source") */
+static int hidden_char(unsigned long u)
+{
+    return (u >= 0x80 && u <= 0x9f) || (u >= 0x202a && u <= 0x202e) ||
+           (u >= 0x2066 && u <= 0x2069);
+}
+
+/* the code point of the valid k-byte UTF-8 sequence at p */
+static unsigned long code_point(const char *p, int k)
+{
+    const unsigned char *u = (const unsigned char *)p;
+    unsigned long c = k == 1 ? u[0] : u[0] & (0x7fu >> k);
+    for (int i = 1; i < k; i++)
+        c = c << 6 | (u[i] & 0x3fu);
+    return c;
+}
+
+/* The display form of the byte(s) at p, written to out (up to
+ * CELL_MAX bytes; returns how many): a valid UTF-8 character or a tab as
+ * themselves (one column), a C1 control or a bidi control as \uNNNN (six
+ * columns), a control byte, DEL or a byte of no valid sequence as \xNN
+ * (four columns) - so that printing a line can never drive the terminal
+ * or reorder what it shows.  *bytes receives how many bytes it covers,
+ * *cols how many columns it takes. */
+enum { CELL_MAX = 6 };
+static int cell(char *out, const char *p, size_t n, int *bytes, int *cols)
 {
     static const char hex[] = "0123456789abcdef";
     unsigned char c = (unsigned char)p[0];
     int k = source_char_len(p, n);
+    unsigned long u = k > 1 ? code_point(p, k) : c;
+    if (k > 1 && hidden_char(u)) {
+        out[0] = '\\';
+        out[1] = 'u';
+        for (int i = 0; i < 4; i++)
+            out[2 + i] = hex[(u >> (12 - 4 * i)) & 15];
+        *bytes = k;
+        *cols = 6;
+        return 6;
+    }
     if (k > 1 || (k == 1 && ((c >= 0x20 && c < 0x7f) || c == '\t'))) {
         for (int i = 0; i < k; i++)
             out[i] = p[i];
         *bytes = k;
+        *cols = 1;
         return k;
     }
     out[0] = '\\';
@@ -156,6 +191,7 @@ static int cell(char *out, const char *p, size_t n, int *bytes)
     out[2] = hex[c >> 4];
     out[3] = hex[c & 15];
     *bytes = 1;
+    *cols = 4;
     return 4;
 }
 
@@ -184,10 +220,10 @@ static void put_int(DiagSink *k, long v)
 /* text escaped cell by cell */
 static void put_escaped(DiagSink *k, const char *s, size_t n)
 {
-    char c[4];
+    char c[CELL_MAX];
     for (size_t i = 0; i < n;) {
-        int used, w = cell(c, s + i, n - i, &used);
-        k->put(k->ctx, c, (size_t)(w == 4 && used == 1 ? 4 : used));
+        int used, cols, w = cell(c, s + i, n - i, &used, &cols);
+        k->put(k->ctx, c, (size_t)w);
         i += (size_t)used;
     }
 }
@@ -235,7 +271,7 @@ static int char_start(const char *text, int i)
 void diag_put_excerpt(DiagSink *k, const Source *s, Span span)
 {
     int line, col, len;
-    char c[4];
+    char c[CELL_MAX];
     span = clamp(s, span);
     source_locate(s, span.start, &line, &col);
     const char *text = source_line(s, line, &len);
@@ -269,18 +305,18 @@ void diag_put_excerpt(DiagSink *k, const Source *s, Span span)
      * tabs kept so that it lines up under tabbed text */
     int i = 0, marks = 0;
     for (; i < from && i < len;) {
-        int used, w = cell(c, text + i, (size_t)(len - i), &used);
+        int used, cols, w = cell(c, text + i, (size_t)(len - i), &used, &cols);
         if (c[0] == '\t' && w == 1)
             k->put(k->ctx, "\t", 1);
         else
-            for (int j = 0; j < (w == 4 && used == 1 ? 4 : 1); j++)
+            for (int j = 0; j < cols; j++)
                 k->put(k->ctx, " ", 1);
         i += used;
     }
     k->put(k->ctx, "^", 1);
     for (; i < to && i < len;) {
-        int used, w = cell(c, text + i, (size_t)(len - i), &used);
-        int width = w == 4 && used == 1 ? 4 : 1;
+        int used, width;
+        cell(c, text + i, (size_t)(len - i), &used, &width);
         for (int j = marks == 0 ? 1 : 0; j < width; j++)
             k->put(k->ctx, "~", 1);
         marks++;
@@ -292,6 +328,12 @@ void diag_put_excerpt(DiagSink *k, const Source *s, Span span)
 static void put_file(void *ctx, const char *s, size_t n)
 {
     fwrite(s, 1, n, (FILE *)ctx);
+}
+
+void diag_fput_escaped(FILE *out, const char *s)
+{
+    DiagSink k = {put_file, out};
+    put_escaped(&k, s, strlen(s));
 }
 
 static void emit(Diag *d, Span span, const char *what, const char *fmt,

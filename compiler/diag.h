@@ -66,8 +66,11 @@ void diag_note(Diag *d, Span span, const char *fmt, ...);
  * and what a handler that may not allocate (the budgets' signal handler,
  * the out-of-memory handler) prints with write(2).  Both are
  * async-signal-safe when put is.  Control bytes, DEL and invalid UTF-8 in
- * the file name and the source line are shown escaped (\x1b), so printing
- * a diagnostic can never drive the terminal; the caret counts characters. */
+ * the file name and the source line are shown escaped (\x1b), and so are
+ * the C1 controls U+0080-U+009F and the bidi controls U+202A-U+202E,
+ * U+2066-U+2069 (\u009b, \u202e), so printing a diagnostic can never
+ * drive the terminal or reorder the text it shows; the caret counts
+ * characters and lines up under the escapes. */
 typedef struct DiagSink {
     void (*put)(void *ctx, const char *s, size_t n);
     void *ctx;
@@ -81,5 +84,7 @@ void diag_put_location(DiagSink *k, const Source *s, Span span,
 #define DIAG_EXCERPT_WIDTH 160
 #define DIAG_EXCERPT_BEFORE 60
 void diag_put_excerpt(DiagSink *k, const Source *s, Span span);
+/* s (a file name) on out, escaped as in diagnostics */
+void diag_fput_escaped(FILE *out, const char *s);
 
 #endif

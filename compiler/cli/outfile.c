@@ -21,6 +21,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "compiler/diag.h"
 #include "compiler/mem.h"
 
 enum { MAX_LINKS = 40, MAX_PENDING = 4 };
@@ -309,7 +310,9 @@ static int write_through(const Pending *pd, const OutFile *f)
 
 static int report(FILE *err, const char *path, int e)
 {
-    fprintf(err, "pointcalc: cannot write '%s': %s\n", path, strerror(e));
+    fputs("pointcalc: cannot write '", err);
+    diag_fput_escaped(err, path);
+    fprintf(err, "': %s\n", strerror(e));
     return 1;
 }
 

@@ -250,6 +250,8 @@ static char *diagnose(const char *name, const char *text, size_t len)
  * with ESC sequences used to retitle and clear the terminal when its error
  * was printed); columns and carets count characters, the escapes four
  * cells wide */
+static char *file_diagnostic(const char *path);
+
 static void test_diag_escapes_and_utf8_columns(void **state)
 {
     (void)state;
@@ -276,6 +278,28 @@ static void test_diag_escapes_and_utf8_columns(void **state)
                         "are ASCII letters, digits and '_'\n"
                         "N = A + \\xff\n"
                         "        ^~~~\n");
+    free(out);
+    /* valid UTF-8 that drives a terminal or reorders text (issue 23 item
+     * 9): the C1 controls U+009B (CSI) and U+009D (OSC), the bidi override
+     * U+202E and isolate U+2066, in the file name and in the line, six
+     * cells each; the caret after them lines up */
+    static const char bidi[] = "point A\nM = \xc2\x9b\xe2\x80\xae + A\n"
+                               "N = \xc2\x9d\xe2\x81\xa6\n";
+    out = diagnose("b\xe2\x80\xae\xc2\x9b.pcs", bidi, sizeof bidi - 1);
+    assert_string_equal(out,
+                        "b\\u202e\\u009b.pcs:2:5: error: unexpected non-ASCII "
+                        "text; names are ASCII letters, digits and '_'\n"
+                        "M = \\u009b\\u202e + A\n"
+                        "    ^~~~~~~~~~~~\n"
+                        "b\\u202e\\u009b.pcs:3:5: error: unexpected non-ASCII "
+                        "text; names are ASCII letters, digits and '_'\n"
+                        "N = \\u009d\\u2066\n"
+                        "    ^~~~~~~~~~~~\n");
+    free(out);
+    /* derive_file's own messages escape the name too */
+    out = file_diagnostic("/nonexistent/\xc2\x9b\xe2\x80\xae.pcs");
+    assert_string_equal(out, "/nonexistent/\\u009b\\u202e.pcs: error: cannot "
+                             "open the file: No such file or directory\n");
     free(out);
 }
 
