@@ -285,8 +285,7 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
             *npoles = 0;
         return PC_OK;
     }
-    if (!out ||
-        (pl->nparams && n && !params) || (pl->nconsts && !consts))
+    if (!out || (pl->nparams && n && !params) || (pl->nconsts && !consts))
         return PC_EINVAL;
     const PlanOutput *o = &pl->outputs[output];
     if (o->kind != PLAN_SCALAR && dim < 1)

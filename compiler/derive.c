@@ -2870,7 +2870,7 @@ Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
             int ms = -1;
             if (deadline > 0) {
                 double left = deadline - now_seconds();
-                ms = left <= 0   ? 0
+                ms = left <= 0    ? 0
                      : left > 1e6 ? 1000000000
                                   : (int)(left * 1e3) + 1;
             }

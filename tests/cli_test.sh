@@ -250,7 +250,10 @@ if mkfifo "$w/fifo" 2>/dev/null; then
     # a signal while the FIFO waits for a reader: the other temporary goes
     "$PC" emit-c $DA -o "$w/sig.c" --header "$w/fifo" 2>/dev/null &
     pid=$!
-    sleep 0.5
+    for i in $(seq 50); do
+        ls -A "$w" | grep -q '^\.sig\.c\.' && break
+        sleep 0.1
+    done
     check "a signal: a temporary exists meanwhile" test -n "$(ls -A "$w" | grep '^\.sig\.c\.')"
     kill -TERM $pid
     wait $pid
