@@ -266,6 +266,12 @@ static int prepare(Pending *pd, const OutFile *f)
     if (fd < 0) {
         free(pd->tmp);
         pd->tmp = NULL;
+        if (pd->exists && (e == EACCES || e == EPERM)) {
+            /* a file we may write in a directory we may not: written in
+             * place, as `>` writes it (not whole, but not refused) */
+            pd->through = 1;
+            return 0;
+        }
         errno = e;
         return -1;
     }
