@@ -318,6 +318,14 @@ if [ -e /proc/version ]; then
 fi
 "$PC" emit-c $DA -o "$w" 2>"$tmp/err"
 check "-o a directory: why" grep -qx "pointcalc: cannot write '$w': Is a directory" "$tmp/err"
+if [ "$(id -u)" -ne 0 ]; then # (root writes any directory)
+    mkdir "$w/locked" && echo old >"$w/locked/mine.c" && chmod 555 "$w/locked"
+    "$PC" emit-c $DA -o "$w/locked/mine.c"
+    check "-o a writable file in a locked directory: written in place" cmp -s "$w/locked/mine.c" "$w/ref.c"
+    "$PC" emit-c $DA -o "$w/locked/new.c" 2>"$tmp/err"
+    check "-o a new file in a locked directory: why" grep -qx "pointcalc: cannot write '$w/locked/new.c': Permission denied" "$tmp/err"
+    chmod 755 "$w/locked"
+fi
 
 # a scheme path with "/*" and "*/" stays in the banner's comment (issue 23
 # item 9)
