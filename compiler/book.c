@@ -1394,6 +1394,21 @@ static PSum *form_powers(const fmpz_mpoly_t p, slong x, int depth,
     return s;
 }
 
+/* bk = sum_{i <= k} a[stride*i] C(n - i, k - i): the k-th Bernstein
+ * coefficient (without binomials) of the polynomial whose coefficients are
+ * a[0], a[stride], ... (tmp and bin: scratch) */
+static void bernstein_coeff(fmpz_mpoly_t bk, const fmpz_mpoly_struct *a,
+                            slong stride, slong n, slong k, fmpz_mpoly_t tmp,
+                            fmpz_t bin, const Ring *r)
+{
+    fmpz_mpoly_zero(bk, r->ctx);
+    for (slong i = 0; i <= k; i++) {
+        fmpz_bin_uiui(bin, (ulong)(n - i), (ulong)(k - i));
+        fmpz_mpoly_scalar_mul_fmpz(tmp, a + stride * i, bin, r->ctx);
+        fmpz_mpoly_add(bk, bk, tmp, r->ctx);
+    }
+}
+
 /* p = sum_k b_k x^k (1 - x)^(n-k), n = deg_x p: the Bernstein basis of
  * the param x (without binomials), b_k = sum_{i<=k} a_i C(n-i, k-i) */
 static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
@@ -1409,12 +1424,7 @@ static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
     fmpz_t bin;
     fmpz_init(bin);
     for (slong k = 0; k <= n; k++) {
-        fmpz_mpoly_zero(bk, r->ctx);
-        for (slong i = 0; i <= k; i++) {
-            fmpz_bin_uiui(bin, (ulong)(n - i), (ulong)(k - i));
-            fmpz_mpoly_scalar_mul_fmpz(tmp, a + i, bin, r->ctx);
-            fmpz_mpoly_add(bk, bk, tmp, r->ctx);
-        }
+        bernstein_coeff(bk, a, 1, n, k, tmp, bin, r);
         if (fmpz_mpoly_is_zero(bk, r->ctx))
             continue;
         Atom xs[2] = {{AT_VAR, x, NULL, NULL, NULL, (ulong)k},
@@ -1469,12 +1479,7 @@ static PSum *form_sin2(const fmpz_mpoly_t p, slong s, slong w, int depth,
     fmpz_t bin;
     fmpz_init(bin);
     for (slong k = 0; k <= n; k++) {
-        fmpz_mpoly_zero(bk, r->ctx);
-        for (slong i = 0; i <= k; i++) {
-            fmpz_bin_uiui(bin, (ulong)(n - i), (ulong)(k - i));
-            fmpz_mpoly_scalar_mul_fmpz(tmp, a + 2 * i, bin, r->ctx);
-            fmpz_mpoly_add(bk, bk, tmp, r->ctx);
-        }
+        bernstein_coeff(bk, a, 2, n, k, tmp, bin, r);
         if (fmpz_mpoly_is_zero(bk, r->ctx))
             continue;
         Atom xs[2] = {{AT_VAR, s, NULL, NULL, NULL, (ulong)(2 * k)},

@@ -42,6 +42,17 @@ static int guard(Kernels *K, const fmpz_mpoly_struct *p)
     return 0;
 }
 
+/* 1 when a kernel slot is left for one more kernel; else 0, with the
+ * reason and K->full set (a derivation retries with more slots) */
+static int slot_left(Kernels *K)
+{
+    if (K->n + 1 <= K->cap)
+        return 1;
+    K->why = "too many distinct functions in one scheme";
+    K->full = 1;
+    return 0;
+}
+
 static const char *const fn_names[] = {
 #define X(id, name, cfn) name,
     PC_KERNEL_FNS(X)
@@ -1789,11 +1800,8 @@ int kernel_dist(Kernels *K, RatFun res, slong a, slong b)
     slong q = a * (K->npoints + 1) + b;
     slong i = find(K, KF_DIST, NULL, NULL, q);
     if (i < 0) {
-        if (K->n + 1 > K->cap) {
-            K->why = "too many distinct functions in one scheme";
-            K->full = 1;
+        if (!slot_left(K))
             return KERNEL_EFULL;
-        }
         Kernel *k = &K->k[K->n];
         k->pa = a; /* set before add() names it */
         k->pb = b;
@@ -2454,11 +2462,8 @@ int kernel_coord(Kernels *K, RatFun res, slong a, slong k)
         if (K->k[i].fn == KF_COORD && K->k[i].pa == a && K->k[i].pb == k)
             break;
     if (i == K->n) {
-        if (K->n + 1 > K->cap) {
-            K->why = "too many distinct functions in one scheme";
-            K->full = 1;
+        if (!slot_left(K))
             return KERNEL_EFULL;
-        }
         Kernel *c = &K->k[K->n];
         c->pa = a; /* set before add() names it */
         c->pb = k;
