@@ -134,7 +134,7 @@ valgrind: tests
 	@printf '#!/bin/sh\nexec valgrind -q --error-exitcode=99 --leak-check=no $(CURDIR)/$(B)/pointcalc "$$@"\n' \
 	  > $(B)/pointcalc-vg-noleak && chmod +x $(B)/pointcalc-vg-noleak
 	@fail=0; for t in $(TESTS); do \
-	  echo "== valgrind $$t"; PC_FUZZ_MUTATIONS=15 PC_VALGRIND=1 PC_BIN=$(B)/pointcalc \
+	  echo "== valgrind $$t"; PC_FUZZ_MUTATIONS=15 PC_FUZZ_CUTS=40 PC_VALGRIND=1 PC_BIN=$(B)/pointcalc \
 	    $(VALGRIND) $$t || fail=1; done; \
 	  echo "== valgrind tests/cli_test.sh"; \
 	  PC_VALGRIND=1 PC_NOLEAK=$(B)/pointcalc-vg-noleak \
