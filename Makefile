@@ -35,11 +35,21 @@ else
 PC_LDLIBS = $(LDLIBS)
 endif
 
-LIB_SRC = $(wildcard compiler/*.c) \
-          $(filter-out compiler/cli/main.c,$(wildcard compiler/cli/*.c)) \
-          $(wildcard grammar/*.c) $(wildcard codegen/*.c) $(wildcard runtime/*.c)
+# the layers (docs/architecture.md): base <- grammar <- compiler <- codegen,
+# base <- runtime <- codegen, and driver/ above all; `make lint` checks it.
+# libpointcalc.a is the library (base to runtime and driver/api.c); the
+# command line is its own archive (for in-process tests and fuzzers) plus
+# driver/cli/main.c.
+LAYERS  = base grammar compiler codegen runtime
+LIB_SRC = $(foreach d,$(LAYERS),$(wildcard $(d)/*.c $(d)/*/*.c)) driver/api.c
+CLI_SRC = $(filter-out driver/cli/main.c,$(wildcard driver/cli/*.c))
 GEN_SRC = $(B)/grammar/parser.c $(B)/grammar/lexer.c
 LIB_OBJ = $(LIB_SRC:%.c=$(B)/%.o) $(GEN_SRC:.c=.o)
+CLI_OBJ = $(CLI_SRC:%.c=$(B)/%.o)
+LIBS    = $(B)/libpointcalc-cli.a $(B)/libpointcalc.a
+# what `make format` rewrites and `make lint` checks
+FORMAT_SRC = $(wildcard $(addsuffix /*.[ch],$(LAYERS) $(addsuffix /*,$(LAYERS)) \
+               driver driver/cli tests/unit tests/fuzz bench examples)) libpointcalc.h
 TESTS   = $(patsubst tests/unit/%.c,$(B)/tests/%,$(wildcard tests/unit/test_*.c))
 BENCHES = $(patsubst bench/%.c,$(B)/bench/%,$(wildcard bench/bench_*.c))
 
@@ -55,7 +65,7 @@ $(B)/grammar/lexer.c $(B)/grammar/lexer.h &: grammar/lexer.l $(B)/grammar/parser
 	$(FLEX) --header-file=$(B)/grammar/lexer.h -o $(B)/grammar/lexer.c $<
 
 # every object may include the generated headers
-$(LIB_SRC:%.c=$(B)/%.o) $(B)/compiler/cli/main.o: $(B)/grammar/parser.h $(B)/grammar/lexer.h
+$(LIB_SRC:%.c=$(B)/%.o) $(CLI_OBJ) $(B)/driver/cli/main.o: $(B)/grammar/parser.h $(B)/grammar/lexer.h
 
 $(B)/%.o: %.c
 	@mkdir -p $(@D)
@@ -70,20 +80,24 @@ $(B)/libpointcalc.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(B)/pointcalc: $(B)/compiler/cli/main.o $(B)/libpointcalc.a $(FLINT_STATIC)
-	$(CC) $(ALL_CFLAGS) -o $@ $(B)/compiler/cli/main.o $(B)/libpointcalc.a $(PC_LDLIBS)
+$(B)/libpointcalc-cli.a: $(CLI_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(B)/pointcalc: $(B)/driver/cli/main.o $(LIBS) $(FLINT_STATIC)
+	$(CC) $(ALL_CFLAGS) -o $@ $(B)/driver/cli/main.o $(LIBS) $(PC_LDLIBS)
 
 # the shared-library build beside a static one, for bench_start
-$(B)/pointcalc-shared: $(B)/compiler/cli/main.o $(B)/libpointcalc.a
+$(B)/pointcalc-shared: $(B)/driver/cli/main.o $(LIBS)
 	$(CC) $(ALL_CFLAGS) -o $@ $^ $(LDLIBS)
 
-$(B)/tests/%: tests/unit/%.c $(B)/libpointcalc.a
+$(B)/tests/%: tests/unit/%.c $(LIBS)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libpointcalc.a $(TEST_LDLIBS)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIBS) $(TEST_LDLIBS)
 
-$(B)/bench/%: bench/%.c $(B)/libpointcalc.a
+$(B)/bench/%: bench/%.c $(LIBS)
 	@mkdir -p $(@D)
-	$(CC) $(ALL_CFLAGS) -o $@ $< $(B)/libpointcalc.a $(LDLIBS)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIBS) $(LDLIBS)
 
 # the library example of docs/api.md, built and run by `make check`
 $(B)/examples/api_example: examples/api_example.c $(B)/libpointcalc.a
@@ -162,9 +176,9 @@ FUZZ_FLAGS = -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
 fuzz:
 	$(MAKE) B=build-fuzz CC=clang OPT=-O1 \
 	  SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" \
-	  build-fuzz/libpointcalc.a
+	  build-fuzz/libpointcalc.a build-fuzz/libpointcalc-cli.a
 	$(FUZZ_CC) -o build-fuzz/fuzz_derive tests/fuzz/fuzz_derive.c build-fuzz/libpointcalc.a $(LDLIBS)
-	$(FUZZ_CC) -o build-fuzz/fuzz_eval_args tests/fuzz/fuzz_eval_args.c build-fuzz/libpointcalc.a $(LDLIBS)
+	$(FUZZ_CC) -o build-fuzz/fuzz_eval_args tests/fuzz/fuzz_eval_args.c build-fuzz/libpointcalc-cli.a build-fuzz/libpointcalc.a $(LDLIBS)
 	@mkdir -p build-fuzz/corpus build-fuzz/corpus_eval build-fuzz/artifacts
 	cp examples/*.pcs tests/schemes/*.pcs tests/errors/*.pcs build-fuzz/corpus/
 	cp tests/fuzz/eval_seeds/* build-fuzz/corpus_eval/
@@ -191,7 +205,7 @@ figures: $(B)/pointcalc
 	sh docs/figures/make-figures.sh $(B)/pointcalc docs/figures
 
 format:
-	clang-format -i $(wildcard $(addsuffix /*.[ch],grammar compiler compiler/cli codegen runtime tests/unit tests/fuzz bench examples))
+	clang-format -i $(FORMAT_SRC)
 
 flint-static:
 	.ci/flint-static

@@ -6,8 +6,8 @@
 #include "codegen/collapse.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 
 #include <float.h>
 #include <math.h>

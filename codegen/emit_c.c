@@ -31,8 +31,8 @@
  */
 #include "codegen/emit_c.h"
 #include "codegen/collapse.h"
-#include "compiler/numfmt.h"
-#include "compiler/mem.h"
+#include "base/numfmt.h"
+#include "base/mem.h"
 
 #include <ctype.h>
 #include <stdarg.h>

@@ -18,7 +18,7 @@
  */
 #include "codegen/lower.h"
 #include "compiler/kernel.h"
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -6,7 +6,7 @@
 
 #include <string.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 int absform_any(const Kernels *K)
 {

@@ -13,9 +13,9 @@
 #include "compiler/absform.h"
 #include "compiler/kernel.h"
 #include "compiler/latexbreak.h"
-#include "compiler/mem.h"
+#include "base/mem.h"
 #include "compiler/ring.h"
-#include "compiler/strbuf.h"
+#include "base/strbuf.h"
 
 /* ---- names ------------------------------------------------------------ */
 

@@ -6,7 +6,7 @@
 #include <flint/ulong_extras.h>
 
 #include "compiler/linsolve.h"
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 /* P*(1 - s) + Q*s: one combination over one denominator */
 void construct_along(PointEq res, const PointEq p, const PointEq q,

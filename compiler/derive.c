@@ -20,15 +20,15 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "compiler/arena.h"
-#include "compiler/budget.h"
+#include "base/arena.h"
+#include "base/budget.h"
 #include "compiler/construct.h"
-#include "compiler/diag.h"
+#include "base/diag.h"
 #include "compiler/expand.h"
 #include "compiler/kernel.h"
 #include "compiler/linsolve.h"
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 #include "compiler/sema.h"
 #include "compiler/solve.h"
 #include "grammar/parse.h"
@@ -2491,17 +2491,6 @@ static char *base_name(const char *filename)
     if (dot && dot != s)
         *dot = '\0';
     return s;
-}
-
-DeriveOptions derive_options_cli(const BudgetOptions *b, FILE *err,
-                                 int *bad_define)
-{
-    DeriveOptions o = {.max_seconds = b->max_seconds,
-                       .verbose = b->verbose ? err : NULL,
-                       .defines = b->defines,
-                       .ndefines = b->ndefines,
-                       .bad_define = bad_define};
-    return o;
 }
 
 Derived *derive_source(const char *filename, const char *text, size_t len,

@@ -15,7 +15,7 @@
 #include "compiler/pteq.h"
 #include "compiler/ratfun.h"
 #include "compiler/ring.h"
-#include "compiler/source.h"
+#include "base/source.h"
 
 typedef enum Kind {
     KIND_SCALAR, // a rational function of params and consts
@@ -182,12 +182,6 @@ typedef struct DeriveOptions {
     int keep_steps;  // 1: also record Derived.steps (derive --steps); 0
                      // costs nothing
 } DeriveOptions;
-
-/* The options of a command line's derivation: its budget, -v (progress to
- * err) and -D; *bad_define as above (may be NULL). */
-struct BudgetOptions;
-DeriveOptions derive_options_cli(const struct BudgetOptions *b, FILE *err,
-                                 int *bad_define);
 
 /* Derive a scheme from source text.  Diagnostics (contract section 4 format)
  * go to err, which may be NULL to discard them; *nerrors (if not NULL)

@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 #include "compiler/sema.h"
 
 typedef struct IntSym {

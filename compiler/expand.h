@@ -25,8 +25,8 @@
 #ifndef PC_EXPAND_H
 #define PC_EXPAND_H
 
-#include "compiler/arena.h"
-#include "compiler/diag.h"
+#include "base/arena.h"
+#include "base/diag.h"
 #include "grammar/ast.h"
 
 /* the most family members and unrolled equations of one scheme, together */

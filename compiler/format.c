@@ -9,8 +9,8 @@
 #include "compiler/absform.h"
 #include "compiler/book.h"
 #include "compiler/format_json.h"
-#include "compiler/mem.h"
-#include "compiler/strbuf.h"
+#include "base/mem.h"
+#include "base/strbuf.h"
 
 /* ---- names ----------------------------------------------------------- */
 

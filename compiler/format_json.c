@@ -10,8 +10,8 @@
 #include <stdlib.h>
 
 #include "compiler/format.h"
-#include "compiler/json.h"
-#include "compiler/mem.h"
+#include "base/json.h"
+#include "base/mem.h"
 
 /* "key": ["A","B"] */
 static void json_names(FILE *out, const char *key, char *const *names, slong n)

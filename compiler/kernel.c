@@ -16,7 +16,7 @@
 #include <flint/fmpz_factor.h>
 
 #include "compiler/format.h"
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 enum {
     MAX_POWER = 1000,  // exponents a kernel rewrite may make

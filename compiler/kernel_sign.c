@@ -31,7 +31,7 @@
 
 #include <flint/fmpq.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 /* one end of an interval: a rational value, or -inf/+inf (inf = -1/+1) */
 typedef struct End {

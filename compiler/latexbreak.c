@@ -17,8 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/mem.h"
-#include "compiler/strbuf.h"
+#include "base/mem.h"
+#include "base/strbuf.h"
 
 /* ---- reading ------------------------------------------------------------ */
 

@@ -22,7 +22,7 @@
 
 #include <stdlib.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 #include <flint/fmpz_poly.h>
 #include <flint/fmpz_vec.h>

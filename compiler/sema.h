@@ -14,8 +14,8 @@
 /* the largest k of coord(P, k) */
 #define SEMA_MAX_COORD 1000000
 
-#include "compiler/arena.h"
-#include "compiler/diag.h"
+#include "base/arena.h"
+#include "base/diag.h"
 #include "grammar/ast.h"
 
 /* X-macro: builtin, name, min args, max args (-1: any), what it returns,

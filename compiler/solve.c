@@ -8,7 +8,7 @@
 
 #include <flint/fmpz_mat.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 /* The system as a matrix of numerators: row e, column c < nunk the unknown
  * cols[c], column nunk + k the known column known[k]. */

@@ -19,9 +19,9 @@
 #include <string.h>
 
 #include "compiler/book.h"
-#include "compiler/json.h"
+#include "base/json.h"
 #include "compiler/latexbreak.h"
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 /* the value x printed like a scalar output (malloc'd) */
 static char *scalar_str(const Derived *d, const RatFun x, FormatStyle st)

@@ -11,8 +11,8 @@
 
 #include <stdio.h>
 
-#include "compiler/arena.h"
-#include "compiler/source.h"
+#include "base/arena.h"
+#include "base/source.h"
 
 /* X-macro: node kind, dump name.  One comment of semantics per kind. */
 #define PC_NODE_KINDS(X)                                                       \

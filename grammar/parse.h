@@ -4,8 +4,8 @@
 #ifndef PC_PARSE_H
 #define PC_PARSE_H
 
-#include "compiler/arena.h"
-#include "compiler/diag.h"
+#include "base/arena.h"
+#include "base/diag.h"
 #include "grammar/ast.h"
 
 /* Parses src (diagnostics to diag).  Returns the Scheme (arena) even when

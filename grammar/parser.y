@@ -17,9 +17,9 @@
 %define api.value.type union
 
 %code requires {
-#include "compiler/arena.h"
-#include "compiler/diag.h"
-#include "compiler/source.h"
+#include "base/arena.h"
+#include "base/diag.h"
+#include "base/source.h"
 #include "grammar/ast.h"
 
 #ifndef YY_TYPEDEF_YY_SCANNER_T

@@ -23,7 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 enum { BL = PLAN_BLOCK };
 

@@ -10,8 +10,8 @@
  * built in different ways still meet.
  */
 #include "runtime/plan.h"
-#include "compiler/numfmt.h"
-#include "compiler/mem.h"
+#include "base/numfmt.h"
+#include "base/mem.h"
 
 #include <assert.h>
 #include <math.h>

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 #include "runtime/eval.h"
 
 #define PI 3.14159265358979323846

@@ -2,7 +2,7 @@
  * plot.h - drawing a scheme as SVG: the curves of its point outputs over a
  * param range, its base points, the construction at one param value, tangent
  * vectors and a curvature comb.  Independent of the command line
- * (compiler/cli/plot.c parses the options and calls plot_svg).
+ * (driver/cli/cmd_plot.c parses the options and calls plot_svg).
  *
  *   Plan + coordinates --plot_curve_sample--> samples (t, projected x, y)
  *                      --plot_svg-----------> one SVG document

@@ -13,8 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/numfmt.h"
-#include "compiler/mem.h"
+#include "base/numfmt.h"
+#include "base/mem.h"
 
 int sample_number(const char *text, double *v)
 {

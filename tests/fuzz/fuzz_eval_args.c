@@ -17,7 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/cli/cli.h"
+#include "driver/cli/cli.h"
 #include "runtime/sample.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);

@@ -13,10 +13,10 @@
 
 #include <flint/flint.h>
 
-#include "compiler/arena.h"
-#include "compiler/budget.h"
+#include "base/arena.h"
+#include "driver/cli/budget.h"
 #include "compiler/derive.h"
-#include "compiler/diag.h"
+#include "base/diag.h"
 #include "compiler/sema.h"
 #include "libpointcalc.h"
 #include "grammar/parse.h"

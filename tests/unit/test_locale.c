@@ -28,8 +28,8 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
-#include "compiler/cli/table.h"
-#include "compiler/budget.h"
+#include "driver/cli/table.h"
+#include "driver/cli/budget.h"
 #include "compiler/derive.h"
 #include "compiler/format.h"
 #include "runtime/plan.h"

@@ -30,8 +30,8 @@
 #include <math.h>
 
 #include "compiler/construct.h"
-#include "compiler/mem.h"
-#include "compiler/strbuf.h"
+#include "base/mem.h"
+#include "base/strbuf.h"
 #include "libpointcalc.h"
 #include "runtime/plan.h"
 

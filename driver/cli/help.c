@@ -2,11 +2,11 @@
  * help.c - `pointcalc help [CMD]`, `pointcalc CMD --help` and the texts
  * of usage errors: one synopsis and one help text per command.
  */
-#include "compiler/cli/cli.h"
+#include "driver/cli/cli.h"
 
 #include <string.h>
 
-#include "compiler/cli/args.h"
+#include "driver/cli/args.h"
 
 const char cli_usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"

@@ -29,7 +29,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "compiler/cli/args.h"
+#include "driver/cli/args.h"
 #include "runtime/plan.h"
 
 typedef enum TableFormat { TABLE_CSV, TABLE_JSON } TableFormat;

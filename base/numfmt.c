@@ -6,7 +6,7 @@
  * call with uselocale, then the caller's is restored; nothing process-wide
  * is touched, so this is safe in a library and from several threads.
  */
-#include "compiler/numfmt.h"
+#include "base/numfmt.h"
 
 #include <locale.h>
 #include <pthread.h>

@@ -10,16 +10,16 @@
  * const changes only between blocks) and fit in about 8 MB of
  * coordinates per output.
  */
-#include "compiler/cli/cli.h"
+#include "driver/cli/cli.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/cli/args.h"
-#include "compiler/cli/table.h"
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "driver/cli/args.h"
+#include "driver/cli/table.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 #include "runtime/eval.h"
 
 /* rows per block: up to CHUNK, fewer for high dimensions */

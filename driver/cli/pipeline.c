@@ -3,7 +3,7 @@
  * derive (derive_file_ex runs them in order), then lower to a Plan for
  * the numeric back ends, under the budget of the command line.
  */
-#include "compiler/cli/cli.h"
+#include "driver/cli/cli.h"
 
 Derived *cli_derive_file(const char *file, const BudgetOptions *b, FILE *err,
                          int *rc)

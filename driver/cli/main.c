@@ -19,9 +19,9 @@
 
 #include <flint/flint.h>
 
-#include "compiler/cli/args.h"
-#include "compiler/cli/cli.h"
-#include "compiler/mem.h"
+#include "driver/cli/args.h"
+#include "driver/cli/cli.h"
+#include "base/mem.h"
 
 #define PC_VERSION "0.1.0"
 

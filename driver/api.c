@@ -15,9 +15,9 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
-#include "compiler/budget.h"
+#include "driver/cli/budget.h"
 #include "compiler/derive.h"
-#include "compiler/mem.h"
+#include "base/mem.h"
 #include "runtime/eval.h"
 
 struct pc_scheme {

@@ -1,14 +1,10 @@
 /*
- * budget.c - the hard limits of the command line (budget.h).
- *
- * The current statement is kept in two slots and published by flipping an
- * index, so a signal handler never reads a half-written one.  Both are
- * per thread: threads deriving distinct schemes never share them, and the
- * out-of-memory handler (which runs on the allocating thread) reports the
- * statement of the derivation that ran out.  The timer's SIGALRM is the
- * command line's, which has one thread.
+ * budget.c - the hard limits of the command line (budget.h): the options
+ * every command takes, the timer and the memory handler.  Both handlers
+ * report at the statement the library marked (base/budget.h).  The timer's
+ * SIGALRM is the command line's, which has one thread.
  */
-#include "compiler/budget.h"
+#include "driver/cli/budget.h"
 
 #include "compiler/expand.h"
 
@@ -20,26 +16,11 @@
 #include <sys/time.h>
 #include <unistd.h>
 
-#include "compiler/diag.h"
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "base/diag.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 
-typedef struct Where {
-    const Source *src;
-    Span span;
-} Where;
-
-static _Thread_local Where slots[2];
-static _Thread_local volatile sig_atomic_t cur = 0;
 static char time_msg[160], mem_msg[160], oom_msg[96];
-
-void budget_statement(const Source *src, Span span)
-{
-    int next = !cur;
-    slots[next].src = src;
-    slots[next].span = span;
-    cur = next;
-}
 
 void budget_options_default(BudgetOptions *b)
 {
@@ -125,20 +106,6 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
     return 2;
 }
 
-void budget_format_seconds(char *buf, size_t cap, double s)
-{
-    pc_snprintf(buf, cap, "%g s", s);
-}
-
-void budget_format_bytes(char *buf, size_t cap, size_t b)
-{
-    if (b >= ((size_t)1 << 30) && b % ((size_t)1 << 30) == 0)
-        snprintf(buf, cap, "%zu GiB", b >> 30);
-    else if (b >= ((size_t)1 << 20))
-        snprintf(buf, cap, "%zu MiB", b >> 20);
-    else
-        snprintf(buf, cap, "%zu bytes", b);
-}
 
 static void put_fd(void *ctx, const char *s, size_t n)
 {
@@ -157,12 +124,14 @@ static void report(const char *msg)
 {
     static const int fd = 2;
     DiagSink k = {put_fd, (void *)&fd};
-    const Where *w = &slots[cur];
-    if (w->src != NULL) {
-        diag_put_location(&k, w->src, w->span, "error");
+    const Source *src;
+    Span span;
+    budget_where(&src, &span);
+    if (src != NULL) {
+        diag_put_location(&k, src, span, "error");
         put_fd((void *)&fd, msg, strlen(msg));
         put_fd((void *)&fd, "\n", 1);
-        diag_put_excerpt(&k, w->src, w->span);
+        diag_put_excerpt(&k, src, span);
     } else {
         put_fd((void *)&fd, "pointcalc: error: ", 18);
         put_fd((void *)&fd, msg, strlen(msg));
@@ -222,4 +191,15 @@ void budget_disarm(void)
 {
     struct itimerval it = {{0, 0}, {0, 0}};
     setitimer(ITIMER_REAL, &it, NULL);
+}
+
+DeriveOptions derive_options_cli(const BudgetOptions *b, FILE *err,
+                                 int *bad_define)
+{
+    DeriveOptions o = {.max_seconds = b->max_seconds,
+                       .verbose = b->verbose ? err : NULL,
+                       .defines = b->defines,
+                       .ndefines = b->ndefines,
+                       .bad_define = bad_define};
+    return o;
 }

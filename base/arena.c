@@ -1,11 +1,11 @@
-#include "compiler/arena.h"
+#include "base/arena.h"
 
 #include <stdalign.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 enum { BLOCK_SIZE = 64 * 1024 };
 

@@ -14,7 +14,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-#include "compiler/source.h"
+#include "base/source.h"
 
 /* a held message (diag_hold) */
 typedef struct DiagMsg {

@@ -1,9 +1,9 @@
-#include "compiler/strbuf.h"
+#include "base/strbuf.h"
 
 #include <stdio.h>
 #include <string.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 void sb_putn(StrBuf *b, const char *s, size_t n)
 {

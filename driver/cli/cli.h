@@ -1,6 +1,6 @@
 /*
  * cli.h - the commands of the pointcalc command line (contract section 4),
- * one file each in compiler/cli/, dispatched by compiler/cli/main.c.
+ * one file each in driver/cli/, dispatched by driver/cli/main.c.
  *
  * A command takes argv[0] = its own name and argv[1..] = the arguments as
  * typed; results go to out, messages to err.  Checks happen in this order:
@@ -18,7 +18,7 @@
 #include <stdio.h>
 
 #include "codegen/lower.h"
-#include "compiler/budget.h"
+#include "driver/cli/budget.h"
 #include "compiler/derive.h"
 
 typedef int CliCommand(int argc, char **argv, FILE *out, FILE *err);

@@ -17,20 +17,14 @@
  * derive marks the statement it works on (budget_statement), so that both
  * handlers can say where the budget ran out.
  */
-#ifndef PC_BUDGET_H
-#define PC_BUDGET_H
+#ifndef PC_CLI_BUDGET_H
+#define PC_CLI_BUDGET_H
 
 #include <stddef.h>
 #include <stdio.h>
 
-#include "compiler/source.h"
-
-#define BUDGET_DEFAULT_SECONDS 60.0
-#define BUDGET_DEFAULT_MEMORY ((size_t)2 << 30) /* 2 GiB */
-
-/* The statement being derived by this thread (src NULL: none).  src must
- * stay valid until the next call. */
-void budget_statement(const Source *src, Span span);
+#include "base/budget.h"
+#include "compiler/derive.h"
 
 /* Command line only (process-wide): a timer of max_seconds (0: none) and a
  * memory budget of max_memory bytes (0: none) on the counted allocators
@@ -57,8 +51,10 @@ void budget_options_default(BudgetOptions *b);
 int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
                         FILE *err);
 
-/* "60 s", "2 GiB", "512 MiB": the budgets as the messages write them */
-void budget_format_seconds(char *buf, size_t cap, double s);
-void budget_format_bytes(char *buf, size_t cap, size_t b);
+
+/* The options of a command line's derivation: its budget, -v (progress to
+ * err) and -D; *bad_define as DeriveOptions.bad_define (may be NULL). */
+DeriveOptions derive_options_cli(const BudgetOptions *b, FILE *err,
+                                 int *bad_define);
 
 #endif

@@ -5,11 +5,11 @@
  * read the same).  Columns count characters: a valid UTF-8 sequence is one
  * column, and so is every other byte (source_char_len).
  */
-#include "compiler/source.h"
+#include "base/source.h"
 
 #include <stdlib.h>
 
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 /* offset just past the line break starting at i, or i when there is none */
 static size_t line_break_end(const char *text, size_t len, size_t i)

@@ -1,11 +1,11 @@
 /*
  * json.c - JSON strings and numbers (see json.h).
  */
-#include "compiler/json.h"
+#include "base/json.h"
 
 #include <math.h>
 
-#include "compiler/numfmt.h"
+#include "base/numfmt.h"
 
 void json_string(FILE *out, const char *s)
 {

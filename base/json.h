@@ -1,7 +1,7 @@
 /*
  * json.h - the one JSON writer of the tree: strings and numbers, written
  * straight to a FILE.  Used by derive --format json (format_json.c) and by
- * eval --format json (compiler/cli/table.c); the objects around them are
+ * eval --format json (driver/cli/table.c); the objects around them are
  * each caller's own.
  */
 #ifndef PC_JSON_H

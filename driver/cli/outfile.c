@@ -10,7 +10,7 @@
  * signal handler reads; it only calls unlink and raise.
  */
 #define _XOPEN_SOURCE 700 /* readlink, realpath, sigaction, fchown */
-#include "compiler/cli/outfile.h"
+#include "driver/cli/outfile.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -21,8 +21,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "compiler/diag.h"
-#include "compiler/mem.h"
+#include "base/diag.h"
+#include "base/mem.h"
 
 enum { MAX_LINKS = 40, MAX_PENDING = 4 };
 

@@ -1,12 +1,12 @@
-#include "compiler/diag.h"
+#include "base/diag.h"
 
 #include <stdarg.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 
 static void put_file(void *ctx, const char *s, size_t n);
 static void put_escaped(DiagSink *k, const char *s, size_t n);

@@ -4,12 +4,12 @@
  * Both walk the same columns: the grid's params, its swept consts, then
  * the selected outputs' coordinates.
  */
-#include "compiler/cli/table.h"
+#include "driver/cli/table.h"
 
 #include <math.h>
 
-#include "compiler/json.h"
-#include "compiler/numfmt.h"
+#include "base/json.h"
+#include "base/numfmt.h"
 
 int table_columns(const Plan *p, int o, int dim)
 {

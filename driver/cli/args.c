@@ -6,15 +6,15 @@
  * reported before the scheme is derived); eval_setup then checks the names
  * and values against the Plan, before anything is written.
  */
-#include "compiler/cli/args.h"
+#include "driver/cli/args.h"
 
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 #include "runtime/eval.h"
 
 int args_usage_error(FILE *err, const char *usage, const char *fmt, ...)

@@ -11,7 +11,7 @@
  * (exit 1), names and values against the scheme (exit 2); only then is the
  * SVG written (whole or not at all, when -o names a file).
  */
-#include "compiler/cli/cli.h"
+#include "driver/cli/cli.h"
 
 #include <errno.h>
 #include <math.h>
@@ -20,10 +20,10 @@
 #include <string.h>
 
 #include "codegen/lower.h"
-#include "compiler/cli/args.h"
-#include "compiler/cli/outfile.h"
-#include "compiler/mem.h"
-#include "compiler/numfmt.h"
+#include "driver/cli/args.h"
+#include "driver/cli/outfile.h"
+#include "base/mem.h"
+#include "base/numfmt.h"
 #include "runtime/eval.h"
 #include "runtime/plot.h"
 #include "runtime/sample.h"

@@ -3,12 +3,12 @@
  * [--origin POINT] [--steps]`: the exact equations of the outputs
  * (format.h), after every step of the derivation with --steps (steps.h).
  */
-#include "compiler/cli/cli.h"
+#include "driver/cli/cli.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/cli/args.h"
+#include "driver/cli/args.h"
 #include "compiler/format.h"
 #include "compiler/steps.h"
 

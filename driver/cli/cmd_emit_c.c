@@ -9,16 +9,16 @@
  * (outfile.h), both files at once: when one fails, neither is changed and
  * stdout stays empty.
  */
-#include "compiler/cli/cli.h"
+#include "driver/cli/cli.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "codegen/collapse.h"
 #include "codegen/emit_c.h"
-#include "compiler/cli/args.h"
-#include "compiler/cli/outfile.h"
-#include "compiler/mem.h"
+#include "driver/cli/args.h"
+#include "driver/cli/outfile.h"
+#include "base/mem.h"
 
 typedef struct EmitArgs {
     const char *cpath, *hpath, *prefix; // NULL: stdout, none, the scheme's

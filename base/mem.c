@@ -4,7 +4,7 @@
  * A reserve of 64 KiB is given back just before the handler runs, so that
  * it can still report.
  */
-#include "compiler/mem.h"
+#include "base/mem.h"
 
 #include <gmp.h>
 #include <malloc.h>

@@ -14,7 +14,7 @@
  *                     grid of samples (the given params and the swept
  *                     consts)
  *
- * eval and plot share EvalArgs and EvalSetup (compiler/cli/eval.c is the
+ * eval and plot share EvalArgs and EvalSetup (driver/cli/cmd_eval.c is the
  * model):
  *
  *   EvalArgs a;  eval_args_init(&a);
@@ -36,7 +36,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "compiler/budget.h"
+#include "driver/cli/budget.h"
 #include "runtime/plan.h"
 #include "runtime/sample.h"
 

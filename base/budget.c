@@ -1,0 +1,52 @@
+/*
+ * budget.c - the statement mark and the budget texts (budget.h).
+ *
+ * The current statement is kept in two slots and published by flipping an
+ * index, so a signal handler never reads a half-written one.  Both are
+ * per thread: threads deriving distinct schemes never share them, and the
+ * out-of-memory handler (which runs on the allocating thread) reports the
+ * statement of the derivation that ran out.
+ */
+#include "base/budget.h"
+
+#include <signal.h>
+
+#include "base/numfmt.h"
+
+typedef struct Where {
+    const Source *src;
+    Span span;
+} Where;
+
+static _Thread_local Where slots[2];
+static _Thread_local volatile sig_atomic_t cur = 0;
+
+void budget_statement(const Source *src, Span span)
+{
+    int next = !cur;
+    slots[next].src = src;
+    slots[next].span = span;
+    cur = next;
+}
+
+void budget_where(const Source **src, Span *span)
+{
+    const Where *w = &slots[cur];
+    *src = w->src;
+    *span = w->span;
+}
+
+void budget_format_seconds(char *buf, size_t cap, double s)
+{
+    pc_snprintf(buf, cap, "%g s", s);
+}
+
+void budget_format_bytes(char *buf, size_t cap, size_t b)
+{
+    if (b >= ((size_t)1 << 30) && b % ((size_t)1 << 30) == 0)
+        snprintf(buf, cap, "%zu GiB", b >> 30);
+    else if (b >= ((size_t)1 << 20))
+        snprintf(buf, cap, "%zu MiB", b >> 20);
+    else
+        snprintf(buf, cap, "%zu bytes", b);
+}

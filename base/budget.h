@@ -1,0 +1,32 @@
+/*
+ * budget.h - what every layer needs of the work budget: its defaults, the
+ * statement being derived (so that a handler of the command line can say
+ * where a budget ran out), and the budgets as messages write them.
+ *
+ * The library only marks the statement it works on (budget_statement); the
+ * hard limits (timer and memory handler) belong to the command line
+ * (driver/cli/budget.h), which reads the mark with budget_where.
+ */
+#ifndef PC_BASE_BUDGET_H
+#define PC_BASE_BUDGET_H
+
+#include <stddef.h>
+
+#include "base/source.h"
+
+#define BUDGET_DEFAULT_SECONDS 60.0
+#define BUDGET_DEFAULT_MEMORY ((size_t)2 << 30) /* 2 GiB */
+
+/* The statement being derived by this thread (src NULL: none).  src must
+ * stay valid until the next call. */
+void budget_statement(const Source *src, Span span);
+
+/* The statement last marked on this thread (*src NULL: none); safe in a
+ * signal handler: the mark is published by flipping an index. */
+void budget_where(const Source **src, Span *span);
+
+/* "60 s", "2 GiB", "512 MiB": the budgets as the messages write them */
+void budget_format_seconds(char *buf, size_t cap, double s);
+void budget_format_bytes(char *buf, size_t cap, size_t b);
+
+#endif
