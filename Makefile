@@ -7,6 +7,9 @@
 #   make fuzz     libFuzzer on derive_source for FUZZ_SECONDS (clang)
 #   make bench    in-process benchmarks (bench/)
 #   make figures  docs/figures/*.svg (pointcalc plot)
+#   make check-fast  the fast tier: unit tests and the scheme corpus (no
+#                 generated-C compilation, no fuzzing), about a minute
+#   make lint     layers, format, unused exports, file and function sizes
 #   make format   clang-format the sources
 #   make flint-static  a static libflint.a from Debian's source package
 #                 (.ci/flint-static; pointcalc then links it and starts faster)
@@ -207,11 +210,23 @@ figures: $(B)/pointcalc
 format:
 	clang-format -i $(FORMAT_SRC)
 
+# the house rules the compiler does not check (tests/lint/): includes only
+# down the layers (and a self-test that a planted upward one fails), no
+# format drift, no export nobody uses, no file over 1000 lines and no
+# function over 120 without a 'long:' reason
+LINT_C = $(filter %.c,$(foreach d,$(LAYERS) driver driver/cli,$(wildcard $(d)/*.c $(d)/*/*.c)))
+lint: $(B)/pointcalc $(B)/libpointcalc.a
+	tests/lint/layers.sh
+	tests/lint/selftest.sh
+	clang-format --dry-run -Werror $(FORMAT_SRC)
+	tests/lint/exports.sh $(B)
+	python3 tests/lint/funclen.py $(sort $(LINT_C))
+
 flint-static:
 	.ci/flint-static
 
 clean:
 	rm -rf build build-asan build-tsan build-fuzz
 
-.PHONY: all tests check asan tsan valgrind fuzz bench figures format clean flint-static
+.PHONY: all tests check check-fast lint asan tsan valgrind fuzz bench figures format clean flint-static
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

@@ -15,16 +15,9 @@ struct ArenaBlock {
     alignas(max_align_t) unsigned char data[];
 };
 
-struct ArenaCleanup {
-    ArenaCleanup *next;
-    void (*fn)(void *);
-    void *arg;
-};
-
 void arena_init(Arena *a)
 {
     a->blocks = NULL;
-    a->cleanups = NULL;
 }
 
 static ArenaBlock *new_block(size_t size)
@@ -80,21 +73,8 @@ char *arena_strdup(Arena *a, const char *s)
     return arena_strndup(a, s, strlen(s));
 }
 
-void arena_on_reset(Arena *a, void (*fn)(void *), void *arg)
-{
-    ArenaCleanup *c = arena_new(a, ArenaCleanup);
-    c->fn = fn;
-    c->arg = arg;
-    c->next = a->cleanups;
-    a->cleanups = c;
-}
-
 void arena_reset(Arena *a)
 {
-    /* callbacks first: their records live in the blocks freed below */
-    for (ArenaCleanup *c = a->cleanups; c; c = c->next)
-        c->fn(c->arg);
-    a->cleanups = NULL;
     ArenaBlock *b = a->blocks;
     while (b) {
         ArenaBlock *next = b->next;

@@ -3,8 +3,8 @@
  *
  * One Arena per compilation holds the source copy, identifier strings, the
  * AST and the symbols.  Memory is zero-filled, aligned for any type, never
- * NULL, and freed all at once by arena_reset, which first runs the cleanup
- * callbacks (LIFO) of objects that own heap memory (FLINT values).
+ * NULL, and freed all at once by arena_reset.  Nothing in an arena owns
+ * heap memory (FLINT values live on the heap, owned by their results).
  */
 #ifndef PC_ARENA_H
 #define PC_ARENA_H
@@ -12,11 +12,9 @@
 #include <stddef.h>
 
 typedef struct ArenaBlock ArenaBlock;
-typedef struct ArenaCleanup ArenaCleanup;
 
 typedef struct Arena {
-    ArenaBlock *blocks;     // owned, newest first
-    ArenaCleanup *cleanups; // arena-allocated, newest first
+    ArenaBlock *blocks; // owned, newest first
 } Arena;
 
 void arena_init(Arena *a);
@@ -25,8 +23,6 @@ void *arena_alloc(Arena *a, size_t size);
 #define arena_new(a, T) ((T *)arena_alloc((a), sizeof(T)))
 char *arena_strndup(Arena *a, const char *s, size_t n);
 char *arena_strdup(Arena *a, const char *s);
-/* fn(arg) runs at arena_reset, newest first */
-void arena_on_reset(Arena *a, void (*fn)(void *), void *arg);
 void arena_reset(Arena *a);
 
 #endif

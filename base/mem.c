@@ -34,7 +34,7 @@ void mem_set_oom_handler(MemOomHandler fn, void *arg)
         free(r);
 }
 
-_Noreturn void pc_out_of_memory(MemFailure why)
+static _Noreturn void pc_out_of_memory(MemFailure why)
 {
     static const char msg[] = "pointcalc: error: out of memory\n";
     static const char budget[] =
@@ -136,18 +136,12 @@ void pc_xclose_memstream(FILE *f)
  * out".)  A block made before mem_use_for_gmp_flint and freed after it
  * takes its size off: in_use is signed and only ever too low then, which
  * mem_in_use shows as 0. */
-static _Atomic long long in_use, peak;
+static _Atomic long long in_use;
 
-/* in_use += n (either sign), and the peak */
+/* in_use += n (either sign) */
 static void count(long long n)
 {
-    long long now =
-        atomic_fetch_add_explicit(&in_use, n, memory_order_relaxed) + n;
-    long long p = atomic_load_explicit(&peak, memory_order_relaxed);
-    while (now > p &&
-           !atomic_compare_exchange_weak_explicit(
-               &peak, &p, now, memory_order_relaxed, memory_order_relaxed))
-        ;
+    atomic_fetch_add_explicit(&in_use, n, memory_order_relaxed);
 }
 
 /* counts n bytes about to be allocated; out of memory (the budget) when
@@ -165,7 +159,6 @@ static void charge(size_t n)
         count(-(long long)n);
         pc_out_of_memory(MEM_BUDGET);
     }
-    count(0); // the peak
 }
 
 static void *c_alloc(size_t n)
@@ -244,19 +237,8 @@ void mem_set_limit(size_t bytes)
     atomic_store_explicit(&limit, bytes, memory_order_relaxed);
 }
 
-size_t mem_limit(void)
-{
-    return atomic_load_explicit(&limit, memory_order_relaxed);
-}
-
 size_t mem_in_use(void)
 {
     long long n = atomic_load_explicit(&in_use, memory_order_relaxed);
-    return n > 0 ? (size_t)n : 0;
-}
-
-size_t mem_peak(void)
-{
-    long long n = atomic_load_explicit(&peak, memory_order_relaxed);
     return n > 0 ? (size_t)n : 0;
 }

@@ -3,7 +3,7 @@
  *
  * pc_xmalloc & co. never return NULL.  When memory cannot be had - the
  * system refuses it, or the memory budget (mem_set_limit) would be
- * exceeded - they call pc_out_of_memory(), which does not return: it calls
+ * exceeded - they call the out-of-memory path, which does not return: it calls
  * the handler (mem_set_oom_handler; pointcalc's own prints a located error
  * at the statement being derived and exits 1), and without one writes
  * "pointcalc: error: out of memory" to stderr and exits 1 with _exit (no
@@ -45,9 +45,6 @@ typedef enum MemFailure {
     MEM_BUDGET, // the memory budget would be exceeded
 } MemFailure;
 
-/* does not return; see above */
-_Noreturn void pc_out_of_memory(MemFailure why);
-
 /* The handler must not return (it may _exit or longjmp at its own risk)
  * and must not allocate: it runs where an allocation just failed.  NULL
  * restores the default. */
@@ -59,13 +56,11 @@ void mem_set_oom_handler(MemOomHandler fn, void *arg);
  * other threads use GMP or FLINT. */
 void mem_use_for_gmp_flint(void);
 /* The memory budget in bytes for what mem_use_for_gmp_flint counts (0: no
- * budget), and the bytes those allocators hold now and at most so far.
+ * budget), and the bytes those allocators hold now.
  * The counters are atomic and shared by all threads, and exact: what is
  * allocated after a reading and freed again leaves mem_in_use where it
  * was.  Threads allocating at once cannot together exceed the budget. */
 void mem_set_limit(size_t bytes);
-size_t mem_limit(void);
 size_t mem_in_use(void);
-size_t mem_peak(void);
 
 #endif

@@ -136,7 +136,7 @@ Stmt *ast_new_stmt(Arena *a, StmtKind kind, Span span)
     return s;
 }
 
-const char *ast_node_kind_name(NodeKind k)
+static const char *ast_node_kind_name(NodeKind k)
 {
     static const char *const names[] = {
 #define X(k, s) s,
@@ -146,7 +146,7 @@ const char *ast_node_kind_name(NodeKind k)
     return names[k];
 }
 
-const char *ast_stmt_kind_name(StmtKind k)
+static const char *ast_stmt_kind_name(StmtKind k)
 {
     static const char *const names[] = {
 #define X(k, s) s,

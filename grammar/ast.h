@@ -145,8 +145,6 @@ Equation *ast_new_equation(Arena *a, Node *lhs, Node *rhs, Span span);
 Equation *ast_append_equation(Equation *list, Equation *item);
 Stmt *ast_new_stmt(Arena *a, StmtKind kind, Span span);
 
-const char *ast_node_kind_name(NodeKind k);
-const char *ast_stmt_kind_name(StmtKind k);
 /* deterministic S-expression dump, for golden tests (tests/unit/test_front.c;
  * no command-line flag prints it) */
 void ast_dump(FILE *out, const Scheme *s);

@@ -276,7 +276,7 @@ static int is_value(const Plan *p, int r, double v)
     return is_const(p, r, &c) && c == v;
 }
 
-int plan_node(Plan *p, PlanOp op, int a, int b)
+static int plan_node(Plan *p, PlanOp op, int a, int b)
 {
     double x = 0, y = 0;
     int nargs = plan_op_nargs(op);

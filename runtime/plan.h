@@ -8,7 +8,7 @@
  *   register i  =  the value of instruction i  (SSA: each written once)
  *
  * Instructions are appended in dependency order, so the list is already a
- * schedule.  The builder (plan_node) hash-conses: asking twice for the same
+ * schedule.  The builder hash-conses: asking twice for the same
  * (op, a, b) returns the same register, and operations on constants are
  * folded.  A register is *uniform* when it depends on no param (only on
  * numeric constants and the scheme's consts): back ends compute uniform
@@ -221,7 +221,6 @@ static inline PlanStatus plan_status(double bad)
  * simplified. */
 int plan_const(Plan *p, double v);
 int plan_input(Plan *p, int index); // params then consts
-int plan_node(Plan *p, PlanOp op, int a, int b);
 int plan_neg(Plan *p, int a);
 int plan_add(Plan *p, int a, int b);
 int plan_sub(Plan *p, int a, int b);

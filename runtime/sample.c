@@ -138,22 +138,3 @@ double sample_value(const Spec *s, size_t k)
         return s->lo + (s->hi - s->lo) * f;
     return s->lo * (1 - f) + s->hi * f; // -1e308:1e308: hi - lo overflows
 }
-
-size_t sample_grid_rows(const Spec *specs, int n)
-{
-    size_t rows = 1;
-    for (int i = 0; i < n; i++) {
-        if (specs[i].n && rows > SIZE_MAX / specs[i].n)
-            return (size_t)-1;
-        rows *= specs[i].n;
-    }
-    return rows;
-}
-
-void sample_grid_row(const Spec *specs, int n, size_t row, double *vals)
-{
-    for (int i = n - 1; i >= 0; i--) {
-        vals[i] = sample_value(&specs[i], row % specs[i].n);
-        row /= specs[i].n;
-    }
-}

@@ -31,10 +31,4 @@ int sample_number(const char *text, double *v);
  * (>= 1) or -1. */
 long sample_numbers(const char *text, double **v);
 
-/* Rows of the grid of specs[0..n-1]: the product of their sizes, or
- * (size_t)-1 on overflow. */
-size_t sample_grid_rows(const Spec *specs, int n);
-/* vals[i] = value of param i in row `row` (last param fastest). */
-void sample_grid_row(const Spec *specs, int n, size_t row, double *vals);
-
 #endif

@@ -503,11 +503,3 @@ size_t eval_setup_run(const EvalSetup *s, size_t row)
         return s->rows - row; // nothing swept
     return inner - row % inner;
 }
-
-int eval_setup_swept(const EvalSetup *s, int k)
-{
-    for (int i = 0; i < s->naxes; i++)
-        if (s->axes[i].cnst == k)
-            return 1;
-    return 0;
-}

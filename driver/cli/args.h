@@ -136,8 +136,6 @@ void eval_setup_row(const EvalSetup *s, size_t row, double *params,
 /* how many rows from `row` on share the consts' values (at least 1): a
  * block plan_eval can take at once */
 size_t eval_setup_run(const EvalSetup *s, size_t row);
-/* 1 when const k is swept (a column of the output) */
-int eval_setup_swept(const EvalSetup *s, int k);
 
 /* "A, B, C" of names[0..n-1] (or "none") into buf, truncated to size;
  * returns buf (for messages) */

@@ -31,16 +31,14 @@ CliCommand cli_plot;   // plot.c: the curves and the construction as SVG
 
 /* The pipeline every command starts with (pipeline.c).
  *
- * cli_derive_file: parse -> expand -> sema -> derive, under the budget b
+ * cli_derive_file_steps: parse -> expand -> sema -> derive, under the budget b
  * (armed for the derivation, disarmed after).  NULL when the scheme has an
  * error (reported to err; *rc = 1) or a -D names no int of it (*rc = 2).
  * cli_plan_file: the same, then lower to a numeric Plan (also under the
  * budget); NULL with *rc = 1 when an output cannot be lowered.  With
  * derived not NULL, the derivation is handed over there (the caller
  * frees it) when a Plan is returned. */
-Derived *cli_derive_file(const char *file, const BudgetOptions *b, FILE *err,
-                         int *rc);
-/* cli_derive_file that also keeps the steps (derive --steps) */
+/* keep_steps: also record the steps (derive --steps) */
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
                                int keep_steps, FILE *err, int *rc);
 Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,

@@ -2,7 +2,7 @@
  * main.c - the pointcalc command line (contract section 4; docs/ for the
  * rest).  Every command runs one pipeline, as far as it needs:
  *
- *   parse -> expand -> sema -> derive      cli_derive_file (pipeline.c)
+ *   parse -> expand -> sema -> derive      cli_derive_file_steps (pipeline.c)
  *     |-> format (text, LaTeX, JSON)       derive  (derive.c)
  *     `-> lower to a Plan                  cli_plan_file (pipeline.c)
  *           |-> emit C                     emit-c  (emit_c.c)

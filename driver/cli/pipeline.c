@@ -5,12 +5,6 @@
  */
 #include "driver/cli/cli.h"
 
-Derived *cli_derive_file(const char *file, const BudgetOptions *b, FILE *err,
-                         int *rc)
-{
-    return cli_derive_file_steps(file, b, 0, err, rc);
-}
-
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
                                int keep_steps, FILE *err, int *rc)
 {
