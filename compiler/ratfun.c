@@ -115,8 +115,9 @@ cleanup:
  * path; otherwise they point at ta, tb, tg.  a and b are non-zero.  Units
  * and integers take an integer content gcd instead of a polynomial one,
  * univariate pairs a dense fmpz_poly gcd (univar_cofactors).  If
- * FLINT's gcd fails (exponent overflow, practically unreachable), g = 1 is
- * reported: the result stays correct, only not fully reduced. */
+ * FLINT's gcd fails (exponent overflow, practically unreachable), the
+ * program stops with an internal error: a value left unreduced would
+ * break canonical form, and equality with it. */
 static void cofactors(const fmpz_mpoly_struct **pa,
                       const fmpz_mpoly_struct **pb,
                       const fmpz_mpoly_struct **pg, fmpz_mpoly_t ta,
@@ -155,8 +156,11 @@ static void cofactors(const fmpz_mpoly_struct **pa,
             return;
         }
     }
-    if (!fmpz_mpoly_gcd_cofactors(tg, ta, tb, a, b, r->ctx))
-        return;
+    if (!fmpz_mpoly_gcd_cofactors(tg, ta, tb, a, b, r->ctx)) {
+        fprintf(stderr, "pointcalc: internal error: FLINT's gcd failed on "
+                        "a rational function's numerator and denominator\n");
+        abort();
+    }
     if (fmpz_mpoly_is_one(tg, r->ctx))
         return;
     *pa = ta;
