@@ -12,9 +12,9 @@
 
 #include <stdlib.h>
 
+#include "base/mem.h"
 #include "compiler/linsolve.h"
 #include "compiler/meet_ff.h"
-#include "base/mem.h"
 
 /* P*(1 - s) + Q*s: one combination over one denominator */
 void construct_along(PointEq res, const PointEq p, const PointEq q,
@@ -212,8 +212,8 @@ MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
 }
 
 MeetStatus construct_meet_general_nf(PointEq res, const PointEq *a, slong na,
-                                     const PointEq *b, slong nb,
-                                     LinNormal *nf, const Ring *r)
+                                     const PointEq *b, slong nb, LinNormal *nf,
+                                     const Ring *r)
 {
     /* unknowns: lambda_1..lambda_{na-1}, mu_1..mu_{nb-1};
      * sum lambda_i d_i - sum mu_j e_j = ob - oa  over every base point */
@@ -341,8 +341,7 @@ int construct_meet_params(RatFunStruct *params, const PointEq m,
     ok = ok && flat_split(origin, dirs, a, 2, r) == 0 &&
          affine_coords(params, m, origin, (const PointEq *)dirs, 1, r);
     ok = ok && flat_split(origin, dirs, b, nb, r) == 0 &&
-         affine_coords(params + 1, m, origin, (const PointEq *)dirs, nb - 1,
-                       r);
+         affine_coords(params + 1, m, origin, (const PointEq *)dirs, nb - 1, r);
     for (slong j = 0; j < MEET_MAX_COLS; j++)
         pteq_clear(dirs[j], r);
     pteq_clear(origin, r);
@@ -350,8 +349,7 @@ int construct_meet_params(RatFunStruct *params, const PointEq m,
 }
 
 /* pts[0..n-1] as proper points: a direction d becomes origin + d */
-static int flat_points(PointEq *res, const PointEq *pts, slong n,
-                       const Ring *r)
+static int flat_points(PointEq *res, const PointEq *pts, slong n, const Ring *r)
 {
     PointEq origin;
     RatFun sum;
@@ -405,8 +403,8 @@ int construct_meet_sv(RatFunStruct *coord, slong *w, RatFun det,
         for (slong j = 0, k = 1; j < nb; j++)
             if (j != cand)
                 pteq_sub(dirs[k++], pts[2 + j], pts[0], r);
-        if (!affine_coords(x, pts[2 + cand], pts[0], (const PointEq *)dirs,
-                           nb, r))
+        if (!affine_coords(x, pts[2 + cand], pts[0], (const PointEq *)dirs, nb,
+                           r))
             continue;
         /* a = 1 - x[0] - sum x[1..], b = x[0] */
         ratfun_one(coord, r);

@@ -17,8 +17,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "compiler/format.h"
 #include "base/mem.h"
+#include "compiler/format.h"
 
 /* 0, or the reason to stop: an intermediate polynomial beyond
  * KERNEL_MAX_WORK_TERMS terms, or the derivation's time budget spent.
@@ -175,7 +175,7 @@ static char *cat3(const char *a, const char *b, const char *c)
 /* ---- making kernels ----------------------------------------------------- */
 
 slong kernels_find(const Kernels *K, KernelFn fn, const RatFun a,
-                  const RatFun b, slong q)
+                   const RatFun b, slong q)
 {
     for (slong i = 0; i < K->n; i++) {
         const Kernel *k = &K->k[i];
@@ -223,8 +223,8 @@ static char *arg_text(const RatFun x, const Ring *r, FormatStyle st)
             for (size_t i = 0; i < n; i++) {
                 if (strncmp(s + i, "\\left(", 6) == 0)
                     depth++;
-                else if (strncmp(s + i, "\\right)", 7) == 0 &&
-                         --depth == 0 && i + 7 < n)
+                else if (strncmp(s + i, "\\right)", 7) == 0 && --depth == 0 &&
+                         i + 7 < n)
                     whole = 0;
             }
             if (whole) {
@@ -286,8 +286,8 @@ static void set_names(Kernels *K, Kernel *k)
         break;
     case KF_ROOT: {
         slong v;
-        const Kernel *e = kernel_rf_is_var(k->arg, &v, r) ? kernels_of_var(K, v)
-                                                   : NULL;
+        const Kernel *e =
+            kernel_rf_is_var(k->arg, &v, r) ? kernels_of_var(K, v) : NULL;
         if (e && e->fn == KF_EXP) { /* the q-th root of exp(m): exp(m/q) */
             RatFun m;
             ratfun_init(m, r);
@@ -327,10 +327,14 @@ static void set_names(Kernels *K, Kernel *k)
         break;
     default: {
         static const char *const lx[KF_COUNT] = {
-            [KF_SIN] = "\\sin",         [KF_COS] = "\\cos",
-            [KF_SINH] = "\\sinh",       [KF_COSH] = "\\cosh",
-            [KF_LN] = "\\ln",           [KF_ASIN] = "\\arcsin",
-            [KF_ACOS] = "\\arccos",     [KF_ATAN] = "\\arctan",
+            [KF_SIN] = "\\sin",
+            [KF_COS] = "\\cos",
+            [KF_SINH] = "\\sinh",
+            [KF_COSH] = "\\cosh",
+            [KF_LN] = "\\ln",
+            [KF_ASIN] = "\\arcsin",
+            [KF_ACOS] = "\\arccos",
+            [KF_ATAN] = "\\arctan",
             [KF_SIGN] = "\\operatorname{sign}",
         };
         char *t = cat3(fn_names[k->fn], "(", a);
@@ -372,13 +376,13 @@ static Kernel *add(Kernels *K, KernelFn fn, const RatFun a, const RatFun b,
 /* res = the kernel variable of fn(a[, b]) (made if new); pairs are made
  * together: sin with cos, sinh with cosh */
 int kernels_intern(Kernels *K, RatFun res, KernelFn fn, const RatFun a,
-                  const RatFun b, slong q)
+                   const RatFun b, slong q)
 {
     const Ring *r = K->r;
     slong i = kernels_find(K, fn, a, b, q);
     if (i < 0) {
-        int pair = fn == KF_SIN || fn == KF_COS || fn == KF_SINH ||
-                   fn == KF_COSH;
+        int pair =
+            fn == KF_SIN || fn == KF_COS || fn == KF_SINH || fn == KF_COSH;
         if (K->n + (pair ? 2 : 1) > K->cap) {
             K->why = "too many distinct functions in one scheme";
             K->full = 1;
@@ -497,4 +501,3 @@ int kernel_coord_pteq(Kernels *K, RatFun res, const PointEq P, slong k)
     ratfun_clear(acc, r);
     return rc;
 }
-

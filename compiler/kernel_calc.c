@@ -197,8 +197,7 @@ static int derive_one(Kernels *K, RatFun w, void *ctx)
     return kernel_derivative(K, w, w, ((DerivCtx *)ctx)->var);
 }
 
-int kernel_derivative_pteq(Kernels *K, PointEq res, const PointEq x,
-                           slong var)
+int kernel_derivative_pteq(Kernels *K, PointEq res, const PointEq x, slong var)
 {
     DerivCtx c = {var};
     return kernel_map_weights(K, res, x, derive_one, &c);
@@ -233,8 +232,8 @@ static int compose_poly(Kernels *K, RatFun res, const fmpz_mpoly_t P,
     for (slong v = 0; v < nv && rc == 0; v++) /* the size of one term */
         if (img[v] && deg[v] > 0 &&
             (ratfun_log2_bits_pow(img[v], deg[v], r) > RATFUN_MAX_LOG2_BITS ||
-             (double)deg[v] * (double)(img[v]->num->length +
-                                       img[v]->den->length) >
+             (double)deg[v] *
+                     (double)(img[v]->num->length + img[v]->den->length) >
                  (double)KERNEL_MAX_WORK_TERMS)) {
             K->why = "expression too large for the functions' identities";
             rc = KERNEL_EBIG;
@@ -438,9 +437,8 @@ static int coord_images(Kernels *K, RatFunStruct **img, const RatFun x,
         if (k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD)
             continue;
         for (slong j = 0; j < i && !dep; j++)
-            dep = img[K->k[j].var] &&
-                  (kernel_rf_has(k->arg, K->k[j].var, r) ||
-                   kernel_rf_has(k->arg2, K->k[j].var, r));
+            dep = img[K->k[j].var] && (kernel_rf_has(k->arg, K->k[j].var, r) ||
+                                       kernel_rf_has(k->arg2, K->k[j].var, r));
         if (!dep)
             continue;
         KernelFn fn = k->fn;

@@ -293,8 +293,7 @@ static int apply_atan2(Kernels *K, RatFun res, const RatFun a, const RatFun y)
     int rc;
     fmpq_t qx;
     fmpq_init(qx);
-    if (ratfun_is_zero(a, r) && ratfun_get_fmpq(qx, y, r) &&
-        fmpq_sgn(qx) > 0) {
+    if (ratfun_is_zero(a, r) && ratfun_get_fmpq(qx, y, r) && fmpq_sgn(qx) > 0) {
         ratfun_zero(res, r);
         rc = 0;
     } else if (ratfun_is_zero(a, r) && ratfun_is_zero(y, r)) {
@@ -328,8 +327,8 @@ static int apply_number(Kernels *K, RatFun res, KernelFn f, const RatFun a,
 
 /* sin, cos at multiples of pi/12 where the value is a simple surd: 1 and
  * *rc set when decided */
-static int apply_trig_pi12(Kernels *K, RatFun res, KernelFn f,
-                           const RatFun a, int *rc)
+static int apply_trig_pi12(Kernels *K, RatFun res, KernelFn f, const RatFun a,
+                           int *rc)
 {
     int decided = 0;
     fmpq_t c;
@@ -358,8 +357,8 @@ static int apply_trig_pi12(Kernels *K, RatFun res, KernelFn f,
 
 /* sin, cos of x + c*pi with 2c an integer: +-sin(x), +-cos(x); 1 and *rc
  * set when decided */
-static int apply_trig_shift(Kernels *K, RatFun res, KernelFn f,
-                            const RatFun a, int *rc)
+static int apply_trig_shift(Kernels *K, RatFun res, KernelFn f, const RatFun a,
+                            int *rc)
 {
     const Ring *r = K->r;
     slong pi = kernels_find(K, KF_PI, NULL, NULL, 0);
@@ -441,8 +440,8 @@ static slong trig_sum_term(const Kernels *K, const RatFun a, const fmpz_t dd,
 
 /* res = sin or cos of arg = x + sgn*v, v kernel iv, by the addition
  * formulas */
-static int trig_sum_expand(Kernels *K, RatFun res, KernelFn f,
-                           const RatFun a, slong iv, slong sgn)
+static int trig_sum_expand(Kernels *K, RatFun res, KernelFn f, const RatFun a,
+                           slong iv, slong sgn)
 {
     const Ring *r = K->r;
     int rc;
@@ -570,8 +569,7 @@ static int apply_domain(Kernels *K, KernelFn f, const RatFun a)
 
 /* the sign taken out of the argument put back: sin(-a) = -sin(a),
  * acos(-y) = pi - acos(y) */
-static int apply_sign_back(Kernels *K, RatFun res, KernelFn f, int neg,
-                           int rc)
+static int apply_sign_back(Kernels *K, RatFun res, KernelFn f, int neg, int rc)
 {
     const Ring *r = K->r;
     if (rc == 0 && neg && is_odd(f))
@@ -595,13 +593,12 @@ static int apply_general(Kernels *K, RatFun res, KernelFn f, RatFun a)
     const Ring *r = K->r;
     int rc;
     /* odd and even functions see a canonical sign: sin(-a) = -sin(a) */
-    int neg = rf_lead_sign(a, r) < 0 &&
-              (is_odd(f) || is_even(f) || f == KF_ACOS);
+    int neg =
+        rf_lead_sign(a, r) < 0 && (is_odd(f) || is_even(f) || f == KF_ACOS);
     if (neg)
         ratfun_neg(a, a, r);
     slong v;
-    const Kernel *in = kernel_rf_is_var(a, &v, r) ? kernels_of_var(K, v)
-                                                  : NULL;
+    const Kernel *in = kernel_rf_is_var(a, &v, r) ? kernels_of_var(K, v) : NULL;
     if (f == KF_SIGN && abs(kernel_sign(K, a)) == 2) {
         ratfun_set_si(res, kernel_sign(K, a) > 0 ? 1 : -1, r);
         return apply_sign_back(K, res, f, neg, 0);
@@ -726,4 +723,3 @@ int kernel_abs(Kernels *K, RatFun res, const RatFun x)
     ratfun_clear(s, K->r);
     return rc;
 }
-

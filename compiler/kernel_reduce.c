@@ -175,8 +175,8 @@ int kernel_reduce(Kernels *K, RatFun x)
 }
 
 /* applies f to every weight of x and rebuilds x over one denominator */
-int kernel_map_weights(Kernels *K, PointEq res, const PointEq x, KernelWeightFn f,
-                       void *ctx)
+int kernel_map_weights(Kernels *K, PointEq res, const PointEq x,
+                       KernelWeightFn f, void *ctx)
 {
     const Ring *r = K->r;
     slong n = x->len;
@@ -207,4 +207,3 @@ int kernel_reduce_pteq(Kernels *K, PointEq x)
         return 0;
     return kernel_map_weights(K, x, x, reduce_one, NULL);
 }
-

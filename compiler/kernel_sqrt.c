@@ -308,8 +308,8 @@ static int square_denest(Kernels *K, RatFun f, const RatFun P, slong i,
  * (f = h v): 1 - sin^2 = cos^2, x = sqrt(x)^2 inside a denesting
  * ((sqrt(x) - sqrt(y))^2 needs g^2 = x).  Tried where R divides P (a
  * number R: where P is a rational square once divided by it) */
-static int square_by_relation(Kernels *K, RatFun f, const RatFun P,
-                              slong top, int *work)
+static int square_by_relation(Kernels *K, RatFun f, const RatFun P, slong top,
+                              int *work)
 {
     const Ring *r = K->r;
     RatFun Q, h;
@@ -419,8 +419,8 @@ static int poly_square(Kernels *K, RatFun f, const fmpz_mpoly_t p)
 }
 
 /* 1 when x = w g^2 modulo the relations for a root w = sqrt(R) of x
- * (so x >= 0): x w / R is a square; 2 when x = -w g^2 (x <= 0).  |W (sqrt(u) - sqrt(v))^2| = the
- * same, though reduced the product has no factor W. */
+ * (so x >= 0): x w / R is a square; 2 when x = -w g^2 (x <= 0).  |W (sqrt(u) -
+ * sqrt(v))^2| = the same, though reduced the product has no factor W. */
 static int root_times_square(Kernels *K, const RatFun x)
 {
     enum { ROOTS_TRIED = 4 };
@@ -500,8 +500,8 @@ static int poly_abs_sign(Kernels *K, int *s, const fmpz_mpoly_t p)
  * (sin(t) * (sin(t) (sqrt(x) - sqrt(y))^2 ...)), then one by one. */
 typedef struct SignDebt {
     slong n, alloc;
-    fmpz_mpoly_struct *p;  // owned: the polynomials f
-    unsigned char *split;  // 1: decided by its factors when alone
+    fmpz_mpoly_struct *p; // owned: the polynomials f
+    unsigned char *split; // 1: decided by its factors when alone
 } SignDebt;
 
 static void debt_init(SignDebt *d)
@@ -831,4 +831,3 @@ int kernel_sqrt_poly(Kernels *K, RatFun res, const RatFun x)
     ratfun_clear(acc, r);
     return rc;
 }
-

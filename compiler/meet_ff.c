@@ -91,8 +91,7 @@ static int too_big(const fmpz_mpoly_t a, const fmpz_mpoly_t b, const Ring *r)
 static const fmpz_mpoly_struct *
 get_minor(fmpz_mpoly_struct *minor, char *have, slong mask,
           const fmpz_mpoly_struct **G, slong k, const slong *sel,
-          const slong *cols, slong nc, fmpz_mpoly_t t, int *big,
-          const Ring *r)
+          const slong *cols, slong nc, fmpz_mpoly_t t, int *big, const Ring *r)
 {
     fmpz_mpoly_struct *res = minor + mask;
     slong lev = 0, q = 0;
@@ -186,8 +185,8 @@ static int covered(const char *need, const fmpz_mpoly_struct **G, slong i,
 }
 
 /* need[] set for every column of [lo, hi) with an entry in row i */
-static void mark_row(char *need, const fmpz_mpoly_struct **G, slong i,
-                     slong k, const slong *cl, slong nc, slong lo, slong hi)
+static void mark_row(char *need, const fmpz_mpoly_struct **G, slong i, slong k,
+                     const slong *cl, slong nc, slong lo, slong hi)
 {
     for (slong c = 0; c < nc; c++)
         if (cl[c] >= lo && cl[c] < hi && G[i * k + cl[c]] != NULL)
@@ -274,9 +273,9 @@ static void column_divide(fmpz_mpoly_struct *own, const fmpz_mpoly_struct **G,
  */
 static int reduce_side(fmpz_mpoly_struct **ownp, const fmpz_mpoly_struct **G,
                        slong m, slong k, const slong *row_unit,
-                       const PointEq *cols, const slong *cl, slong nc,
-                       slong lo, slong hi, fmpz_mpoly_struct *fac,
-                       slong *nfac, int *big, const Ring *r)
+                       const PointEq *cols, const slong *cl, slong nc, slong lo,
+                       slong hi, fmpz_mpoly_struct *fac, slong *nfac, int *big,
+                       const Ring *r)
 {
     slong sc[MEET_MAX_COLS], ns = 0;
     int st = 0;
@@ -401,22 +400,22 @@ typedef struct MeetFF {
     slong *rl, nr;               // the rows without a unit column
     slong cl[MEET_MAX_COLS], nc; // the columns that are not unit columns
     fmpz_mpoly_struct fac[MEET_MAX_COLS]; // reduce_side's multipliers
-    slong nfac, nfac_a;          // ... of both sides, of side a
-    slong sel[MEET_MAX_COLS], rank; // the rows R
-    char need[MEET_MAX_COLS];    // the z that M's rows use
-    fmpz_mpoly_struct *minor;    // memoised minors (get_minor), nmask
+    slong nfac, nfac_a;                   // ... of both sides, of side a
+    slong sel[MEET_MAX_COLS], rank;       // the rows R
+    char need[MEET_MAX_COLS];             // the z that M's rows use
+    fmpz_mpoly_struct *minor;             // memoised minors (get_minor), nmask
     char *have;
     slong nmask;
-    fmpz_mpoly_struct *z;        // the null vector (nc), or NULL
+    fmpz_mpoly_struct *z; // the null vector (nc), or NULL
     fmpz_mpoly_struct quo[MEET_MAX_COLS];
     slong nquo;
-    fmpz_mpoly_struct rdiv[2];   // divided out of the other side's z
+    fmpz_mpoly_struct rdiv[2]; // divided out of the other side's z
     char rdiv_set[2], used[MEET_MAX_COLS];
-    char *from, from_buf[64];    // per row of M: the side it comes from
-    fmpz_mpoly_struct *rq;       // the rows of M divided by rdiv
+    char *from, from_buf[64]; // per row of M: the side it comes from
+    fmpz_mpoly_struct *rq;    // the rows of M divided by rdiv
     fmpz_mpoly_t t, u, ub;
-    PointEq acc;                 // M
-    int big;                     // a product would be too large
+    PointEq acc; // M
+    int big;     // a product would be too large
 } MeetFF;
 
 static void ff_init(MeetFF *s, const PointEq *cols, slong na, slong k,
@@ -529,8 +528,8 @@ static int ff_reduce(MeetFF *s)
         s->big)
         return 0;
     s->nfac_a = s->nfac;
-    return !(reduce_side(&s->own, s->G, s->m, s->k, s->row_unit, s->cols,
-                         s->cl, s->nc, s->na, s->k, s->fac, &s->nfac, &s->big,
+    return !(reduce_side(&s->own, s->G, s->m, s->k, s->row_unit, s->cols, s->cl,
+                         s->nc, s->na, s->k, s->fac, &s->nfac, &s->big,
                          s->r) < 0 ||
              s->big);
 }
@@ -564,8 +563,8 @@ static int ff_rows(MeetFF *s)
             if (f == 0)
                 continue;
             for (slong j = 0; j < nc; j++)
-                row_mod[j] = nmod_sub(row_mod[j],
-                                      nmod_mul(f, basis[b][j], mod), mod);
+                row_mod[j] =
+                    nmod_sub(row_mod[j], nmod_mul(f, basis[b][j], mod), mod);
         }
         for (c = 0; c < nc && row_mod[c] == 0; c++)
             ;
@@ -640,9 +639,9 @@ static int ff_null_vector(MeetFF *s)
     for (slong c = 0; c < nc; c++) {
         if (!s->need[c])
             continue;
-        const fmpz_mpoly_struct *mc = get_minor(
-            s->minor, s->have, (s->nmask - 1) ^ (WORD(1) << c), s->G, s->k,
-            s->sel, s->cl, nc, s->t, &s->big, r);
+        const fmpz_mpoly_struct *mc =
+            get_minor(s->minor, s->have, (s->nmask - 1) ^ (WORD(1) << c), s->G,
+                      s->k, s->sel, s->cl, nc, s->t, &s->big, r);
         if (s->big)
             return 0;
         if (c & 1)
@@ -672,8 +671,7 @@ static void ff_divide_multipliers(MeetFF *s)
         for (slong c = 0; c < nc && all; c++)
             if (s->cl[c] >= olo && s->cl[c] < ohi &&
                 !fmpz_mpoly_is_zero(z + c, r->ctx))
-                all = fmpz_mpoly_divides(s->quo + c, z + c, s->fac + f,
-                                         r->ctx);
+                all = fmpz_mpoly_divides(s->quo + c, z + c, s->fac + f, r->ctx);
         if (!all)
             continue;
         for (slong c = 0; c < nc; c++)
@@ -773,17 +771,14 @@ static int ff_form_rows(MeetFF *s)
         if (un >= 0)
             s->from[i] = un < na;
         else
-            s->from[i] =
-                !(!covered(s->need, s->G, i, k, cl, nc, na, k) ||
-                  (covered(s->need, s->G, i, k, cl, nc, 0, na) &&
-                   row_cost(s->G, i, k, s->z, cl, nc, 0, na) <=
-                       row_cost(s->G, i, k, s->z, cl, nc, na, k)));
+            s->from[i] = !(!covered(s->need, s->G, i, k, cl, nc, na, k) ||
+                           (covered(s->need, s->G, i, k, cl, nc, 0, na) &&
+                            row_cost(s->G, i, k, s->z, cl, nc, 0, na) <=
+                                row_cost(s->G, i, k, s->z, cl, nc, na, k)));
         if (s->from[i])
-            row_sum(num, s->G, i, k, s->z, cl, nc, na, k, -1, s->t, &s->big,
-                    r);
+            row_sum(num, s->G, i, k, s->z, cl, nc, na, k, -1, s->t, &s->big, r);
         else
-            row_sum(num, s->G, i, k, s->z, cl, nc, 0, na, 1, s->t, &s->big,
-                    r);
+            row_sum(num, s->G, i, k, s->z, cl, nc, 0, na, 1, s->t, &s->big, r);
         if (s->big)
             return 0;
     }
@@ -809,8 +804,8 @@ static int ff_divide_rows(MeetFF *s)
         }
         for (i = 0; i < m; i++)
             if (s->from[i] == sd &&
-                !fmpz_mpoly_divides(s->rq + i, acc->terms[i].num,
-                                    s->rdiv + sd, r->ctx))
+                !fmpz_mpoly_divides(s->rq + i, acc->terms[i].num, s->rdiv + sd,
+                                    r->ctx))
                 break;
         for (slong e = 0; e < m && !s->big; e++) {
             if (i == m && s->from[e] == sd) {

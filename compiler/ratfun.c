@@ -60,7 +60,6 @@ static slong common_var(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
     return v;
 }
 
-
 /* g = gcd of the integer contents of a and b (positive) */
 static void contents_gcd(fmpz_t g, const fmpz_mpoly_t a, const fmpz_mpoly_t b)
 {
@@ -375,7 +374,8 @@ cleanup:
 
 RatFunStruct *ratfun_vec_init(slong len, const Ring *r)
 {
-    RatFunStruct *v = pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(len, 1));
+    RatFunStruct *v =
+        pc_xmalloc(sizeof(RatFunStruct) * (size_t)FLINT_MAX(len, 1));
     for (slong i = 0; i < len; i++)
         ratfun_init(v + i, r);
     return v;

@@ -96,8 +96,7 @@ void ratfun_derivative_n(RatFun res, const RatFun x, slong var, ulong k,
  * Horner on integers, without the polynomial machinery */
 static void compose_homog_numeric(fmpz_mpoly_t res, slong *deg,
                                   const fmpz_mpoly_t p, slong var,
-                                  const fmpz_t a, const fmpz_t b,
-                                  const Ring *r)
+                                  const fmpz_t a, const fmpz_t b, const Ring *r)
 {
     fmpz_t acc, c, pw, bp;
     slong prev = 0;
@@ -146,9 +145,10 @@ static int only_var(const fmpz_mpoly_t p, slong var, const Ring *r)
     return ok;
 }
 
-int ratfun_poly_compose_homog(fmpz_mpoly_t res, slong *deg, const fmpz_mpoly_t p,
-                         slong var, const fmpz_mpoly_t a, const fmpz_mpoly_t b,
-                         const Ring *r)
+int ratfun_poly_compose_homog(fmpz_mpoly_t res, slong *deg,
+                              const fmpz_mpoly_t p, slong var,
+                              const fmpz_mpoly_t a, const fmpz_mpoly_t b,
+                              const Ring *r)
 {
     if (p->length > 0 && fmpz_mpoly_is_fmpz(a, r->ctx) &&
         fmpz_mpoly_is_fmpz(b, r->ctx) && only_var(p, var, r)) {
@@ -235,8 +235,10 @@ int ratfun_compose_var(RatFun res, const RatFun x, slong var, const RatFun s,
     }
     ratfun_init(t, r);
     fmpz_mpoly_init(pw, r->ctx);
-    if (!ratfun_poly_compose_homog(t->num, &dn, x->num, var, s->num, s->den, r) ||
-        !ratfun_poly_compose_homog(t->den, &dd, x->den, var, s->num, s->den, r)) {
+    if (!ratfun_poly_compose_homog(t->num, &dn, x->num, var, s->num, s->den,
+                                   r) ||
+        !ratfun_poly_compose_homog(t->den, &dd, x->den, var, s->num, s->den,
+                                   r)) {
         st = RATFUN_EOVERFLOW;
         goto cleanup;
     }

@@ -15,14 +15,13 @@
 /* A polynomial's shape for the estimates: log2 of its length, its largest
  * coefficient's bits, its degree in every variable (degs: nvars slots). */
 typedef struct Shape {
-    double llen;  // log2(length); -1 for the zero polynomial
-    double bits;  // largest coefficient, bits
-    slong *degs;  // borrowed buffer
-    int huge;     // degrees beyond a slong
+    double llen; // log2(length); -1 for the zero polynomial
+    double bits; // largest coefficient, bits
+    slong *degs; // borrowed buffer
+    int huge;    // degrees beyond a slong
 } Shape;
 
-static void shape_of(Shape *s, const fmpz_mpoly_t p, slong *degs,
-                     const Ring *r)
+static void shape_of(Shape *s, const fmpz_mpoly_t p, slong *degs, const Ring *r)
 {
     slong len = fmpz_mpoly_length(p, r->ctx);
     s->degs = degs;
@@ -161,11 +160,11 @@ double ratfun_log2_bits_compose(const RatFun x, slong var, const RatFun s,
         double bx = max2(a.n.bits, a.d.bits);
         double ls =
             e > 0 ? max2(pow_lterms(&b.n, e, nv), pow_lterms(&b.d, e, nv)) : 0;
-        double bs = e * (max2(b.n.bits, b.d.bits) + max2(b.n.llen, b.d.llen) + 1);
+        double bs =
+            e * (max2(b.n.bits, b.d.bits) + max2(b.n.llen, b.d.llen) + 1);
         m = lx + ls + log2(bx + bs + lx + 1);
     }
     shapes_clear(&b);
     shapes_clear(&a);
     return m;
 }
-
