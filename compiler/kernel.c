@@ -457,7 +457,8 @@ slong kernels_coord_slots(slong nindices, slong npoints)
     return nindices * npoints;
 }
 
-int kernel_coord(Kernels *K, RatFun res, slong a, slong k)
+/* res = coord(A_a, k), k >= 1 */
+static int kernel_coord(Kernels *K, RatFun res, slong a, slong k)
 {
     slong i;
     for (i = 0; i < K->n; i++)

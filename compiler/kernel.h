@@ -185,8 +185,6 @@ int kernel_dist(Kernels *K, RatFun res, slong a, slong b);
  * Cartesian coordinate of base point a is a variable with no relation and
  * no known sign, whose derivative by every param is 0; coord is linear,
  * so a combination's coordinate is the combination of its points'. */
-/* res = coord(A_a, k), k >= 1 */
-int kernel_coord(Kernels *K, RatFun res, slong a, slong k);
 /* res = coord(P, k) = sum_i w_i coord(A_i, k) for a combination P of base
  * points (no unknown columns) */
 int kernel_coord_pteq(Kernels *K, RatFun res, const PointEq P, slong k);
@@ -214,9 +212,6 @@ int kernel_reduce_pteq(Kernels *K, PointEq x);
  * it), or any kernel at all (any = 1) */
 int kernel_uses(const Kernels *K, const RatFun x, int any);
 int kernel_uses_pteq(const Kernels *K, const PointEq x, int any);
-
-/* 1 when x depends on variable var, directly or through a kernel */
-int kernel_depends(const Kernels *K, const RatFun x, slong var);
 
 /* 1 when x uses a distance to base point `point` (directly or inside a
  * function's argument) */

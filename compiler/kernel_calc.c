@@ -17,6 +17,8 @@
 
 /* ---- dependence, derivatives ------------------------------------------- */
 
+static int kernel_depends(const Kernels *K, const RatFun x, slong var);
+
 static int kernel_arg_depends(const Kernels *K, const Kernel *k, slong var)
 {
     if (k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD)
@@ -25,7 +27,8 @@ static int kernel_arg_depends(const Kernels *K, const Kernel *k, slong var)
            (k->fn == KF_ATAN2 && kernel_depends(K, k->arg2, var));
 }
 
-int kernel_depends(const Kernels *K, const RatFun x, slong var)
+/* 1 when x depends on variable var, directly or through a kernel */
+static int kernel_depends(const Kernels *K, const RatFun x, slong var)
 {
     if (kernel_rf_has(x, var, K ? K->r : NULL))
         return 1;

@@ -37,6 +37,8 @@
  */
 #include "compiler/meet_ff.h"
 
+#include "base/check.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -717,12 +719,10 @@ static void ff_content(MeetFF *s)
         ratfun_poly_gcd(s->u, s->u, z + c, r);
     if (!fmpz_mpoly_is_zero(s->u, r->ctx) && !fmpz_mpoly_is_one(s->u, r->ctx))
         for (slong c = 0; c < nc; c++)
-            if (!fmpz_mpoly_divides(z + c, z + c, s->u, r->ctx)) {
+            if (!fmpz_mpoly_divides(z + c, z + c, s->u, r->ctx))
                 /* u is the gcd of the z: exact by construction */
-                fprintf(stderr, "pointcalc: internal error: a meet's null "
-                                "vector is no multiple of its gcd\n");
-                abort();
-            }
+                PC_UNREACHABLE("a meet's null vector is no multiple of its "
+                               "gcd");
 }
 
 /* the other rows of G' must vanish too (else rank nc: fall back) */

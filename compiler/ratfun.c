@@ -21,6 +21,7 @@
 
 #include <stdlib.h>
 
+#include "base/check.h"
 #include "base/mem.h"
 
 #include <flint/fmpz_poly.h>
@@ -155,11 +156,9 @@ static void cofactors(const fmpz_mpoly_struct **pa,
             return;
         }
     }
-    if (!fmpz_mpoly_gcd_cofactors(tg, ta, tb, a, b, r->ctx)) {
-        fprintf(stderr, "pointcalc: internal error: FLINT's gcd failed on "
-                        "a rational function's numerator and denominator\n");
-        abort();
-    }
+    if (!fmpz_mpoly_gcd_cofactors(tg, ta, tb, a, b, r->ctx))
+        PC_UNREACHABLE("FLINT's gcd failed on a rational function's "
+                       "numerator and denominator");
     if (fmpz_mpoly_is_one(tg, r->ctx))
         return;
     *pa = ta;

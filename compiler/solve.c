@@ -8,6 +8,7 @@
 
 #include <flint/fmpz_mat.h>
 
+#include "base/check.h"
 #include "base/mem.h"
 
 /* The system as a matrix of numerators: row e, column c < nunk the unknown
@@ -277,11 +278,8 @@ static SolveStatus solve_general(PointEq *x, System *S, char *undetermined,
                 fmpz_mpoly_mul(u, ri + bj, rp + c, r->ctx);
                 fmpz_mpoly_sub(t, t, u, r->ctx);
                 if (!fmpz_mpoly_is_one(prev, r->ctx) &&
-                    !fmpz_mpoly_divides(t, t, prev, r->ctx)) { /* exact */
-                    fprintf(stderr, "pointcalc: internal error: a Bareiss "
-                                    "step's division is not exact\n");
-                    abort();
-                }
+                    !fmpz_mpoly_divides(t, t, prev, r->ctx)) /* exact */
+                    PC_UNREACHABLE("a Bareiss step's division is not exact");
                 fmpz_mpoly_swap(ri + c, t, r->ctx);
             }
             fmpz_mpoly_zero(ri + bj, r->ctx);
