@@ -4,7 +4,7 @@
  * (collapse.h; docs/codegen.md "The collapsed kernel").
  */
 #include "codegen/collapse.h"
-#include "codegen/emit_c.h"
+#include "codegen/cwrite.h"
 #include "codegen/lower.h"
 #include "base/mem.h"
 #include "base/numfmt.h"
@@ -586,7 +586,7 @@ static void signature(FILE *out, const CollapseNames *N, const char *fn,
                       int is_static, int restr)
 {
     char *head = pc_xasprintf("%ssize_t %s(", is_static ? "static " : "", fn);
-    emit_c_params(out, head, N->in, N->nparams, N->nin, N->pt, N->npt, 1, 1,
+    cwrite_params(out, head, N->in, N->nparams, N->nin, N->pt, N->npt, 1, 1,
                   restr);
     free(head);
 }
@@ -614,7 +614,7 @@ static void coef_expr(FILE *out, const CollapseOutput *o,
         if (a == 1) {
             fprintf(out, "%s[%s]", N->pt[o->point[k]], idx);
         } else {
-            emit_c_double(out, a);
+            cwrite_double(out, a);
             fprintf(out, " * %s[%s]", N->pt[o->point[k]], idx);
         }
         any = 1;
@@ -648,7 +648,7 @@ static void horner(FILE *out, const CollapseOutput *o, const char *head)
             if (head)
                 fprintf(out, "%s%d", head, j);
             else
-                emit_c_double(out, o->b[j]);
+                cwrite_double(out, o->b[j]);
         }
         if (j < top)
             fputc(')', out);
@@ -674,14 +674,14 @@ static void sample_values(FILE *out, const CollapseOutput *o, int pi, int dc,
                           const char *ind, int line)
 {
     fprintf(out, "%sconst double x0 = (p%d[j] - ", ind, pi);
-    emit_c_double(out, o->mid);
+    cwrite_double(out, o->mid);
     fputs(") * ", out);
-    emit_c_double(out, o->scale);
+    cwrite_double(out, o->scale);
     fputs(";\n", out);
     fprintf(out, "%sconst double r2 = p%d[j] - ", ind, pi);
-    emit_c_double(out, o->lo);
+    cwrite_double(out, o->lo);
     fprintf(out, ", r3 = ");
-    emit_c_double(out, o->hi);
+    cwrite_double(out, o->hi);
     fprintf(out, " - p%d[j];\n", pi);
     if (!dc) {
         fprintf(out, "%sconst double r0 = ", ind);
@@ -853,7 +853,7 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
     fast_loop(out, o, pi, dc, 2, line);
     fputs("            }\n", out);
     /* the sum of chk (0 only when every chk[j] is) */
-    emit_c_chk_sum(out, "            ", "s =");
+    cwrite_chk_sum(out, "            ", "s =");
     fputs("            if (s == 0.0) {\n"
           "                if (status != NULL)\n",
           out);
@@ -871,7 +871,7 @@ void collapse_emit_batch(FILE *out, const CollapseOutput *o,
             "            for (j = 0; j < %d; j++)\n"
             "                pad%d[j] = j < m ? p%d[j] : ",
             BLOCK, BLOCK, pi, pi);
-    emit_c_double(out, o->lo);
+    cwrite_double(out, o->lo);
     fprintf(out, ";\n            p%d = pad%d;\n        }\n", pi, pi);
     /* tau, 1/denominator and the flags into block arrays: a loop of
      * fixed length that reads p and writes only locals (gcc -O2 vectorises
