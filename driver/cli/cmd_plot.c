@@ -283,10 +283,10 @@ static int uses_const(const Plan *p, int o, int k)
     return used;
 }
 
-static int setup(Run *r, const PlotArgs *a, FILE *err)
+/* the curves: the selected point outputs into r->sel */
+static int setup_curves(Run *r, const PlotArgs *a, FILE *err)
 {
     const Plan *p = r->p;
-    char list[512], msg[300];
     /* the curves: point outputs (the scheme's outputs are the plan's first
      * nout; what lower_all adds after them is not selectable) */
     r->sel = pc_xcalloc((size_t)p->noutputs + 1, sizeof *r->sel);
@@ -311,6 +311,15 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     if (r->nsel == 0)
         return usage_error(err, "the scheme has no point output to draw "
                                 "(its outputs are scalars or vectors)");
+    return 0;
+}
+
+/* the base points (--at), one dimension for all, and the ones the curves
+ * need */
+static int setup_points(Run *r, const PlotArgs *a, FILE *err)
+{
+    const Plan *p = r->p;
+    char list[512];
     /* points */
     r->pt = pc_xcalloc((size_t)p->npoints + 1, sizeof *r->pt);
     for (int i = 0; i < a->ea.nat; i++) {
@@ -356,9 +365,14 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                 p->outputs[r->sel[j]].name, need, p->points[pt],
                 p->points[pt], need, r->dim, need);
     }
-    /* consts */
-    r->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *r->consts);
-    unsigned char *cseen = pc_xcalloc((size_t)p->nconsts + 1, 1);
+    return 0;
+}
+
+/* the consts given (--set); cseen[k]: const k was given */
+static int setup_consts(Run *r, const PlotArgs *a, FILE *err,
+                        unsigned char *cseen)
+{
+    const Plan *p = r->p;
     for (int i = 0; i < a->ea.nset; i++) {
         int k = find_name(p->consts, p->nconsts, a->ea.set[i].name);
         int rc = 0;
@@ -375,17 +389,18 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
         else if (sample_number(a->ea.set[i].text, &r->consts[k]) != 0)
             rc = usage_error(err, "--set %s=%s: malformed number",
                              a->ea.set[i].name, a->ea.set[i].text);
-        if (rc) {
-            free(cseen);
+        if (rc)
             return rc;
-        }
     }
-    /* params: one swept (LO:HI[:N], or the one not given and declared with
-     * a range), the others one value each */
-    r->params = pc_xcalloc((size_t)p->nparams + 1, sizeof *r->params);
-    unsigned char *pseen = pc_xcalloc((size_t)p->nparams + 1, 1);
-    r->sweep = -1;
-    r->initial = PLOT_INITIAL;
+    return 0;
+}
+
+/* the params given (--param): a value each, or the swept range;
+ * pseen[k]: param k was given */
+static int setup_params(Run *r, const PlotArgs *a, FILE *err,
+                        unsigned char *pseen)
+{
+    const Plan *p = r->p;
     int rc = 0;
     for (int i = 0; i < a->ea.nparam && !rc; i++) {
         const char *name = a->ea.param[i].name, *text = a->ea.param[i].text;
@@ -440,7 +455,17 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                              name, text);
         }
     }
-    if (!rc && r->sweep < 0) {
+    return rc;
+}
+
+/* the swept param when none was given a range: the one param not given
+ * a value, with a declared range; else every param needs a value */
+static int setup_sweep(Run *r, FILE *err, const unsigned char *pseen)
+{
+    const Plan *p = r->p;
+    char list[512];
+    int rc = 0;
+    if (r->sweep < 0) {
         /* the one param not given a value */
         int nfree = 0;
         char **free_names = pc_xmalloc(sizeof *free_names *
@@ -468,12 +493,22 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                              "missing --param %s=LO:HI: the scheme declares "
                              "no range for %s",
                              p->params[r->sweep], p->params[r->sweep]);
-    } else if (!rc) {
+    } else {
         for (int k = 0; k < p->nparams && !rc; k++)
             if (!pseen[k])
                 rc = usage_error(err, "missing --param %s=VALUE",
                                  p->params[k]);
     }
+    return rc;
+}
+
+/* a const that what is drawn reads (the curves, the range) and that was
+ * not given */
+static int setup_needed_consts(Run *r, FILE *err, const unsigned char *cseen,
+                               const unsigned char *pseen)
+{
+    const Plan *p = r->p;
+    int rc = 0;
     /* consts that what is drawn reads (the curves, the range) */
     for (int k = 0; k < p->nconsts && !rc; k++) {
         if (cseen[k])
@@ -487,22 +522,14 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
         if (used)
             rc = usage_error(err, "missing --set %s=VALUE", p->consts[k]);
     }
-    free(cseen);
-    if (!rc && !pseen[r->sweep]) {
-        r->lo = scalar_value(r, r->range_o[r->sweep]);
-        r->hi = scalar_value(r, r->range_o[r->sweep] + 1);
-        if (!(isfinite(r->lo) && isfinite(r->hi) && r->lo < r->hi))
-            rc = usage_error(err,
-                             "the declared range of %s is [%.17g, %.17g] "
-                             "here; give --param %s=LO:HI with LO < HI",
-                             p->params[r->sweep], r->lo, r->hi,
-                             p->params[r->sweep]);
-    }
-    free(pseen);
-    if (rc)
-        return rc;
-    if (r->dim == 0)
-        return usage_error(err, "give the base points with --at A=x,y,...");
+    return rc;
+}
+
+/* --at-param, the view, the tangents, the window and the canvas */
+static int setup_figure(Run *r, const PlotArgs *a, FILE *err)
+{
+    const Plan *p = r->p;
+    char msg[300];
     /* --at-param */
     if (a->atp.name) {
         if (strcmp(a->atp.name, p->params[r->sweep]) != 0)
@@ -567,6 +594,53 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
         r->height = (int)H;
     }
     return 0;
+}
+
+static int setup(Run *r, const PlotArgs *a, FILE *err)
+{
+    const Plan *p = r->p;
+    int rc = setup_curves(r, a, err);
+    if (rc)
+        return rc;
+    rc = setup_points(r, a, err);
+    if (rc)
+        return rc;
+    /* consts */
+    r->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *r->consts);
+    unsigned char *cseen = pc_xcalloc((size_t)p->nconsts + 1, 1);
+    rc = setup_consts(r, a, err, cseen);
+    if (rc) {
+        free(cseen);
+        return rc;
+    }
+    /* params: one swept (LO:HI[:N], or the one not given and declared with
+     * a range), the others one value each */
+    r->params = pc_xcalloc((size_t)p->nparams + 1, sizeof *r->params);
+    unsigned char *pseen = pc_xcalloc((size_t)p->nparams + 1, 1);
+    r->sweep = -1;
+    r->initial = PLOT_INITIAL;
+    rc = setup_params(r, a, err, pseen);
+    if (!rc)
+        rc = setup_sweep(r, err, pseen);
+    if (!rc)
+        rc = setup_needed_consts(r, err, cseen, pseen);
+    free(cseen);
+    if (!rc && !pseen[r->sweep]) {
+        r->lo = scalar_value(r, r->range_o[r->sweep]);
+        r->hi = scalar_value(r, r->range_o[r->sweep] + 1);
+        if (!(isfinite(r->lo) && isfinite(r->hi) && r->lo < r->hi))
+            rc = usage_error(err,
+                             "the declared range of %s is [%.17g, %.17g] "
+                             "here; give --param %s=LO:HI with LO < HI",
+                             p->params[r->sweep], r->lo, r->hi,
+                             p->params[r->sweep]);
+    }
+    free(pseen);
+    if (rc)
+        return rc;
+    if (r->dim == 0)
+        return usage_error(err, "give the base points with --at A=x,y,...");
+    return setup_figure(r, a, err);
 }
 
 typedef struct Construction {
