@@ -6,9 +6,9 @@
  * lower.c made the Plan; the C it leads to is written by collapse_emit.c.
  */
 #include "codegen/collapse.h"
-#include "codegen/lower.h"
 #include "base/mem.h"
 #include "base/numfmt.h"
+#include "codegen/lower.h"
 
 #include <float.h>
 #include <math.h>
@@ -20,11 +20,10 @@
 #include <flint/fmpq_poly.h>
 
 enum {
-    KAPPA_PIECES = 32,   // [a, b] is first cut into this many pieces
-    KAPPA_DEPTH = 40,    // each halved at most this often
-    KAPPA_WORK = 40000,  // subintervals looked at, at most
+    KAPPA_PIECES = 32,  // [a, b] is first cut into this many pieces
+    KAPPA_DEPTH = 40,   // each halved at most this often
+    KAPPA_WORK = 40000, // subintervals looked at, at most
 };
-
 
 /* ---- exact analysis ------------------------------------------------------ */
 
@@ -71,9 +70,8 @@ static void to_poly(fmpq_poly_t res, const fmpz_mpoly_t p, slong v,
     fmpq_poly_zero(res);
     for (slong i = 0; i < fmpz_mpoly_length(p, r->ctx); i++) {
         fmpz_mpoly_get_term_coeff_fmpz(c, p, i, r->ctx);
-        fmpq_poly_set_coeff_fmpz(res,
-                                 fmpz_mpoly_get_term_var_exp_si(p, i, v, r->ctx),
-                                 c);
+        fmpq_poly_set_coeff_fmpz(
+            res, fmpz_mpoly_get_term_var_exp_si(p, i, v, r->ctx), c);
     }
     fmpz_clear(c);
 }
@@ -115,9 +113,8 @@ typedef struct Piece {
  * (a common zero, or too much work); stops early, *atleast = 1, with a
  * value reached at a point once it exceeds cut. */
 static double kappa_bound(const fmpq_poly_t F, const fmpq_poly_struct *p,
-                          const fmpq_poly_struct *dp, slong K,
-                          const fmpq_t lo, const fmpq_t hi, double cut,
-                          int *atleast)
+                          const fmpq_poly_struct *dp, slong K, const fmpq_t lo,
+                          const fmpq_t hi, double cut, int *atleast)
 {
     double best = 0;
     *atleast = 0;
@@ -312,10 +309,11 @@ static slong the_param(CollapseOutput *co, const Derived *d,
         return -1;
     }
     if (ndep > 1 || var >= d->nparams) {
-        co->why = pc_xasprintf("depends on %s", ndep > 1 ? "more than one variable"
-                                      : var < d->nparams + d->nconsts
-                                          ? "a const only"
-                                          : "a function or an unknown");
+        co->why =
+            pc_xasprintf("depends on %s", ndep > 1 ? "more than one variable"
+                                          : var < d->nparams + d->nconsts
+                                              ? "a const only"
+                                              : "a function or an unknown");
         return -1;
     }
     return var;
@@ -336,8 +334,7 @@ static int centre(CollapseOutput *co, fmpq_t m, int *e, const fmpq_t lo,
     q_div_si(m, m, 2);
     if (!q_double(&co->mid, m) || !q_bound(&co->lo, lo, 1) ||
         !q_bound(&co->hi, hi, 0) || co->lo > co->hi) {
-        co->why = pc_xasprintf("the range of %s is not within doubles",
-                      pname);
+        co->why = pc_xasprintf("the range of %s is not within doubles", pname);
         goto done;
     }
     q_set_d(m, co->mid);
@@ -348,21 +345,20 @@ static int centre(CollapseOutput *co, fmpq_t m, int *e, const fmpq_t lo,
     if (!fmpq_is_zero(half)) {
         /* the smallest e with 2^e >= half */
         *e = (int)fmpz_bits(fmpq_numref(half)) -
-            (int)fmpz_bits(fmpq_denref(half)) - 2;
+             (int)fmpz_bits(fmpq_denref(half)) - 2;
         for (;;) {
             fmpq_one(t);
             if (*e >= 0)
                 fmpq_mul_2exp(t, t, (ulong)*e);
             else
-                fmpq_div_2exp(t, t, (ulong)-*e);
+                fmpq_div_2exp(t, t, (ulong) - *e);
             if (fmpq_cmp(t, half) >= 0)
                 break;
             (*e)++;
         }
     }
     if (*e > 1000 || *e < -1000) {
-        co->why = pc_xasprintf("the range of %s is not within doubles",
-                      pname);
+        co->why = pc_xasprintf("the range of %s is not within doubles", pname);
         goto done;
     }
     co->scale = ldexp(1.0, -*e);
@@ -449,7 +445,8 @@ static int to_doubles(CollapseOutput *co, const PointEqStruct *eq,
         for (slong j = 0; j <= deg; j++) {
             fmpq_poly_get_coeff_fmpq(t, np + k, j);
             if (!q_double(&co->a[j * K + k], t)) {
-                co->why = pc_xasprintf("a coefficient beyond the normal doubles");
+                co->why =
+                    pc_xasprintf("a coefficient beyond the normal doubles");
                 goto done;
             }
         }
@@ -512,12 +509,11 @@ static int conditioning(CollapseOutput *co, const fmpq_poly_struct *np,
         if (!den_const && !atleast && isfinite(co->kappa)) {
             abs_poly(Fd, dpoly, 0);
             abs_poly(dn + K, dpoly, 1);
-            co->kappa_d =
-                kappa_bound(Fd, dpoly, dn + K, 1, tlo, thi,
-                            0.5 / gamma_k(3.0 * deg + 1), &atleast_d);
+            co->kappa_d = kappa_bound(Fd, dpoly, dn + K, 1, tlo, thi,
+                                      0.5 / gamma_k(3.0 * deg + 1), &atleast_d);
         }
-        co->bound = error_bound(co->kappa, co->kappa_d, (int)deg, (int)K,
-                                den_const);
+        co->bound =
+            error_bound(co->kappa, co->kappa_d, (int)deg, (int)K, den_const);
         if (atleast || atleast_d)
             co->bound = INFINITY;
         fmpq_clear(tlo);
@@ -532,10 +528,10 @@ static int conditioning(CollapseOutput *co, const fmpq_poly_struct *np,
                     atleast_d ? ">=" : "<=", co->kappa_d, co->lo, co->hi,
                     COLLAPSE_TOL);
             else
-                co->why = pc_xasprintf("monomial basis refused: kappa <= %.3g, "
-                              "kappa_d <= %.3g, error bound %.3g above %g",
-                              co->kappa, co->kappa_d, co->bound,
-                              COLLAPSE_TOL);
+                co->why = pc_xasprintf(
+                    "monomial basis refused: kappa <= %.3g, "
+                    "kappa_d <= %.3g, error bound %.3g above %g",
+                    co->kappa, co->kappa_d, co->bound, COLLAPSE_TOL);
             ok = 0;
         }
     }
@@ -549,7 +545,8 @@ static int conditioning(CollapseOutput *co, const fmpq_poly_struct *np,
 }
 
 /* output o of d (the plan's output po), or why not */
-static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o)
+static void analyse(CollapseOutput *co, const Derived *d,
+                    const DerivedOutput *o)
 {
     const Ring *r = &d->ring;
     const PointEqStruct *eq = o->eq;
@@ -560,11 +557,10 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
     fmpq_t lo, hi;
     fmpq_init(lo);
     fmpq_init(hi);
-    if (!d->has_range[var] ||
-        !ratfun_get_fmpq(lo, d->range + 2 * var, r) ||
+    if (!d->has_range[var] || !ratfun_get_fmpq(lo, d->range + 2 * var, r) ||
         !ratfun_get_fmpq(hi, d->range + 2 * var + 1, r)) {
         co->why = pc_xasprintf("param %s has no declared range of numbers",
-                      d->params[var]);
+                               d->params[var]);
         fmpq_clear(lo);
         fmpq_clear(hi);
         return;
@@ -578,7 +574,8 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
             deg = e;
     }
     if (deg > COLLAPSE_MAX_DEGREE) {
-        co->why = pc_xasprintf("degree %ld, above %d", (long)deg, COLLAPSE_MAX_DEGREE);
+        co->why = pc_xasprintf("degree %ld, above %d", (long)deg,
+                               COLLAPSE_MAX_DEGREE);
         fmpq_clear(lo);
         fmpq_clear(hi);
         return;
@@ -599,10 +596,11 @@ static void analyse(CollapseOutput *co, const Derived *d, const DerivedOutput *o
         !conditioning(co, np, dpoly, K, deg, e, den_const, lo, hi))
         goto done;
     co->ok = 1;
-    co->why = pc_xasprintf("monomial basis in %s = (%s - %.17g) * 2^%d, degree %d; "
-                  "kappa <= %.3g, kappa_d <= %.3g, error bound %.3g",
-                  "tau", d->params[var], co->mid, -e, co->deg, co->kappa,
-                  co->kappa_d, co->bound);
+    co->why =
+        pc_xasprintf("monomial basis in %s = (%s - %.17g) * 2^%d, degree %d; "
+                     "kappa <= %.3g, kappa_d <= %.3g, error bound %.3g",
+                     "tau", d->params[var], co->mid, -e, co->deg, co->kappa,
+                     co->kappa_d, co->bound);
 done:
     for (slong k = 0; k <= K; k++)
         fmpq_poly_clear(np + k);

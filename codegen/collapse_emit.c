@@ -10,15 +10,14 @@
  * outside [lo, hi] (or NaN) the weights code (emit_weights.c's, static).
  * Called by emit_c_kernel; the C-writing helpers are cwrite.c's.
  */
+#include "base/mem.h"
 #include "codegen/collapse.h"
 #include "codegen/cwrite.h"
-#include "base/mem.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-enum { BLOCK = CWRITE_BLOCK }; // samples per block, as emit_c.c's batch code
-
+enum { BLOCK = CWRITE_BLOCK }; // samples per block, as the weights code's
 
 /* the definition's first line(s); restr: the param arrays and out are
  * restrict (compatible with the header's prototype, which has no
@@ -250,8 +249,8 @@ static void coefficients(FILE *out, const CollapseOutput *o,
         int first = 1;
         for (int j = 0; j <= o->deg; j++)
             if (nz(o, j)) {
-                fprintf(out, "%sk%d_%d = 0.0", first ? "    double " : ", ",
-                        c, j);
+                fprintf(out, "%sk%d_%d = 0.0", first ? "    double " : ", ", c,
+                        j);
                 first = 0;
             }
         if (!first)
@@ -381,11 +380,13 @@ static void block_rows(FILE *out, const CollapseOutput *o,
         fprintf(out, "        %sif (dim == %d) {\n", dim == 3 ? "" : "} else ",
                 dim);
         for (int full = 1; full >= 0; full--) {
-            fprintf(out, full ? "            if (m == %d) {\n"
-                              : "            } else {\n",
+            fprintf(out,
+                    full ? "            if (m == %d) {\n"
+                         : "            } else {\n",
                     BLOCK);
-            fprintf(out, full ? "                for (j = 0; j < %d; j++) {\n"
-                              : "                for (j = 0; j < m; j++) {\n",
+            fprintf(out,
+                    full ? "                for (j = 0; j < %d; j++) {\n"
+                         : "                for (j = 0; j < m; j++) {\n",
                     BLOCK);
             fputs("                    const double x0 = w0[j];\n", out);
             if (!dc)

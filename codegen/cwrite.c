@@ -5,8 +5,8 @@
  * block check.  Plain text out; it knows nothing of Plans or schemes.
  */
 #include "codegen/cwrite.h"
-#include "base/numfmt.h"
 #include "base/mem.h"
+#include "base/numfmt.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -77,11 +77,11 @@ void cwrite_params(FILE *out, const char *head, char *const *in, int nparams,
         free(arg);
     }
     cwrite_line_arg(&L, "int dim", 0);
-    cwrite_line_arg(&L, restr ? "double *restrict out" : "double *out", !status);
+    cwrite_line_arg(&L, restr ? "double *restrict out" : "double *out",
+                    !status);
     if (status)
         cwrite_line_arg(&L, "unsigned char *status", 1);
 }
-
 
 void cwrite_chk_sum(FILE *out, const char *ind, const char *head)
 {

@@ -29,14 +29,13 @@
  * in emit_weights.c, the fused _batch in emit_fast.c, the collapsed kernel
  * in collapse_emit.c; the C-writing helpers in cwrite.c.
  */
-#include "codegen/emit_c_int.h"
-#include "codegen/collapse.h"
 #include "base/mem.h"
+#include "codegen/collapse.h"
+#include "codegen/emit_c_int.h"
 
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
-
 
 static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
                       char **owned)
@@ -49,8 +48,8 @@ static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
         if (o->point[k] < 0)
             owned[r] = pc_xasprintf("value of %s", o->name);
         else
-            owned[r] = pc_xasprintf("weight of %s in %s", p->points[o->point[k]],
-                                 o->name);
+            owned[r] = pc_xasprintf("weight of %s in %s",
+                                    p->points[o->point[k]], o->name);
         role[r] = owned[r];
     }
     if (o->bad >= 0 && p->ins[o->bad].op != PLAN_CONST) {
@@ -107,26 +106,28 @@ static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
         }
         int need = plan_output_min_dim(p, i, NULL);
         if (need) /* coord(P, k): dim >= k (docs/codegen.md) */
-            fprintf(out, "\n *   reads coordinate %d of the points: needs "
-                         "dim >= %d (else NaN, status 3)",
+            fprintf(out,
+                    "\n *   reads coordinate %d of the points: needs "
+                    "dim >= %d (else NaN, status 3)",
                     need, need);
         fputs("\n", out);
     }
-    fprintf(out,
-            " *\n"
-            " * %s_M(...) evaluates output M for one parameter value,\n"
-            " * %s_M_batch(n, ...) for n values (params as arrays), both\n"
-            " * writing dim coordinates per value (one number for a scalar).\n"
-            " * Poles: where a denominator of the reduced equation is 0 the\n"
-            " * coordinates are NaN.  %s_M_checked returns 0 ok, 1 pole,\n"
-            " * 2 overflow (a denominator beyond double), 3 not finite (a NaN\n"
-            " * input, a numerator beyond double), 4 domain (a function's\n"
-            " * argument outside its domain); the coordinates are NaN unless 0.\n"
-            " * %s_M_batch_checked returns how many samples are not 0 and\n"
-            " * sets status[i] to that code when status is not NULL (with\n"
-            " * status NULL, 3 is not looked for).\n"
-            " */\n",
-            N->prefix, N->prefix, N->prefix, N->prefix);
+    fprintf(
+        out,
+        " *\n"
+        " * %s_M(...) evaluates output M for one parameter value,\n"
+        " * %s_M_batch(n, ...) for n values (params as arrays), both\n"
+        " * writing dim coordinates per value (one number for a scalar).\n"
+        " * Poles: where a denominator of the reduced equation is 0 the\n"
+        " * coordinates are NaN.  %s_M_checked returns 0 ok, 1 pole,\n"
+        " * 2 overflow (a denominator beyond double), 3 not finite (a NaN\n"
+        " * input, a numerator beyond double), 4 domain (a function's\n"
+        " * argument outside its domain); the coordinates are NaN unless 0.\n"
+        " * %s_M_batch_checked returns how many samples are not 0 and\n"
+        " * sets status[i] to that code when status is not NULL (with\n"
+        " * status NULL, 3 is not looked for).\n"
+        " */\n",
+        N->prefix, N->prefix, N->prefix, N->prefix);
 }
 
 static void prototypes(FILE *out, const Plan *p, const Names *N)
@@ -145,8 +146,8 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
     emit_c_ex(out, p, prefix, source, EMIT_C_ALL);
 }
 
-void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
-               const char *source, unsigned functions)
+void emit_c_ex(FILE *out, const Plan *p, const char *prefix, const char *source,
+               unsigned functions)
 {
     emit_c_kernel(out, p, prefix, source, functions, NULL);
 }
@@ -171,17 +172,16 @@ static int emit_collapsed(Ctx *C, Names *N, const Collapse *col, int i)
     emit_batch(C);
     *fn = pub;
     N->want = want;
-    CollapseNames CN = {pub,    fallback, !(want & EMIT_C_BATCH_CHECKED),
-                        N->in,  C->p->nparams, N->nin,
-                        N->pt,  N->npt};
+    CollapseNames CN = {pub,   fallback,      !(want & EMIT_C_BATCH_CHECKED),
+                        N->in, C->p->nparams, N->nin,
+                        N->pt, N->npt};
     collapse_emit_batch(C->out, &col->o[i], &CN, C->o->line);
     free(fallback);
     return 1;
 }
 
 void emit_c_kernel(FILE *out, const Plan *p, const char *prefix,
-                   const char *source, unsigned functions,
-                   const Collapse *col)
+                   const char *source, unsigned functions, const Collapse *col)
 {
     Names N;
     emit_names_init(&N, p, prefix);

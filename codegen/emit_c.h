@@ -42,8 +42,8 @@ enum {
     EMIT_C_BATCH_CHECKED = 8, // NAME_M_batch_checked
     EMIT_C_ALL = 15,
 };
-void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
-               const char *source, unsigned functions);
+void emit_c_ex(FILE *out, const Plan *p, const char *prefix, const char *source,
+               unsigned functions);
 void emit_c_header_ex(FILE *out, const Plan *p, const char *prefix,
                       const char *source, unsigned functions);
 /* emit_c_ex with the collapsed kernel (emit-c --kernel collapsed,

@@ -6,8 +6,8 @@
 #ifndef PC_EMIT_C_INT_H
 #define PC_EMIT_C_INT_H
 
-#include "codegen/emit_c.h"
 #include "codegen/cwrite.h"
+#include "codegen/emit_c.h"
 
 enum { BLOCK = CWRITE_BLOCK }; // samples per block in the generated batch code
 
@@ -17,9 +17,9 @@ enum { NVARIANTS = 4 };
 typedef struct Names {
     unsigned want; // EMIT_C_* bits: the variants that are public
     char *prefix;  // owned
-    char **fn;    // owned: function name of output i, variant v at 4*i + v
-    char **in;    // C names of params then consts (owned)
-    char **pt;    // C names of points (owned)
+    char **fn;     // owned: function name of output i, variant v at 4*i + v
+    char **in;     // C names of params then consts (owned)
+    char **pt;     // C names of points (owned)
     int nfn, nin, npt;
 } Names;
 
@@ -67,7 +67,6 @@ static inline int scaled(const Slot *s)
     return s->sign != 1;
 }
 
-
 /* does the output check a function's domain (status 4)? */
 static inline int uses_domain(const Ctx *C)
 {
@@ -76,7 +75,6 @@ static inline int uses_domain(const Ctx *C)
             return 1;
     return 0;
 }
-
 
 static inline int param_used(const Ctx *C, int i)
 {

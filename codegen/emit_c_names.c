@@ -8,8 +8,8 @@
  * and the output's name; emit_c_clash reports when two coincide.  Also the
  * --functions list, the --prefix check and the functions' signatures.
  */
-#include "codegen/emit_c_int.h"
 #include "base/mem.h"
+#include "codegen/emit_c_int.h"
 
 #include <ctype.h>
 #include <stdlib.h>
@@ -31,9 +31,9 @@ static const char *const keywords[] = {
     "constinit", "decltype", "delete", "dynamic_cast", "explicit", "export",
     "friend", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
     "nullptr", "operator", "or", "or_eq", "private", "protected", "public",
-    "reinterpret_cast", "requires", "static_assert", "static_cast",
-    "template", "this", "thread_local", "throw", "try", "typeid", "typename",
-    "using", "virtual", "wchar_t", "xor", "xor_eq", NULL};
+    "reinterpret_cast", "requires", "static_assert", "static_cast", "template",
+    "this", "thread_local", "throw", "try", "typeid", "typename", "using",
+    "virtual", "wchar_t", "xor", "xor_eq", NULL};
 
 /* other names an argument must not take (a function name neither) */
 static const char *const reserved[] = {
@@ -41,17 +41,17 @@ static const char *const reserved[] = {
     "EDOM", "ERANGE", "EILSEQ", "EOF", "BUFSIZ", "CHAR_BIT", "CHAR_MAX",
     "CHAR_MIN", "SCHAR_MAX", "SCHAR_MIN", "UCHAR_MAX", "SHRT_MAX", "SHRT_MIN",
     "USHRT_MAX", "INT_MAX", "INT_MIN", "UINT_MAX", "LONG_MAX", "LONG_MIN",
-    "ULONG_MAX", "LLONG_MAX", "LLONG_MIN", "ULLONG_MAX", "SIZE_MAX",
-    "RAND_MAX", "EXIT_SUCCESS", "EXIT_FAILURE", "SEEK_SET", "SEEK_CUR",
-    "SEEK_END", "assert", "stdin", "stdout", "stderr", "complex", "I",
+    "ULONG_MAX", "LLONG_MAX", "LLONG_MIN", "ULLONG_MAX", "SIZE_MAX", "RAND_MAX",
+    "EXIT_SUCCESS", "EXIT_FAILURE", "SEEK_SET", "SEEK_CUR", "SEEK_END",
+    "assert", "stdin", "stdout", "stderr", "complex", "I",
     /* <math.h>, <stddef.h> names a user could pick (macros first) */
     "NAN", "INFINITY", "HUGE_VAL", "HUGE_VALF", "HUGE_VALL", "NULL",
     "math_errhandling", "fpclassify", "isfinite", "isnormal", "isgreater",
     "isgreaterequal", "isless", "islessequal", "islessgreater", "isunordered",
     "signbit", "isnan", "isinf", "offsetof", "size_t", "ptrdiff_t",
-    "max_align_t", "float_t", "double_t", "errno", "j0", "j1", "jn", "y0",
-    "y1", "yn", "exp", "log", "pow", "sqrt", "sin", "cos", "tan", "fabs",
-    "floor", "ceil", "round", "gamma", "erf", "fma", "fmin", "fmax",
+    "max_align_t", "float_t", "double_t", "errno", "j0", "j1", "jn", "y0", "y1",
+    "yn", "exp", "log", "pow", "sqrt", "sin", "cos", "tan", "fabs", "floor",
+    "ceil", "round", "gamma", "erf", "fma", "fmin", "fmax",
     /* predefined outside strict ISO mode (gcc -std=gnu99) */
     "unix", "linux", "i386",
     /* names of the generated code */
@@ -97,10 +97,10 @@ static int in_list(const char *s)
 static int reserved_family(const char *s)
 {
     static const char *const heads[] = {
-        "FP_",   "MATH_", "M_",     "__",     "FLT_",    "DBL_",
-        "LDBL_", "INT8_", "INT16_", "INT32_", "INT64_",  "UINT8_",
-        "UINT16_", "UINT32_", "UINT64_", "INTMAX_", "UINTMAX_", "INTPTR_",
-        "UINTPTR_", "PTRDIFF_", "SIG_", "WCHAR_", "WINT_"};
+        "FP_",      "MATH_",    "M_",      "__",      "FLT_",     "DBL_",
+        "LDBL_",    "INT8_",    "INT16_",  "INT32_",  "INT64_",   "UINT8_",
+        "UINT16_",  "UINT32_",  "UINT64_", "INTMAX_", "UINTMAX_", "INTPTR_",
+        "UINTPTR_", "PTRDIFF_", "SIG_",    "WCHAR_",  "WINT_"};
     for (size_t h = 0; h < sizeof heads / sizeof *heads; h++)
         if (strncmp(s, heads[h], strlen(heads[h])) == 0)
             return 1;
@@ -154,7 +154,6 @@ int emit_c_valid_prefix(const char *s)
     return !in(keywords, s);
 }
 
-
 /* a C identifier from any text: other characters become _; one that would
  * start with neither a letter nor _ gets the prefix pc_ ("3d-curve.pcs" ->
  * pc_3d_curve).  A scheme's own name (`scheme NAME`) is an identifier
@@ -174,10 +173,8 @@ static char *identifier(const char *s)
     return r;
 }
 
-
 static const char *const variant_suffix[] = {"", "_checked", "_batch",
                                              "_batch_checked"};
-
 
 static int taken(const Names *N, int nin, int npt, const char *s)
 {
@@ -251,8 +248,7 @@ void emit_names_clear(Names *N)
     free(N->prefix);
 }
 
-int emit_c_check(const Plan *p, const Derived *d, const char *prefix,
-                 FILE *err)
+int emit_c_check(const Plan *p, const Derived *d, const char *prefix, FILE *err)
 {
     int o1, o2;
     char *clash = NULL;
@@ -302,7 +298,7 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
 /* restr: the definition of the fast _batch, whose param arrays and out
  * are restrict (compatible with the prototype, which has no qualifier) */
 void emit_signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
-                         Variant v, int restr)
+                       Variant v, int restr)
 {
     static const char *const ret[] = {"void ", "int ", "void ", "size_t "};
     /* a _checked variant that only its plain one calls is private */
@@ -313,9 +309,7 @@ void emit_signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
     free(head);
 }
 
-void emit_signature(FILE *out, const Plan *p, const Names *N, int oi,
-                      Variant v)
+void emit_signature(FILE *out, const Plan *p, const Names *N, int oi, Variant v)
 {
     emit_signature_ex(out, p, N, oi, v, 0);
 }
-

@@ -9,8 +9,8 @@
  * L are not finite is handed to NAME_M_batch_checked (docs/codegen.md,
  * "Batch code").  Called by emit_c_kernel after emit_weights.c's code.
  */
-#include "codegen/emit_c_int.h"
 #include "base/mem.h"
+#include "codegen/emit_c_int.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -94,7 +94,8 @@ static int reads(const Plan *p, int r, int x, unsigned char *mark)
         case PLAN_MUL:
         case PLAN_DIV:
         case PLAN_ATAN2:
-            mark[i] = (in->a >= x && mark[in->a]) || (in->b >= x && mark[in->b]);
+            mark[i] =
+                (in->a >= x && mark[in->a]) || (in->b >= x && mark[in->b]);
             break;
         default:
             mark[i] = 0;
@@ -124,7 +125,6 @@ static int inverse_factors(const Plan *p, int w, int inv, int *f, int nmax,
     return n;
 }
 
-
 /* (void)NAME_M_batch_checked(N, param + OFF..., consts, points, dim, DST,
  * NULL); or, N NULL, (void)NAME_M_checked(params, consts, points, dim,
  * DST); */
@@ -140,8 +140,8 @@ static void checked_call(const Ctx *C, const char *ind, const char *n,
     if (n)
         cwrite_line_arg(&L, n, 0);
     for (int i = 0; i < C->N->nin; i++) {
-        char *a = pc_xasprintf("%s%s", C->N->in[i],
-                               i < C->p->nparams ? off : "");
+        char *a =
+            pc_xasprintf("%s%s", C->N->in[i], i < C->p->nparams ? off : "");
         cwrite_line_arg(&L, a, 0);
         free(a);
     }
@@ -166,82 +166,83 @@ static void fast_dim(Ctx *C, const Slot *slot, const int *nf, const int *f,
     FILE *out = C->out;
     const PlanOutput *o = C->o;
     const Plan *p = C->p;
-        fprintf(out, dim == 3 ? "    if (dim == 3) {\n" : "    } else {\n");
-        for (int k = 0; k < o->nterms; k++) {
-            const char *P = C->N->pt[o->point[k]];
-            fputs("        const double ", out);
-            for (int c = 0; c < dim; c++)
-                fprintf(out, "%sk%d_%d = %s%s[%d]", c ? ", " : "", k, c,
-                        scaled(&slot[k]) ? "-" : "", P, c);
-            fputs(";\n", out);
-        }
-        fprintf(out, "        for (i0 = 0; i0 < nfull; i0 += %d) {\n", BLOCK);
-        for (int i = 0; i < p->nparams; i++)
-            if (param_used(C, i))
-                fprintf(out, "            const double *p%d = %s + i0;\n", i,
-                        C->N->in[i]);
-        fprintf(out,
-                "            double *o = out + i0 * %d;\n"
-                "            for (j = 0; j < %d; j++) {\n",
-                dim, BLOCK);
-        for (int i = 0; i < p->nparams; i++)
-            if (param_used(C, i))
-                fprintf(out, "                const double x%d = p%d[j];\n", i,
-                        i);
-        C->batch = 1;
-        emit_instructions(C, 0, "                ");
-        for (int k = 0; hoist && k < o->nterms; k++) {
-            fprintf(out, "                const double w%d = ", k);
-            for (int i = 0; i < nf[k]; i++) {
-                fputs(i ? " * " : "", out);
-                emit_operand(C, f[k * NF + i]);
-            }
-            fputs(nf[k] == 0 ? "1.0;" : ";", out);
-            const char *r = C->role[o->reg[k]] ? C->role[o->reg[k]]
-                                                : C->role[slot[k].root];
-            fprintf(out, " /* %s%s, times the denominator */\n",
-                    r ? r : "weight", scaled(&slot[k]) ? ", negated" : "");
-        }
-        for (int c = 0; c < dim; c++) {
-            fprintf(out, "                const double q%d = %s", c,
-                    hoist ? "(" : "");
-            for (int k = 0; k < o->nterms; k++) {
-                fputs(k ? " + " : "", out);
-                if (hoist)
-                    fprintf(out, "w%d", k);
-                else
-                    emit_operand(C, slot[k].root);
-                fprintf(out, " * k%d_%d", k, c);
-            }
-            if (hoist) {
-                fputs(") * ", out);
-                emit_operand(C, inv);
-            }
-            fputs(";\n", out);
-        }
+    fprintf(out, dim == 3 ? "    if (dim == 3) {\n" : "    } else {\n");
+    for (int k = 0; k < o->nterms; k++) {
+        const char *P = C->N->pt[o->point[k]];
+        fputs("        const double ", out);
         for (int c = 0; c < dim; c++)
-            fprintf(out, "                o[%d * j%s] = q%d;\n", dim,
-                    c == 0 ? "" : c == 1 ? " + 1" : " + 2", c);
-        /* the coordinates and the denominator L summed: not finite when
-         * one of them is (a pole makes 1/L infinite; L beyond double makes
-         * 1/L 0 and the coordinates wrong), or rarely when the sum
-         * overflows */
-        fputs("                chk[j] = q0 + q1", out);
-        fputs(dim == 3 ? " + q2" : "", out);
-        if (inv >= 0) {
-            fputs(" + ", out);
-            emit_operand(C, p->ins[inv].b);
+            fprintf(out, "%sk%d_%d = %s%s[%d]", c ? ", " : "", k, c,
+                    scaled(&slot[k]) ? "-" : "", P, c);
+        fputs(";\n", out);
+    }
+    fprintf(out, "        for (i0 = 0; i0 < nfull; i0 += %d) {\n", BLOCK);
+    for (int i = 0; i < p->nparams; i++)
+        if (param_used(C, i))
+            fprintf(out, "            const double *p%d = %s + i0;\n", i,
+                    C->N->in[i]);
+    fprintf(out,
+            "            double *o = out + i0 * %d;\n"
+            "            for (j = 0; j < %d; j++) {\n",
+            dim, BLOCK);
+    for (int i = 0; i < p->nparams; i++)
+        if (param_used(C, i))
+            fprintf(out, "                const double x%d = p%d[j];\n", i, i);
+    C->batch = 1;
+    emit_instructions(C, 0, "                ");
+    for (int k = 0; hoist && k < o->nterms; k++) {
+        fprintf(out, "                const double w%d = ", k);
+        for (int i = 0; i < nf[k]; i++) {
+            fputs(i ? " * " : "", out);
+            emit_operand(C, f[k * NF + i]);
+        }
+        fputs(nf[k] == 0 ? "1.0;" : ";", out);
+        const char *r =
+            C->role[o->reg[k]] ? C->role[o->reg[k]] : C->role[slot[k].root];
+        fprintf(out, " /* %s%s, times the denominator */\n", r ? r : "weight",
+                scaled(&slot[k]) ? ", negated" : "");
+    }
+    for (int c = 0; c < dim; c++) {
+        fprintf(out, "                const double q%d = %s", c,
+                hoist ? "(" : "");
+        for (int k = 0; k < o->nterms; k++) {
+            fputs(k ? " + " : "", out);
+            if (hoist)
+                fprintf(out, "w%d", k);
+            else
+                emit_operand(C, slot[k].root);
+            fprintf(out, " * k%d_%d", k, c);
+        }
+        if (hoist) {
+            fputs(") * ", out);
+            emit_operand(C, inv);
         }
         fputs(";\n", out);
-        C->batch = 0;
-        fputs("            }\n", out);
-        cwrite_chk_sum(out, "            ", "chk[0] =");
-        fputs("            if (!(chk[0] - chk[0] == 0.0)) /* not finite */\n",
-              out);
-        char *nn = pc_xasprintf("%d", BLOCK);
-        checked_call(C, "                ", nn, " + i0", "o");
-        free(nn);
-        fputs("        }\n", out);
+    }
+    for (int c = 0; c < dim; c++)
+        fprintf(out, "                o[%d * j%s] = q%d;\n", dim,
+                c == 0   ? ""
+                : c == 1 ? " + 1"
+                         : " + 2",
+                c);
+    /* the coordinates and the denominator L summed: not finite when
+     * one of them is (a pole makes 1/L infinite; L beyond double makes
+     * 1/L 0 and the coordinates wrong), or rarely when the sum
+     * overflows */
+    fputs("                chk[j] = q0 + q1", out);
+    fputs(dim == 3 ? " + q2" : "", out);
+    if (inv >= 0) {
+        fputs(" + ", out);
+        emit_operand(C, p->ins[inv].b);
+    }
+    fputs(";\n", out);
+    C->batch = 0;
+    fputs("            }\n", out);
+    cwrite_chk_sum(out, "            ", "chk[0] =");
+    fputs("            if (!(chk[0] - chk[0] == 0.0)) /* not finite */\n", out);
+    char *nn = pc_xasprintf("%d", BLOCK);
+    checked_call(C, "                ", nn, " + i0", "o");
+    free(nn);
+    fputs("        }\n", out);
 }
 
 /* void NAME_M_batch(...) for dim 2 and 3: the weights and the coordinates
@@ -271,8 +272,7 @@ int emit_batch_fast(Ctx *C)
     for (int k = 0; k < o->nterms; k++) {
         slot[k].root = plan_peel(p, o->reg[k], &slot[k].sign);
         if (hoist)
-            nf[k] = inverse_factors(p, slot[k].root, inv, f + k * NF, NF,
-                                    seen);
+            nf[k] = inverse_factors(p, slot[k].root, inv, f + k * NF, NF, seen);
         hoist &= nf[k] >= 0;
     }
     free(seen);
@@ -295,9 +295,10 @@ int emit_batch_fast(Ctx *C)
 
     emit_signature_ex(out, p, C->N, C->oi, BATCH, 1);
     fputs("\n{\n", out);
-    fprintf(out, "    const size_t nfull = n - n %% %d; /* in full blocks */\n"
-                 "    double chk[%d]; /* per sample: finite or not */\n"
-                 "    size_t i0, j;\n",
+    fprintf(out,
+            "    const size_t nfull = n - n %% %d; /* in full blocks */\n"
+            "    double chk[%d]; /* per sample: finite or not */\n"
+            "    size_t i0, j;\n",
             BLOCK, BLOCK);
     /* other dims, the tail block and a block with a value that is not
      * finite: the general code (which also writes NaN at poles and
@@ -310,7 +311,8 @@ int emit_batch_fast(Ctx *C)
     for (int dim = 3; dim >= 2; dim--)
         fast_dim(C, slot, nf, f, inv, hoist, dim);
     fputs("    }\n    if (nfull < n)\n", out);
-    checked_call(C, "        ", "n - nfull", " + nfull", "out + nfull * (size_t)dim");
+    checked_call(C, "        ", "n - nfull", " + nfull",
+                 "out + nfull * (size_t)dim");
     fputs("}\n\n", out);
     free(slot);
     free(nf);

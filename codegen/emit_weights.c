@@ -12,8 +12,8 @@
  * them, specialised for dim 2 and 3.  It sits after lower.c (which made
  * the Plan) and is called by emit_c_kernel once per output.
  */
-#include "codegen/emit_c_int.h"
 #include "base/mem.h"
+#include "codegen/emit_c_int.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -98,12 +98,12 @@ static void instruction(const Ctx *C, int r, const char *indent)
         break;
     }
     case PLAN_DIST:
-        fprintf(out, "pcdist_%s(%s, %s, dim)", C->N->prefix,
-                C->N->pt[x->a], C->N->pt[x->b]);
+        fprintf(out, "pcdist_%s(%s, %s, dim)", C->N->prefix, C->N->pt[x->a],
+                C->N->pt[x->b]);
         break;
     case PLAN_COORD: /* coord(P, k): NaN when dim < k (docs/codegen.md) */
-        fprintf(out, "(dim > %d ? %s[%d] : (double)NAN)", x->b,
-                C->N->pt[x->a], x->b);
+        fprintf(out, "(dim > %d ? %s[%d] : (double)NAN)", x->b, C->N->pt[x->a],
+                x->b);
         break;
     case PLAN_ATAN2:
         fputs("atan2(", out);
@@ -263,8 +263,7 @@ void emit_one(const Ctx *C)
 }
 
 /* the coordinate loop for a known dim (2, 3) or any dim (0) */
-static void emit_apply(const Ctx *C, const Slot *slot, int dim,
-                       const char *ind)
+static void emit_apply(const Ctx *C, const Slot *slot, int dim, const char *ind)
 {
     FILE *out = C->out;
     const PlanOutput *o = C->o;
@@ -320,7 +319,6 @@ static void emit_apply(const Ctx *C, const Slot *slot, int dim,
     fprintf(out, "%s}\n", ind);
 }
 
-
 /* the slots of the batch code and the registers it needs (C->live) */
 static void batch_slots(Ctx *C, Slot *slot, char **owned, int nslots,
                         int scalar)
@@ -340,9 +338,9 @@ static void batch_slots(Ctx *C, Slot *slot, char **owned, int nslots,
         }
         C->live[s->root] = 1;
         if (scaled(s) && !C->role[s->root]) {
-            owned[k] = pc_xasprintf("%s, negated",
-                                 C->role[o->reg[k]] ? C->role[o->reg[k]]
-                                                    : "weight");
+            owned[k] = pc_xasprintf("%s, negated", C->role[o->reg[k]]
+                                                       ? C->role[o->reg[k]]
+                                                       : "weight");
             C->role[s->root] = owned[k];
         }
     }
@@ -367,7 +365,9 @@ static void batch_head(Ctx *C, const Slot *slot, int nslots, int scalar)
     for (int k = 0; k < nslots; k++) {
         const char *r = C->role[slot[k].root];
         fprintf(out, "    double w%d[%d]; /* %s */\n", k, BLOCK,
-                scalar ? "value" : r ? r : "weight");
+                scalar ? "value"
+                : r    ? r
+                       : "weight");
     }
     if (o->bad >= 0)
         fprintf(out, "    double fb[%d]; /* pole flags, +0.5: overflow */\n",
@@ -392,8 +392,8 @@ static void batch_head(Ctx *C, const Slot *slot, int nslots, int scalar)
                 if (o->point[k] < 0)
                     continue;
                 const char *nm = C->N->pt[o->point[k]];
-                fprintf(out, "        bad_in |= !(%s[c] - %s[c] == 0.0);\n",
-                        nm, nm);
+                fprintf(out, "        bad_in |= !(%s[c] - %s[c] == 0.0);\n", nm,
+                        nm);
             }
             fputs("    }\n", out);
         }
@@ -494,12 +494,11 @@ static void batch_rows(const Ctx *C, const Slot *slot, int scalar)
                   "                    out[(i0 + j) * (size_t)dim + (size_t)c]"
                   " = (double)NAN;\n",
                   out);
-        fputs(
-            "            }\n"
-            "        if (status != NULL)\n"
-            "            for (j = 0; j < m; j++)\n"
-            "                status[i0 + j] = (unsigned char)(",
-            out);
+        fputs("            }\n"
+              "        if (status != NULL)\n"
+              "            for (j = 0; j < m; j++)\n"
+              "                status[i0 + j] = (unsigned char)(",
+              out);
         if (uses_domain(C))
             fputs("fb[j] >= 1048576.0 ? 4 : ", out);
         fputs("fb[j] >= 1.0 ? 1 : fb[j] != 0.0 ? 2 : 0);\n", out);
@@ -531,9 +530,8 @@ static void batch_not_finite(const Ctx *C, int nslots, int scalar)
             "                nf += ",
             BLOCK);
     for (int k = 0; k < nslots; k++)
-        fprintf(out, "%s(w%d[j] - w%d[j])", k ? "\n                      + "
-                                              : "",
-                k, k);
+        fprintf(out, "%s(w%d[j] - w%d[j])",
+                k ? "\n                      + " : "", k, k);
     if (nslots == 0) /* an output that is identically zero */
         fputs("(double)0", out);
     fputs(" != 0.0;\n", out);
@@ -586,4 +584,3 @@ void emit_batch(Ctx *C)
     free(owned);
     free(slot);
 }
-

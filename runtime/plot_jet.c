@@ -28,12 +28,30 @@ static void fn_jet(int b, double x, double *f0, double *f1, double *f2)
         d = f / (q * x);
         dd = d * (1.0 / q - 1) / x;
         break;
-    case PLAN_FN_SIN: d = cos(x); dd = -f; break;
-    case PLAN_FN_COS: d = -sin(x); dd = -f; break;
-    case PLAN_FN_SINH: d = cosh(x); dd = f; break;
-    case PLAN_FN_COSH: d = sinh(x); dd = f; break;
-    case PLAN_FN_EXP: d = f; dd = f; break;
-    case PLAN_FN_LOG: d = 1 / x; dd = -1 / (x * x); break;
+    case PLAN_FN_SIN:
+        d = cos(x);
+        dd = -f;
+        break;
+    case PLAN_FN_COS:
+        d = -sin(x);
+        dd = -f;
+        break;
+    case PLAN_FN_SINH:
+        d = cosh(x);
+        dd = f;
+        break;
+    case PLAN_FN_COSH:
+        d = sinh(x);
+        dd = f;
+        break;
+    case PLAN_FN_EXP:
+        d = f;
+        dd = f;
+        break;
+    case PLAN_FN_LOG:
+        d = 1 / x;
+        dd = -1 / (x * x);
+        break;
     case PLAN_FN_ASIN:
     case PLAN_FN_ACOS: {
         double s = 1 - x * x;
@@ -51,7 +69,10 @@ static void fn_jet(int b, double x, double *f0, double *f1, double *f2)
         dd = -2 * x / (s * s);
         break;
     }
-    default: d = 0; dd = 0; break;
+    default:
+        d = 0;
+        dd = 0;
+        break;
     }
     *f0 = f;
     *f1 = d;
@@ -76,7 +97,9 @@ void plot_jet_run(const PlotEnv *env, const unsigned char *live, double t,
             b = r[x->b];
         d[1] = d[2] = 0;
         switch ((PlanOp)x->op) {
-        case PLAN_CONST: d[0] = p->k[x->a]; break;
+        case PLAN_CONST:
+            d[0] = p->k[x->a];
+            break;
         case PLAN_INPUT:
             if (x->a == env->param) {
                 d[0] = t;
@@ -88,8 +111,8 @@ void plot_jet_run(const PlotEnv *env, const unsigned char *live, double t,
             }
             break;
         case PLAN_DIST:
-            d[0] = plan_dist_eval(env->points[x->a], env->points[x->b],
-                                  env->dim);
+            d[0] =
+                plan_dist_eval(env->points[x->a], env->points[x->b], env->dim);
             break;
         case PLAN_COORD:
             d[0] = plan_coord_eval(env->points[x->a], x->b, env->dim);
@@ -119,13 +142,18 @@ void plot_jet_run(const PlotEnv *env, const unsigned char *live, double t,
         case PLAN_POWI: {
             double e = x->b;
             d[0] = pow(a[0], e);
-            double f1 = e * pow(a[0], e - 1), f2 = e * (e - 1) * pow(a[0], e - 2);
+            double f1 = e * pow(a[0], e - 1),
+                   f2 = e * (e - 1) * pow(a[0], e - 2);
             d[1] = f1 * a[1];
             d[2] = f2 * a[1] * a[1] + f1 * a[2];
             break;
         }
-        case PLAN_POLE: d[0] = a[0] == 0 ? 1.0 : 0.0; break;
-        case PLAN_DOMAIN: d[0] = plan_domain_eval(x->b, a[0]); break;
+        case PLAN_POLE:
+            d[0] = a[0] == 0 ? 1.0 : 0.0;
+            break;
+        case PLAN_DOMAIN:
+            d[0] = plan_domain_eval(x->b, a[0]);
+            break;
         case PLAN_FN: {
             double f0, f1, f2;
             fn_jet(x->b, a[0], &f0, &f1, &f2);
@@ -144,7 +172,9 @@ void plot_jet_run(const PlotEnv *env, const unsigned char *live, double t,
             d[2] = (N1 * D - N * D1) / (D * D);
             break;
         }
-        default: d[0] = NAN; break;
+        default:
+            d[0] = NAN;
+            break;
         }
     }
 }
@@ -178,4 +208,3 @@ int plot_jet(const PlotEnv *env, int o, double t, double *pos, double *d1,
     free(r);
     return st ? st : finite ? 0 : 3;
 }
-

@@ -228,11 +228,11 @@ static size_t count_pending(const PlotCurve *c, size_t n, unsigned char *pend,
 /* The midpoints' samples (mt, mx, my, mok, mf: m of them) merged into c
  * after the segments pending; the flags of each segment (pending,
  * depth, unresolved) replaced by those of its halves. */
-static void merge(PlotCurve *c, const Test *T, const PlotLimits *lim,
-              size_t m, const double *mt, const double *mx,
-              const double *my, const unsigned char *mok,
-              const double *mf, unsigned char **pendp,
-              unsigned char **depthp, unsigned char **unresp)
+static void merge(PlotCurve *c, const Test *T, const PlotLimits *lim, size_t m,
+                  const double *mt, const double *mx, const double *my,
+                  const unsigned char *mok, const double *mf,
+                  unsigned char **pendp, unsigned char **depthp,
+                  unsigned char **unresp)
 {
     int nf = c->nfac;
     size_t n = c->n;
@@ -262,10 +262,10 @@ static void merge(PlotCurve *c, const Test *T, const PlotLimits *lim,
             nc.y[j] = my[k];
             nc.ok[j] = mok[k];
             memcpy(nc.fac + j * (size_t)nf, fm, sizeof *mf * (size_t)nf);
-            int split = needs_split(
-                T, c->ok[i], mok[k], c->ok[i + 1], c->x[i], c->y[i],
-                mx[k], my[k], c->x[i + 1], c->y[i + 1],
-                sign_change(c, i, c->fac + (i + 1) * (size_t)nf));
+            int split =
+                needs_split(T, c->ok[i], mok[k], c->ok[i + 1], c->x[i], c->y[i],
+                            mx[k], my[k], c->x[i + 1], c->y[i + 1],
+                            sign_change(c, i, c->fac + (i + 1) * (size_t)nf));
             int d = depth[i] + 1;
             ndepth[j - 1] = ndepth[j] = (unsigned char)d;
             if (split && d < lim->max_depth)
@@ -420,4 +420,3 @@ int plot_curve_subpaths(const PlotCurve *c)
             k++;
     return k;
 }
-

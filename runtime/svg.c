@@ -51,9 +51,15 @@ static void box_add(double *B, double x, double y)
     B[3] = fmax(B[3], y);
 }
 
-static int box_empty(const double *B) { return !(B[0] <= B[2] && B[1] <= B[3]); }
+static int box_empty(const double *B)
+{
+    return !(B[0] <= B[2] && B[1] <= B[3]);
+}
 
-static double box_diag(const double *B) { return hypot(B[2] - B[0], B[3] - B[1]); }
+static double box_diag(const double *B)
+{
+    return hypot(B[2] - B[0], B[3] - B[1]);
+}
 
 /* The window: everything, unless the curves run far beyond the points and
  * the middle of the curves (poles, a long param range): then the core,
@@ -75,7 +81,8 @@ static void fit_box(double *box, const PlotSpec *s, const PlotCurve *cv,
                 n++;
             }
     if (n > 0) {
-        double *xs = pc_xmalloc(sizeof *xs * n), *ys = pc_xmalloc(sizeof *ys * n);
+        double *xs = pc_xmalloc(sizeof *xs * n),
+               *ys = pc_xmalloc(sizeof *ys * n);
         size_t j = 0;
         for (int k = 0; k < s->ncurves; k++)
             for (size_t i = 0; i < cv[k].n; i++)
@@ -139,8 +146,8 @@ static void fit_box(double *box, const PlotSpec *s, const PlotCurve *cv,
 
 /* Liang-Barsky: clips (x0,y0)-(x1,y1) to B; 0 when nothing is left;
  * *c0, *c1 say whether an end moved */
-static int clip(const double *B, double *x0, double *y0, double *x1,
-                double *y1, int *c0, int *c1)
+static int clip(const double *B, double *x0, double *y0, double *x1, double *y1,
+                int *c0, int *c1)
 {
     double dx = *x1 - *x0, dy = *y1 - *y0, u0 = 0, u1 = 1;
     double pq[4][2] = {{-dx, *x0 - B[0]},
@@ -180,9 +187,9 @@ typedef struct Fig {
     FILE *out;
     double s, tx, ty; // pixel = (tx + s x, ty - s y)
     int W, H;
-    double clipw[4];  // the canvas in world coordinates, a little larger
-    double clipp[4];  // the canvas in pixels, a little larger
-    int digits;       // significant digits of world coordinates
+    double clipw[4]; // the canvas in world coordinates, a little larger
+    double clipp[4]; // the canvas in pixels, a little larger
+    int digits;      // significant digits of world coordinates
 } Fig;
 
 /* a number in the C locale, %.*g, no "-0" */
@@ -213,11 +220,21 @@ static void put_escaped(FILE *out, const char *s)
 {
     for (; s && *s; s++) {
         switch (*s) {
-        case '&': fputs("&amp;", out); break;
-        case '<': fputs("&lt;", out); break;
-        case '>': fputs("&gt;", out); break;
-        case '"': fputs("&quot;", out); break;
-        case '\'': fputs("&apos;", out); break;
+        case '&':
+            fputs("&amp;", out);
+            break;
+        case '<':
+            fputs("&lt;", out);
+            break;
+        case '>':
+            fputs("&gt;", out);
+            break;
+        case '"':
+            fputs("&quot;", out);
+            break;
+        case '\'':
+            fputs("&apos;", out);
+            break;
         default:
             /* control characters are not allowed in XML 1.0 */
             if ((unsigned char)*s >= 0x20 || *s == '\t' || *s == '\n')
@@ -238,7 +255,7 @@ static void px_of(const Fig *g, double x, double y, double *px, double *py)
  * starts where the last one ended. */
 typedef struct Pen {
     const Fig *g;
-    int down;     // the pen rests at (x, y)
+    int down; // the pen rests at (x, y)
     double x, y;
 } Pen;
 
@@ -269,11 +286,13 @@ static void pen_line(Pen *P, double x0, double y0, double x1, double y1)
     P->y = y1;
 }
 
-static void pen_lift(Pen *P) { P->down = 0; }
+static void pen_lift(Pen *P)
+{
+    P->down = 0;
+}
 
 /* one separate pixel segment, clipped */
-static void px_segment(const Fig *g, double x0, double y0, double x1,
-                       double y1)
+static void px_segment(const Fig *g, double x0, double y0, double x1, double y1)
 {
     Pen P = {g, 0, 0, 0};
     pen_line(&P, x0, y0, x1, y1);
@@ -413,7 +432,8 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
     for (int k = 0; k < s->ncurves; k++) {
         const PlotCurve *c = &cv[k];
         int nf = c->nfac;
-        fac = pc_xrealloc(fac, sizeof *fac * ((size_t)(n + 1) * (size_t)nf + 1));
+        fac =
+            pc_xrealloc(fac, sizeof *fac * ((size_t)(n + 1) * (size_t)nf + 1));
         double kmax[2] = {0, 0};
         size_t nk = 0;
         for (int i = 0; i <= n; i++) {
@@ -425,7 +445,8 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
             if (!ok[i]) /* p is not filled in */
                 continue;
             double sp = hypot(p[1][0], p[1][1]);
-            double kp = (p[1][0] * p[2][1] - p[1][1] * p[2][0]) / (sp * sp * sp);
+            double kp =
+                (p[1][0] * p[2][1] - p[1][1] * p[2][0]) / (sp * sp * sp);
             if (!(sp > 0) || !isfinite(kp))
                 ok[i] = 0;
             if (!ok[i])
@@ -482,7 +503,8 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
             }
             double ax, ay, bx, by;
             px_of(g, px[4 * (i - 1)] - scale * kap[i - 1] * px[4 * (i - 1) + 2],
-                  px[4 * (i - 1) + 1] - scale * kap[i - 1] * px[4 * (i - 1) + 3],
+                  px[4 * (i - 1) + 1] -
+                      scale * kap[i - 1] * px[4 * (i - 1) + 3],
                   &ax, &ay);
             px_of(g, px[4 * i] - scale * kap[i] * px[4 * i + 2],
                   px[4 * i + 1] - scale * kap[i] * px[4 * i + 3], &bx, &by);
@@ -546,10 +568,11 @@ static void write_marks(const Fig *g, const PlotSpec *s, const double *mx,
         px_of(g, mx[i], my[i], &x, &y);
         if (!(x >= 0 && x <= g->W && y >= 0 && y <= g->H))
             continue;
-        const char *fill = m->kind == PLOT_BASE ? "#000"
-                           : m->kind == PLOT_AUX
-                               ? "#fff"
-                               : palette[(m->curve < 0 ? 0 : m->curve) % NPALETTE];
+        const char *fill =
+            m->kind == PLOT_BASE ? "#000"
+            : m->kind == PLOT_AUX
+                ? "#fff"
+                : palette[(m->curve < 0 ? 0 : m->curve) % NPALETTE];
         fputs("<circle cx=\"", out);
         put_px(out, x);
         fputs("\" cy=\"", out);
@@ -600,7 +623,9 @@ static void canvas(Fig *g, FILE *out, const PlotSpec *s, const double box[4])
         g->H = s->height;
     } else {
         double hh = g->W * h / w;
-        g->H = !(hh >= g->W / 3.0) ? (g->W + 2) / 3 : hh > 1.5 * g->W ? g->W * 3 / 2 : (int)(hh + 0.5);
+        g->H = !(hh >= g->W / 3.0) ? (g->W + 2) / 3
+               : hh > 1.5 * g->W   ? g->W * 3 / 2
+                                   : (int)(hh + 0.5);
     }
     g->s = fmin(g->W / w, g->H / h);
     double cx = (box[0] + box[2]) / 2, cy = (box[1] + box[3]) / 2;
@@ -683,7 +708,8 @@ int plot_svg(FILE *out, const PlotSpec *s, PlotStats *st)
     fputs("<title>", out);
     put_escaped(out, s->title ? s->title : p->name);
     fputs("</title>\n", out);
-    fprintf(out, "<rect width=\"%d\" height=\"%d\" fill=\"#fff\"/>\n", g.W, g.H);
+    fprintf(out, "<rect width=\"%d\" height=\"%d\" fill=\"#fff\"/>\n", g.W,
+            g.H);
     fputs("<g fill=\"none\" stroke-linecap=\"round\" "
           "stroke-linejoin=\"round\">\n",
           out);

@@ -1,7 +1,7 @@
 /*
  * plot.c - `pointcalc plot FILE --at A=x,y ... -o OUT.svg`: the curves of
  * the point outputs as SVG, with the construction at --at-param
- * (docs/plot.md; the drawing is runtime/plot.c).
+ * (docs/plot.md; the drawing is runtime/plot_sample.c and runtime/svg.c).
  *
  *   cli_derive_file_steps (with the steps for --at-param) -> lower the
  *   outputs, the params' declared ranges and the construction's points
@@ -19,11 +19,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/mem.h"
+#include "base/numfmt.h"
 #include "codegen/lower.h"
 #include "driver/cli/args.h"
 #include "driver/cli/outfile.h"
-#include "base/mem.h"
-#include "base/numfmt.h"
 #include "runtime/eval.h"
 #include "runtime/plot.h"
 #include "runtime/sample.h"
@@ -166,14 +166,14 @@ static int find_name(char *const *names, int n, const char *s)
 typedef struct Run {
     Derived *d;
     Plan *p;
-    int nout;      // the scheme's outputs: plan outputs 0..nout-1
-    int *range_o;  // per param: plan output of lo (hi = lo + 1), or -1
-    int *step_o;   // per step: plan output of its value, or -1
-    int *arg_o;    // per step: plan output of its first arg (the others
-                   // follow), or -1
+    int nout;     // the scheme's outputs: plan outputs 0..nout-1
+    int *range_o; // per param: plan output of lo (hi = lo + 1), or -1
+    int *step_o;  // per step: plan output of its value, or -1
+    int *arg_o;   // per step: plan output of its first arg (the others
+                  // follow), or -1
     int nsel, *sel;
     int dim;
-    double **pt;   // per base point (owned) or NULL
+    double **pt; // per base point (owned) or NULL
     double *consts, *params;
     int sweep;
     double lo, hi;
@@ -362,8 +362,8 @@ static int setup_points(Run *r, const PlotArgs *a, FILE *err)
                 "output %s reads coordinate %d of base point %s "
                 "(coord(%s, %d)), but the points have %d: give every --at "
                 "point at least %d coordinates",
-                p->outputs[r->sel[j]].name, need, p->points[pt],
-                p->points[pt], need, r->dim, need);
+                p->outputs[r->sel[j]].name, need, p->points[pt], p->points[pt],
+                need, r->dim, need);
     }
     return 0;
 }
@@ -377,13 +377,14 @@ static int setup_consts(Run *r, const PlotArgs *a, FILE *err,
         int k = find_name(p->consts, p->nconsts, a->ea.set[i].name);
         int rc = 0;
         if (k < 0)
-            rc = usage_error(err,
-                             find_name(p->params, p->nparams, a->ea.set[i].name) >= 0
-                                 ? "--set %s: '%s' is a param; give it with "
-                                   "--param"
-                                 : "--set %s: '%s' is not a const of the "
-                                   "scheme",
-                             a->ea.set[i].name, a->ea.set[i].name);
+            rc = usage_error(
+                err,
+                find_name(p->params, p->nparams, a->ea.set[i].name) >= 0
+                    ? "--set %s: '%s' is a param; give it with "
+                      "--param"
+                    : "--set %s: '%s' is not a const of the "
+                      "scheme",
+                a->ea.set[i].name, a->ea.set[i].name);
         else if (cseen[k]++)
             rc = usage_error(err, "--set %s given twice", a->ea.set[i].name);
         else if (sample_number(a->ea.set[i].text, &r->consts[k]) != 0)
@@ -468,26 +469,26 @@ static int setup_sweep(Run *r, FILE *err, const unsigned char *pseen)
     if (r->sweep < 0) {
         /* the one param not given a value */
         int nfree = 0;
-        char **free_names = pc_xmalloc(sizeof *free_names *
-                                       (size_t)(p->nparams + 1));
+        char **free_names =
+            pc_xmalloc(sizeof *free_names * (size_t)(p->nparams + 1));
         for (int k = 0; k < p->nparams; k++)
             if (!pseen[k]) {
                 free_names[nfree++] = p->params[k];
                 r->sweep = k;
             }
         if (nfree > 1)
-            rc = usage_error(err,
-                             "params %s have no value: one is swept (give "
-                             "it as --param NAME=LO:HI, or leave only it "
-                             "out), the others need --param NAME=VALUE",
-                             args_name_list(free_names, nfree, list, sizeof list));
+            rc = usage_error(
+                err,
+                "params %s have no value: one is swept (give "
+                "it as --param NAME=LO:HI, or leave only it "
+                "out), the others need --param NAME=VALUE",
+                args_name_list(free_names, nfree, list, sizeof list));
         free(free_names);
         if (!rc && r->sweep < 0)
-            rc = usage_error(err,
-                             p->nparams == 0
-                                 ? "the scheme has no param to sweep"
-                                 : "no param is swept: give one as "
-                                   "--param NAME=LO:HI");
+            rc = usage_error(err, p->nparams == 0
+                                      ? "the scheme has no param to sweep"
+                                      : "no param is swept: give one as "
+                                        "--param NAME=LO:HI");
         if (!rc && r->range_o[r->sweep] < 0)
             rc = usage_error(err,
                              "missing --param %s=LO:HI: the scheme declares "
@@ -496,8 +497,7 @@ static int setup_sweep(Run *r, FILE *err, const unsigned char *pseen)
     } else {
         for (int k = 0; k < p->nparams && !rc; k++)
             if (!pseen[k])
-                rc = usage_error(err, "missing --param %s=VALUE",
-                                 p->params[k]);
+                rc = usage_error(err, "missing --param %s=VALUE", p->params[k]);
     }
     return rc;
 }
@@ -579,8 +579,8 @@ static int setup_figure(Run *r, const PlotArgs *a, FILE *err)
     r->width = 720;
     if (a->size) {
         char *x = strchr(a->size, 'x');
-        char *w = pc_xstrndup(a->size, x ? (size_t)(x - a->size)
-                                         : strlen(a->size));
+        char *w =
+            pc_xstrndup(a->size, x ? (size_t)(x - a->size) : strlen(a->size));
         long W, H = 0;
         int ok = parse_count(w, 10000, &W) == 0 && W >= 16 &&
                  (!x || (parse_count(x + 1, 10000, &H) == 0 && H >= 16));
@@ -729,8 +729,8 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
     if (!r->have_at)
         return 0;
     for (int j = 0; j < r->nsel; j++)
-        add_mark(c, r, env, r->sel[j], p->outputs[r->sel[j]].name,
-                 PLOT_CURRENT, j);
+        add_mark(c, r, env, r->sel[j], p->outputs[r->sel[j]].name, PLOT_CURRENT,
+                 j);
     for (slong k = 0; k < d->nsteps; k++) {
         const char *name = d->steps[k].value.name;
         int want = !a->aux_given;
@@ -740,11 +740,11 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
             continue;
         if (add_mark(c, r, env, r->step_o[k], name, PLOT_AUX, -1) < 0)
             pc_fprintf(err,
-                    "pointcalc: plot: %s is not drawn at %s=%.17g (%s)\n",
-                    name, p->params[r->sweep], r->at,
-                    points_given(r, r->step_o[k])
-                        ? "a pole, undefined or not finite there"
-                        : "it needs a base point not given with --at");
+                       "pointcalc: plot: %s is not drawn at %s=%.17g (%s)\n",
+                       name, p->params[r->sweep], r->at,
+                       points_given(r, r->step_o[k])
+                           ? "a pole, undefined or not finite there"
+                           : "it needs a base point not given with --at");
     }
     /* lines: along and divide (P, Q and the point), meet of two lines
      * (each line with the point) */
