@@ -42,8 +42,8 @@ enum {
     EMIT_C_BATCH_CHECKED = 8, // NAME_M_batch_checked
     EMIT_C_ALL = 15,
 };
-void emit_c_ex(FILE *out, const Plan *p, const char *prefix,
-               const char *source, unsigned functions);
+void emit_c_ex(FILE *out, const Plan *p, const char *prefix, const char *source,
+               unsigned functions);
 void emit_c_header_ex(FILE *out, const Plan *p, const char *prefix,
                       const char *source, unsigned functions);
 /* emit_c_ex with the collapsed kernel (emit-c --kernel collapsed,
@@ -68,25 +68,6 @@ int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
  * check emit-c and pc_emit_c make. */
 int emit_c_check(const Plan *p, const Derived *d, const char *prefix,
                  FILE *err);
-
-/* The parameter list of a generated function, wrapped at 80 columns and
- * aligned after its '(': "HEAD[size_t n, ]params, consts, points, int dim,
- * double *out[, unsigned char *status])".  batch: params as arrays (and n
- * first); status: the _batch_checked status argument; restr: the param
- * arrays and out restrict (a definition; compatible with a prototype
- * without). */
-void emit_c_params(FILE *out, const char *head, char *const *in, int nparams,
-                   int nin, char *const *pt, int npt, int batch, int status,
-                   int restr);
-
-/* a C double literal that reads back exactly (shortest of %.15g..%.17g,
- * locale-independent): 2.0, 0.5, (-3.0), 1e+20 */
-void emit_c_double(FILE *out, double v);
-
-/* the block check of the fast batch loops: the BLOCK doubles chk[] summed
- * in halves into chk[0..7], then "IND HEAD chk[0] + ... + chk[7];" (HEAD
- * e.g. "s =" or "chk[0] ="); uses the loop index j */
-void emit_c_chk_sum(FILE *out, const char *ind, const char *head);
 
 /* 1 if s is usable as a --prefix: a C identifier that is not a keyword
  * and does not begin with _ (reserved at file scope, C11 7.1.3). */

@@ -1,7 +1,7 @@
 /*
  * plot.c - `pointcalc plot FILE --at A=x,y ... -o OUT.svg`: the curves of
  * the point outputs as SVG, with the construction at --at-param
- * (docs/plot.md; the drawing is runtime/plot.c).
+ * (docs/plot.md; the drawing is runtime/plot_sample.c and runtime/svg.c).
  *
  *   cli_derive_file_steps (with the steps for --at-param) -> lower the
  *   outputs, the params' declared ranges and the construction's points
@@ -19,11 +19,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/mem.h"
+#include "base/numfmt.h"
 #include "codegen/lower.h"
 #include "driver/cli/args.h"
 #include "driver/cli/outfile.h"
-#include "base/mem.h"
-#include "base/numfmt.h"
 #include "runtime/eval.h"
 #include "runtime/plot.h"
 #include "runtime/sample.h"
@@ -166,14 +166,14 @@ static int find_name(char *const *names, int n, const char *s)
 typedef struct Run {
     Derived *d;
     Plan *p;
-    int nout;      // the scheme's outputs: plan outputs 0..nout-1
-    int *range_o;  // per param: plan output of lo (hi = lo + 1), or -1
-    int *step_o;   // per step: plan output of its value, or -1
-    int *arg_o;    // per step: plan output of its first arg (the others
-                   // follow), or -1
+    int nout;     // the scheme's outputs: plan outputs 0..nout-1
+    int *range_o; // per param: plan output of lo (hi = lo + 1), or -1
+    int *step_o;  // per step: plan output of its value, or -1
+    int *arg_o;   // per step: plan output of its first arg (the others
+                  // follow), or -1
     int nsel, *sel;
     int dim;
-    double **pt;   // per base point (owned) or NULL
+    double **pt; // per base point (owned) or NULL
     double *consts, *params;
     int sweep;
     double lo, hi;
@@ -283,10 +283,10 @@ static int uses_const(const Plan *p, int o, int k)
     return used;
 }
 
-static int setup(Run *r, const PlotArgs *a, FILE *err)
+/* the curves: the selected point outputs into r->sel */
+static int setup_curves(Run *r, const PlotArgs *a, FILE *err)
 {
     const Plan *p = r->p;
-    char list[512], msg[300];
     /* the curves: point outputs (the scheme's outputs are the plan's first
      * nout; what lower_all adds after them is not selectable) */
     r->sel = pc_xcalloc((size_t)p->noutputs + 1, sizeof *r->sel);
@@ -311,6 +311,15 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     if (r->nsel == 0)
         return usage_error(err, "the scheme has no point output to draw "
                                 "(its outputs are scalars or vectors)");
+    return 0;
+}
+
+/* the base points (--at), one dimension for all, and the ones the curves
+ * need */
+static int setup_points(Run *r, const PlotArgs *a, FILE *err)
+{
+    const Plan *p = r->p;
+    char list[512];
     /* points */
     r->pt = pc_xcalloc((size_t)p->npoints + 1, sizeof *r->pt);
     for (int i = 0; i < a->ea.nat; i++) {
@@ -353,39 +362,46 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                 "output %s reads coordinate %d of base point %s "
                 "(coord(%s, %d)), but the points have %d: give every --at "
                 "point at least %d coordinates",
-                p->outputs[r->sel[j]].name, need, p->points[pt],
-                p->points[pt], need, r->dim, need);
+                p->outputs[r->sel[j]].name, need, p->points[pt], p->points[pt],
+                need, r->dim, need);
     }
-    /* consts */
-    r->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *r->consts);
-    unsigned char *cseen = pc_xcalloc((size_t)p->nconsts + 1, 1);
+    return 0;
+}
+
+/* the consts given (--set); cseen[k]: const k was given */
+static int setup_consts(Run *r, const PlotArgs *a, FILE *err,
+                        unsigned char *cseen)
+{
+    const Plan *p = r->p;
     for (int i = 0; i < a->ea.nset; i++) {
         int k = find_name(p->consts, p->nconsts, a->ea.set[i].name);
         int rc = 0;
         if (k < 0)
-            rc = usage_error(err,
-                             find_name(p->params, p->nparams, a->ea.set[i].name) >= 0
-                                 ? "--set %s: '%s' is a param; give it with "
-                                   "--param"
-                                 : "--set %s: '%s' is not a const of the "
-                                   "scheme",
-                             a->ea.set[i].name, a->ea.set[i].name);
+            rc = usage_error(
+                err,
+                find_name(p->params, p->nparams, a->ea.set[i].name) >= 0
+                    ? "--set %s: '%s' is a param; give it with "
+                      "--param"
+                    : "--set %s: '%s' is not a const of the "
+                      "scheme",
+                a->ea.set[i].name, a->ea.set[i].name);
         else if (cseen[k]++)
             rc = usage_error(err, "--set %s given twice", a->ea.set[i].name);
         else if (sample_number(a->ea.set[i].text, &r->consts[k]) != 0)
             rc = usage_error(err, "--set %s=%s: malformed number",
                              a->ea.set[i].name, a->ea.set[i].text);
-        if (rc) {
-            free(cseen);
+        if (rc)
             return rc;
-        }
     }
-    /* params: one swept (LO:HI[:N], or the one not given and declared with
-     * a range), the others one value each */
-    r->params = pc_xcalloc((size_t)p->nparams + 1, sizeof *r->params);
-    unsigned char *pseen = pc_xcalloc((size_t)p->nparams + 1, 1);
-    r->sweep = -1;
-    r->initial = PLOT_INITIAL;
+    return 0;
+}
+
+/* the params given (--param): a value each, or the swept range;
+ * pseen[k]: param k was given */
+static int setup_params(Run *r, const PlotArgs *a, FILE *err,
+                        unsigned char *pseen)
+{
+    const Plan *p = r->p;
     int rc = 0;
     for (int i = 0; i < a->ea.nparam && !rc; i++) {
         const char *name = a->ea.param[i].name, *text = a->ea.param[i].text;
@@ -440,40 +456,59 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                              name, text);
         }
     }
-    if (!rc && r->sweep < 0) {
+    return rc;
+}
+
+/* the swept param when none was given a range: the one param not given
+ * a value, with a declared range; else every param needs a value */
+static int setup_sweep(Run *r, FILE *err, const unsigned char *pseen)
+{
+    const Plan *p = r->p;
+    char list[512];
+    int rc = 0;
+    if (r->sweep < 0) {
         /* the one param not given a value */
         int nfree = 0;
-        char **free_names = pc_xmalloc(sizeof *free_names *
-                                       (size_t)(p->nparams + 1));
+        char **free_names =
+            pc_xmalloc(sizeof *free_names * (size_t)(p->nparams + 1));
         for (int k = 0; k < p->nparams; k++)
             if (!pseen[k]) {
                 free_names[nfree++] = p->params[k];
                 r->sweep = k;
             }
         if (nfree > 1)
-            rc = usage_error(err,
-                             "params %s have no value: one is swept (give "
-                             "it as --param NAME=LO:HI, or leave only it "
-                             "out), the others need --param NAME=VALUE",
-                             args_name_list(free_names, nfree, list, sizeof list));
+            rc = usage_error(
+                err,
+                "params %s have no value: one is swept (give "
+                "it as --param NAME=LO:HI, or leave only it "
+                "out), the others need --param NAME=VALUE",
+                args_name_list(free_names, nfree, list, sizeof list));
         free(free_names);
         if (!rc && r->sweep < 0)
-            rc = usage_error(err,
-                             p->nparams == 0
-                                 ? "the scheme has no param to sweep"
-                                 : "no param is swept: give one as "
-                                   "--param NAME=LO:HI");
+            rc = usage_error(err, p->nparams == 0
+                                      ? "the scheme has no param to sweep"
+                                      : "no param is swept: give one as "
+                                        "--param NAME=LO:HI");
         if (!rc && r->range_o[r->sweep] < 0)
             rc = usage_error(err,
                              "missing --param %s=LO:HI: the scheme declares "
                              "no range for %s",
                              p->params[r->sweep], p->params[r->sweep]);
-    } else if (!rc) {
+    } else {
         for (int k = 0; k < p->nparams && !rc; k++)
             if (!pseen[k])
-                rc = usage_error(err, "missing --param %s=VALUE",
-                                 p->params[k]);
+                rc = usage_error(err, "missing --param %s=VALUE", p->params[k]);
     }
+    return rc;
+}
+
+/* a const that what is drawn reads (the curves, the range) and that was
+ * not given */
+static int setup_needed_consts(Run *r, FILE *err, const unsigned char *cseen,
+                               const unsigned char *pseen)
+{
+    const Plan *p = r->p;
+    int rc = 0;
     /* consts that what is drawn reads (the curves, the range) */
     for (int k = 0; k < p->nconsts && !rc; k++) {
         if (cseen[k])
@@ -487,22 +522,14 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
         if (used)
             rc = usage_error(err, "missing --set %s=VALUE", p->consts[k]);
     }
-    free(cseen);
-    if (!rc && !pseen[r->sweep]) {
-        r->lo = scalar_value(r, r->range_o[r->sweep]);
-        r->hi = scalar_value(r, r->range_o[r->sweep] + 1);
-        if (!(isfinite(r->lo) && isfinite(r->hi) && r->lo < r->hi))
-            rc = usage_error(err,
-                             "the declared range of %s is [%.17g, %.17g] "
-                             "here; give --param %s=LO:HI with LO < HI",
-                             p->params[r->sweep], r->lo, r->hi,
-                             p->params[r->sweep]);
-    }
-    free(pseen);
-    if (rc)
-        return rc;
-    if (r->dim == 0)
-        return usage_error(err, "give the base points with --at A=x,y,...");
+    return rc;
+}
+
+/* --at-param, the view, the tangents, the window and the canvas */
+static int setup_figure(Run *r, const PlotArgs *a, FILE *err)
+{
+    const Plan *p = r->p;
+    char msg[300];
     /* --at-param */
     if (a->atp.name) {
         if (strcmp(a->atp.name, p->params[r->sweep]) != 0)
@@ -552,8 +579,8 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     r->width = 720;
     if (a->size) {
         char *x = strchr(a->size, 'x');
-        char *w = pc_xstrndup(a->size, x ? (size_t)(x - a->size)
-                                         : strlen(a->size));
+        char *w =
+            pc_xstrndup(a->size, x ? (size_t)(x - a->size) : strlen(a->size));
         long W, H = 0;
         int ok = parse_count(w, 10000, &W) == 0 && W >= 16 &&
                  (!x || (parse_count(x + 1, 10000, &H) == 0 && H >= 16));
@@ -567,6 +594,53 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
         r->height = (int)H;
     }
     return 0;
+}
+
+static int setup(Run *r, const PlotArgs *a, FILE *err)
+{
+    const Plan *p = r->p;
+    int rc = setup_curves(r, a, err);
+    if (rc)
+        return rc;
+    rc = setup_points(r, a, err);
+    if (rc)
+        return rc;
+    /* consts */
+    r->consts = pc_xcalloc((size_t)p->nconsts + 1, sizeof *r->consts);
+    unsigned char *cseen = pc_xcalloc((size_t)p->nconsts + 1, 1);
+    rc = setup_consts(r, a, err, cseen);
+    if (rc) {
+        free(cseen);
+        return rc;
+    }
+    /* params: one swept (LO:HI[:N], or the one not given and declared with
+     * a range), the others one value each */
+    r->params = pc_xcalloc((size_t)p->nparams + 1, sizeof *r->params);
+    unsigned char *pseen = pc_xcalloc((size_t)p->nparams + 1, 1);
+    r->sweep = -1;
+    r->initial = PLOT_INITIAL;
+    rc = setup_params(r, a, err, pseen);
+    if (!rc)
+        rc = setup_sweep(r, err, pseen);
+    if (!rc)
+        rc = setup_needed_consts(r, err, cseen, pseen);
+    free(cseen);
+    if (!rc && !pseen[r->sweep]) {
+        r->lo = scalar_value(r, r->range_o[r->sweep]);
+        r->hi = scalar_value(r, r->range_o[r->sweep] + 1);
+        if (!(isfinite(r->lo) && isfinite(r->hi) && r->lo < r->hi))
+            rc = usage_error(err,
+                             "the declared range of %s is [%.17g, %.17g] "
+                             "here; give --param %s=LO:HI with LO < HI",
+                             p->params[r->sweep], r->lo, r->hi,
+                             p->params[r->sweep]);
+    }
+    free(pseen);
+    if (rc)
+        return rc;
+    if (r->dim == 0)
+        return usage_error(err, "give the base points with --at A=x,y,...");
+    return setup_figure(r, a, err);
 }
 
 typedef struct Construction {
@@ -655,8 +729,8 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
     if (!r->have_at)
         return 0;
     for (int j = 0; j < r->nsel; j++)
-        add_mark(c, r, env, r->sel[j], p->outputs[r->sel[j]].name,
-                 PLOT_CURRENT, j);
+        add_mark(c, r, env, r->sel[j], p->outputs[r->sel[j]].name, PLOT_CURRENT,
+                 j);
     for (slong k = 0; k < d->nsteps; k++) {
         const char *name = d->steps[k].value.name;
         int want = !a->aux_given;
@@ -666,11 +740,11 @@ static int construction(Construction *c, const Run *r, const PlotArgs *a,
             continue;
         if (add_mark(c, r, env, r->step_o[k], name, PLOT_AUX, -1) < 0)
             pc_fprintf(err,
-                    "pointcalc: plot: %s is not drawn at %s=%.17g (%s)\n",
-                    name, p->params[r->sweep], r->at,
-                    points_given(r, r->step_o[k])
-                        ? "a pole, undefined or not finite there"
-                        : "it needs a base point not given with --at");
+                       "pointcalc: plot: %s is not drawn at %s=%.17g (%s)\n",
+                       name, p->params[r->sweep], r->at,
+                       points_given(r, r->step_o[k])
+                           ? "a pole, undefined or not finite there"
+                           : "it needs a base point not given with --at");
     }
     /* lines: along and divide (P, Q and the point), meet of two lines
      * (each line with the point) */
