@@ -110,6 +110,16 @@ $(B)/examples/api_example: examples/api_example.c $(B)/libpointcalc.a
 tests: $(TESTS) $(B)/pointcalc $(B)/examples/api_example
 
 # Tests run from the repo root; each binary is a cmocka group.
+# The fast tier leaves out the tests that compile generated C (test_emit_c,
+# test_collapse) and the fuzz corpus (test_fuzz): every unit test of the
+# algebra, the printers, the front end and the runtime, and every scheme's
+# expectations (test_schemes), in well under a minute of CPU.
+SLOW_TESTS = $(B)/tests/test_emit_c $(B)/tests/test_collapse $(B)/tests/test_fuzz
+FAST_TESTS = $(filter-out $(SLOW_TESTS),$(TESTS))
+check-fast: $(FAST_TESTS) $(B)/pointcalc
+	@fail=0; for t in $(FAST_TESTS); do \
+	  echo "== $$t"; PC_BIN=$(B)/pointcalc $$t || fail=1; done; exit $$fail
+
 check: tests
 	@fail=0; for t in $(TESTS); do \
 	  echo "== $$t"; PC_BIN=$(B)/pointcalc $$t || fail=1; done; \

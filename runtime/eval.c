@@ -66,7 +66,7 @@ static void k_div(double *restrict d, const double *restrict a,
 static void k_pole(double *restrict d, const double *restrict a)
 {
     for (int j = 0; j < BL; j++)
-        d[j] = (double)(a[j] == 0); // not ?: (see emit_c.c)
+        d[j] = (double)(a[j] == 0); // not ?: (see codegen/emit_weights.c)
 }
 
 

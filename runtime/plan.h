@@ -1,7 +1,7 @@
 /*
  * plan.h - the Plan: a flat, register-based numeric program that computes
  * the weights of a scheme's reduced point equations.  It is the one IR that
- * both back ends read: codegen/emit_c.c prints it as C, runtime/eval.c
+ * both back ends read: codegen/ prints it as C (emit_c.c, emit_weights.c), runtime/eval.c
  * interprets it.  runtime/ is FLINT-free; codegen/lower.c is the only bridge
  * that turns exact polynomials into a Plan.
  *

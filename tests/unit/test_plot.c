@@ -1,5 +1,5 @@
 /*
- * test_plot.c - runtime/plot.c: the sampled paths against plan_eval (read
+ * test_plot.c - runtime/plot_*.c and svg.c: the sampled paths against plan_eval (read
  * back from the SVG), poles cut, the sample budget, the projections, the
  * forward-mode derivatives against the scheme's own diff(), and the SVG's
  * structure (a small well-formedness checker below).
