@@ -211,10 +211,8 @@ __attribute__((format(printf, 4, 5)))
 void derived_error(const Derived *d, FILE *err, Span span, const char *fmt,
                    ...);
 
-/* Index of the output / point / param / const called name, or -1. */
+/* Index of the output / point called name, or -1. */
 slong derived_find_output(const Derived *d, const char *name);
 slong derived_find_point(const Derived *d, const char *name);
-slong derived_find_param(const Derived *d, const char *name);
-slong derived_find_const(const Derived *d, const char *name);
 
 #endif

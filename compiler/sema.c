@@ -26,11 +26,6 @@ static const BuiltinInfo builtins[] = {
 #undef X
 };
 
-const char *sema_builtin_name(int b)
-{
-    return builtins[b].name;
-}
-
 enum { NBUCKETS = 64 };
 
 typedef struct Sema {

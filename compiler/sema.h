@@ -102,6 +102,4 @@ typedef struct SemaInfo {
  * marked bad, so that the others can still be derived and checked. */
 SemaInfo *sema_check(Scheme *s, Arena *a, Diag *diag);
 
-const char *sema_builtin_name(int b);
-
 #endif
