@@ -16,6 +16,103 @@
 #include "base/mem.h"
 #include "compiler/construct.h"
 
+/* every argument of a flat is a point (sum 1) or a direction (sum 0),
+ * and each flat has at least one point: 0, or -1 reported */
+static int meet_check_flat(Deriver *D, const Node *flat, PointEq *args)
+{
+    const Ring *r = D->r;
+    int st = 0;
+    const char *what = flat->nargs == 2 ? "line" : "plane";
+    RatFun sum;
+    ratfun_init(sum, r);
+    int points = 0, k = 0;
+    for (const Node *a = flat->args; a && st == 0; a = a->next, k++) {
+        pteq_weight_sum(sum, args[k], r);
+        if (ratfun_is_one(sum, r)) {
+            points++;
+        } else if (!ratfun_is_zero(sum, r)) {
+            char *txt = derive_show(sum, r);
+            diag_error(D->diag, a->span,
+                       "an argument of %s() must be a point (weights "
+                       "summing to 1) or a direction (summing to 0); "
+                       "its weights sum to %s",
+                       what, txt);
+            flint_free(txt);
+            st = -1;
+        }
+    }
+    if (st == 0 && points == 0) {
+        diag_error(D->diag, flat->span,
+                   "every argument of %s() is a vector; expected at "
+                   "least one point",
+                   what);
+        st = -1;
+    }
+    ratfun_clear(sum, r);
+    return st;
+}
+
+/* the error of a meet() that failed with ms (MEET_OK: none); 0, or -1
+ * reported */
+static int meet_report(Deriver *D, MeetStatus ms, const Node *n,
+                       const Node *fa, const Node *fb, LinNormal *nf)
+{
+    int plane = fb->nargs == 3;
+    int st = -1;
+    switch (ms) {
+    case MEET_OK:
+        st = 0;
+        break;
+    case MEET_DEGENERATE_FIRST:
+        diag_error(D->diag, fa->span,
+                   "degenerate line: its two points coincide, so it "
+                   "defines no line");
+        break;
+    case MEET_DEGENERATE_SECOND:
+        diag_error(D->diag, fb->span,
+                   plane ? "degenerate plane: its three points are "
+                           "collinear, so they define no plane"
+                         : "degenerate line: its two points coincide, "
+                           "so it defines no line");
+        break;
+    case MEET_PARALLEL:
+        diag_error(D->diag, n->span,
+                   plane ? "the line is parallel to the plane: no "
+                           "intersection"
+                         : "lines in meet() are parallel: no "
+                           "intersection");
+        break;
+    case MEET_COINCIDENT:
+        diag_error(D->diag, n->span,
+                   plane ? "the line lies in the plane: no single "
+                           "intersection point"
+                         : "lines in meet() coincide: no single "
+                           "intersection point");
+        break;
+    case MEET_SKEW:
+        diag_error(D->diag, n->span,
+                   plane ? "the line and the plane do not lie in one "
+                           "3-space: they do not meet"
+                         : "lines in meet() are skew (not coplanar): "
+                           "they do not meet");
+        break;
+    case MEET_TOO_BIG:
+        diag_error(D->diag, n->span,
+                   "expression too large to compute exactly: an "
+                   "intermediate product of meet() could need more than "
+                   "128 MB of coefficients");
+        break;
+    case MEET_FAILED:
+        derive_kernel_error(D, nf->err, n, NULL);
+        break;
+    case MEET_NO_POINT: /* checked above */
+        diag_error(D->diag, n->span,
+                   "internal error: a flat of meet() without a point");
+        break;
+    }
+    return st;
+}
+
 static int eval_meet(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
@@ -34,39 +131,8 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
     for (const Node *a = fb->args; a; a = a->next)
         if (derive_eval_point(D, pb[i++], a) < 0)
             st = -1;
-    /* every argument of a flat is a point (sum 1) or a direction (sum 0),
-     * and each flat has at least one point */
-    for (int f = 0; f < 2 && st == 0; f++) {
-        const Node *flat = f ? fb : fa;
-        PointEq *args = f ? pb : pa;
-        const char *what = flat->nargs == 2 ? "line" : "plane";
-        RatFun sum;
-        ratfun_init(sum, r);
-        int points = 0, k = 0;
-        for (const Node *a = flat->args; a && st == 0; a = a->next, k++) {
-            pteq_weight_sum(sum, args[k], r);
-            if (ratfun_is_one(sum, r)) {
-                points++;
-            } else if (!ratfun_is_zero(sum, r)) {
-                char *txt = derive_show(sum, r);
-                diag_error(D->diag, a->span,
-                           "an argument of %s() must be a point (weights "
-                           "summing to 1) or a direction (summing to 0); "
-                           "its weights sum to %s",
-                           what, txt);
-                flint_free(txt);
-                st = -1;
-            }
-        }
-        if (st == 0 && points == 0) {
-            diag_error(D->diag, flat->span,
-                       "every argument of %s() is a vector; expected at "
-                       "least one point",
-                       what);
-            st = -1;
-        }
-        ratfun_clear(sum, r);
-    }
+    for (int f = 0; f < 2 && st == 0; f++)
+        st = meet_check_flat(D, f ? fb : fa, f ? pb : pa);
     if (st == 0) {
         /* with functions that obey identities, in their normal form:
          * the fraction-free form is blind to them (flats parallel or
@@ -81,59 +147,7 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
             uses ? construct_meet_general_nf(res->p, pa, fa->nargs, pb,
                                              fb->nargs, nf, r)
                  : construct_meet(res->p, pa, fa->nargs, pb, fb->nargs, r);
-        int plane = fb->nargs == 3;
-        st = -1;
-        switch (ms) {
-        case MEET_OK:
-            st = 0;
-            break;
-        case MEET_DEGENERATE_FIRST:
-            diag_error(D->diag, fa->span,
-                       "degenerate line: its two points coincide, so it "
-                       "defines no line");
-            break;
-        case MEET_DEGENERATE_SECOND:
-            diag_error(D->diag, fb->span,
-                       plane ? "degenerate plane: its three points are "
-                               "collinear, so they define no plane"
-                             : "degenerate line: its two points coincide, "
-                               "so it defines no line");
-            break;
-        case MEET_PARALLEL:
-            diag_error(D->diag, n->span,
-                       plane ? "the line is parallel to the plane: no "
-                               "intersection"
-                             : "lines in meet() are parallel: no "
-                               "intersection");
-            break;
-        case MEET_COINCIDENT:
-            diag_error(D->diag, n->span,
-                       plane ? "the line lies in the plane: no single "
-                               "intersection point"
-                             : "lines in meet() coincide: no single "
-                               "intersection point");
-            break;
-        case MEET_SKEW:
-            diag_error(D->diag, n->span,
-                       plane ? "the line and the plane do not lie in one "
-                               "3-space: they do not meet"
-                             : "lines in meet() are skew (not coplanar): "
-                               "they do not meet");
-            break;
-        case MEET_TOO_BIG:
-            diag_error(D->diag, n->span,
-                       "expression too large to compute exactly: an "
-                       "intermediate product of meet() could need more than "
-                       "128 MB of coefficients");
-            break;
-        case MEET_FAILED:
-            derive_kernel_error(D, nf->err, n, NULL);
-            break;
-        case MEET_NO_POINT: /* checked above */
-            diag_error(D->diag, n->span,
-                       "internal error: a flat of meet() without a point");
-            break;
-        }
+        st = meet_report(D, ms, n, fa, fb, nf);
     }
     for (int k = 0; k < 3; k++)
         pteq_clear(pb[k], r);
@@ -475,6 +489,98 @@ int derive_eval(Deriver *D, Value *res, const Node *n)
     return st;
 }
 
+/* a name: a base point, a param or const (its ring variable), a
+ * definition (its memoised value) or an unknown (its solution, once
+ * solved) */
+static int eval_name(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    Sym *s = n->sym;
+    switch (s->kind) {
+    case SYM_POINT:
+        res->is_point = 1;
+        pteq_set_point(res->p, s->index, r);
+        return 0;
+    case SYM_PARAM:
+    case SYM_CONST:
+        res->is_point = 0;
+        ratfun_gen(res->s, derive_scalar_var(D, s), r);
+        return 0;
+    case SYM_DEF:
+        if (D->state[s->index] != 1)
+            return -1; /* its own error was reported */
+        derive_value_set(res, &D->defs[s->index], r);
+        derive_assume_from(D, D->dassume[s->index]);
+        return 0;
+    case SYM_UNKNOWN:
+        if (D->usolved[s->index])
+            derive_assume_from(D, D->uassume[s->index]);
+        res->is_point = s->is_point;
+        if (!s->is_point && D->usolved[s->index])
+            ratfun_set(res->s, D->ssol + s->index, r);
+        else if (!s->is_point)
+            ratfun_gen(res->s, derive_scalar_var(D, s), r);
+        else if (D->usolved[s->index])
+            pteq_set(res->p, D->usol[s->index], r);
+        else
+            pteq_set_point(res->p, D->ucol0 + s->index, r);
+        return 0;
+    }
+    return -1;
+}
+
+/* a + b, a - b, a*b, a/b, within the size guards */
+static int eval_arith(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    Value b;
+    int st = 0;
+    derive_value_init(&b, r);
+    if (derive_eval(D, res, n->lhs) < 0 || derive_eval(D, &b, n->rhs) < 0) {
+        derive_value_clear(&b, r);
+        return -1;
+    }
+    double bits = !res->is_point && !b.is_point
+                      ? ratfun_log2_bits_product(res->s, b.s, r)
+                  : res->is_point && b.is_point ? derive_pair_bits(res->p, b.p, r)
+                  : res->is_point ? derive_scalar_bits(res->p, b.s, r)
+                                  : derive_scalar_bits(b.p, res->s, r);
+    if (derive_too_big(D, bits, n) < 0) {
+        derive_value_clear(&b, r);
+        return -1;
+    }
+    if (n->kind == ND_ADD) {
+        if (res->is_point)
+            pteq_add(res->p, res->p, b.p, r);
+        else
+            ratfun_add(res->s, res->s, b.s, r);
+    } else if (n->kind == ND_SUB) {
+        if (res->is_point)
+            pteq_sub(res->p, res->p, b.p, r);
+        else
+            ratfun_sub(res->s, res->s, b.s, r);
+    } else if (n->kind == ND_MUL) {
+        if (res->is_point)
+            pteq_scalar_mul(res->p, res->p, b.s, r);
+        else if (b.is_point) {
+            pteq_scalar_mul(res->p, b.p, res->s, r);
+            res->is_point = 1;
+        } else
+            ratfun_mul(res->s, res->s, b.s, r);
+    } else {
+        int rc = res->is_point ? pteq_scalar_div(res->p, res->p, b.s, r)
+                               : ratfun_div(res->s, res->s, b.s, r);
+        if (rc != 0) {
+            diag_error(D->diag, n->rhs->span,
+                       "division by zero: the divisor is identically "
+                       "zero");
+            st = -1;
+        }
+    }
+    derive_value_clear(&b, r);
+    return st;
+}
+
 static int eval_node(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
@@ -495,40 +601,8 @@ static int eval_node(Deriver *D, Value *res, const Node *n)
         res->is_point = 0;
         return st;
     }
-    case ND_NAME: {
-        Sym *s = n->sym;
-        switch (s->kind) {
-        case SYM_POINT:
-            res->is_point = 1;
-            pteq_set_point(res->p, s->index, r);
-            return 0;
-        case SYM_PARAM:
-        case SYM_CONST:
-            res->is_point = 0;
-            ratfun_gen(res->s, derive_scalar_var(D, s), r);
-            return 0;
-        case SYM_DEF:
-            if (D->state[s->index] != 1)
-                return -1; /* its own error was reported */
-            derive_value_set(res, &D->defs[s->index], r);
-            derive_assume_from(D, D->dassume[s->index]);
-            return 0;
-        case SYM_UNKNOWN:
-            if (D->usolved[s->index])
-                derive_assume_from(D, D->uassume[s->index]);
-            res->is_point = s->is_point;
-            if (!s->is_point && D->usolved[s->index])
-                ratfun_set(res->s, D->ssol + s->index, r);
-            else if (!s->is_point)
-                ratfun_gen(res->s, derive_scalar_var(D, s), r);
-            else if (D->usolved[s->index])
-                pteq_set(res->p, D->usol[s->index], r);
-            else
-                pteq_set_point(res->p, D->ucol0 + s->index, r);
-            return 0;
-        }
-        return -1;
-    }
+    case ND_NAME:
+        return eval_name(D, res, n);
     case ND_NEG:
         if (derive_eval(D, res, n->lhs) < 0)
             return -1;
@@ -540,54 +614,8 @@ static int eval_node(Deriver *D, Value *res, const Node *n)
     case ND_ADD:
     case ND_SUB:
     case ND_MUL:
-    case ND_DIV: {
-        Value b;
-        int st = 0;
-        derive_value_init(&b, r);
-        if (derive_eval(D, res, n->lhs) < 0 || derive_eval(D, &b, n->rhs) < 0) {
-            derive_value_clear(&b, r);
-            return -1;
-        }
-        double bits = !res->is_point && !b.is_point
-                          ? ratfun_log2_bits_product(res->s, b.s, r)
-                      : res->is_point && b.is_point ? derive_pair_bits(res->p, b.p, r)
-                      : res->is_point ? derive_scalar_bits(res->p, b.s, r)
-                                      : derive_scalar_bits(b.p, res->s, r);
-        if (derive_too_big(D, bits, n) < 0) {
-            derive_value_clear(&b, r);
-            return -1;
-        }
-        if (n->kind == ND_ADD) {
-            if (res->is_point)
-                pteq_add(res->p, res->p, b.p, r);
-            else
-                ratfun_add(res->s, res->s, b.s, r);
-        } else if (n->kind == ND_SUB) {
-            if (res->is_point)
-                pteq_sub(res->p, res->p, b.p, r);
-            else
-                ratfun_sub(res->s, res->s, b.s, r);
-        } else if (n->kind == ND_MUL) {
-            if (res->is_point)
-                pteq_scalar_mul(res->p, res->p, b.s, r);
-            else if (b.is_point) {
-                pteq_scalar_mul(res->p, b.p, res->s, r);
-                res->is_point = 1;
-            } else
-                ratfun_mul(res->s, res->s, b.s, r);
-        } else {
-            int rc = res->is_point ? pteq_scalar_div(res->p, res->p, b.s, r)
-                                   : ratfun_div(res->s, res->s, b.s, r);
-            if (rc != 0) {
-                diag_error(D->diag, n->rhs->span,
-                           "division by zero: the divisor is identically "
-                           "zero");
-                st = -1;
-            }
-        }
-        derive_value_clear(&b, r);
-        return st;
-    }
+    case ND_DIV:
+        return eval_arith(D, res, n);
     case ND_POW:
         res->is_point = 0;
         return eval_pow(D, res, n);
