@@ -2,7 +2,10 @@
  * derive.h - the whole front half of the pipeline as one call, and its
  * result: the exact, reduced point equations of a scheme's outputs.
  *
- *   source -> parse -> sema_check -> derive  ==>  Derived
+ *   source -> parse -> expand -> sema_check -> plan the ring -> derive
+ *          -> outputs [-> steps]  ==>  Derived
+ *
+ * (compiler/pipeline.c runs the passes; derive's are in compiler/derive/)
  *
  * A Derived is what every back end reads: `derive` prints it, codegen lowers
  * it to a Plan for emit-c and eval.  It owns its Ring and every value.

@@ -4,7 +4,7 @@
  * Kinds here are static: an expression is either a scalar (a rational
  * function of the params and consts) or a combination of points (a point
  * equation, whatever its weight sum).  Whether a combination is a point, a
- * vector or an error depends on its weight sum, which derive.c computes.
+ * vector or an error depends on its weight sum, which compiler/derive/ computes.
  */
 #include "compiler/sema.h"
 
@@ -688,7 +688,7 @@ static void check_solve(Sema *S, Stmt *st)
         s->solved_by = st;
     }
     /* with unknown scalars a point equation holds one scalar equation per
-     * base point: the rank decides (derive.c) */
+     * base point: the rank decides (derive/solve_stmt.c) */
     if (neq != nunk && nscalar == 0)
         diag_error(S->diag, st->span,
                    "%d equation%s for %d unknown%s: the system is %s; "

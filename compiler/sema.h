@@ -4,7 +4,7 @@
  * sema_check resolves every name to a Sym, every call to a Builtin, and
  * infers statically whether each expression is a scalar or a combination of
  * points (Node.is_point).  Weight sums need the algebra and are checked in
- * derive.c.  All errors are reported (not just the first).
+ * compiler/derive/.  All errors are reported (not just the first).
  */
 #ifndef PC_SEMA_H
 #define PC_SEMA_H
@@ -90,7 +90,7 @@ typedef struct SemaInfo {
     Sym **defs; // definition order
     int ndefs;
     Sym **unknowns; // declaration order: unknown k is the point column
-    int nunknowns;  // npoints + k while it is unknown (derive.c)
+    int nunknowns;  // npoints + k while it is unknown (compiler/derive/)
     Stmt **steps;   // the definitions and solves in source order
     int nsteps;
     Sym **outputs; // `output` list (definitions and solved unknowns),

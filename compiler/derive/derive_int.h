@@ -21,8 +21,8 @@
  *   outputs.c    the outputs: checks and DerivedOutput
  *   steps_rec.c  the steps recorder (derive --steps) and the named kernels
  *   derived.c    the Derived result: free, find, errors, file reading
- * Every shared helper is named derive_* (they are not static: the prefix
- * keeps them out of a user's way in libpointcalc.a).
+ * Every shared helper is named derive_* or deriver_* (they are not static:
+ * the prefix keeps them out of a user's way in libpointcalc.a).
  */
 #ifndef PC_DERIVE_INT_H
 #define PC_DERIVE_INT_H

@@ -4,7 +4,7 @@
  * ranges, and each output as a DerivedOutput (kind, reduced weights).
  *
  * The pass after derive (pipeline.c); steps_rec.c and derived.c share
- * output_fill and output_clear.
+ * derive_output_fill and derive_output_clear.
  */
 #include "compiler/derive/derive_int.h"
 

@@ -269,7 +269,9 @@ char *derive_show(const RatFun x, const Ring *r)
     return ratfun_get_str(x, r);
 }
 
+/* ---- kernels (kernel.h): errors and the normal form ------------------- */
 
+/* the terms of a value: KERNEL_MAX_TERMS bounds what kernels take */
 slong derive_value_terms(const Value *v)
 {
     if (!v->is_point)
@@ -281,7 +283,6 @@ slong derive_value_terms(const Value *v)
 }
 
 /* reports a failed kernel operation at n; returns -1 */
-
 int derive_kernel_error(Deriver *D, int rc, const Node *n, const Node *arg)
 {
     return derive_kernel_error_at(D, rc, n->span, (arg ? arg : n)->span);
