@@ -30,8 +30,8 @@ static void compilation_init(Compilation *c, const char *filename,
                              const char *text, size_t len, FILE *err,
                              const DeriveOptions *opt)
 {
-    *c = (Compilation){.filename = filename, .text = text, .len = len,
-                       .err = err, .opt = opt};
+    *c = (Compilation){
+        .filename = filename, .text = text, .len = len, .err = err, .opt = opt};
     c->start = derive_now_seconds();
     if (opt->bad_define)
         *opt->bad_define = 0;
@@ -55,8 +55,7 @@ static void expand_with_defines(Compilation *c)
             const char *eq = strchr(opt->defines[k], '=');
             int nlen = eq ? (int)(eq - opt->defines[k]) : 0;
             if (c->err)
-                fprintf(c->err,
-                        "pointcalc: -D %s: %s declares no 'int %.*s'\n",
+                fprintf(c->err, "pointcalc: -D %s: %s declares no 'int %.*s'\n",
                         opt->defines[k], c->filename, nlen, opt->defines[k]);
             if (opt->bad_define)
                 *opt->bad_define = 1;

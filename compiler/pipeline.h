@@ -27,14 +27,14 @@ typedef struct Compilation {
     const DeriveOptions *opt; // not NULL
     double start;             // CLOCK_MONOTONIC seconds at the start: the
                               // time budget counts from here
-    Arena arena;   // the AST, symbols and names of this compilation
-    Source src;    // filename + text, for diagnostics
-    Diag diag;     // held until the end (diag_hold), then flushed
-    Scheme *scheme; // parse
-    SemaInfo *info; // sema, or NULL: an error before or in sema
-    Derived *d;     // the result of the current try, or NULL
-    slong nslots_try;              // kernel slots of the current try
-    int diag_msgs0, diag_errors0;  // the diagnostics before the first try
+    Arena arena;              // the AST, symbols and names of this compilation
+    Source src;               // filename + text, for diagnostics
+    Diag diag;                // held until the end (diag_hold), then flushed
+    Scheme *scheme;           // parse
+    SemaInfo *info;           // sema, or NULL: an error before or in sema
+    Derived *d;               // the result of the current try, or NULL
+    slong nslots_try;         // kernel slots of the current try
+    int diag_msgs0, diag_errors0; // the diagnostics before the first try
 } Compilation;
 
 #endif

@@ -4,7 +4,8 @@
  * Kinds here are static: an expression is either a scalar (a rational
  * function of the params and consts) or a combination of points (a point
  * equation, whatever its weight sum).  Whether a combination is a point, a
- * vector or an error depends on its weight sum, which compiler/derive/ computes.
+ * vector or an error depends on its weight sum, which compiler/derive/
+ * computes.
  */
 #include "compiler/sema.h"
 
@@ -233,14 +234,15 @@ static int check_flat(Sema *S, Node *n, int allow_plane)
     n->builtin = is_line ? BI_LINE : BI_PLANE;
     int want = is_line ? 2 : 3;
     if (n->nargs != want) {
-        diag_error(S->diag, n->span, "%s() takes %d points, found %d",
-                   n->text, want, n->nargs);
+        diag_error(S->diag, n->span, "%s() takes %d points, found %d", n->text,
+                   want, n->nargs);
         return -1;
     }
     int ok = 0;
     for (Node *a = n->args; a; a = a->next)
-        if (expect(S, a, 1, is_line ? "a point of the line"
-                                    : "a point of the plane") < 0)
+        if (expect(S, a, 1,
+                   is_line ? "a point of the line" : "a point of the plane") <
+            0)
             ok = -1;
     n->is_point = 1;
     return ok;
@@ -324,9 +326,8 @@ static int find_builtin(Sema *S, Node *n)
     if (b == BI_COUNT) {
         Sym *s = lookup(S, n->text);
         if (s)
-            diag_error(S->diag, n->name_span,
-                       "'%s' is %s, not a function", n->text,
-                       sym_kind_word(s->kind));
+            diag_error(S->diag, n->name_span, "'%s' is %s, not a function",
+                       n->text, sym_kind_word(s->kind));
         else
             diag_error(S->diag, n->name_span,
                        "unknown function '%s'; expected along, divide, meet, "
@@ -387,8 +388,7 @@ static int check_subst(Sema *S, Node *n)
     }
     x->sym = s;
     if (s->kind == SYM_POINT || (s->kind == SYM_UNKNOWN && s->is_point)) {
-        if (expect(S, arg(n, 2), 1, "the replacement of a base point") <
-            0)
+        if (expect(S, arg(n, 2), 1, "the replacement of a base point") < 0)
             return -1;
     } else if (s->kind == SYM_PARAM || s->kind == SYM_CONST ||
                s->kind == SYM_UNKNOWN) {
@@ -484,8 +484,7 @@ static int check_call(Sema *S, Node *n)
         char what[64];
         int i = 0;
         for (Node *a = n->args; a; a = a->next, i++) {
-            snprintf(what, sizeof what, "argument %d of %s()", i + 1,
-                     bi->name);
+            snprintf(what, sizeof what, "argument %d of %s()", i + 1, bi->name);
             if (expect(S, a, 1, what) < 0)
                 ok = -1;
         }
@@ -681,8 +680,8 @@ static void check_solve(Sema *S, Stmt *st)
         if (s->solved_by) {
             diag_error(S->diag, nm->span, "the unknown '%s' is solved twice",
                        nm->text);
-            diag_note(S->diag, s->solved_by->span,
-                      "'%s' was first solved here", nm->text);
+            diag_note(S->diag, s->solved_by->span, "'%s' was first solved here",
+                      nm->text);
             continue;
         }
         s->solved_by = st;

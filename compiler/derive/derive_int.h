@@ -51,16 +51,16 @@ typedef struct Deriver {
     Value *defs; // one per definition, initialised
     int *state;  // per definition: 0 not yet, 1 done, -1 failed
     const Source *src;
-    double deadline;   // CLOCK_MONOTONIC seconds; 0: no time budget
+    double deadline; // CLOCK_MONOTONIC seconds; 0: no time budget
     double max_seconds;
-    int expired;       // the time budget ran out (reported once)
-    FILE *verbose;     // progress per definition, or NULL
-    slong ucol0;       // unknown k is point column ucol0 + k while unknown
-    PointEq *usol;     // per unknown point: its solution, once solved
+    int expired;        // the time budget ran out (reported once)
+    FILE *verbose;      // progress per definition, or NULL
+    slong ucol0;        // unknown k is point column ucol0 + k while unknown
+    PointEq *usol;      // per unknown point: its solution, once solved
     RatFunStruct *ssol; // per unknown scalar: its solution, once solved
-    slong *uvar;       // per unknown scalar: its ring variable (else -1)
-    int *usolved;      // per unknown: 1 once its solve succeeded
-    Kernels *K;        // functions and pi (kernel.h), or NULL: none used
+    slong *uvar;        // per unknown scalar: its ring variable (else -1)
+    int *usolved;       // per unknown: 1 once its solve succeeded
+    Kernels *K;         // functions and pi (kernel.h), or NULL: none used
     unsigned char **dassume; // per definition and per unknown: the ends of
     unsigned char **uassume; // declared bounds its value rests on (K->cur
                              // while it was derived, and its names'), or

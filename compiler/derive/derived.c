@@ -189,8 +189,7 @@ void derived_free(Derived *d)
     free(d);
 }
 
-void derived_error(const Derived *d, FILE *err, Span span, const char *fmt,
-                   ...)
+void derived_error(const Derived *d, FILE *err, Span span, const char *fmt, ...)
 {
     Source src;
     Diag diag;
@@ -223,4 +222,3 @@ slong derived_find_point(const Derived *d, const char *name)
 {
     return find(d->points, d->npoints, name);
 }
-

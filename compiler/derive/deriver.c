@@ -33,11 +33,12 @@ static void derive_def(Deriver *D, Sym *s)
         derive_value_size(v, &terms, &deg, &bits, r);
         source_locate(D->src, s->def->expr->span.start, &line, &col);
         pc_fprintf(D->verbose,
-                "%s:%d: %s: %.3f ms, %s, %ld terms, degree %ld, %ld-bit "
-                "coefficients\n",
-                D->src->name, line, s->name, 1e3 * (derive_now_seconds() - t0),
-                v->is_point ? "combination of points" : "scalar",
-                (long)terms, (long)deg, (long)bits);
+                   "%s:%d: %s: %.3f ms, %s, %ld terms, degree %ld, %ld-bit "
+                   "coefficients\n",
+                   D->src->name, line, s->name,
+                   1e3 * (derive_now_seconds() - t0),
+                   v->is_point ? "combination of points" : "scalar",
+                   (long)terms, (long)deg, (long)bits);
         fflush(D->verbose);
     }
     if (!v->is_point)
@@ -59,10 +60,10 @@ static void derive_def(Deriver *D, Sym *s)
                        "the weights of the vector summing to 0 term by term",
                        s->name, txt);
         else
-        diag_error(D->diag, s->def->expr->span,
-                   "weights of %s sum to %s, not 0 (a vector) or 1 (a "
-                   "point)",
-                   s->name, txt);
+            diag_error(D->diag, s->def->expr->span,
+                       "weights of %s sum to %s, not 0 (a vector) or 1 (a "
+                       "point)",
+                       s->name, txt);
         flint_free(txt);
         D->state[s->index] = -1;
     }
@@ -145,7 +146,8 @@ static void declare_bounds(Deriver *D, Derived *d)
     for (slong i = 0; i < nv; i++) {
         slong v = (i + d->nparams) % (nv ? nv : 1);
         int is_const = v >= d->nparams;
-        const Sym *s = is_const ? info->consts[v - d->nparams] : info->params[v];
+        const Sym *s =
+            is_const ? info->consts[v - d->nparams] : info->params[v];
         const Stmt *st = s->decl;
         /* (a bound with an error of its own was reported by sema: its
          * names may be unresolved) */
@@ -167,15 +169,14 @@ static void declare_bounds(Deriver *D, Derived *d)
                 diag_error(D->diag, st->hi->span,
                            "empty interval for '%s': expected an upper end "
                            "%s the lower one",
-                           s->name, st->lo_open || st->hi_open
-                                        ? "greater than"
-                                        : "at least");
+                           s->name,
+                           st->lo_open || st->hi_open ? "greater than"
+                                                      : "at least");
         }
         fmpq_clear(b);
         fmpq_clear(a);
     }
 }
-
 
 /* D for a derivation of info into d (its ring planned): nothing derived
  * yet, the time budget counted from `start` */
@@ -183,31 +184,34 @@ void deriver_init(Deriver *D, Derived *d, SemaInfo *info, Diag *diag,
                   const Source *src, double start, const DeriveOptions *opt)
 {
     const Ring *r = &d->ring;
-    *D = (Deriver){.diag = diag, .r = r, .info = info, .src = src,
-                   .K = d->kernels};
+    *D = (Deriver){
+        .diag = diag, .r = r, .info = info, .src = src, .K = d->kernels};
     if (D->K)
         D->K->deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D->max_seconds = opt->max_seconds;
     D->deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D->verbose = opt->verbose;
-    D->defs = pc_xmalloc(sizeof(Value) * (size_t)(info->ndefs ? info->ndefs : 1));
+    D->defs =
+        pc_xmalloc(sizeof(Value) * (size_t)(info->ndefs ? info->ndefs : 1));
     D->state = pc_xcalloc((size_t)(info->ndefs ? info->ndefs : 1), sizeof(int));
     for (int i = 0; i < info->ndefs; i++)
         derive_value_init(&D->defs[i], r);
     D->ucol0 = info->npoints;
-    D->usol = pc_xmalloc(sizeof(PointEq) * (size_t)(info->nunknowns ? info->nunknowns : 1));
-    D->usolved = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1), sizeof(int));
+    D->usol = pc_xmalloc(sizeof(PointEq) *
+                         (size_t)(info->nunknowns ? info->nunknowns : 1));
+    D->usolved = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1),
+                            sizeof(int));
     D->dassume = pc_xcalloc((size_t)(info->ndefs ? info->ndefs : 1),
-                           sizeof(unsigned char *));
+                            sizeof(unsigned char *));
     D->uassume = pc_xcalloc((size_t)(info->nunknowns ? info->nunknowns : 1),
-                           sizeof(unsigned char *));
+                            sizeof(unsigned char *));
     D->ssol = ratfun_vec_init(info->nunknowns, r);
-    D->uvar = pc_xmalloc(sizeof(slong) * (size_t)(info->nunknowns ? info->nunknowns : 1));
+    D->uvar = pc_xmalloc(sizeof(slong) *
+                         (size_t)(info->nunknowns ? info->nunknowns : 1));
     for (int k = 0, m = 0; k < info->nunknowns; k++) {
         pteq_init(D->usol[k], r);
-        D->uvar[k] = info->unknowns[k]->is_point
-                        ? -1
-                        : d->nparams + d->nconsts + m++;
+        D->uvar[k] =
+            info->unknowns[k]->is_point ? -1 : d->nparams + d->nconsts + m++;
     }
 }
 

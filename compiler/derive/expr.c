@@ -54,8 +54,8 @@ static int meet_check_flat(Deriver *D, const Node *flat, PointEq *args)
 
 /* the error of a meet() that failed with ms (MEET_OK: none); 0, or -1
  * reported */
-static int meet_report(Deriver *D, MeetStatus ms, const Node *n,
-                       const Node *fa, const Node *fb, LinNormal *nf)
+static int meet_report(Deriver *D, MeetStatus ms, const Node *n, const Node *fa,
+                       const Node *fb, LinNormal *nf)
 {
     int plane = fb->nargs == 3;
     int st = -1;
@@ -158,8 +158,7 @@ static int eval_meet(Deriver *D, Value *res, const Node *n)
 }
 
 /* 1 when v (a point or a scalar) uses a distance to base point `point` */
-static int value_measures_point(const Deriver *D, const Value *v,
-                                slong point)
+static int value_measures_point(const Deriver *D, const Value *v, slong point)
 {
     if (v->is_point || !D->K)
         return kernel_measures_point(D->K, v->p, point);
@@ -187,7 +186,8 @@ static int subst_coords(Deriver *D, Value *v, const Sym *x, const PointEq P,
 static int eval_subst(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
-    const Node *e = derive_nth(n, 0), *x = derive_nth(n, 1), *by = derive_nth(n, 2);
+    const Node *e = derive_nth(n, 0), *x = derive_nth(n, 1),
+               *by = derive_nth(n, 2);
     Value ve, vb;
     int st = 0;
     derive_value_init(&ve, r);
@@ -252,7 +252,8 @@ static int eval_subst(Deriver *D, Value *res, const Node *n)
         } else if (subst_coords(D, &ve, x->sym, vb.p, n) < 0) {
             st = -1;
         } else if (ve.is_point) {
-            pteq_subst_point(res->p, ve.p, derive_point_col(D, x->sym), vb.p, r);
+            pteq_subst_point(res->p, ve.p, derive_point_col(D, x->sym), vb.p,
+                             r);
         } else {
             ratfun_set(res->s, ve.s, r);
         }
@@ -300,8 +301,7 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
     int st = 0;
     if (derive_is_function(n->builtin) || n->builtin == BI_PI)
         return derive_eval_function(D, res, n);
-    if (n->builtin == BI_DOT || n->builtin == BI_DIST ||
-        n->builtin == BI_ANGLE)
+    if (n->builtin == BI_DOT || n->builtin == BI_DIST || n->builtin == BI_ANGLE)
         return derive_eval_metric(D, res, n);
     if (n->builtin == BI_COORD)
         return derive_eval_coord(D, res, n);
@@ -444,8 +444,7 @@ static int eval_pow(Deriver *D, Value *res, const Node *n)
             derive_kernel_error(D, KERNEL_EBIG, n, NULL);
             goto done;
         }
-        int rc = kernel_pow_q(D->K, res->s, res->s,
-                              fmpz_get_si(fmpq_numref(q)),
+        int rc = kernel_pow_q(D->K, res->s, res->s, fmpz_get_si(fmpq_numref(q)),
                               fmpz_get_si(fmpq_denref(q)));
         if (rc != 0) {
             derive_kernel_error(D, rc, n, n->lhs);
@@ -461,8 +460,9 @@ static int eval_pow(Deriver *D, Value *res, const Node *n)
                    "to 1000");
         goto done;
     }
-    if (derive_too_big(D, ratfun_log2_bits_pow(res->s, fmpz_get_si(fmpq_numref(q)), r),
-                n) < 0)
+    if (derive_too_big(
+            D, ratfun_log2_bits_pow(res->s, fmpz_get_si(fmpq_numref(q)), r),
+            n) < 0)
         goto done;
     if (ratfun_pow_si(res->s, res->s, fmpz_get_si(fmpq_numref(q)), r) != 0) {
         diag_error(D->diag, n->span,
@@ -483,8 +483,7 @@ static int eval_node(Deriver *D, Value *res, const Node *n);
 int derive_eval(Deriver *D, Value *res, const Node *n)
 {
     int st = eval_node(D, res, n);
-    if (st == 0 && n->kind != ND_NUM && n->kind != ND_NAME &&
-        n->kind != ND_NEG)
+    if (st == 0 && n->kind != ND_NUM && n->kind != ND_NAME && n->kind != ND_NEG)
         st = derive_reduce_value(D, res, n);
     return st;
 }
@@ -540,11 +539,11 @@ static int eval_arith(Deriver *D, Value *res, const Node *n)
         derive_value_clear(&b, r);
         return -1;
     }
-    double bits = !res->is_point && !b.is_point
-                      ? ratfun_log2_bits_product(res->s, b.s, r)
-                  : res->is_point && b.is_point ? derive_pair_bits(res->p, b.p, r)
-                  : res->is_point ? derive_scalar_bits(res->p, b.s, r)
-                                  : derive_scalar_bits(b.p, res->s, r);
+    double bits =
+        !res->is_point && !b.is_point ? ratfun_log2_bits_product(res->s, b.s, r)
+        : res->is_point && b.is_point ? derive_pair_bits(res->p, b.p, r)
+        : res->is_point               ? derive_scalar_bits(res->p, b.s, r)
+                                      : derive_scalar_bits(b.p, res->s, r);
     if (derive_too_big(D, bits, n) < 0) {
         derive_value_clear(&b, r);
         return -1;
@@ -626,4 +625,3 @@ static int eval_node(Deriver *D, Value *res, const Node *n)
     }
     return -1;
 }
-

@@ -7,7 +7,6 @@
  */
 #include "compiler/derive/derive_int.h"
 
-
 /* the scalar functions are the builtins BI_SQRT .. BI_SIGN (sema.h) */
 int derive_is_function(int b)
 {
@@ -19,22 +18,34 @@ int derive_is_function(int b)
 static int builtin_kernel(int b)
 {
     switch ((Builtin)b) {
-    case BI_SQRT: return KF_SQRT;
-    case BI_SIN: return KF_SIN;
-    case BI_COS: return KF_COS;
-    case BI_ASIN: return KF_ASIN;
-    case BI_ACOS: return KF_ACOS;
-    case BI_ATAN: return KF_ATAN;
-    case BI_ATAN2: return KF_ATAN2;
-    case BI_SINH: return KF_SINH;
-    case BI_COSH: return KF_COSH;
-    case BI_EXP: return KF_EXP;
-    case BI_LN: return KF_LN;
-    case BI_SIGN: return KF_SIGN;
-    default: return -1;
+    case BI_SQRT:
+        return KF_SQRT;
+    case BI_SIN:
+        return KF_SIN;
+    case BI_COS:
+        return KF_COS;
+    case BI_ASIN:
+        return KF_ASIN;
+    case BI_ACOS:
+        return KF_ACOS;
+    case BI_ATAN:
+        return KF_ATAN;
+    case BI_ATAN2:
+        return KF_ATAN2;
+    case BI_SINH:
+        return KF_SINH;
+    case BI_COSH:
+        return KF_COSH;
+    case BI_EXP:
+        return KF_EXP;
+    case BI_LN:
+        return KF_LN;
+    case BI_SIGN:
+        return KF_SIGN;
+    default:
+        return -1;
     }
 }
-
 
 /* a scalar function applied: sqrt(x), sin(x), ..., pi */
 int derive_eval_function(Deriver *D, Value *res, const Node *n)
@@ -51,7 +62,8 @@ int derive_eval_function(Deriver *D, Value *res, const Node *n)
     ratfun_init(y, r);
     int rc = 0, st = 0;
     if (derive_eval_scalar(D, x, derive_nth(n, 0)) < 0 ||
-        (n->builtin == BI_ATAN2 && derive_eval_scalar(D, y, derive_nth(n, 1)) < 0)) {
+        (n->builtin == BI_ATAN2 &&
+         derive_eval_scalar(D, y, derive_nth(n, 1)) < 0)) {
         st = -1;
         goto done;
     }
@@ -92,4 +104,3 @@ done:
     ratfun_clear(x, r);
     return st;
 }
-

@@ -15,8 +15,8 @@
 
 /* res = U . V for vectors U, V (weights summing to 0) over the base points:
  * with d_ij = |A_i A_j|,  U . V = -1/2 sum_{i != j} u_i v_j d_ij^2 */
-static int metric_dot(Deriver *D, RatFun res, const PointEq U,
-                      const PointEq V, const Node *n)
+static int metric_dot(Deriver *D, RatFun res, const PointEq U, const PointEq V,
+                      const Node *n)
 {
     const Ring *r = D->r;
     RatFun acc, d, t;
@@ -160,8 +160,8 @@ int derive_eval_metric(Deriver *D, Value *res, const Node *n)
                        "(the second argument)");
             break;
         }
-        if (metric_dot(D, res->s, U, V, n) < 0 || metric_dot(D, uu, U, U, n) < 0 ||
-            metric_dot(D, vv, V, V, n) < 0)
+        if (metric_dot(D, res->s, U, V, n) < 0 ||
+            metric_dot(D, uu, U, U, n) < 0 || metric_dot(D, vv, V, V, n) < 0)
             break;
         /* acos(U.V / (|U| |V|)) */
         rc = kernel_apply(D->K, uu, KF_SQRT, uu, NULL);
@@ -236,4 +236,3 @@ int derive_eval_coord(Deriver *D, Value *res, const Node *n)
     pteq_clear(P, r);
     return st;
 }
-

@@ -133,7 +133,6 @@ static void output_diff_of(DerivedOutput *o, const Sym *s)
     o->diff_order = (int)order;
 }
 
-
 /* an output may not keep an unknown that no solve determined */
 static void check_outputs_solved(Deriver *D)
 {
@@ -158,30 +157,29 @@ static void fill_outputs(Deriver *D, Derived *d)
 {
     const Ring *r = D->r;
     const SemaInfo *info = D->info;
-        d->noutputs = info->noutputs;
-        d->outputs = pc_xcalloc((size_t)(info->noutputs ? info->noutputs : 1),
+    d->noutputs = info->noutputs;
+    d->outputs = pc_xcalloc((size_t)(info->noutputs ? info->noutputs : 1),
                             sizeof(DerivedOutput));
-        for (int i = 0; i < info->noutputs; i++) {
-            Sym *s = info->outputs[i];
-            DerivedOutput *o = &d->outputs[i];
-            Value uv, *v = &D->defs[s->index];
-            if (s->kind == SYM_UNKNOWN) { /* solved */
-                uv.is_point = s->is_point;
-                uv.p[0] = D->usol[s->index][0]; /* borrowed */
-                uv.s[0] = D->ssol[s->index];
-                v = &uv;
-            }
-            derive_output_fill(o, s->name, s->span, v, D->src, r);
-            const unsigned char *as = s->kind == SYM_UNKNOWN
-                                          ? D->uassume[s->index]
-                                          : D->dassume[s->index];
-            if (as) {
-                size_t nv = (size_t)(d->nparams + d->nconsts);
-                o->assumed = pc_xmalloc(nv ? nv : 1);
-                memcpy(o->assumed, as, nv);
-            }
-            output_diff_of(o, s);
+    for (int i = 0; i < info->noutputs; i++) {
+        Sym *s = info->outputs[i];
+        DerivedOutput *o = &d->outputs[i];
+        Value uv, *v = &D->defs[s->index];
+        if (s->kind == SYM_UNKNOWN) { /* solved */
+            uv.is_point = s->is_point;
+            uv.p[0] = D->usol[s->index][0]; /* borrowed */
+            uv.s[0] = D->ssol[s->index];
+            v = &uv;
         }
+        derive_output_fill(o, s->name, s->span, v, D->src, r);
+        const unsigned char *as = s->kind == SYM_UNKNOWN ? D->uassume[s->index]
+                                                         : D->dassume[s->index];
+        if (as) {
+            size_t nv = (size_t)(d->nparams + d->nconsts);
+            o->assumed = pc_xmalloc(nv ? nv : 1);
+            memcpy(o->assumed, as, nv);
+        }
+        output_diff_of(o, s);
+    }
 }
 
 /* The outputs of a derivation into d: checked, and (without errors) filled
@@ -193,13 +191,12 @@ void derive_collect_outputs(Deriver *D, Derived *d)
     check_outputs_solved(D);
 
     for (slong v = 0; D->K && v < d->nparams + d->nconsts; v++)
-        d->bound_flags[v] |=
-            (unsigned char)((kernels_assumed(D->K, v) & 1
-                                 ? DERIVED_BOUND_LO_ASSUMED
-                                 : 0) |
-                            (kernels_assumed(D->K, v) & 2
-                                 ? DERIVED_BOUND_HI_ASSUMED
-                                 : 0));
+        d->bound_flags[v] |= (unsigned char)((kernels_assumed(D->K, v) & 1
+                                                  ? DERIVED_BOUND_LO_ASSUMED
+                                                  : 0) |
+                                             (kernels_assumed(D->K, v) & 2
+                                                  ? DERIVED_BOUND_HI_ASSUMED
+                                                  : 0));
 
     /* the declared ranges, exact (a range that does not reduce is left
      * out: sema has reported what is wrong with it) */

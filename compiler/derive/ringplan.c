@@ -86,52 +86,51 @@ static char *base_name(const char *filename)
     return s;
 }
 
-
 /* the kernel slots the scheme's calls need at least (functions, pi,
  * distances, coordinates), counted over every definition, solve and
  * declared bound */
 static slong plan_kernel_slots(const SemaInfo *info, slong npoints)
 {
-        slong calls = 0, ops = 0, pis = 0, metric = 0;
-        long *coord_ks = NULL; /* the distinct k of coord(P, k) */
-        slong ncoord_ks = 0;
-        for (int i = 0; i < info->nsteps; i++) {
-            const Stmt *st = info->steps[i];
-            if (st->kind == ST_DEF)
-                count_kernel_uses(st->expr, &calls, &ops, &pis, &metric);
-            for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL;
-                 e; e = e->next) {
-                count_kernel_uses(e->lhs, &calls, &ops, &pis, &metric);
-                count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
-            }
-            if (st->kind == ST_DEF)
-                count_coord_indices(st->expr, &coord_ks, &ncoord_ks);
-            for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL;
-                 e; e = e->next) {
-                count_coord_indices(e->lhs, &coord_ks, &ncoord_ks);
-                count_coord_indices(e->rhs, &coord_ks, &ncoord_ks);
-            }
+    slong calls = 0, ops = 0, pis = 0, metric = 0;
+    long *coord_ks = NULL; /* the distinct k of coord(P, k) */
+    slong ncoord_ks = 0;
+    for (int i = 0; i < info->nsteps; i++) {
+        const Stmt *st = info->steps[i];
+        if (st->kind == ST_DEF)
+            count_kernel_uses(st->expr, &calls, &ops, &pis, &metric);
+        for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL; e;
+             e = e->next) {
+            count_kernel_uses(e->lhs, &calls, &ops, &pis, &metric);
+            count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
         }
-        /* the params' ranges and the consts' bounds are derived too
-         * (Derived.range, Derived.bound) */
-        for (int i = 0; i < info->nparams + info->nconsts; i++) {
-            const Stmt *st = i < info->nparams
-                                 ? info->params[i]->decl
-                                 : info->consts[i - info->nparams]->decl;
-            if (st && st->lo && !st->bad)
-                count_kernel_uses(st->lo, &calls, &ops, &pis, &metric);
-            if (st && st->hi && !st->bad)
-                count_kernel_uses(st->hi, &calls, &ops, &pis, &metric);
-            if (st && st->lo && !st->bad)
-                count_coord_indices(st->lo, &coord_ks, &ncoord_ks);
-            if (st && st->hi && !st->bad)
-                count_coord_indices(st->hi, &coord_ks, &ncoord_ks);
+        if (st->kind == ST_DEF)
+            count_coord_indices(st->expr, &coord_ks, &ncoord_ks);
+        for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL; e;
+             e = e->next) {
+            count_coord_indices(e->lhs, &coord_ks, &ncoord_ks);
+            count_coord_indices(e->rhs, &coord_ks, &ncoord_ks);
         }
-        slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
-        if (metric)
-            nslots += kernels_metric_slots(metric, npoints);
-        nslots += kernels_coord_slots(ncoord_ks, npoints);
-        free(coord_ks);
+    }
+    /* the params' ranges and the consts' bounds are derived too
+     * (Derived.range, Derived.bound) */
+    for (int i = 0; i < info->nparams + info->nconsts; i++) {
+        const Stmt *st = i < info->nparams
+                             ? info->params[i]->decl
+                             : info->consts[i - info->nparams]->decl;
+        if (st && st->lo && !st->bad)
+            count_kernel_uses(st->lo, &calls, &ops, &pis, &metric);
+        if (st && st->hi && !st->bad)
+            count_kernel_uses(st->hi, &calls, &ops, &pis, &metric);
+        if (st && st->lo && !st->bad)
+            count_coord_indices(st->lo, &coord_ks, &ncoord_ks);
+        if (st && st->hi && !st->bad)
+            count_coord_indices(st->hi, &coord_ks, &ncoord_ks);
+    }
+    slong nslots = kernels_slots(calls + 3 * metric, ops, pis);
+    if (metric)
+        nslots += kernels_metric_slots(metric, npoints);
+    nslots += kernels_coord_slots(ncoord_ks, npoints);
+    free(coord_ks);
     return nslots;
 }
 
@@ -144,46 +143,43 @@ Derived *derive_plan_ring(const SemaInfo *info, const char *filename,
     if (len)
         memcpy(d->text, text, len);
     d->len = len;
-    d->scheme = info->scheme_name ? pc_xstrdup(info->scheme_name)
-                                  : base_name(filename);
+    d->scheme =
+        info->scheme_name ? pc_xstrdup(info->scheme_name) : base_name(filename);
     d->npoints = info->npoints;
     d->points = copy_names(info->points, info->npoints);
     d->nparams = info->nparams;
     d->params = copy_names(info->params, info->nparams);
     d->nconsts = info->nconsts;
     d->consts = copy_names(info->consts, info->nconsts);
-    {
-        /* unknown scalars are ring variables after the consts */
-        for (int k = 0; k < info->nunknowns; k++)
-            d->nextra += !info->unknowns[k]->is_point;
-        d->extra = pc_xcalloc((size_t)(d->nextra ? d->nextra : 1),
-                              sizeof(char *));
-        for (int k = 0, m = 0; k < info->nunknowns; k++)
-            if (!info->unknowns[k]->is_point)
-                d->extra[m++] = pc_xstrdup(info->unknowns[k]->name);
-        /* kernel slots (functions, pi) after the extra variables */
-        slong nslots = plan_kernel_slots(info, d->npoints);
-        if (*nslots_try > 0)
-            nslots = *nslots_try;
-        *nslots_try = nslots;
-        slong nv = d->nparams + d->nconsts + d->nextra + nslots;
-        const char **vars = pc_xmalloc(sizeof(char *) * (size_t)(nv ? nv : 1));
-        for (slong i = nv - nslots; i < nv; i++)
-            vars[i] = "?"; /* named when a kernel takes the slot */
-        for (slong i = 0; i < d->nparams; i++)
-            vars[i] = d->params[i];
-        for (slong i = 0; i < d->nconsts; i++)
-            vars[d->nparams + i] = d->consts[i];
-        for (slong i = 0; i < d->nextra; i++)
-            vars[d->nparams + d->nconsts + i] = d->extra[i];
-        ring_init(&d->ring, nv, vars);
-        free(vars);
-        if (nslots > 0) {
-            d->kernels = pc_xcalloc(1, sizeof(Kernels));
-            kernels_init(d->kernels, &d->ring, nv - nslots, nslots);
-            d->kernels->points = (const char *const *)d->points;
-            d->kernels->npoints = d->npoints;
-        }
+    /* unknown scalars are ring variables after the consts */
+    for (int k = 0; k < info->nunknowns; k++)
+        d->nextra += !info->unknowns[k]->is_point;
+    d->extra = pc_xcalloc((size_t)(d->nextra ? d->nextra : 1), sizeof(char *));
+    for (int k = 0, m = 0; k < info->nunknowns; k++)
+        if (!info->unknowns[k]->is_point)
+            d->extra[m++] = pc_xstrdup(info->unknowns[k]->name);
+    /* kernel slots (functions, pi) after the extra variables */
+    slong nslots = plan_kernel_slots(info, d->npoints);
+    if (*nslots_try > 0)
+        nslots = *nslots_try;
+    *nslots_try = nslots;
+    slong nv = d->nparams + d->nconsts + d->nextra + nslots;
+    const char **vars = pc_xmalloc(sizeof(char *) * (size_t)(nv ? nv : 1));
+    for (slong i = nv - nslots; i < nv; i++)
+        vars[i] = "?"; /* named when a kernel takes the slot */
+    for (slong i = 0; i < d->nparams; i++)
+        vars[i] = d->params[i];
+    for (slong i = 0; i < d->nconsts; i++)
+        vars[d->nparams + i] = d->consts[i];
+    for (slong i = 0; i < d->nextra; i++)
+        vars[d->nparams + d->nconsts + i] = d->extra[i];
+    ring_init(&d->ring, nv, vars);
+    free(vars);
+    if (nslots > 0) {
+        d->kernels = pc_xcalloc(1, sizeof(Kernels));
+        kernels_init(d->kernels, &d->ring, nv - nslots, nslots);
+        d->kernels->points = (const char *const *)d->points;
+        d->kernels->npoints = d->npoints;
     }
     return d;
 }

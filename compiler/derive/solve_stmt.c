@@ -43,8 +43,7 @@ static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
                        "vanishing denominator: with the solution %s = %s, a "
                        "denominator of '%s' is identically zero",
                        r->names[var], txt, s->name);
-            diag_note(D->diag, st->span, "'%s' is solved here",
-                      r->names[var]);
+            diag_note(D->diag, st->span, "'%s' is solved here", r->names[var]);
             flint_free(txt);
             D->state[i] = -1;
         } else if (derive_reduce_value(D, d, D->info->defs[i]->def->expr) < 0) {
@@ -191,9 +190,9 @@ typedef struct Mixed {
 } Mixed;
 
 /* linearity, and the known columns (M->known): 1, or 0 reported */
-static int mixed_check_linear(Deriver *D, Mixed *M, PointEq *peq,
-                              Equation **pe, slong npe, RatFunStruct *seq,
-                              Equation **se, slong nse, Sym **syms)
+static int mixed_check_linear(Deriver *D, Mixed *M, PointEq *peq, Equation **pe,
+                              slong npe, RatFunStruct *seq, Equation **se,
+                              slong nse, Sym **syms)
 {
     const Ring *r = D->r;
     slong nx = M->nx, nk = M->nk, nknown = M->nknown, capk = M->capk;
@@ -254,8 +253,7 @@ static int mixed_check_linear(Deriver *D, Mixed *M, PointEq *peq,
  * one per scalar equation */
 static void mixed_fill(const Mixed *M, RatFunStruct *A, RatFunStruct *b,
                        fmpz_mpoly_t c, PointEq *peq, slong npe,
-                       RatFunStruct *seq, slong nse, slong ncol,
-                       const Ring *r)
+                       RatFunStruct *seq, slong nse, slong ncol, const Ring *r)
 {
     slong nx = M->nx, nk = M->nk, nknown = M->nknown;
     const slong *xcol = M->xcol, *kvar = M->kvar, *known = M->known;
@@ -267,8 +265,9 @@ static void mixed_fill(const Mixed *M, RatFunStruct *A, RatFunStruct *b,
                 ;
             if (xi < nx) { /* u * x[xi][b] in every row b of e */
                 for (bi = 0; bi < nknown; bi++)
-                    fmpz_mpoly_set(A[(e * nknown + bi) * ncol + xi * nknown + bi].num,
-                                   num, r->ctx);
+                    fmpz_mpoly_set(
+                        A[(e * nknown + bi) * ncol + xi * nknown + bi].num, num,
+                        r->ctx);
                 continue;
             }
             for (bi = 0; known[bi] != col; bi++)
@@ -278,8 +277,7 @@ static void mixed_fill(const Mixed *M, RatFunStruct *A, RatFunStruct *b,
             fmpz_mpoly_neg(b[row].num, c, r->ctx);
             for (slong m = 0; m < nk; m++) {
                 linear_coeff(c, num, kvar, nk, m, r);
-                fmpz_mpoly_set(A[row * ncol + nx * nknown + m].num, c,
-                               r->ctx);
+                fmpz_mpoly_set(A[row * ncol + nx * nknown + m].num, c, r->ctx);
             }
         }
     for (slong e = 0; e < nse; e++) {
@@ -295,10 +293,9 @@ static void mixed_fill(const Mixed *M, RatFunStruct *A, RatFunStruct *b,
 
 /* solves A x = b, reports a singular or inconsistent system, and stores
  * and substitutes the solutions */
-static void mixed_solve(Deriver *D, Stmt *st, const Mixed *M,
-                        RatFunStruct *A, RatFunStruct *b, RatFunStruct *x,
-                        slong nrow, slong ncol, Sym **syms, Name **names,
-                        slong nunk)
+static void mixed_solve(Deriver *D, Stmt *st, const Mixed *M, RatFunStruct *A,
+                        RatFunStruct *b, RatFunStruct *x, slong nrow,
+                        slong ncol, Sym **syms, Name **names, slong nunk)
 {
     const Ring *r = D->r;
     slong nx = M->nx, nk = M->nk, nknown = M->nknown;
@@ -311,12 +308,10 @@ static void mixed_solve(Deriver *D, Stmt *st, const Mixed *M,
         if ((nf->err = kernel_reduce(D->K, x + m)))
             lr = LINSOLVE_FAILED;
     int by_identity = 0;
-    if (nf && (lr == LINSOLVE_INCONSISTENT ||
-               lr == LINSOLVE_UNDERDETERMINED)) {
+    if (nf && (lr == LINSOLVE_INCONSISTENT || lr == LINSOLVE_UNDERDETERMINED)) {
         /* only by the identities? (the plain system solves) */
         RatFunStruct *y = ratfun_vec_init(ncol, r);
-        by_identity = linsolve(y, NULL, A, b, nrow, ncol, r) ==
-                      LINSOLVE_UNIQUE;
+        by_identity = linsolve(y, NULL, A, b, nrow, ncol, r) == LINSOLVE_UNIQUE;
         ratfun_vec_clear(y, ncol, r);
     }
     if (lr == LINSOLVE_FAILED) {
@@ -347,8 +342,8 @@ static void mixed_solve(Deriver *D, Stmt *st, const Mixed *M,
         }
         for (slong xi = 0; xi < nx; xi++) {
             Sym *u = syms[xsym[xi]];
-            pteq_set_weights(D->usol[u->index], known,
-                             x + xi * nknown, nknown, r);
+            pteq_set_weights(D->usol[u->index], known, x + xi * nknown, nknown,
+                             r);
         }
         for (slong j = 0; j < nunk; j++)
             derive_assume_into(D, &D->uassume[syms[j]->index]);
@@ -477,8 +472,8 @@ static int solve_equation(Deriver *D, const Equation *q, PointEq eq,
             diag_error(D->diag, q->span,
                        "cannot equate a %s and a %s: the left side's "
                        "weights sum to %d, the right side's to %d",
-                       lk ? "point" : "vector", rk ? "point" : "vector",
-                       lk, rk);
+                       lk ? "point" : "vector", rk ? "point" : "vector", lk,
+                       rk);
             ok = 0;
         } else {
             pteq_sub(eq, eq, rhs, r);
@@ -523,8 +518,8 @@ static void solve_split_mixed(Deriver *D, Stmt *st, const SolveSys *S)
 }
 
 /* the error of a solve of points that failed with ss */
-static void report_solve(Deriver *D, Stmt *st, SolveStatus ss,
-                         int by_identity, const SolveSys *S)
+static void report_solve(Deriver *D, Stmt *st, SolveStatus ss, int by_identity,
+                         const SolveSys *S)
 {
     slong neq = S->neq, nunk = S->nunk, e, j;
     Sym **syms = S->syms;
@@ -607,9 +602,8 @@ static void solve_points_stmt(Deriver *D, Stmt *st, const SolveSys *S)
         PointEq *y = pc_xmalloc(sizeof(PointEq) * (size_t)nunk);
         for (j = 0; j < nunk; j++)
             pteq_init(y[j], r);
-        by_identity = solve_points_ex(y, (const PointEq *)eqs, neq, cols,
-                                      nunk, NULL, NULL, D->deadline,
-                                      r) == SOLVE_OK;
+        by_identity = solve_points_ex(y, (const PointEq *)eqs, neq, cols, nunk,
+                                      NULL, NULL, D->deadline, r) == SOLVE_OK;
         for (j = 0; j < nunk; j++)
             pteq_clear(y[j], r);
         free(y);
@@ -675,10 +669,18 @@ void derive_solve(Deriver *D, Stmt *st)
         nsc += !syms[j]->is_point;
     RatFunStruct *seqs = ratfun_vec_init(neq, r);
     char *scalar_eq = pc_xcalloc((size_t)neq, 1);
-    SolveSys S = {.neq = neq, .nunk = nunk, .eqs = eqs, .seqs = seqs,
-                  .scalar_eq = scalar_eq, .eqn = eqn, .x = x, .syms = syms,
-                  .cols = cols, .names = names,
-                  .undetermined = undetermined, .dependent = dependent};
+    SolveSys S = {.neq = neq,
+                  .nunk = nunk,
+                  .eqs = eqs,
+                  .seqs = seqs,
+                  .scalar_eq = scalar_eq,
+                  .eqn = eqn,
+                  .x = x,
+                  .syms = syms,
+                  .cols = cols,
+                  .names = names,
+                  .undetermined = undetermined,
+                  .dependent = dependent};
     slong e = 0;
     for (Equation *q = st->eqs; q; q = q->next, e++) {
         eqn[e] = q;
@@ -714,4 +716,3 @@ void derive_solve(Deriver *D, Stmt *st)
     free(x);
     free(eqs);
 }
-

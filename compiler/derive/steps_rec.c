@@ -79,13 +79,20 @@ static StepOp step_op(const Node *e)
     if (e->kind != ND_CALL)
         return STEP_EXPR;
     switch ((Builtin)e->builtin) {
-    case BI_ALONG: return STEP_ALONG;
-    case BI_DIVIDE: return STEP_DIVIDE;
-    case BI_MEET: return STEP_MEET;
-    case BI_SUBST: return STEP_SUBST;
-    case BI_DIFF: return STEP_DIFF;
-    case BI_BEZIER: return STEP_BEZIER;
-    default: return STEP_EXPR;
+    case BI_ALONG:
+        return STEP_ALONG;
+    case BI_DIVIDE:
+        return STEP_DIVIDE;
+    case BI_MEET:
+        return STEP_MEET;
+    case BI_SUBST:
+        return STEP_SUBST;
+    case BI_DIFF:
+        return STEP_DIFF;
+    case BI_BEZIER:
+        return STEP_BEZIER;
+    default:
+        return STEP_EXPR;
     }
 }
 
@@ -127,7 +134,8 @@ static void step_construction(Deriver *D, DerivedStep *st, const Node *e)
     }
     case BI_DIFF:
         st->var = pc_xstrdup(derive_nth(e, 1)->sym->name);
-        st->order = derive_nth(e, 2) ? strtol(derive_nth(e, 2)->text, NULL, 10) : 1;
+        st->order =
+            derive_nth(e, 2) ? strtol(derive_nth(e, 2)->text, NULL, 10) : 1;
         break;
     case BI_MEET: {
         const Node *fa = derive_nth(e, 0), *fb = derive_nth(e, 1);
@@ -211,7 +219,8 @@ void derive_record_steps(Deriver *D, Derived *d, const Source *src)
                 if (!D->usolved[u->index] || derive_unsolved_in(D, &uv))
                     step_pending(ds, u->name, nm->span, src, r);
                 else
-                    derive_output_fill(&ds->value, u->name, nm->span, &uv, src, r);
+                    derive_output_fill(&ds->value, u->name, nm->span, &uv, src,
+                                       r);
             }
             continue;
         }
@@ -269,4 +278,3 @@ void derive_record_named(Deriver *D, Derived *d, const Source *src)
     }
     free(e);
 }
-

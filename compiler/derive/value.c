@@ -306,8 +306,9 @@ int derive_kernel_error_at(Deriver *D, int rc, Span at, Span arg)
         break;
     case KERNEL_ETIME:
         if (!D->expired && !derive_out_of_time_at(D, at))
-            diag_error(D->diag, at, "the time budget ran out while "
-                                         "deriving this");
+            diag_error(D->diag, at,
+                       "the time budget ran out while "
+                       "deriving this");
         break;
     case KERNEL_EBIG:
         diag_error(D->diag, at,
@@ -388,4 +389,3 @@ void derive_value_size(const Value *v, slong *terms, slong *deg, slong *bits,
         }
     }
 }
-
