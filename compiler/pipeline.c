@@ -113,7 +113,8 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
     c.diag_errors0 = c.diag.nerrors;
     for (int again = c.info != NULL; again; again = retry_with_more_slots(&c)) {
         Deriver D;
-        c.d = derive_plan_ring(c.info, filename, text, len, &c.nslots_try);
+        c.d =
+            derive_plan_ring(c.info, c.filename, c.text, c.len, &c.nslots_try);
         deriver_init(&D, c.d, c.info, &c.diag, &c.src, c.start, opt);
         derive_all(&D, c.d);
         derive_collect_outputs(&D, c.d);
