@@ -2,7 +2,10 @@
  * derive.h - the whole front half of the pipeline as one call, and its
  * result: the exact, reduced point equations of a scheme's outputs.
  *
- *   source -> parse -> sema_check -> derive  ==>  Derived
+ *   source -> parse -> expand -> sema_check -> plan the ring -> derive
+ *          -> outputs [-> steps]  ==>  Derived
+ *
+ * (compiler/pipeline.c runs the passes; derive's are in compiler/derive/)
  *
  * A Derived is what every back end reads: `derive` prints it, codegen lowers
  * it to a Plan for emit-c and eval.  It owns its Ring and every value.
@@ -12,10 +15,10 @@
 
 #include <stdio.h>
 
+#include "base/source.h"
 #include "compiler/pteq.h"
 #include "compiler/ratfun.h"
 #include "compiler/ring.h"
-#include "base/source.h"
 
 typedef enum Kind {
     KIND_SCALAR, // a rational function of params and consts
@@ -26,14 +29,14 @@ typedef enum Kind {
 typedef struct DerivedOutput {
     const char *name; // the defined name (owned by the Derived)
     Kind kind;
-    PointEq eq;    // KIND_POINT / KIND_VECTOR: the reduced equation, over
-                   // one common denominator (pteq.h)
+    PointEq eq;      // KIND_POINT / KIND_VECTOR: the reduced equation, over
+                     // one common denominator (pteq.h)
     RatFunStruct *w; // KIND_POINT / KIND_VECTOR: eq->len weights, w[i] that
                      // of eq->terms[i].point, each reduced on its own (what
                      // derive prints and codegen lowers); NULL for scalars
-    RatFun scalar; // KIND_SCALAR: the reduced value
-    int line;      // 1-based line of its definition in the scheme
-    Span span;     // the defined name in its definition (for diagnostics)
+    RatFun scalar;   // KIND_SCALAR: the reduced value
+    int line;        // 1-based line of its definition in the scheme
+    Span span;       // the defined name in its definition (for diagnostics)
     char *diff_of;   // defined as diff(NAME, t[, n]) of a name: NAME (owned),
     char *diff_var;  // t (owned) and n; else both NULL and diff_order 0
     int diff_order;  // (the printers write dM/dt for it)
@@ -147,11 +150,11 @@ typedef struct Derived {
     char **params;
     slong nconsts; // consts: ring variables nparams..nparams+nconsts-1
     char **consts;
-    slong nextra;  // ring variables after the consts (unknown scalars of
-    char **extra;  // `solve`, which no output depends on), their names
+    slong nextra; // ring variables after the consts (unknown scalars of
+    char **extra; // `solve`, which no output depends on), their names
     Ring ring;
-    struct Kernels *kernels; // the ring variables after the extra ones:
-                             // functions and pi (kernel.h), or NULL
+    struct Kernels *kernels;  // the ring variables after the extra ones:
+                              // functions and pi (kernel.h), or NULL
     RatFunStruct *range;      // 2 * nparams: each param's declared range
     unsigned char *has_range; // (lo, hi), exact; has_range[i] = 0: none
     /* the declared bounds of every param and const (ring variables 0 ..
@@ -159,7 +162,7 @@ typedef struct Derived {
      * expressions (2*pi), and what the derivation assumed of them */
     RatFunStruct *bound;        // 2 per variable: lower, upper
     unsigned char *bound_flags; // per variable: DERIVED_BOUND_* bits
-    slong noutputs; // `output` list (default: the last definition)
+    slong noutputs;             // `output` list (default: the last definition)
     DerivedOutput *outputs;
     slong nsteps;       // DeriveOptions.keep_steps: the steps in source
     DerivedStep *steps; // order (above); else 0 and NULL
@@ -211,10 +214,8 @@ __attribute__((format(printf, 4, 5)))
 void derived_error(const Derived *d, FILE *err, Span span, const char *fmt,
                    ...);
 
-/* Index of the output / point / param / const called name, or -1. */
+/* Index of the output / point called name, or -1. */
 slong derived_find_output(const Derived *d, const char *name);
 slong derived_find_point(const Derived *d, const char *name);
-slong derived_find_param(const Derived *d, const char *name);
-slong derived_find_const(const Derived *d, const char *name);
 
 #endif

@@ -4,7 +4,8 @@
  * Kinds here are static: an expression is either a scalar (a rational
  * function of the params and consts) or a combination of points (a point
  * equation, whatever its weight sum).  Whether a combination is a point, a
- * vector or an error depends on its weight sum, which derive.c computes.
+ * vector or an error depends on its weight sum, which compiler/derive/
+ * computes.
  */
 #include "compiler/sema.h"
 
@@ -25,11 +26,6 @@ static const BuiltinInfo builtins[] = {
     PC_BUILTINS(X)
 #undef X
 };
-
-const char *sema_builtin_name(int b)
-{
-    return builtins[b].name;
-}
 
 enum { NBUCKETS = 64 };
 
@@ -238,14 +234,15 @@ static int check_flat(Sema *S, Node *n, int allow_plane)
     n->builtin = is_line ? BI_LINE : BI_PLANE;
     int want = is_line ? 2 : 3;
     if (n->nargs != want) {
-        diag_error(S->diag, n->span, "%s() takes %d points, found %d",
-                   n->text, want, n->nargs);
+        diag_error(S->diag, n->span, "%s() takes %d points, found %d", n->text,
+                   want, n->nargs);
         return -1;
     }
     int ok = 0;
     for (Node *a = n->args; a; a = a->next)
-        if (expect(S, a, 1, is_line ? "a point of the line"
-                                    : "a point of the plane") < 0)
+        if (expect(S, a, 1,
+                   is_line ? "a point of the line" : "a point of the plane") <
+            0)
             ok = -1;
     n->is_point = 1;
     return ok;
@@ -318,7 +315,9 @@ static int check_coord(Sema *S, Node *n)
     return ok < 0 ? -1 : 0;
 }
 
-static int check_call(Sema *S, Node *n)
+/* the builtin that call n names, its arity and whether it is implemented
+ * checked (n->builtin set): the builtin, or -1 reported */
+static int find_builtin(Sema *S, Node *n)
 {
     int b;
     for (b = 0; b < BI_COUNT; b++)
@@ -327,9 +326,8 @@ static int check_call(Sema *S, Node *n)
     if (b == BI_COUNT) {
         Sym *s = lookup(S, n->text);
         if (s)
-            diag_error(S->diag, n->name_span,
-                       "'%s' is %s, not a function", n->text,
-                       sym_kind_word(s->kind));
+            diag_error(S->diag, n->name_span, "'%s' is %s, not a function",
+                       n->text, sym_kind_word(s->kind));
         else
             diag_error(S->diag, n->name_span,
                        "unknown function '%s'; expected along, divide, meet, "
@@ -368,6 +366,81 @@ static int check_call(Sema *S, Node *n)
                    bi->name);
         return -1;
     }
+    return b;
+}
+
+/* subst(E, x, by): x a param, const, base point or unknown, by of its
+ * kind; the kind of E, or -1 reported */
+static int check_subst(Sema *S, Node *n)
+{
+    int k = check_expr(S, arg(n, 0));
+    Node *x = arg(n, 1);
+    if (x->kind != ND_NAME) {
+        diag_error(S->diag, x->span,
+                   "expected the name of a parameter, constant or base "
+                   "point to replace");
+        return -1;
+    }
+    Sym *s = lookup(S, x->text);
+    if (!s) {
+        diag_error(S->diag, x->span, "undefined name '%s'", x->text);
+        return -1;
+    }
+    x->sym = s;
+    if (s->kind == SYM_POINT || (s->kind == SYM_UNKNOWN && s->is_point)) {
+        if (expect(S, arg(n, 2), 1, "the replacement of a base point") < 0)
+            return -1;
+    } else if (s->kind == SYM_PARAM || s->kind == SYM_CONST ||
+               s->kind == SYM_UNKNOWN) {
+        if (expect(S, arg(n, 2), 0, "the value substituted") < 0)
+            return -1;
+    } else {
+        diag_error(S->diag, x->span,
+                   "subst() replaces a parameter, a constant, a base "
+                   "point or an unknown, but '%s' is %s",
+                   x->text, sym_kind_word(s->kind));
+        return -1;
+    }
+    return k;
+}
+
+/* diff(E, t[, n]): t a param or const, n a whole number from 0 to 30;
+ * the kind of E, or -1 reported */
+static int check_diff(Sema *S, Node *n)
+{
+    int k = check_expr(S, arg(n, 0));
+    Node *x = arg(n, 1);
+    if (x->kind != ND_NAME || !lookup(S, x->text) ||
+        (lookup(S, x->text)->kind != SYM_PARAM &&
+         lookup(S, x->text)->kind != SYM_CONST)) {
+        diag_error(S->diag, x->span,
+                   "expected the name of a parameter or constant to "
+                   "differentiate by");
+        return -1;
+    }
+    x->sym = lookup(S, x->text);
+    Node *order = arg(n, 2);
+    if (order) {
+        int okn = order->kind == ND_NUM;
+        for (const char *c = okn ? order->text : ""; *c; c++)
+            if (*c < '0' || *c > '9')
+                okn = 0;
+        if (!okn || strlen(order->text) > 2 || atoi(order->text) > 30) {
+            diag_error(S->diag, order->span,
+                       "expected the order of the derivative as a whole "
+                       "number from 0 to 30");
+            return -1;
+        }
+    }
+    return k;
+}
+
+static int check_call(Sema *S, Node *n)
+{
+    int b = find_builtin(S, n);
+    if (b < 0)
+        return -1;
+    const BuiltinInfo *bi = &builtins[b];
     int ok = 0;
     switch ((Builtin)b) {
     case BI_ALONG:
@@ -393,65 +466,10 @@ static int check_call(Sema *S, Node *n)
                    "meet(line(P, Q), line(R, S))",
                    bi->name);
         return -1;
-    case BI_SUBST: {
-        int k = check_expr(S, arg(n, 0));
-        Node *x = arg(n, 1);
-        if (x->kind != ND_NAME) {
-            diag_error(S->diag, x->span,
-                       "expected the name of a parameter, constant or base "
-                       "point to replace");
-            return -1;
-        }
-        Sym *s = lookup(S, x->text);
-        if (!s) {
-            diag_error(S->diag, x->span, "undefined name '%s'", x->text);
-            return -1;
-        }
-        x->sym = s;
-        if (s->kind == SYM_POINT || (s->kind == SYM_UNKNOWN && s->is_point)) {
-            if (expect(S, arg(n, 2), 1, "the replacement of a base point") <
-                0)
-                return -1;
-        } else if (s->kind == SYM_PARAM || s->kind == SYM_CONST ||
-                   s->kind == SYM_UNKNOWN) {
-            if (expect(S, arg(n, 2), 0, "the value substituted") < 0)
-                return -1;
-        } else {
-            diag_error(S->diag, x->span,
-                       "subst() replaces a parameter, a constant, a base "
-                       "point or an unknown, but '%s' is %s",
-                       x->text, sym_kind_word(s->kind));
-            return -1;
-        }
-        return k;
-    }
-    case BI_DIFF: {
-        int k = check_expr(S, arg(n, 0));
-        Node *x = arg(n, 1);
-        if (x->kind != ND_NAME || !lookup(S, x->text) ||
-            (lookup(S, x->text)->kind != SYM_PARAM &&
-             lookup(S, x->text)->kind != SYM_CONST)) {
-            diag_error(S->diag, x->span,
-                       "expected the name of a parameter or constant to "
-                       "differentiate by");
-            return -1;
-        }
-        x->sym = lookup(S, x->text);
-        Node *order = arg(n, 2);
-        if (order) {
-            int okn = order->kind == ND_NUM;
-            for (const char *c = okn ? order->text : ""; *c; c++)
-                if (*c < '0' || *c > '9')
-                    okn = 0;
-            if (!okn || strlen(order->text) > 2 || atoi(order->text) > 30) {
-                diag_error(S->diag, order->span,
-                           "expected the order of the derivative as a whole "
-                           "number from 0 to 30");
-                return -1;
-            }
-        }
-        return k;
-    }
+    case BI_SUBST:
+        return check_subst(S, n);
+    case BI_DIFF:
+        return check_diff(S, n);
     case BI_BEZIER: {
         if (expect(S, arg(n, 0), 0, "the parameter of bezier()") < 0)
             ok = -1;
@@ -466,8 +484,7 @@ static int check_call(Sema *S, Node *n)
         char what[64];
         int i = 0;
         for (Node *a = n->args; a; a = a->next, i++) {
-            snprintf(what, sizeof what, "argument %d of %s()", i + 1,
-                     bi->name);
+            snprintf(what, sizeof what, "argument %d of %s()", i + 1, bi->name);
             if (expect(S, a, 1, what) < 0)
                 ok = -1;
         }
@@ -663,14 +680,14 @@ static void check_solve(Sema *S, Stmt *st)
         if (s->solved_by) {
             diag_error(S->diag, nm->span, "the unknown '%s' is solved twice",
                        nm->text);
-            diag_note(S->diag, s->solved_by->span,
-                      "'%s' was first solved here", nm->text);
+            diag_note(S->diag, s->solved_by->span, "'%s' was first solved here",
+                      nm->text);
             continue;
         }
         s->solved_by = st;
     }
     /* with unknown scalars a point equation holds one scalar equation per
-     * base point: the rank decides (derive.c) */
+     * base point: the rank decides (derive/solve_stmt.c) */
     if (neq != nunk && nscalar == 0)
         diag_error(S->diag, st->span,
                    "%d equation%s for %d unknown%s: the system is %s; "
@@ -684,6 +701,61 @@ static void check_solve(Sema *S, Stmt *st)
             if (s && s->solved_by == st)
                 s->solved_by = NULL;
         }
+}
+
+/* The `output` list (output_stmt, or NULL: the last definition): each a
+ * definition or a solved unknown, listed once.  Outputs are resolved last:
+ * they may name definitions that follow. */
+static void resolve_outputs(Sema *S, const Stmt *output_stmt,
+                            const Scheme *scheme, int errors0)
+{
+    SemaInfo *I = S->info;
+    Diag *diag = S->diag;
+    int cap = 0;
+    if (output_stmt) {
+        for (Name *nm = output_stmt->names; nm; nm = nm->next) {
+            Sym *s = lookup(S, nm->text);
+            if (!s) {
+                diag_error(diag, nm->span,
+                           "undefined name '%s' in output; expected a "
+                           "definition",
+                           nm->text);
+                continue;
+            }
+            if (s->kind != SYM_DEF && s->kind != SYM_UNKNOWN) {
+                diag_error(diag, nm->span,
+                           "'%s' is %s; expected a definition (NAME = EXPR) "
+                           "or a solved unknown in output",
+                           nm->text, sym_kind_word(s->kind));
+                continue;
+            }
+            if (s->kind == SYM_UNKNOWN && !s->solved_by) {
+                diag_error(diag, nm->span,
+                           "the unknown '%s' is never solved; expected "
+                           "'solve ... for %s' before it is output",
+                           nm->text, nm->text);
+                continue;
+            }
+            for (int i = 0; i < I->noutputs; i++)
+                if (I->outputs[i] == s) {
+                    diag_error(diag, nm->span, "'%s' is listed twice",
+                               nm->text);
+                    s = NULL;
+                    break;
+                }
+            if (s)
+                push(S, &I->outputs, &I->noutputs, &cap, s);
+        }
+    } else if (I->ndefs > 0) {
+        push(S, &I->outputs, &I->noutputs, &cap, I->defs[I->ndefs - 1]);
+    } else if (diag->nerrors == errors0) {
+        int end = 0;
+        for (Stmt *st = scheme->stmts; st; st = st->next)
+            end = st->span.end;
+        diag_error(diag, (Span){end, end},
+                   "the scheme defines nothing; expected a definition "
+                   "'NAME = EXPR' to output");
+    }
 }
 
 SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
@@ -765,51 +837,7 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
     }
 
     /* outputs are resolved last: they may name definitions that follow */
-    int cap = 0;
-    if (output_stmt) {
-        for (Name *nm = output_stmt->names; nm; nm = nm->next) {
-            Sym *s = lookup(&S, nm->text);
-            if (!s) {
-                diag_error(diag, nm->span,
-                           "undefined name '%s' in output; expected a "
-                           "definition",
-                           nm->text);
-                continue;
-            }
-            if (s->kind != SYM_DEF && s->kind != SYM_UNKNOWN) {
-                diag_error(diag, nm->span,
-                           "'%s' is %s; expected a definition (NAME = EXPR) "
-                           "or a solved unknown in output",
-                           nm->text, sym_kind_word(s->kind));
-                continue;
-            }
-            if (s->kind == SYM_UNKNOWN && !s->solved_by) {
-                diag_error(diag, nm->span,
-                           "the unknown '%s' is never solved; expected "
-                           "'solve ... for %s' before it is output",
-                           nm->text, nm->text);
-                continue;
-            }
-            for (int i = 0; i < I->noutputs; i++)
-                if (I->outputs[i] == s) {
-                    diag_error(diag, nm->span, "'%s' is listed twice",
-                               nm->text);
-                    s = NULL;
-                    break;
-                }
-            if (s)
-                push(&S, &I->outputs, &I->noutputs, &cap, s);
-        }
-    } else if (I->ndefs > 0) {
-        push(&S, &I->outputs, &I->noutputs, &cap, I->defs[I->ndefs - 1]);
-    } else if (diag->nerrors == errors0) {
-        int end = 0;
-        for (Stmt *st = scheme->stmts; st; st = st->next)
-            end = st->span.end;
-        diag_error(diag, (Span){end, end},
-                   "the scheme defines nothing; expected a definition "
-                   "'NAME = EXPR' to output");
-    }
+    resolve_outputs(&S, output_stmt, scheme, errors0);
     /* with errors too: derive then reduces the definitions that are fine
      * (s->bad marks the others) and reports their errors as well */
     return I;

@@ -4,7 +4,7 @@
  * sema_check resolves every name to a Sym, every call to a Builtin, and
  * infers statically whether each expression is a scalar or a combination of
  * points (Node.is_point).  Weight sums need the algebra and are checked in
- * derive.c.  All errors are reported (not just the first).
+ * compiler/derive/.  All errors are reported (not just the first).
  */
 #ifndef PC_SEMA_H
 #define PC_SEMA_H
@@ -21,26 +21,26 @@
 /* X-macro: builtin, name, min args, max args (-1: any), what it returns,
  * implemented (0: reported as "not supported yet"). */
 #define PC_BUILTINS(X)                                                         \
-    X(BI_ALONG, "along", 3, 3, 1, 1)   /* P + (Q - P)*s */                     \
-    X(BI_DIVIDE, "divide", 3, 3, 1, 1) /* (P + k*Q)/(1 + k) */                 \
-    X(BI_MEET, "meet", 2, 2, 1, 1)     /* meet(line, line|plane) */            \
-    X(BI_LINE, "line", 2, 2, 1, 1)     /* only inside meet */                  \
-    X(BI_PLANE, "plane", 3, 3, 1, 1)   /* only inside meet */                  \
-    X(BI_SUBST, "subst", 3, 3, -1, 1)  /* subst(E, t|A, s|P): kind of E */     \
-    X(BI_DIFF, "diff", 2, 3, -1, 1)    /* diff(E, t[, n]) */                   \
+    X(BI_ALONG, "along", 3, 3, 1, 1)    /* P + (Q - P)*s */                    \
+    X(BI_DIVIDE, "divide", 3, 3, 1, 1)  /* (P + k*Q)/(1 + k) */                \
+    X(BI_MEET, "meet", 2, 2, 1, 1)      /* meet(line, line|plane) */           \
+    X(BI_LINE, "line", 2, 2, 1, 1)      /* only inside meet */                 \
+    X(BI_PLANE, "plane", 3, 3, 1, 1)    /* only inside meet */                 \
+    X(BI_SUBST, "subst", 3, 3, -1, 1)   /* subst(E, t|A, s|P): kind of E */    \
+    X(BI_DIFF, "diff", 2, 3, -1, 1)     /* diff(E, t[, n]) */                  \
     X(BI_BEZIER, "bezier", 3, -1, 1, 1) /* bezier(t, P0, ..., Pn) */           \
-    X(BI_DOT, "dot", 2, 2, 0, 1)       /* metric: U . V */                     \
-    X(BI_DIST, "dist", 2, 2, 0, 1)     /* metric: |PQ| */                      \
-    X(BI_ANGLE, "angle", 3, 3, 0, 1)   /* metric: angle PQR at Q */            \
-    X(BI_COORD, "coord", 2, 2, 0, 1)   /* coordinate k of a point or vector */ \
-    X(BI_SQRT, "sqrt", 1, 1, 0, 1) /* functions: BI_SQRT..BI_SIGN in a row */ \
+    X(BI_DOT, "dot", 2, 2, 0, 1)        /* metric: U . V */                    \
+    X(BI_DIST, "dist", 2, 2, 0, 1)      /* metric: |PQ| */                     \
+    X(BI_ANGLE, "angle", 3, 3, 0, 1)    /* metric: angle PQR at Q */           \
+    X(BI_COORD, "coord", 2, 2, 0, 1) /* coordinate k of a point or vector */   \
+    X(BI_SQRT, "sqrt", 1, 1, 0, 1) /* functions: BI_SQRT..BI_SIGN in a row */  \
     X(BI_SIN, "sin", 1, 1, 0, 1)                                               \
     X(BI_COS, "cos", 1, 1, 0, 1)                                               \
     X(BI_TAN, "tan", 1, 1, 0, 1)                                               \
     X(BI_ASIN, "asin", 1, 1, 0, 1)                                             \
     X(BI_ACOS, "acos", 1, 1, 0, 1)                                             \
     X(BI_ATAN, "atan", 1, 1, 0, 1)                                             \
-    X(BI_ATAN2, "atan2", 2, 2, 0, 1)   /* atan2(y, x) */                       \
+    X(BI_ATAN2, "atan2", 2, 2, 0, 1) /* atan2(y, x) */                         \
     X(BI_SINH, "sinh", 1, 1, 0, 1)                                             \
     X(BI_COSH, "cosh", 1, 1, 0, 1)                                             \
     X(BI_TANH, "tanh", 1, 1, 0, 1)                                             \
@@ -68,15 +68,15 @@ typedef enum SymKind {
 struct Sym {
     const char *name; // arena
     SymKind kind;
-    Span span;     // where it was declared or defined
-    int index;     // see SymKind
-    int is_point;  // SYM_POINT, SYM_DEF of a combination: 1; scalars: 0
-    int bad;       // its definition had an error: uses are not re-reported
-    Stmt *decl;    // SYM_PARAM, SYM_CONST: the declaring statement (its
-                   // range, or the `> 0` of a positive constant)
-    Stmt *def;     // SYM_DEF: the statement
+    Span span;       // where it was declared or defined
+    int index;       // see SymKind
+    int is_point;    // SYM_POINT, SYM_DEF of a combination: 1; scalars: 0
+    int bad;         // its definition had an error: uses are not re-reported
+    Stmt *decl;      // SYM_PARAM, SYM_CONST: the declaring statement (its
+                     // range, or the `> 0` of a positive constant)
+    Stmt *def;       // SYM_DEF: the statement
     Stmt *solved_by; // SYM_UNKNOWN: the `solve` that determines it, or NULL
-    Sym *next;     // in the table's bucket chain
+    Sym *next;       // in the table's bucket chain
 };
 
 typedef struct SemaInfo {
@@ -90,7 +90,7 @@ typedef struct SemaInfo {
     Sym **defs; // definition order
     int ndefs;
     Sym **unknowns; // declaration order: unknown k is the point column
-    int nunknowns;  // npoints + k while it is unknown (derive.c)
+    int nunknowns;  // npoints + k while it is unknown (compiler/derive/)
     Stmt **steps;   // the definitions and solves in source order
     int nsteps;
     Sym **outputs; // `output` list (definitions and solved unknowns),
@@ -101,7 +101,5 @@ typedef struct SemaInfo {
  * (diag->nerrors grew): definitions with an error (or using one) are
  * marked bad, so that the others can still be derived and checked. */
 SemaInfo *sema_check(Scheme *s, Arena *a, Diag *diag);
-
-const char *sema_builtin_name(int b);
 
 #endif
