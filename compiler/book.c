@@ -1,4 +1,4 @@
-#include "compiler/book.h"
+#include "compiler/print/book.h"
 
 #include <ctype.h>
 #include <limits.h>
@@ -10,9 +10,9 @@
 #include <flint/fmpz_vec.h>
 #include <flint/nmod_poly.h>
 
-#include "compiler/absform.h"
+#include "compiler/print/absform.h"
 #include "compiler/kernel.h"
-#include "compiler/latexbreak.h"
+#include "compiler/print/latexbreak.h"
 #include "base/mem.h"
 #include "compiler/ring.h"
 #include "base/strbuf.h"

@@ -15,7 +15,7 @@
 
 #include <flint/fmpz_factor.h>
 
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 #include "base/mem.h"
 
 enum {

@@ -5,11 +5,11 @@
  * are the scheme's identifiers, the scheme's name goes through
  * json_string (it may come from any file name).
  */
-#include "compiler/format_json.h"
+#include "compiler/print/format_json.h"
 
 #include <stdlib.h>
 
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 #include "base/json.h"
 #include "base/mem.h"
 

@@ -1,4 +1,4 @@
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 
 #include <ctype.h>
 #include <stdlib.h>
@@ -6,9 +6,9 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
-#include "compiler/absform.h"
-#include "compiler/book.h"
-#include "compiler/format_json.h"
+#include "compiler/print/absform.h"
+#include "compiler/print/book.h"
+#include "compiler/print/format_json.h"
 #include "base/mem.h"
 #include "base/strbuf.h"
 
