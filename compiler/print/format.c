@@ -1,3 +1,14 @@
+/*
+ * format.c - the printers' entry points (format.h): derive's output in
+ * text and LaTeX through the book printer (book.h), one memo of chosen
+ * forms shared by a scheme's outputs, and JSON through format_json.c
+ * (format_int.h); the --standalone LaTeX document around them.
+ *
+ * Also the small printer of weights as re-readable expressions
+ * (format_weight: factored, '*' for every product, abs(x) for x*sign(x))
+ * that JSON and --steps use, and the cheapest form of a scalar
+ * (format_scalar_expanded: numerator and denominator expanded).
+ */
 #include "compiler/print/format.h"
 
 #include <ctype.h>
@@ -8,7 +19,7 @@
 
 #include "compiler/print/absform.h"
 #include "compiler/print/book.h"
-#include "compiler/print/format_json.h"
+#include "compiler/print/format_int.h"
 #include "base/mem.h"
 #include "base/strbuf.h"
 

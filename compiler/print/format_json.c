@@ -5,7 +5,7 @@
  * are the scheme's identifiers, the scheme's name goes through
  * json_string (it may come from any file name).
  */
-#include "compiler/print/format_json.h"
+#include "compiler/print/format_int.h"
 
 #include <stdlib.h>
 
