@@ -18,7 +18,8 @@
 #include "compiler/print/absform.h"
 #include "compiler/print/latexbreak.h"
 
-/* ---- equations ------------------------------------------------------------ */
+/* ---- equations ------------------------------------------------------------
+ */
 
 /* A numerator over the denominator: its sum, the item's atoms around the
  * point (or the point alone) */
@@ -59,8 +60,7 @@ static int sum_lead(PSum *s, const Ctx *c)
     return 1;
 }
 
-static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt,
-                      const Ctx *c)
+static void push_item(PSum *eq, const fmpz_mpoly_t num, Atom pt, const Ctx *c)
 {
     PSum *s = book_render(num, 0, c);
     PTerm *t = book_sum_push(eq);
@@ -96,8 +96,7 @@ static int all_negative(const PSum *s)
 }
 
 /* writes items / den: an all-minus numerator as -(...)/den */
-static void put_quotient(StrBuf *b, PSum *items, const PSum *den,
-                         const Ctx *c)
+static void put_quotient(StrBuf *b, PSum *items, const PSum *den, const Ctx *c)
 {
     int minus = all_negative(items);
     if (minus)
@@ -292,7 +291,7 @@ static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
     const Ring *r = c->r;
     int flip = 0;
     P->den = fmpz_mpoly_is_one(eq->den, r->ctx) ? NULL
-                                                 : render_den(eq->den, c, &flip);
+                                                : render_den(eq->den, c, &flip);
     /* a factor common to every numerator (a vector's: a point's is 1) */
     fmpz_mpoly_t g, q;
     fmpz_mpoly_init(g, r->ctx);
@@ -320,8 +319,7 @@ static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
         fmpz_mpoly_divides(q, eq->terms[i].num, g, r->ctx);
         if (flip)
             fmpz_mpoly_neg(q, q, r->ctx);
-        Atom pt = {AT_POINT, -1, NULL, d->points[eq->terms[i].point], NULL,
-                   1};
+        Atom pt = {AT_POINT, -1, NULL, d->points[eq->terms[i].point], NULL, 1};
         /* a vector's opposite weights: one difference */
         for (slong j = i + 1; j < eq->len && o->kind == KIND_VECTOR; j++) {
             fmpz_mpoly_t s;
@@ -532,8 +530,7 @@ static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,
     }
 }
 
-char *book_rhs(const Derived *d, const DerivedOutput *o,
-               const BookOptions *opt)
+char *book_rhs(const Derived *d, const DerivedOutput *o, const BookOptions *opt)
 {
     Ctx c;
     long work;
@@ -546,7 +543,8 @@ char *book_rhs(const Derived *d, const DerivedOutput *o,
     return sb_take(&b);
 }
 
-/* ---- whole outputs --------------------------------------------------------- */
+/* ---- whole outputs ---------------------------------------------------------
+ */
 
 static void put_lhs(StrBuf *b, const DerivedOutput *o, const Ctx *c)
 {

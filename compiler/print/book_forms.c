@@ -64,7 +64,8 @@ PSum *book_form_expanded(const fmpz_mpoly_t p, const Ctx *c)
                 fmpz_mpoly_get_term_exp_ui(e, p, j, r->ctx);
                 for (slong v = 0; v < r->nvars; v++)
                     if (e[v])
-                        book_term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, e[v]});
+                        book_term_push(
+                            t, (Atom){AT_VAR, v, NULL, NULL, NULL, e[v]});
             }
             kk = lo;
             continue;
@@ -177,8 +178,8 @@ int book_test_quadratic_irreducible(const fmpz_poly_t u)
  * of it, when p is a constant times a monomial times powers of x - 1 (x a
  * param or const) times a polynomial q that polyfactor_surely_irreducible
  * proves irreducible (or 1), without FLINT's factoring (most of the
- * printing time).  FLINT's factoring first takes out the integer content (with the
- * sign of p's leading term), then the powers of the variables in their
+ * printing time).  FLINT's factoring first takes out the integer content (with
+ * the sign of p's leading term), then the powers of the variables in their
  * order (fmpz_mpoly_factor_content), then splits the rest:
  *   - without the powers of x - 1, the rest, q, stays whole, in both of
  *     ring_factor's ways: the same factors in the same order;
@@ -311,8 +312,8 @@ static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
         return NULL;
     }
     /* trivial: p itself, irreducible and primitive */
-    if (f->num == 0 || (f->num == 1 && fmpz_is_pm1(f->constant) &&
-                        fmpz_is_one(f->exp))) {
+    if (f->num == 0 ||
+        (f->num == 1 && fmpz_is_pm1(f->constant) && fmpz_is_one(f->exp))) {
         fmpz_mpoly_factor_clear(f, r->ctx);
         return NULL;
     }
@@ -329,8 +330,8 @@ static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
 
 /* appends coefficient k (a polynomial free of x) times the atoms of x to
  * s: the coefficient's best form, merged when it is one term */
-static void push_collected(PSum *s, const fmpz_mpoly_t coef, Atom *xs,
-                           int nx, int depth, const Ctx *c)
+static void push_collected(PSum *s, const fmpz_mpoly_t coef, Atom *xs, int nx,
+                           int depth, const Ctx *c)
 {
     PSum *cs = book_render(coef, depth + 1, c);
     int bare = 1;
@@ -365,12 +366,11 @@ static void push_collected(PSum *s, const fmpz_mpoly_t coef, Atom *xs,
 static fmpz_mpoly_struct *coeffs_in(const fmpz_mpoly_t p, slong x, slong n,
                                     const Ctx *c)
 {
-    fmpz_mpoly_struct *a = pc_xmalloc(sizeof(fmpz_mpoly_struct) *
-                                      (size_t)(n + 1));
+    fmpz_mpoly_struct *a =
+        pc_xmalloc(sizeof(fmpz_mpoly_struct) * (size_t)(n + 1));
     for (slong i = 0; i <= n; i++) {
         fmpz_mpoly_init(a + i, c->r->ctx);
-        fmpz_mpoly_get_coeff_vars_ui(a + i, p, &x, (ulong *)&i, 1,
-                                     c->r->ctx);
+        fmpz_mpoly_get_coeff_vars_ui(a + i, p, &x, (ulong *)&i, 1, c->r->ctx);
     }
     return a;
 }
@@ -383,8 +383,7 @@ static void coeffs_clear(fmpz_mpoly_struct *a, slong n, const Ctx *c)
 }
 
 /* p = sum_k c_k x^k, ascending */
-static PSum *form_powers(const fmpz_mpoly_t p, slong x, int depth,
-                         const Ctx *c)
+static PSum *form_powers(const fmpz_mpoly_t p, slong x, int depth, const Ctx *c)
 {
     slong n = fmpz_mpoly_degree_si(p, x, c->r->ctx);
     fmpz_mpoly_struct *a = coeffs_in(p, x, n, c);
@@ -529,8 +528,7 @@ static void keep_better(PSum **best, int *best_rank, size_t *best_len,
             if (*best_len == (size_t)-1)
                 *best_len = text_len(*best, c);
             len = text_len(cand, c);
-            better = len < *best_len ||
-                     (len == *best_len && rank < *best_rank);
+            better = len < *best_len || (len == *best_len && rank < *best_rank);
         }
         if (!better) {
             book_sum_free(cand, c);
@@ -551,8 +549,7 @@ enum { MEMO_MAX = 1024 };
  * factoring would cost more than it shows): the integer content, the
  * monomial content, powers of 1 - x of params and consts, and a perfect
  * square.  NULL when none of these is there. */
-static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth,
-                                 const Ctx *c)
+static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     const Ring *r = c->r;
     slong nv = r->nvars;
@@ -591,7 +588,8 @@ static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth,
         fmpz_mpoly_neg(bar, bar, r->ctx);
         fmpz_mpoly_add_si(bar, bar, 1, r->ctx);
         while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
-               fmpz_mpoly_length(q, r->ctx) > 1 && polyfactor_vanishes_at_ones(q, r) &&
+               fmpz_mpoly_length(q, r->ctx) > 1 &&
+               polyfactor_vanishes_at_ones(q, r) &&
                fmpz_mpoly_divides(quo, q, bar, r->ctx)) {
             fmpz_mpoly_swap(q, quo, r->ctx);
             k++;
@@ -715,8 +713,8 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
         (depth == 0 ||
          (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED))) {
         *c->work += FACTOR_WORK + 20 * len;
-        keep_better(&best, &rank, &blen, form_factored(p, depth, c),
-                    R_FACTORED, c);
+        keep_better(&best, &rank, &blen, form_factored(p, depth, c), R_FACTORED,
+                    c);
     } else if (depth >= CHEAP_FACTOR_DEPTH) {
         *c->work += 4 * len;
         keep_better(&best, &rank, &blen, form_factored_cheap(p, depth, c),
@@ -735,8 +733,8 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
         if (w >= 0)
             keep_better(&best, &rank, &blen, form_sin2(p, v, w, depth, c),
                         R_BERNSTEIN, c);
-        keep_better(&best, &rank, &blen, form_powers(p, v, depth, c),
-                    R_POWERS, c);
+        keep_better(&best, &rank, &blen, form_powers(p, v, depth, c), R_POWERS,
+                    c);
     }
     return best;
 }

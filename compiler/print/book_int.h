@@ -28,9 +28,9 @@ typedef struct PSum PSum;
 
 typedef struct Atom {
     AtomKind kind;
-    slong var;         // AT_VAR, AT_BAR
-    PSum *sum;         // AT_SUM (owned)
-    const char *point; // AT_POINT (borrowed)
+    slong var;          // AT_VAR, AT_BAR
+    PSum *sum;          // AT_SUM (owned)
+    const char *point;  // AT_POINT (borrowed)
     const char *point2; // AT_POINT: point - point2, or NULL
     ulong exp;
 } Atom;
@@ -54,7 +54,7 @@ typedef struct Ctx {
     slong nparams, nconsts; // vars < nparams are params; < nparams+nconsts
                             // consts; the rest functions and extras
     int latex;
-    long *work; // the printing work spent on this output (RENDER_WORK)
+    long *work;        // the printing work spent on this output (RENDER_WORK)
     struct Memo *memo; // forms already chosen: this output's, or the
                        // scheme's (BookOptions.memo)
     const Kernels *K;  // the functions (NULL: none)
@@ -103,21 +103,23 @@ typedef struct Cand {
 
 /* ---- book_model.c: making, ordering and measuring models ---------------- */
 
-PSum *book_sum_new(const Ctx *c);              // empty, owned by the caller
-void book_sum_free(PSum *s, const Ctx *c);     // s and its nested sums; NULL ok
-PTerm *book_sum_push(PSum *s);                 // a new term 1, appended
-PSum *book_sum_copy(const PSum *s, const Ctx *c); // a deep copy
-void book_memo_clear(Memo *m, const Ctx *c);   // empties the memo
+/* a new empty sum, owned by the caller; book_sum_free frees it and the
+ * sums nested in it (NULL is allowed); book_sum_copy: a deep copy */
+PSum *book_sum_new(const Ctx *c);
+void book_sum_free(PSum *s, const Ctx *c);
+PSum *book_sum_copy(const PSum *s, const Ctx *c);
+PTerm *book_sum_push(PSum *s);                 // appends the term 1
 void book_term_push(PTerm *t, Atom a);         // appends an atom (consumed)
-int book_is_param(const Ctx *c, slong v);      // var v is a param
-/* the scheme's name to write var^e through (book_model.c), or NULL */
-const DerivedName *book_named_for(slong var, ulong e, const Ctx *c);
-void book_term_sort(PTerm *t, const Ctx *c);   // atoms in book.h's order
 void book_term_absorb(PTerm *dst, PTerm *src); // dst *= src; src emptied
-slong book_sum_leaves(const PSum *s);          // the size forms compete on
+void book_term_sort(PTerm *t, const Ctx *c);   // atoms in book.h's order
 void book_sum_neg(PSum *s, const Ctx *c);      // negates every term
-/* s is the form of p: records p, whether it has a param, sorts the terms */
+/* s is a form of p: records p and whether it has a param, sorts the terms */
 void book_sum_finish(PSum *s, const fmpz_mpoly_t p, const Ctx *c);
+slong book_sum_leaves(const PSum *s); // the size the forms compete on
+void book_memo_clear(Memo *m, const Ctx *c);
+int book_is_param(const Ctx *c, slong v); // var v is a param
+/* the scheme's name to write var^e through, or NULL */
+const DerivedName *book_named_for(slong var, ulong e, const Ctx *c);
 
 /* ---- book_write.c: models as text or LaTeX ------------------------------- */
 
@@ -146,9 +148,8 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c);
 void book_cand_clear(Cand *x, const Ctx *c);
 /* the un-rationalised forms of N/D (H: hints, the other weights); returns
  * their number, *out malloc'd (book_cand_clear each, then free) */
-slong book_unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
-                        slong n, const fmpz_mpoly_t D,
-                        const fmpz_mpoly_struct *const *H, slong nh,
-                        const Ctx *c);
+slong book_unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N, slong n,
+                        const fmpz_mpoly_t D, const fmpz_mpoly_struct *const *H,
+                        slong nh, const Ctx *c);
 
 #endif

@@ -236,10 +236,9 @@ static slong den_cands(Cand *cs, slong room, const fmpz_mpoly_struct *const *N,
 
 /* the un-rationalised forms of N/D (at most MAX_UNROOT): returns their
  * number, *out malloc'd (book_cand_clear each, then free) */
-slong book_unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N,
-                          slong n, const fmpz_mpoly_t D,
-                          const fmpz_mpoly_struct *const *H, slong nh,
-                          const Ctx *c)
+slong book_unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N, slong n,
+                        const fmpz_mpoly_t D, const fmpz_mpoly_struct *const *H,
+                        slong nh, const Ctx *c)
 {
     const Ring *r = c->r;
     const Kernels *K = c->K;

@@ -21,11 +21,11 @@
 /* ---- names ------------------------------------------------------------ */
 
 static const char *const greek[] = {
-    "alpha", "beta",   "gamma", "delta", "epsilon", "zeta",   "eta",
-    "theta", "iota",   "kappa", "lambda", "mu",     "nu",     "xi",
-    "pi",    "rho",    "sigma", "tau",   "upsilon", "phi",    "chi",
-    "psi",   "omega",  "Gamma", "Delta", "Theta",   "Lambda", "Xi",
-    "Pi",    "Sigma",  "Phi",   "Psi",   "Omega",
+    "alpha", "beta",  "gamma", "delta",  "epsilon", "zeta",   "eta",
+    "theta", "iota",  "kappa", "lambda", "mu",      "nu",     "xi",
+    "pi",    "rho",   "sigma", "tau",    "upsilon", "phi",    "chi",
+    "psi",   "omega", "Gamma", "Delta",  "Theta",   "Lambda", "Xi",
+    "Pi",    "Sigma", "Phi",   "Psi",    "Omega",
 };
 
 static int all_digits(const char *s)
@@ -88,8 +88,8 @@ void book_put_latex_name(StrBuf *b, const char *name)
     /* one-letter stem, then capitals or digits: A1, fP, pD, d2M */
     int sub = isalpha((unsigned char)name[0]);
     for (size_t i = 1; i < n && sub; i++)
-        sub = isupper((unsigned char)name[i]) ||
-              isdigit((unsigned char)name[i]);
+        sub =
+            isupper((unsigned char)name[i]) || isdigit((unsigned char)name[i]);
     if (sub) {
         sb_putn(b, name, 1);
         sb_puts(b, "_{");
@@ -172,7 +172,8 @@ static void arg_lead(PSum *s)
  * positive term first (sqrt(a^2 - b^2), not sqrt(-b^2 + a^2)) */
 static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
 {
-    PSum *s = expanded ? book_form_expanded(x->num, c) : book_render(x->num, 0, c);
+    PSum *s =
+        expanded ? book_form_expanded(x->num, c) : book_render(x->num, 0, c);
     arg_lead(s);
     if (fmpz_mpoly_is_one(x->den, c->r->ctx)) {
         book_put_sum(b, s, c);
@@ -181,7 +182,8 @@ static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
     }
     /* a quotient: both parts lead with a positive term, as written
      * (sqrt((rho^2 - b^2)/(a^2 - b^2))) */
-    PSum *d = expanded ? book_form_expanded(x->den, c) : book_render(x->den, 0, c);
+    PSum *d =
+        expanded ? book_form_expanded(x->den, c) : book_render(x->den, 0, c);
     arg_lead(d);
     StrBuf n = {0};
     book_put_sum(&n, s, c);
@@ -191,7 +193,7 @@ static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
     book_sum_free(s, c);
 }
 
-/* the argument of kernel k in its best form (book.c), or expanded as
+/* the argument of kernel k in its best form (book_forms.c), or expanded as
  * kernel.c names it when that is shorter in text: sqrt(a^2*sin(phi)^2 +
  * b^2*cos(phi)^2) for sqrt(a^2*sin(phi)^2 - b^2*sin(phi)^2 + b^2) */
 static char *kernel_arg(const Kernel *k, const char *open, const char *close,
@@ -286,7 +288,8 @@ static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
         sb_puts(b, "\\right)");
     }
     if (e > 1 && (k->fn == KF_ASIN || k->fn == KF_ACOS || k->fn == KF_ATAN))
-        book_put_exp(b, e, c); /* \arcsin^{2} would read as a power of the map */
+        book_put_exp(b, e,
+                     c); /* \arcsin^{2} would read as a power of the map */
     free(a);
     return 1;
 }
@@ -402,8 +405,8 @@ size_t book_sum_text_len(const PSum *s, const Ctx *c)
     return n;
 }
 
-void book_put_frac(StrBuf *b, const char *num, int num_items,
-                     const PSum *den, const Ctx *c)
+void book_put_frac(StrBuf *b, const char *num, int num_items, const PSum *den,
+                   const Ctx *c)
 {
     if (c->latex) {
         sb_puts(b, "\\frac{");

@@ -17,11 +17,11 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
+#include "base/mem.h"
+#include "base/strbuf.h"
 #include "compiler/print/absform.h"
 #include "compiler/print/book.h"
 #include "compiler/print/format_int.h"
-#include "base/mem.h"
-#include "base/strbuf.h"
 
 /* ---- names ----------------------------------------------------------- */
 
@@ -99,7 +99,8 @@ static void put_poly(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
 /* is p (up to the sign s) exactly 1 - v for a variable v?  returns v or -1 */
 static slong one_minus_var(const fmpz_mpoly_t p, const Ring *r)
 {
-    if (fmpz_mpoly_length(p, r->ctx) != 2 || fmpz_mpoly_total_degree_si(p, r->ctx) != 1)
+    if (fmpz_mpoly_length(p, r->ctx) != 2 ||
+        fmpz_mpoly_total_degree_si(p, r->ctx) != 1)
         return -1;
     for (slong v = 0; v < r->nvars; v++) {
         fmpz_mpoly_t q;
@@ -170,7 +171,8 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
     }
     int neg = fmpz_sgn(f->constant) < 0;
     Factor *fs = pc_xmalloc(sizeof(Factor) * (size_t)(f->num ? f->num : 1));
-    ulong *zero = pc_xcalloc((size_t)(r->nvars ? r->nvars : 1) + 1, sizeof(ulong));
+    ulong *zero =
+        pc_xcalloc((size_t)(r->nvars ? r->nvars : 1) + 1, sizeof(ulong));
     fmpz_t c;
     fmpz_init(c);
     for (slong i = 0; i < f->num; i++) {
@@ -213,8 +215,8 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
             sb_puts(b, "\\bar{");
             latex_name(b, r->names[v]);
             sb_puts(b, "}");
-        } else if (atom || (bare && f->num == 1 && fs[i].exp == 1 &&
-                            fmpz_is_one(c))) {
+        } else if (atom ||
+                   (bare && f->num == 1 && fs[i].exp == 1 && fmpz_is_one(c))) {
             put_poly(b, fs[i].poly, r, st);
         } else {
             sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");

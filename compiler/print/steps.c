@@ -18,10 +18,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/print/book.h"
 #include "base/json.h"
-#include "compiler/print/latexbreak.h"
 #include "base/mem.h"
+#include "compiler/print/book.h"
+#include "compiler/print/latexbreak.h"
 
 /* the value x printed like a scalar output (malloc'd) */
 static char *scalar_str(const Derived *d, const RatFun x, FormatStyle st)
