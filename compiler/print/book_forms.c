@@ -3,9 +3,10 @@
  * expanded in ascending order, factored, collected by the powers of one
  * variable, in the Bernstein basis of a param, and in powers of sin^2
  * with cos^2 = 1 - sin^2.  book_render keeps the form with the fewest
- * leaves (ties: factored, expanded, collected; then the shorter text),
- * applied to coefficients and factors up to MAX_DEPTH levels, within a
- * work budget per output (RENDER_WORK), remembered in the memo.
+ * leaves (ties: factored, then expanded, then the collected form of the
+ * shorter text; keep_better), applied to coefficients and factors up to
+ * MAX_DEPTH levels, within a work budget per output (RENDER_WORK),
+ * remembered in the memo.
  *
  * Factoring is most of the printing time: polyfactor.h's proofs of
  * irreducibility skip FLINT's factoring where they can (factor_known),
