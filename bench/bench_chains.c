@@ -43,7 +43,7 @@
 
 #include "bench/bench_util.h"
 #include "compiler/derive.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 
 typedef struct Base {
     const char *name;

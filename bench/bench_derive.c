@@ -23,7 +23,7 @@
 #include "bench/bench_util.h"
 
 #include "compiler/derive.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 
 static int cmp_str(const void *a, const void *b)
 {

@@ -18,7 +18,7 @@
 #include <time.h>
 
 #include "base/mem.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 
 /* 0, or the reason to stop: an intermediate polynomial beyond
  * KERNEL_MAX_WORK_TERMS terms, or the derivation's time budget spent.

@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "driver/cli/args.h"
-#include "compiler/format.h"
-#include "compiler/steps.h"
+#include "compiler/print/format.h"
+#include "compiler/print/steps.h"
 
 typedef struct DeriveArgs {
     FormatStyle style;

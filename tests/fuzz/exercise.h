@@ -13,7 +13,7 @@
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
 #include "compiler/derive.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 #include "runtime/eval.h"
 #include "runtime/plot.h"
 

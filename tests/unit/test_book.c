@@ -16,9 +16,9 @@
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 
-#include "compiler/book.h"
-#include "compiler/format.h"
-#include "compiler/latexbreak.h"
+#include "compiler/print/book.h"
+#include "compiler/print/format.h"
+#include "compiler/print/latexbreak.h"
 #include "compiler/ring.h"
 #include "libpointcalc.h"
 

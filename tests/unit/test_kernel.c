@@ -29,7 +29,7 @@
 #include <flint/fmpq.h>
 
 #include "compiler/derive.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 #include "libpointcalc.h"
 
 /* derives "param t, u / const a, b / NAME = EXPR" and returns the scheme */

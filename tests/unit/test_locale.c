@@ -31,7 +31,7 @@
 #include "driver/cli/table.h"
 #include "driver/cli/budget.h"
 #include "compiler/derive.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 #include "runtime/plan.h"
 #include "runtime/plot.h"
 #include "runtime/sample.h"

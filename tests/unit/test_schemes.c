@@ -30,7 +30,7 @@
 #include <flint/flint.h>
 
 #include "compiler/derive.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 
 static char *read_all(const char *path, size_t *len)
 {

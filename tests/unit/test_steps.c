@@ -30,9 +30,9 @@
 #include <unistd.h>
 
 #include "compiler/derive.h"
-#include "compiler/format.h"
-#include "compiler/latexbreak.h"
-#include "compiler/steps.h"
+#include "compiler/print/format.h"
+#include "compiler/print/latexbreak.h"
+#include "compiler/print/steps.h"
 
 static char tmpdir[64];
 static const char *bin;

@@ -5,13 +5,13 @@
  * are the scheme's identifiers, the scheme's name goes through
  * json_string (it may come from any file name).
  */
-#include "compiler/format_json.h"
+#include "compiler/print/format_int.h"
 
 #include <stdlib.h>
 
-#include "compiler/format.h"
 #include "base/json.h"
 #include "base/mem.h"
+#include "compiler/print/format.h"
 
 /* "key": ["A","B"] */
 static void json_names(FILE *out, const char *key, char *const *names, slong n)
@@ -50,10 +50,10 @@ static void json_assumes(FILE *out, const Derived *d, const DerivedOutput *o)
         for (int upper = 0; upper < 2; upper++) {
             if (!(o->assumed[v] & (upper ? 2 : 1)))
                 continue;
-            int open = d->bound_flags[v] & (upper ? DERIVED_BOUND_HI_OPEN
-                                                  : DERIVED_BOUND_LO_OPEN);
-            char *b = format_weight_k(d->bound + 2 * v + upper, &d->ring,
-                                      d->kernels);
+            int open = d->bound_flags[v] &
+                       (upper ? DERIVED_BOUND_HI_OPEN : DERIVED_BOUND_LO_OPEN);
+            char *b =
+                format_weight_k(d->bound + 2 * v + upper, &d->ring, d->kernels);
             char *txt = pc_xasprintf(
                 "%s %s %s",
                 v < d->nparams ? d->params[v] : d->consts[v - d->nparams],

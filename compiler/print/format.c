@@ -1,4 +1,15 @@
-#include "compiler/format.h"
+/*
+ * format.c - the printers' entry points (format.h): derive's output in
+ * text and LaTeX through the book printer (book.h), one memo of chosen
+ * forms shared by a scheme's outputs, and JSON through format_json.c
+ * (format_int.h); the --standalone LaTeX document around them.
+ *
+ * Also the small printer of weights as re-readable expressions
+ * (format_weight: factored, '*' for every product, abs(x) for x*sign(x))
+ * that JSON and --steps use, and the cheapest form of a scalar
+ * (format_scalar_expanded: numerator and denominator expanded).
+ */
+#include "compiler/print/format.h"
 
 #include <ctype.h>
 #include <stdlib.h>
@@ -6,11 +17,11 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
-#include "compiler/absform.h"
-#include "compiler/book.h"
-#include "compiler/format_json.h"
 #include "base/mem.h"
 #include "base/strbuf.h"
+#include "compiler/print/absform.h"
+#include "compiler/print/book.h"
+#include "compiler/print/format_int.h"
 
 /* ---- names ----------------------------------------------------------- */
 
@@ -88,7 +99,8 @@ static void put_poly(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
 /* is p (up to the sign s) exactly 1 - v for a variable v?  returns v or -1 */
 static slong one_minus_var(const fmpz_mpoly_t p, const Ring *r)
 {
-    if (fmpz_mpoly_length(p, r->ctx) != 2 || fmpz_mpoly_total_degree_si(p, r->ctx) != 1)
+    if (fmpz_mpoly_length(p, r->ctx) != 2 ||
+        fmpz_mpoly_total_degree_si(p, r->ctx) != 1)
         return -1;
     for (slong v = 0; v < r->nvars; v++) {
         fmpz_mpoly_t q;
@@ -159,7 +171,8 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
     }
     int neg = fmpz_sgn(f->constant) < 0;
     Factor *fs = pc_xmalloc(sizeof(Factor) * (size_t)(f->num ? f->num : 1));
-    ulong *zero = pc_xcalloc((size_t)(r->nvars ? r->nvars : 1) + 1, sizeof(ulong));
+    ulong *zero =
+        pc_xcalloc((size_t)(r->nvars ? r->nvars : 1) + 1, sizeof(ulong));
     fmpz_t c;
     fmpz_init(c);
     for (slong i = 0; i < f->num; i++) {
@@ -202,8 +215,8 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
             sb_puts(b, "\\bar{");
             latex_name(b, r->names[v]);
             sb_puts(b, "}");
-        } else if (atom || (bare && f->num == 1 && fs[i].exp == 1 &&
-                            fmpz_is_one(c))) {
+        } else if (atom ||
+                   (bare && f->num == 1 && fs[i].exp == 1 && fmpz_is_one(c))) {
             put_poly(b, fs[i].poly, r, st);
         } else {
             sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");

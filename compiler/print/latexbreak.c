@@ -11,7 +11,7 @@
  * breaking before the last +, - or = that leaves the line at least a third
  * full, else before the word that does not fit.
  */
-#include "compiler/latexbreak.h"
+#include "compiler/print/latexbreak.h"
 
 #include <ctype.h>
 #include <stdlib.h>

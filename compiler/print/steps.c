@@ -12,16 +12,16 @@
  * lambda = b/(a + b) it gives, and a + b, which is zero exactly when the
  * flats are parallel (derive.h, DerivedStep).
  */
-#include "compiler/steps.h"
+#include "compiler/print/steps.h"
 
 #include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "compiler/book.h"
 #include "base/json.h"
-#include "compiler/latexbreak.h"
 #include "base/mem.h"
+#include "compiler/print/book.h"
+#include "compiler/print/latexbreak.h"
 
 /* the value x printed like a scalar output (malloc'd) */
 static char *scalar_str(const Derived *d, const RatFun x, FormatStyle st)

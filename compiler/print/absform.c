@@ -2,7 +2,7 @@
  * absform.c - abs(x) for the printers: sign kernels times their argument
  * read back as |x| (absform.h).
  */
-#include "compiler/absform.h"
+#include "compiler/print/absform.h"
 
 #include <string.h>
 

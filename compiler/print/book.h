@@ -1,6 +1,7 @@
 /*
  * book.h - derived equations printed as the monograph prints them (text and
  * LaTeX).  The JSON form (format.c) is separate: it is for programs.
+ * Implemented by compiler/print/book_*.c, which share book_int.h.
  *
  * Every polynomial (a weight's numerator, a denominator, a scalar) is
  * written in the form with the fewest additive terms among
@@ -65,8 +66,9 @@ char *book_output(const Derived *d, const DerivedOutput *o,
 /* LaTeX of a name (the rule above) appended to a malloc'd string */
 char *book_latex_name(const char *name);
 
-/* for tests/unit/test_book.c only: book.c's cheap proofs of irreducibility
- * (1: proved; 0: no proof), which let the printer skip FLINT's factoring.
+/* for tests/unit/test_book.c only: the printer's cheap proofs of
+ * irreducibility (compiler/polyfactor.h; 1: proved; 0: no proof), which
+ * let it skip FLINT's factoring.
  * surely_irreducible: p (of r) irreducible and primitive;
  * irreducible_mod_small_prime: u (degree >= 1) irreducible over Q;
  * quadratic_irreducible: u of degree 2 irreducible over Q (an answer both

@@ -12,7 +12,7 @@
 #include <stdio.h>
 
 #include "compiler/derive.h"
-#include "compiler/format.h"
+#include "compiler/print/format.h"
 
 /* Prints the steps of d (derived with DeriveOptions.keep_steps) in style
  * st: text and LaTeX list the steps (origin as in format_derived: a base

@@ -1,0 +1,326 @@
+/*
+ * polyfactor.c - cheap factoring and irreducibility proofs for the
+ * printer's factored forms (print/book_forms.c), out of the printer.
+ *
+ * FLINT's multivariate factoring is most of the printing time, and most
+ * polynomials the printer looks at are irreducible.  What is here lets it
+ * skip that work or make it smaller: factoring in a ring of only the
+ * variables a polynomial uses (polyfactor_compact), and proofs of
+ * irreducibility by a univariate image (polyfactor_surely_irreducible)
+ * that settle most cases without factoring at all.  Every answer is exact: a
+ * proof is a proof, and "no proof" only sends the caller to FLINT's factoring.
+ */
+#include "compiler/polyfactor.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/fmpz_poly_factor.h>
+#include <flint/fmpz_vec.h>
+#include <flint/nmod_poly.h>
+
+#include "base/mem.h"
+
+/* B's terms with variable v renamed map[v] (each used variable mapped to a
+ * distinct one of A's context): a cheap change of ring */
+static void remap_vars(fmpz_mpoly_t A, const fmpz_mpoly_t B, const slong *map,
+                       const fmpz_mpoly_ctx_t ctxB, const fmpz_mpoly_ctx_t ctxA)
+{
+    slong nb = ctxB->minfo->nvars, na = ctxA->minfo->nvars;
+    ulong *eb = pc_xmalloc(sizeof(ulong) * (size_t)nb);
+    ulong *ea = pc_xmalloc(sizeof(ulong) * (size_t)na);
+    fmpz_t c;
+    fmpz_init(c);
+    fmpz_mpoly_zero(A, ctxA);
+    for (slong k = 0; k < fmpz_mpoly_length(B, ctxB); k++) {
+        fmpz_mpoly_get_term_exp_ui(eb, B, k, ctxB);
+        fmpz_mpoly_get_term_coeff_fmpz(c, B, k, ctxB);
+        memset(ea, 0, sizeof(ulong) * (size_t)na);
+        for (slong v = 0; v < nb; v++)
+            if (eb[v])
+                ea[map[v]] = eb[v];
+        fmpz_mpoly_push_term_fmpz_ui(A, c, ea, ctxA);
+    }
+    fmpz_mpoly_sort_terms(A, ctxA);
+    fmpz_clear(c);
+    free(ea);
+    free(eb);
+}
+
+/* ring_factor(f, p) done in a ring of only the variables p uses: FLINT's
+ * factoring walks every variable of its context, and a scheme's ring has
+ * many (every function's slot) */
+int polyfactor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
+                       const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars, used = 0;
+    if (!fmpz_mpoly_degrees_fit_si(p, r->ctx))
+        return 0;
+    slong *deg = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    slong *to_small = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    slong *to_big = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    fmpz_mpoly_degrees_si(deg, p, r->ctx);
+    for (slong v = 0; v < nv; v++) {
+        to_small[v] = deg[v] > 0 ? used : -1;
+        if (deg[v] > 0)
+            to_big[used++] = v;
+    }
+    int ok;
+    if (used == nv || used == 0) {
+        ok = ring_factor(f, p, r);
+    } else {
+        Ring small;
+        fmpz_mpoly_ctx_init(small.ctx, used, ORD_DEGREVLEX);
+        small.nvars = used;
+        small.names = NULL;
+        small.latex = NULL;
+        fmpz_mpoly_t q;
+        fmpz_mpoly_init(q, small.ctx);
+        remap_vars(q, p, to_small, r->ctx, small.ctx);
+        fmpz_mpoly_factor_t g;
+        fmpz_mpoly_factor_init(g, small.ctx);
+        ok = ring_factor(g, q, &small);
+        if (ok) {
+            fmpz_mpoly_factor_fit_length(f, g->num, r->ctx);
+            fmpz_set(f->constant, g->constant);
+            for (slong i = 0; i < g->num; i++) {
+                remap_vars(f->poly + i, g->poly + i, to_big, small.ctx, r->ctx);
+                fmpz_set(f->exp + i, g->exp + i);
+            }
+            f->num = g->num;
+        }
+        fmpz_mpoly_factor_clear(g, small.ctx);
+        fmpz_mpoly_clear(q, small.ctx);
+        fmpz_mpoly_ctx_clear(small.ctx);
+    }
+    free(deg);
+    free(to_small);
+    free(to_big);
+    return ok;
+}
+
+/* q(1, ..., 1) == 0: necessary for x - 1 to divide q (a cheap test
+ * before fmpz_mpoly_divides) */
+int polyfactor_vanishes_at_ones(const fmpz_mpoly_t q, const Ring *r)
+{
+    fmpz_t s;
+    fmpz_init(s);
+    for (slong k = 0; k < fmpz_mpoly_length(q, r->ctx); k++)
+        fmpz_add(s, s, q->coeffs + k);
+    int z = fmpz_is_zero(s);
+    fmpz_clear(s);
+    return z;
+}
+
+/* u = c2 x^2 + c1 x + c0 (c2 != 0) is irreducible over Q: exactly when
+ * its discriminant is not a square (what fmpz_poly_factor would say,
+ * content aside, for much less) */
+int polyfactor_quadratic_irreducible(const fmpz_poly_t u)
+{
+    fmpz_t d, t;
+    fmpz_init(d);
+    fmpz_init(t);
+    fmpz_mul(d, u->coeffs + 1, u->coeffs + 1);
+    fmpz_mul(t, u->coeffs + 0, u->coeffs + 2);
+    fmpz_submul_ui(d, t, 4);
+    int irr = !fmpz_is_square(d);
+    fmpz_clear(t);
+    fmpz_clear(d);
+    return irr;
+}
+
+/* a proof that u (primitive, of degree n >= 1) is irreducible over Q:
+ * irreducible modulo a small prime not dividing its leading coefficient
+ * (a factorisation over Z would reduce to one of the same degrees).  A
+ * root modulo the prime (looked for first, by evaluation: the cheap
+ * refutation, as a reducible u has linear factors most often) rules the
+ * prime out; of degree <= 3, no root is irreducibility.
+ * 0: no proof (u may still be irreducible, or not). */
+int polyfactor_irreducible_mod_small_prime(const fmpz_poly_t u)
+{
+    enum { MAX_DEG = 32 };
+    static const ulong primes[] = {3, 5, 7, 11, 13};
+    slong n = fmpz_poly_degree(u);
+    if (n < 1 || n > MAX_DEG)
+        return 0;
+    ulong cm[MAX_DEG + 1];
+    int irr = 0;
+    for (size_t i = 0; i < sizeof primes / sizeof primes[0] && !irr; i++) {
+        ulong q = primes[i];
+        if (fmpz_fdiv_ui(u->coeffs + n, q) == 0)
+            continue;
+        for (slong k = 0; k <= n; k++)
+            cm[k] = fmpz_fdiv_ui(u->coeffs + k, q);
+        int root = 0;
+        for (ulong z = 0; z < q && !root; z++) {
+            ulong y = 0;
+            for (slong k = n; k >= 0; k--)
+                y = (y * z + cm[k]) % q;
+            root = y == 0;
+        }
+        if (root)
+            continue;
+        if (n <= 3) {
+            irr = 1;
+            break;
+        }
+        nmod_poly_t m;
+        nmod_poly_init(m, q);
+        fmpz_poly_get_nmod_poly(m, u);
+        irr = nmod_poly_is_irreducible(m);
+        nmod_poly_clear(m);
+    }
+    return irr;
+}
+
+/* p = a*x + b (of degree 1 in x): its content in x is gcd(a, b); 1 when
+ * that gcd is a constant (0 also when FLINT's gcd fails) */
+static int linear_content_one(const fmpz_mpoly_t p, slong x, const Ring *r)
+{
+    fmpz_mpoly_t a, b, h;
+    fmpz_mpoly_init(a, r->ctx);
+    fmpz_mpoly_init(b, r->ctx);
+    fmpz_mpoly_init(h, r->ctx);
+    ulong one = 1, zero = 0;
+    fmpz_mpoly_get_coeff_vars_ui(a, p, &x, &one, 1, r->ctx);
+    fmpz_mpoly_get_coeff_vars_ui(b, p, &x, &zero, 1, r->ctx);
+    int single =
+        fmpz_mpoly_gcd(h, a, b, r->ctx) && fmpz_mpoly_is_fmpz(h, r->ctx);
+    fmpz_mpoly_clear(h, r->ctx);
+    fmpz_mpoly_clear(b, r->ctx);
+    fmpz_mpoly_clear(a, r->ctx);
+    return single;
+}
+
+/* u = the image of p (its terms' exponents in e, nv a row) at its
+ * variables other than x = small integers, distinct per variable and per
+ * attempt a: v -> +-(2 + v + nv*a) */
+static void image_in_x(fmpz_poly_t u, const fmpz_mpoly_t p, const ulong *e,
+                       slong len, slong nv, slong x, int a)
+{
+    fmpz_t t, val, cur;
+    fmpz_init(t);
+    fmpz_init(val);
+    fmpz_init(cur);
+    fmpz_poly_zero(u);
+    for (slong k = 0; k < len; k++) {
+        fmpz_set(t, p->coeffs + k);
+        for (slong v = 0; v < nv; v++) {
+            ulong ev = e[k * nv + v];
+            if (v == x || ev == 0)
+                continue;
+            slong w = 2 + v + (slong)nv * a;
+            fmpz_set_si(val, (v + a) & 1 ? -w : w);
+            fmpz_pow_ui(val, val, ev);
+            fmpz_mul(t, t, val);
+        }
+        fmpz_poly_get_coeff_fmpz(cur, u, (slong)e[k * nv + x]);
+        fmpz_add(cur, cur, t);
+        fmpz_poly_set_coeff_fmpz(u, (slong)e[k * nv + x], cur);
+    }
+    fmpz_clear(cur);
+    fmpz_clear(val);
+    fmpz_clear(t);
+}
+
+/* A cheap proof that p (not linear) is irreducible and primitive, when
+ * there is one: then factoring would give p itself and form_factored has
+ * nothing to offer, so FLINT's factoring (most of the printing time) is
+ * not needed.  The proof: p has integer content 1 and no monomial factor;
+ * for some variable x one coefficient of a power of x is a single term, so
+ * p's content in x is 1 (it would divide that term, hence every term), and
+ * every factor of p involves x; then p is irreducible when its degree in x
+ * is 1, or when an image p(x, others = integers) keeps that degree and is
+ * irreducible over Q (a factorisation of p would map to one of the image).
+ * 0: no proof found (p may still be irreducible). */
+int polyfactor_surely_irreducible(const fmpz_mpoly_t p, const Ring *r)
+{
+    enum { MAX_IMAGES = 4 };
+    slong len = fmpz_mpoly_length(p, r->ctx);
+    slong nv = r->ctx->minfo->nvars;
+    if (len < 2 || nv < 1 || !fmpz_mpoly_degrees_fit_si(p, r->ctx))
+        return 0;
+    int ok = 0, images = 0;
+    fmpz_t g;
+    fmpz_init(g);
+    _fmpz_vec_content(g, p->coeffs, len);
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(len * nv));
+    slong *deg = pc_xmalloc(sizeof(slong) * (size_t)nv);
+    slong *cnt = NULL;
+    fmpz_poly_t u;
+    fmpz_poly_init(u);
+    if (!fmpz_is_one(g))
+        goto done;
+    for (slong k = 0; k < len; k++)
+        fmpz_mpoly_get_term_exp_ui(e + k * nv, p, k, r->ctx);
+    for (slong v = 0; v < nv; v++) {
+        ulong lo = e[v], hi = e[v];
+        for (slong k = 1; k < len; k++) {
+            ulong x = e[k * nv + v];
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
+        }
+        if (lo > 0)
+            goto done; /* a monomial factor */
+        deg[v] = (slong)hi;
+    }
+    /* first the variables with a coefficient of one term, then (pass 1)
+     * those of degree 1 by a gcd */
+    for (slong xx = 0; xx < 2 * nv && !ok && images < MAX_IMAGES; xx++) {
+        slong x = xx % nv, pass = xx / nv;
+        if (deg[x] < 1 || (pass == 1 && deg[x] != 1))
+            continue;
+        /* a coefficient in x of one term: p's content in x is 1 */
+        cnt = pc_xrealloc(cnt, sizeof(slong) * (size_t)(deg[x] + 1));
+        memset(cnt, 0, sizeof(slong) * (size_t)(deg[x] + 1));
+        for (slong k = 0; k < len; k++)
+            cnt[e[k * nv + x]]++;
+        int single = 0;
+        for (slong i = 0; i <= deg[x]; i++)
+            single |= cnt[i] == 1;
+        if (single == (pass == 1))
+            continue; /* pass 0: one term; pass 1: the others */
+        if (!single && deg[x] == 1) {
+            single = linear_content_one(p, x, r);
+            images++; /* a gcd costs about as much as an image */
+        }
+        if (!single)
+            continue;
+        if (deg[x] == 1) {
+            ok = 1;
+            break;
+        }
+        /* p in x alone: its image is p itself, the same for every a, and
+         * factoring it is what FLINT would do anyway (a reducible p, as
+         * the Bernstein forms' often are, would pay twice): only cheap
+         * proofs, by one image */
+        int alone = 1;
+        for (slong v = 0; v < nv; v++)
+            alone &= v == x || deg[v] == 0;
+        for (int a = 0; a < (alone ? 1 : 2) && !ok && images < MAX_IMAGES;
+             a++) {
+            image_in_x(u, p, e, len, nv, x, a);
+            if (fmpz_poly_degree(u) != deg[x])
+                continue;
+            images++;
+            if (deg[x] == 2) {
+                ok = polyfactor_quadratic_irreducible(u);
+            } else if (alone) {
+                ok = polyfactor_irreducible_mod_small_prime(u);
+            } else {
+                fmpz_poly_factor_t uf;
+                fmpz_poly_factor_init(uf);
+                fmpz_poly_factor(uf, u);
+                ok = uf->num == 1 && uf->exp[0] == 1;
+                fmpz_poly_factor_clear(uf);
+            }
+        }
+    }
+done:
+    fmpz_poly_clear(u);
+    free(cnt);
+    free(deg);
+    free(e);
+    fmpz_clear(g);
+    return ok;
+}

@@ -1,0 +1,23 @@
+/*
+ * format_int.h - private to the format module (format.h), shared by its
+ * two files: format.c (the entry points, text and LaTeX through book.h)
+ * and format_json.c (derive --format json, contract section 4):
+ *
+ *   {"scheme": .., "points": [..], "params": [..], "consts": [..],
+ *    "outputs": [{"name": .., "kind": .., "terms": {POINT: WEIGHT, ..}}]}
+ *
+ * A scalar output carries "value" instead of "terms".  format_derived
+ * calls format_json for FMT_JSON; format_json writes each weight with
+ * format.h's format_weight_k.  One module in two files, so the include
+ * goes one way: both include this header, format_json.c also format.h.
+ */
+#ifndef PC_FORMAT_INT_H
+#define PC_FORMAT_INT_H
+
+#include <stdio.h>
+
+#include "compiler/derive.h"
+
+void format_json(FILE *out, const Derived *d);
+
+#endif
