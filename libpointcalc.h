@@ -30,8 +30,8 @@ typedef struct pc_plan pc_plan;     // its numeric program
 typedef enum pc_kind {
     PC_NOKIND = -1, // pc_output_kind of a bad index
     PC_SCALAR,      // a rational function of params and consts
-    PC_POINT,  // weights sum to 1
-    PC_VECTOR, // weights sum to 0
+    PC_POINT,       // weights sum to 1
+    PC_VECTOR,      // weights sum to 0
 } pc_kind;
 
 enum {
@@ -63,9 +63,8 @@ typedef struct pc_options {
     const char *const *defines;
     int ndefines;
 } pc_options;
-pc_scheme *pc_scheme_parse_opts(const char *name, const char *text,
-                                size_t len, const pc_options *opt,
-                                char **diagnostics);
+pc_scheme *pc_scheme_parse_opts(const char *name, const char *text, size_t len,
+                                const pc_options *opt, char **diagnostics);
 pc_scheme *pc_scheme_load_opts(const char *path, const pc_options *opt,
                                char **diagnostics);
 
@@ -91,7 +90,7 @@ const char *pc_const_name(const pc_scheme *s, int i);
 int pc_noutputs(const pc_scheme *s);
 const char *pc_output_name(const pc_scheme *s, int i);
 pc_kind pc_output_kind(const pc_scheme *s, int i); // PC_NOKIND: bad index
-int pc_output_line(const pc_scheme *s, int i); // definition line, -1: bad i
+int pc_output_line(const pc_scheme *s, int i);     // definition line, -1: bad i
 /* index of the output / point called name, or -1 */
 int pc_find_output(const pc_scheme *s, const char *name);
 int pc_find_point(const pc_scheme *s, const char *name);
@@ -104,8 +103,8 @@ char *pc_weight_str(const pc_scheme *s, int output, int point);
 
 /* Lowers every output to one numeric plan.  NULL when an output cannot be
  * evaluated in double precision (a coefficient beyond the double range, a
- * degree above 2^24, an unsolved unknown scalar); then, when diagnostics is not NULL,
- * *diagnostics receives the error (FILE:LINE:COL: error: ...; free() it;
+ * degree above 2^24, an unsolved unknown scalar); then, when diagnostics is not
+ * NULL, *diagnostics receives the error (FILE:LINE:COL: error: ...; free() it;
  * set to NULL on success). */
 pc_plan *pc_compile(const pc_scheme *s, char **diagnostics);
 void pc_plan_free(pc_plan *p);

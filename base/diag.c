@@ -1,7 +1,7 @@
 #include "base/diag.h"
 
-#include <stdarg.h>
 #include <limits.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -81,9 +81,8 @@ void diag_flush(Diag *d)
             fputs(d->msgs[i].text, d->out);
         free(d->msgs[i].text);
     }
-    note_unshown(d, d->reported - (errors < DIAG_MAX_ERRORS
-                                       ? errors
-                                       : DIAG_MAX_ERRORS));
+    note_unshown(d, d->reported -
+                        (errors < DIAG_MAX_ERRORS ? errors : DIAG_MAX_ERRORS));
     d->reported = 0;
     free(d->msgs);
     d->msgs = NULL;

@@ -33,11 +33,11 @@ typedef struct Diag {
     const Source *src; // borrowed
     FILE *out;         // borrowed; NULL = count only
     int nerrors;
-    int shown;         // errors written (not held) so far
-    int reported;      // errors reported while held (shown or not)
-    int muted;         // the last error was not shown: neither are its notes
-    int hold;          // 1: messages wait in msgs until diag_flush
-    DiagMsg *msgs;     // owned
+    int shown;     // errors written (not held) so far
+    int reported;  // errors reported while held (shown or not)
+    int muted;     // the last error was not shown: neither are its notes
+    int hold;      // 1: messages wait in msgs until diag_flush
+    DiagMsg *msgs; // owned
     int nmsgs, amsgs;
 } Diag;
 

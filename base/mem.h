@@ -30,7 +30,8 @@ char *pc_xstrndup(const char *s, size_t n);
 #if defined(__GNUC__)
 __attribute__((format(printf, 1, 2)))
 #endif
-char *pc_xasprintf(const char *fmt, ...);
+char *
+pc_xasprintf(const char *fmt, ...);
 
 /* open_memstream and its fclose under the same policy: a stream the
  * system cannot make, or whose buffer it cannot grow (fclose reports it),

@@ -103,8 +103,7 @@ const char *source_line(const Source *s, int line, int *len)
 {
     int start = s->line_starts[line - 1];
     int end = start;
-    while ((size_t)end < s->len && s->text[end] != '\n' &&
-           s->text[end] != '\r')
+    while ((size_t)end < s->len && s->text[end] != '\n' && s->text[end] != '\r')
         end++;
     *len = end - start;
     return s->text + start;

@@ -55,16 +55,16 @@ typedef struct Base {
  * 0 means that release refused the case too (a size limit), -1 that it
  * ran over 150 s */
 static const Base baseline[] = {
-    {"1p1", 0.00005}, {"1p2", 0.0001}, {"1p3", 0.0002},
-    {"1p4", 0.0004}, {"1p5", 0.0011}, {"1p6", 0.0036},
-    {"1p7", 0.0123}, {"1p8", 0.0580}, {"lin1", 0.0001},
-    {"lin2", 0.0005}, {"lin3", 0.0054}, {"lin4", 0.2322},
-    {"lin5", 97.1616}, {"lin6", 0}, {"lin7", 0},
-    {"lin8", 0}, {"rat1", 0.0002}, {"rat2", 0.0055},
-    {"rat3", 0.0930}, {"rat4", 6.0123}, {"rat5", -1},
-    {"one1", 0.0001}, {"one2", 0.0002}, {"one3", 0.0006},
-    {"one4", 0.0012}, {"one5", 0.0041}, {"one6", 0.0064},
-    {"one7", 0.0172}, {"one8", 0.0241}, {"onerat1", 0.0002},
+    {"1p1", 0.00005},    {"1p2", 0.0001},     {"1p3", 0.0002},
+    {"1p4", 0.0004},     {"1p5", 0.0011},     {"1p6", 0.0036},
+    {"1p7", 0.0123},     {"1p8", 0.0580},     {"lin1", 0.0001},
+    {"lin2", 0.0005},    {"lin3", 0.0054},    {"lin4", 0.2322},
+    {"lin5", 97.1616},   {"lin6", 0},         {"lin7", 0},
+    {"lin8", 0},         {"rat1", 0.0002},    {"rat2", 0.0055},
+    {"rat3", 0.0930},    {"rat4", 6.0123},    {"rat5", -1},
+    {"one1", 0.0001},    {"one2", 0.0002},    {"one3", 0.0006},
+    {"one4", 0.0012},    {"one5", 0.0041},    {"one6", 0.0064},
+    {"one7", 0.0172},    {"one8", 0.0241},    {"onerat1", 0.0002},
     {"onerat2", 0.0013}, {"onerat3", 0.0042}, {"onerat4", 0.0107},
     {"onerat5", 0.0248}, {"onerat6", 0.0818}, {"onerat7", 0.0898},
     {"onerat8", 0.1862}, {"vplane1", 0.0003}, {"vplane2", 0.0054},
@@ -100,10 +100,11 @@ static char *scheme(const char *fam, int k)
     for (int i = 1; i <= k; i++) {
         const char *a = P[i % 3], *b = P[(i + 1) % 3], *c = P[(i + 2) % 3];
         if (plane)
-            fprintf(f,
-                    "X%d = meet(line(A, along(X%d, B, %s)), plane(B, along(X%d, "
-                    "C, %s), along(X%d, D, %s)))\n",
-                    i, i - 1, r1, i - 1, r2, i - 1, r1);
+            fprintf(
+                f,
+                "X%d = meet(line(A, along(X%d, B, %s)), plane(B, along(X%d, "
+                "C, %s), along(X%d, D, %s)))\n",
+                i, i - 1, r1, i - 1, r2, i - 1, r1);
         else if (both)
             fprintf(f,
                     "X%d = meet(line(A, along(X%d, B, %s)), line(B, along(X%d, "
@@ -178,8 +179,8 @@ static int selected(int argc, char **argv, const char *fam, const char *name)
 
 int main(int argc, char **argv)
 {
-    static const char *const fams[] = {"1p", "lin", "rat", "one", "onerat",
-                                       "vplane"};
+    static const char *const fams[] = {"1p",  "lin",    "rat",
+                                       "one", "onerat", "vplane"};
     if (argc == 3 && strcmp(argv[1], "--print") == 0) {
         for (size_t fi = 0; fi < sizeof fams / sizeof *fams; fi++) {
             size_t n = strlen(fams[fi]);

@@ -43,10 +43,10 @@
 
 #include <flint/flint.h>
 
+#include "bench/bench_util.h"
 #include "codegen/collapse.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
-#include "bench/bench_util.h"
 #include "compiler/derive.h"
 #include "runtime/eval.h"
 
@@ -120,17 +120,18 @@ static void naive(size_t n, const double *t, double *out)
 enum { FLAGSETS = 2, PER_SET = 7, NC = FLAGSETS * PER_SET + 2 };
 static const char *const flagsets[FLAGSETS] = {"-O2", "-O3 -march=native"};
 static const char *const set_names[PER_SET] = {
-    "generated", "hand, simple", "hand, careful", "store floor",
+    "generated",    "hand, simple", "hand, careful", "store floor",
     "stream floor", "read + store", "collapsed"};
 static const char *const kernel_syms[PER_SET] = {
-    NULL, "hand_simple", "hand_careful", "floor_store", "floor_stream",
-    "floor_read_store", NULL};
+    NULL,          "hand_simple",  "hand_careful",
+    "floor_store", "floor_stream", "floor_read_store",
+    NULL};
 
 typedef struct Contestant {
     char name[64];
-    batch_fn gen;    // the generated function, or
-    kernel_fn kern;  // a kernel, or
-    int builtin;     // 1 runtime, 2 naive
+    batch_fn gen;   // the generated function, or
+    kernel_fn kern; // a kernel, or
+    int builtin;    // 1 runtime, 2 naive
 } Contestant;
 
 typedef struct Bench {
@@ -157,8 +158,8 @@ static double time_one(const Bench *b, const Contestant *c, size_t n)
 }
 
 /* generated code + bench/kernels.c at one flag set, as one shared object */
-static void *compile_set(const char *dir, const char *cfile,
-                         const char *cfile2, int set)
+static void *compile_set(const char *dir, const char *cfile, const char *cfile2,
+                         int set)
 {
     char cmd[700], so[200];
     snprintf(so, sizeof so, "%s/set%d.so", dir, set);
@@ -232,8 +233,8 @@ int main(void)
     f = fopen(cfile2, "w");
     if (!f)
         return 1;
-    emit_c_kernel(f, plan, "arcc", "examples/desargues_arc.pcs",
-                  EMIT_C_BATCH, col);
+    emit_c_kernel(f, plan, "arcc", "examples/desargues_arc.pcs", EMIT_C_BATCH,
+                  col);
     fclose(f);
     if (!col->o[m].ok) {
         fprintf(stderr, "bench_codegen: M not collapsed: %s\n", col->o[m].why);
@@ -312,7 +313,8 @@ int main(void)
                      flagsets[set]);
             bench_verdict(what, cl, tm[set * PER_SET + 2], rounds, 1.0);
         }
-        bench_verdict("runtime / generated (-O2)", tm[NC - 2], tm[0], rounds, 4.0);
+        bench_verdict("runtime / generated (-O2)", tm[NC - 2], tm[0], rounds,
+                      4.0);
         fflush(stdout);
         lambdify(n);
         free(out);

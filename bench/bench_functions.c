@@ -37,9 +37,9 @@ typedef void (*angle_gen)(size_t, const double *, double, double,
 typedef void (*angle_hand)(size_t, const double *, double, double,
                            const double *, const double *, const double *,
                            double *);
-typedef void (*comp_gen)(size_t, const double *, const double *, double,
-                         double, const double *, const double *,
-                         const double *, int, double *);
+typedef void (*comp_gen)(size_t, const double *, const double *, double, double,
+                         const double *, const double *, const double *, int,
+                         double *);
 typedef void (*comp_hand)(size_t, const double *, const double *,
                           const double *, const double *, double *);
 
@@ -71,13 +71,13 @@ static double time_one(const Data *d, const Contestant *c, size_t n)
                   d->out, NULL);
     } else if (c->scheme == 0 && c->kind == 0) {
         ((angle_gen)(uintptr_t)c->fn)(n, d->phi, ab[0], ab[1], A, B, C, 3,
-                                       d->out);
+                                      d->out);
     } else if (c->scheme == 0) {
         ((angle_hand)(uintptr_t)c->fn)(n, d->phi, ab[0], ab[1], A, B, C,
-                                        d->out);
+                                       d->out);
     } else if (c->kind == 0) {
-        ((comp_gen)(uintptr_t)c->fn)(n, d->phi, d->zero, ab[0], ab[1], A, B,
-                                      C, 3, d->out);
+        ((comp_gen)(uintptr_t)c->fn)(n, d->phi, d->zero, ab[0], ab[1], A, B, C,
+                                     3, d->out);
     } else {
         ((comp_hand)(uintptr_t)c->fn)(n, d->phi, A, B, C, d->out);
     }
@@ -102,10 +102,10 @@ int main(void)
         "examples/ellipse_compression.pcs"};
     static const char *const gen_syms[NSCHEMES] = {
         "ellipse_central_angle_M_batch", "ellipse_compression_M_batch"};
-    static const char *const hand_syms[NSCHEMES] = {
-        "hand_ellipse_angle", "hand_ellipse_compression"};
+    static const char *const hand_syms[NSCHEMES] = {"hand_ellipse_angle",
+                                                    "hand_ellipse_compression"};
     static const char *const labels[NSCHEMES] = {"angle (2.11)",
-                                                  "compression (2.24)"};
+                                                 "compression (2.24)"};
     Data d;
     char dir[64], cfile[128], cmd[700], so[FLAGSETS][160];
     strcpy(dir, "/tmp/pc_bench_fn_XXXXXX");
@@ -154,8 +154,7 @@ int main(void)
         c->scheme = s;
         c->kind = 2;
         c->fn = NULL;
-        snprintf(c->name, sizeof c->name, "%s, runtime (plan_eval)",
-                 labels[s]);
+        snprintf(c->name, sizeof c->name, "%s, runtime (plan_eval)", labels[s]);
     }
     int quick = getenv("PC_BENCH_QUICK") != NULL;
     size_t n = quick ? 100000 : 1000000;

@@ -43,14 +43,13 @@ static char *read_file(const char *path, size_t *len)
 
 /* median ms of deriving path with define (NULL: none); *spread gets the
  * interquartile range relative to the median */
-static double time_derive(const char *path, const char *define,
-                          double *spread)
+static double time_derive(const char *path, const char *define, double *spread)
 {
     size_t len;
     char *text = read_file(path, &len);
     const char *defs[1] = {define};
-    DeriveOptions opt = {.max_seconds = 600, .defines = defs,
-                         .ndefines = define ? 1 : 0};
+    DeriveOptions opt = {
+        .max_seconds = 600, .defines = defs, .ndefines = define ? 1 : 0};
     if (!text)
         return -1;
     double t0 = bench_now_ms();
@@ -117,7 +116,7 @@ static void cell(double peer, double pc)
 int main(void)
 {
     double pc[NORD], spread[NORD], sy[NORD], mx[NORD], pcc, sc, sy_c = -1,
-                                                               mx_c = -1;
+                                                                mx_c = -1;
     int maxn = getenv("PC_BENCH_MAX_N") ? atoi(getenv("PC_BENCH_MAX_N")) : 48;
     int peers = !getenv("PC_BENCH_PEERS") || atoi(getenv("PC_BENCH_PEERS"));
     const char *py = getenv("PYTHON");
@@ -127,8 +126,8 @@ int main(void)
     for (int i = 0; i < NORD; i++) {
         char def[16];
         snprintf(def, sizeof def, "n=%d", ORDERS[i]);
-        pc[i] = time_derive("examples/interpolation_bezier.pcs", def,
-                            &spread[i]);
+        pc[i] =
+            time_derive("examples/interpolation_bezier.pcs", def, &spread[i]);
         sy[i] = mx[i] = -1;
     }
     pcc = time_derive("examples/contour_arcs.pcs", NULL, &sc);
@@ -160,8 +159,8 @@ int main(void)
         mx_c = 0;
         run_peer(cmd, "maxima", mx, &mx_c);
     }
-    printf("%-10s %12s %8s %12s %9s %12s %9s\n", "case", "pointcalc",
-           "spread", "sympy", "ratio", "maxima", "ratio");
+    printf("%-10s %12s %8s %12s %9s %12s %9s\n", "case", "pointcalc", "spread",
+           "sympy", "ratio", "maxima", "ratio");
     for (int i = 0; i < NORD; i++) {
         char name[32];
         snprintf(name, sizeof name, "n = %d", ORDERS[i]);

@@ -26,8 +26,8 @@ static inline int bench_cmp_double(const void *a, const void *b)
 }
 
 /* median and range of x[0..n) (a sorted copy) */
-static inline void bench_stats(const double *x, int n, double *med,
-                               double *lo, double *hi)
+static inline void bench_stats(const double *x, int n, double *med, double *lo,
+                               double *hi)
 {
     double *s = (double *)malloc(sizeof *s * (size_t)n);
     memcpy(s, x, sizeof *s * (size_t)n);
@@ -50,8 +50,8 @@ static inline void bench_verdict(const char *what, const double *ta,
     for (int k = 0; k < rounds; k++)
         r[k] = ta[k] / tb[k];
     bench_stats(r, rounds, &med, &lo, &hi);
-    printf("  %-46s %5.2f [%4.2f..%4.2f] goal <= %.1f: %s\n", what, med, lo,
-           hi, goal,
+    printf("  %-46s %5.2f [%4.2f..%4.2f] goal <= %.1f: %s\n", what, med, lo, hi,
+           goal,
            hi <= goal  ? "met"
            : lo > goal ? "not met"
                        : "undecided (spread)");

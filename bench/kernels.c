@@ -16,9 +16,8 @@ void hand_careful(size_t n, const double *restrict t, const double *A,
                   double *restrict out);
 void floor_store(size_t n, const double *t, const double *A, const double *B,
                  const double *C, const double *D, double *out);
-void floor_stream(size_t n, const double *t, const double *A,
-                  const double *B, const double *C, const double *D,
-                  double *out);
+void floor_stream(size_t n, const double *t, const double *A, const double *B,
+                  const double *C, const double *D, double *out);
 void floor_read_store(size_t n, const double *t, const double *A,
                       const double *B, const double *C, const double *D,
                       double *out);
@@ -79,9 +78,8 @@ void floor_store(size_t n, const double *t, const double *A, const double *B,
 }
 
 /* the same with non-temporal (streaming) stores, where SSE2 has them */
-void floor_stream(size_t n, const double *t, const double *A,
-                  const double *B, const double *C, const double *D,
-                  double *out)
+void floor_stream(size_t n, const double *t, const double *A, const double *B,
+                  const double *C, const double *D, double *out)
 {
 #if defined(__SSE2__)
     (void)t, (void)B, (void)C, (void)D;

@@ -11,8 +11,8 @@ void hand_ellipse_angle(size_t n, const double *restrict phi, double a,
                         double b, const double *A, const double *B,
                         const double *C, double *restrict out);
 void hand_ellipse_compression(size_t n, const double *restrict phi,
-                              const double *A, const double *B,
-                              const double *C, double *restrict out);
+                              const double *A, const double *B, const double *C,
+                              double *restrict out);
 
 /* M = C + (A - C) b cos(phi)/sqrt(q) + (B - C) a sin(phi)/sqrt(q),
  * q = a^2 sin^2 + b^2 cos^2 */
@@ -37,8 +37,8 @@ void hand_ellipse_angle(size_t n, const double *restrict phi, double a,
 
 /* M = C + (A - C) cos(phi) + (B - C) sin(phi) */
 void hand_ellipse_compression(size_t n, const double *restrict phi,
-                              const double *A, const double *B,
-                              const double *C, double *restrict out)
+                              const double *A, const double *B, const double *C,
+                              double *restrict out)
 {
     const double u0 = A[0] - C[0], u1 = A[1] - C[1], u2 = A[2] - C[2];
     const double v0 = B[0] - C[0], v1 = B[1] - C[1], v2 = B[2] - C[2];

@@ -39,18 +39,18 @@
 enum { COLLAPSE_MAX_DEGREE = 64 };
 
 typedef struct CollapseOutput {
-    char *name;      // the plan output's name (owned)
-    int ok;          // 1: collapsed (the fields below); 0: why says why
-    char *why;       // owned; also set when ok ("monomial basis ...")
-    int param;       // the param t (index)
-    int deg;         // n: the largest degree of the n_k and d in t
-    int nterms;      // K
-    int *point;      // K base point indices (owned)
-    double *a;       // (deg + 1) * K, a[j * K + k] (owned)
-    double *b;       // deg + 1 (owned)
-    double mid;      // m
-    double scale;    // 2^-e
-    double lo, hi;   // the doubles in [a, b]: the smallest and the largest
+    char *name;    // the plan output's name (owned)
+    int ok;        // 1: collapsed (the fields below); 0: why says why
+    char *why;     // owned; also set when ok ("monomial basis ...")
+    int param;     // the param t (index)
+    int deg;       // n: the largest degree of the n_k and d in t
+    int nterms;    // K
+    int *point;    // K base point indices (owned)
+    double *a;     // (deg + 1) * K, a[j * K + k] (owned)
+    double *b;     // deg + 1 (owned)
+    double mid;    // m
+    double scale;  // 2^-e
+    double lo, hi; // the doubles in [a, b]: the smallest and the largest
     double kappa, kappa_d, bound;
 } CollapseOutput;
 

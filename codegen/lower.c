@@ -17,8 +17,8 @@
  * reach the Plan: they are folded into the constant c_i.
  */
 #include "codegen/lower.h"
-#include "compiler/kernel.h"
 #include "base/mem.h"
+#include "compiler/kernel.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -28,19 +28,19 @@
 #include <flint/fmpz_mpoly_factor.h>
 
 enum {
-    DEGREE_MAX = 1 << 24,     // beyond this degree no plan is made
+    DEGREE_MAX = 1 << 24, // beyond this degree no plan is made
 };
 
 typedef struct Lower {
     Plan *p;
     const Ring *r;
     slong nparams, nconsts;
-    LowerError error; // first unrepresentable coefficient ...
-    slong error_exp10; // ... and its decimal exponent (about)
-    const Kernels *K;  // the functions of the ring (kernel.h), or NULL
-    int *kreg;         // per kernel: its register, or -1 not yet lowered
-    int *kbad;         // per kernel: its flags (poles of its argument's
-                       // denominator, domain), or -1: none
+    LowerError error;    // first unrepresentable coefficient ...
+    slong error_exp10;   // ... and its decimal exponent (about)
+    const Kernels *K;    // the functions of the ring (kernel.h), or NULL
+    int *kreg;           // per kernel: its register, or -1 not yet lowered
+    int *kbad;           // per kernel: its flags (poles of its argument's
+                         // denominator, domain), or -1: none
     unsigned char *used; // per kernel: the current output uses it
     slong shift_var;     // horner reads this param as shift_reg (the
     int shift_reg;       // shifted form below), or -1: none
@@ -181,9 +181,8 @@ static int const_fmpq(Lower *L, const fmpq_t q)
     if (st != LOWER_OK) {
         if (L->error == LOWER_OK) {
             L->error = st;
-            L->error_exp10 =
-                (slong)fmpz_sizeinbase(fmpq_numref(q), 10) -
-                (slong)fmpz_sizeinbase(fmpq_denref(q), 10);
+            L->error_exp10 = (slong)fmpz_sizeinbase(fmpq_numref(q), 10) -
+                             (slong)fmpz_sizeinbase(fmpq_denref(q), 10);
         }
         v = st == LOWER_OVERFLOW ? 1 : 0; // keeps building; never emitted
     }
@@ -440,7 +439,7 @@ static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
 
     fmpz_mpoly_t C;
     fmpz_mpoly_init(C, ctx);
-    int x = var == L->shift_var              ? L->shift_reg
+    int x = var == L->shift_var             ? L->shift_reg
             : var < L->nparams + L->nconsts ? plan_input(L->p, (int)var)
                                             : kernel_reg(L, var);
     int acc = -1;
@@ -578,19 +577,32 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
 static int plan_fn_of(const Kernel *k)
 {
     switch (k->fn) {
-    case KF_SQRT: return PLAN_FN_SQRT;
-    case KF_ROOT: return PLAN_FN_ROOT | (int)(k->q << 8);
-    case KF_SIN: return PLAN_FN_SIN;
-    case KF_COS: return PLAN_FN_COS;
-    case KF_SINH: return PLAN_FN_SINH;
-    case KF_COSH: return PLAN_FN_COSH;
-    case KF_EXP: return PLAN_FN_EXP;
-    case KF_LN: return PLAN_FN_LOG;
-    case KF_ASIN: return PLAN_FN_ASIN;
-    case KF_ACOS: return PLAN_FN_ACOS;
-    case KF_ATAN: return PLAN_FN_ATAN;
-    case KF_SIGN: return PLAN_FN_SIGN;
-    default: return -1;
+    case KF_SQRT:
+        return PLAN_FN_SQRT;
+    case KF_ROOT:
+        return PLAN_FN_ROOT | (int)(k->q << 8);
+    case KF_SIN:
+        return PLAN_FN_SIN;
+    case KF_COS:
+        return PLAN_FN_COS;
+    case KF_SINH:
+        return PLAN_FN_SINH;
+    case KF_COSH:
+        return PLAN_FN_COSH;
+    case KF_EXP:
+        return PLAN_FN_EXP;
+    case KF_LN:
+        return PLAN_FN_LOG;
+    case KF_ASIN:
+        return PLAN_FN_ASIN;
+    case KF_ACOS:
+        return PLAN_FN_ACOS;
+    case KF_ATAN:
+        return PLAN_FN_ATAN;
+    case KF_SIGN:
+        return PLAN_FN_SIGN;
+    default:
+        return -1;
     }
 }
 
@@ -718,15 +730,14 @@ static void plan_bound(Lower *L, const Derived *d, slong v, unsigned char a)
     Plan *p = L->p;
     unsigned char f = d->bound_flags[v];
     if (!p->bound)
-        p->bound = pc_xcalloc((size_t)(p->nparams + p->nconsts),
-                              sizeof(PlanBound));
+        p->bound =
+            pc_xcalloc((size_t)(p->nparams + p->nconsts), sizeof(PlanBound));
     PlanBound *b = &p->bound[v];
-    b->flags |= (unsigned char)((a & 1 ? PLAN_BOUND_LO : 0) |
-                                (a & 2 ? PLAN_BOUND_HI : 0) |
-                                (f & DERIVED_BOUND_LO_OPEN ? PLAN_BOUND_LO_OPEN
-                                                           : 0) |
-                                (f & DERIVED_BOUND_HI_OPEN ? PLAN_BOUND_HI_OPEN
-                                                           : 0));
+    b->flags |=
+        (unsigned char)((a & 1 ? PLAN_BOUND_LO : 0) |
+                        (a & 2 ? PLAN_BOUND_HI : 0) |
+                        (f & DERIVED_BOUND_LO_OPEN ? PLAN_BOUND_LO_OPEN : 0) |
+                        (f & DERIVED_BOUND_HI_OPEN ? PLAN_BOUND_HI_OPEN : 0));
     if (b->text)
         return;
     int has_lo = f & DERIVED_BOUND_LO, has_hi = f & DERIVED_BOUND_HI;
@@ -767,11 +778,10 @@ static int bound_flags(Lower *L, const Derived *d, const DerivedOutput *o,
             int diff = upper ? plan_sub(L->p, e, x) : plan_sub(L->p, x, e);
             int open = d->bound_flags[v] &
                        (upper ? DERIVED_BOUND_HI_OPEN : DERIVED_BOUND_LO_OPEN);
-            int dom = plan_mul(L->p,
-                               plan_domain(L->p,
-                                           open ? PLAN_FN_LOG : PLAN_FN_SQRT,
-                                           diff),
-                               plan_const(L->p, PLAN_DOMAIN_FLAG));
+            int dom = plan_mul(
+                L->p,
+                plan_domain(L->p, open ? PLAN_FN_LOG : PLAN_FN_SQRT, diff),
+                plan_const(L->p, PLAN_DOMAIN_FLAG));
             bad = bad < 0 ? dom : plan_add(L->p, bad, dom);
         }
     }
@@ -915,8 +925,7 @@ Plan *lower_derived(const Derived *d, FILE *err)
                           "below the smallest double and would be 0",
                     out->name, (long)L.error_exp10);
         }
-        if (atoms || degree < 0 || degree > DEGREE_MAX ||
-            L.error != LOWER_OK) {
+        if (atoms || degree < 0 || degree > DEGREE_MAX || L.error != LOWER_OK) {
             free(ws);
             free(point);
             free(reg);

@@ -57,8 +57,8 @@ MeetStatus construct_meet_general(PointEq res, const PointEq *a, slong na,
  * that the normal form then finds identically zero.  The result is not
  * reduced. */
 MeetStatus construct_meet_general_nf(PointEq res, const PointEq *a, slong na,
-                                     const PointEq *b, slong nb,
-                                     LinNormal *nf, const Ring *r);
+                                     const PointEq *b, slong nb, LinNormal *nf,
+                                     const Ring *r);
 /* For tests: the fraction-free form reduces a flat's points against each
  * other (column operations that eliminate a point they share) only where
  * the entries have at least n terms and a gcd holds most of them (default

@@ -42,9 +42,9 @@ typedef struct Expander {
     int nnames, capnames;
     const char *var; // the comprehension variable being unrolled, or NULL
     slong var_value;
-    long members;    // family members and unrolled equations so far
-    long nodes;      // nodes copied so far
-    int over;        // a size limit was reported
+    long members; // family members and unrolled equations so far
+    long nodes;   // nodes copied so far
+    int over;     // a size limit was reported
 } Expander;
 
 static IntSym *find_int(Expander *E, const char *name)
@@ -117,7 +117,10 @@ static int check_free(Expander *E, const char *name, Span span, int plain_too)
     slong idx;
     if (is || f || k >= 0) {
         diag_error(E->d, span, "redefinition of '%s'", name);
-        diag_note(E->d, is ? is->span : f ? f->span : E->spans[k],
+        diag_note(E->d,
+                  is  ? is->span
+                  : f ? f->span
+                      : E->spans[k],
                   "'%s' was first declared here", name);
         return -1;
     }
@@ -190,16 +193,14 @@ static int eval_int(Expander *E, const Node *n, slong *out)
         if (*c || strlen(n->text) > 13) {
             if (*c)
                 diag_error(E->d, n->span,
-                           "expected a whole number here, found '%s'",
-                           n->text);
+                           "expected a whole number here, found '%s'", n->text);
             else
                 diag_error(E->d, n->span,
                            "integer too large: the integers of a scheme stay "
                            "below 2^40 in magnitude");
             return -1;
         }
-        return int_range(E, n->span, (__int128)strtoll(n->text, NULL, 10),
-                         out);
+        return int_range(E, n->span, (__int128)strtoll(n->text, NULL, 10), out);
     }
     case ND_NAME: {
         if (E->var && strcmp(n->text, E->var) == 0) {
@@ -348,8 +349,7 @@ static Node *number(Expander *E, slong v, Span span)
 }
 
 /* the member index of family f that n's index denotes, checked */
-static int member_index(Expander *E, const Family *f, const Node *ix,
-                        slong *k)
+static int member_index(Expander *E, const Family *f, const Node *ix, slong *k)
 {
     if (eval_int(E, ix, k) < 0)
         return -1;
@@ -362,8 +362,8 @@ static int member_index(Expander *E, const Family *f, const Node *ix,
             diag_error(E->d, ix->span,
                        "index %ld (at %s = %ld) is out of range: %s has the "
                        "members %s[%ld..%ld]",
-                       (long)*k, E->var, (long)E->var_value, f->name,
-                       f->name, (long)f->lo, (long)f->hi);
+                       (long)*k, E->var, (long)E->var_value, f->name, f->name,
+                       (long)f->lo, (long)f->hi);
         else
             diag_error(E->d, ix->span,
                        "index %ld is out of range: %s has the members "
@@ -418,8 +418,7 @@ static int rewrite_args(Expander *E, Node *call)
             if (budget_nodes(E, x, hi - lo + 1) < 0)
                 return -1;
             for (slong k = lo; k <= hi; k++) {
-                *tail = ast_new_name(E->a, member_name(E, f->name, k),
-                                     x->span);
+                *tail = ast_new_name(E->a, member_name(E, f->name, k), x->span);
                 tail = &(*tail)->next;
                 nargs++;
             }
@@ -559,8 +558,7 @@ static Name *declare_names(Expander *E, Name *list, const char *what,
                        "the family member %s[%ld] would be named '%s', which "
                        "is declared already",
                        nm->text, (long)k, E->names[i]);
-            diag_note(E->d, E->spans[i], "'%s' was declared here",
-                      E->names[i]);
+            diag_note(E->d, E->spans[i], "'%s' was declared here", E->names[i]);
             clash = 1;
         }
         if (clash || budget_members(E, nm->span, hi - lo + 1) < 0)
@@ -571,8 +569,8 @@ static Name *declare_names(Expander *E, Name *list, const char *what,
         }
         E->fams[E->nfams++] = (Family){nm->text, lo, hi, nm->span, what};
         for (slong k = lo; k <= hi; k++) {
-            Name *m = ast_new_namelist(E->a, member_name(E, nm->text, k),
-                                       nm->span);
+            Name *m =
+                ast_new_namelist(E->a, member_name(E, nm->text, k), nm->span);
             *tail = m;
             tail = &m->next;
         }
@@ -592,8 +590,8 @@ static Name *refer_names(Expander *E, Name *list)
             Family *f = find_family(E, nm->text);
             if (f) { /* the whole family */
                 for (slong k = f->lo; k <= f->hi; k++) {
-                    Name *m = ast_new_namelist(
-                        E->a, member_name(E, f->name, k), nm->span);
+                    Name *m = ast_new_namelist(E->a, member_name(E, f->name, k),
+                                               nm->span);
                     *tail = m;
                     tail = &m->next;
                 }
@@ -625,8 +623,8 @@ static Name *refer_names(Expander *E, Name *list)
             }
         }
         for (slong k = lo; k <= hi; k++) {
-            Name *m = ast_new_namelist(E->a, member_name(E, f->name, k),
-                                       nm->span);
+            Name *m =
+                ast_new_namelist(E->a, member_name(E, f->name, k), nm->span);
             *tail = m;
             tail = &m->next;
         }
@@ -743,8 +741,8 @@ static void expand_solve(Expander *E, Stmt *st)
     st->names = refer_names(E, st->names);
 }
 
-int expand_scheme(Scheme *s, Arena *a, Diag *diag,
-                  const char *const *defines, int ndefines, char *used)
+int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
+                  int ndefines, char *used)
 {
     Expander E = {.a = a, .d = diag};
     int errors0 = diag->nerrors;

@@ -42,8 +42,8 @@
  * command line's -D), overriding `int NAME = ...`; used[k] (ndefines
  * entries) is set to 1 for each define the scheme declares.  Errors go to
  * diag; returns their number. */
-int expand_scheme(Scheme *s, Arena *a, Diag *diag,
-                  const char *const *defines, int ndefines, char *used);
+int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
+                  int ndefines, char *used);
 
 /* 0 when text is "NAME=INTEGER" with a valid name and |INTEGER| <
  * EXPAND_MAX_INT (for the command line's usage check) */

@@ -58,7 +58,7 @@
     X(KF_ATAN, "atan", "atan")                                                 \
     X(KF_ATAN2, "atan2", "atan2")                                              \
     X(KF_SIGN, "sign", NULL)                                                   \
-    X(KF_DIST, "dist", NULL) /* |P_a P_b| of two base points: the metric */ \
+    X(KF_DIST, "dist", NULL)   /* |P_a P_b| of two base points: the metric */  \
     X(KF_COORD, "coord", NULL) /* coordinate pb (1-based) of base point pa */
 
 typedef enum KernelFn {
@@ -70,13 +70,13 @@ typedef enum KernelFn {
 
 typedef struct Kernel {
     KernelFn fn;
-    slong var;   // its ring variable
-    slong q;     // KF_ROOT: the index of the root (>= 3); else 0
+    slong var;    // its ring variable
+    slong q;      // KF_ROOT: the index of the root (>= 3); else 0
     slong pa, pb; // KF_DIST: the base points, pa < pb; KF_COORD: the base
                   // point and the coordinate's number k >= 1
-    RatFun arg;  // the canonical argument (KF_ATAN2: y); 0 for pi
-    RatFun arg2; // KF_ATAN2: x
-    slong deg;   // the relation var^deg = rel, or 0: none
+    RatFun arg;   // the canonical argument (KF_ATAN2: y); 0 for pi
+    RatFun arg2;  // KF_ATAN2: x
+    slong deg;    // the relation var^deg = rel, or 0: none
     RatFun rel;
     char *name;  // text, as printed ("sin(phi)")
     char *latex; // LaTeX
@@ -95,8 +95,8 @@ typedef struct Kernels {
     slong cap;   // kernel slots in the ring
     slong n;     // kernels made: variables first .. first+n-1
     Kernel *k;
-    int nrel;    // kernels with a relation
-    int full;    // a kernel was refused: no slot left (KERNEL_EFULL)
+    int nrel;        // kernels with a relation
+    int full;        // a kernel was refused: no slot left (KERNEL_EFULL)
     double deadline; // CLOCK_MONOTONIC seconds (the derivation's time
                      // budget), 0: none; KERNEL_ETIME past it
     const char *const *points; // base point names (for dist names)
@@ -219,8 +219,7 @@ int kernel_measures_point(const Kernels *K, const PointEq x, slong point);
 
 /* the total derivative d x / d var (the chain rule through kernels) */
 int kernel_derivative(Kernels *K, RatFun res, const RatFun x, slong var);
-int kernel_derivative_pteq(Kernels *K, PointEq res, const PointEq x,
-                           slong var);
+int kernel_derivative_pteq(Kernels *K, PointEq res, const PointEq x, slong var);
 /* x with var replaced by s, also inside kernels (sin(t) -> sin(s));
  * KERNEL_EZERO / RATFUN_EPOLE when a denominator vanishes */
 int kernel_compose(Kernels *K, RatFun res, const RatFun x, slong var,

@@ -541,8 +541,8 @@ static int prove(const Kernels *K, const RatFun x, const fmpz_mpoly_t p,
  * proof rests on: each end of each declared interval it read is dropped in
  * turn, and kept only where the proof needs it (abs(t) = t for t in [0, 1]
  * needs t >= 0, not t <= 1) */
-static int commit(const Kernels *K, int s, const RatFun x,
-                  const fmpz_mpoly_t p, Touched *t)
+static int commit(const Kernels *K, int s, const RatFun x, const fmpz_mpoly_t p,
+                  Touched *t)
 {
     for (slong i = 0; s && i < t->n; i++) {
         KRange *g = &K->range[t->v[i]];

@@ -48,9 +48,9 @@ LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
     return linsolve_nf(x, rank, a, b, m, n, NULL, r);
 }
 
-LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank,
-                           const RatFunStruct *a, const RatFunStruct *b,
-                           slong m, slong n, LinNormal *nf, const Ring *r)
+LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank, const RatFunStruct *a,
+                           const RatFunStruct *b, slong m, slong n,
+                           LinNormal *nf, const Ring *r)
 {
     LinSolveResult res = LINSOLVE_UNIQUE;
     slong w = n + 1; /* row width: n coefficients and the right-hand side */

@@ -15,7 +15,7 @@
 #include "compiler/ratfun.h"
 
 typedef enum LinSolveResult {
-    LINSOLVE_UNIQUE,         // rank == n and consistent: x holds the solution
+    LINSOLVE_UNIQUE,          // rank == n and consistent: x holds the solution
     LINSOLVE_UNDERDETERMINED, // rank < n and consistent: x holds one solution
                               // (free unknowns set to 0)
     LINSOLVE_INCONSISTENT,    // no solution (x untouched)
@@ -37,13 +37,12 @@ typedef struct LinNormal {
 /* x must have n initialised entries; a and b are not modified.  *rank (if
  * rank != NULL) receives the rank of the coefficient matrix a. */
 LinSolveResult linsolve(RatFunStruct *x, slong *rank, const RatFunStruct *a,
-                        const RatFunStruct *b, slong m, slong n,
-                        const Ring *r);
+                        const RatFunStruct *b, slong m, slong n, const Ring *r);
 /* the same with every entry, those of a and b first, in the normal form
  * nf (NULL: none) */
-LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank,
-                           const RatFunStruct *a, const RatFunStruct *b,
-                           slong m, slong n, LinNormal *nf, const Ring *r);
+LinSolveResult linsolve_nf(RatFunStruct *x, slong *rank, const RatFunStruct *a,
+                           const RatFunStruct *b, slong m, slong n,
+                           LinNormal *nf, const Ring *r);
 
 /* The simplest non-zero pivot (fewest terms, ratfun_length) among rows
  * from..m-1 and the columns 0..n-1 not used: its row, and its column in

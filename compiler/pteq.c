@@ -152,8 +152,8 @@ static slong *by_length(const PointEq x)
     slong *o = flint_malloc((size_t)FLINT_MAX(x->len, 1) * sizeof(slong));
     for (slong i = 0; i < x->len; i++) {
         slong j = i;
-        for (; j > 0 && x->terms[o[j - 1]].num->length >
-                            x->terms[i].num->length;
+        for (;
+             j > 0 && x->terms[o[j - 1]].num->length > x->terms[i].num->length;
              j--)
             o[j] = o[j - 1];
         o[j] = i;
@@ -349,8 +349,7 @@ static RatFunStruct *weights_of(slong **points, const PointEq x, const Ring *r)
     return w;
 }
 
-static void weights_free(RatFunStruct *w, slong *points, slong n,
-                         const Ring *r)
+static void weights_free(RatFunStruct *w, slong *points, slong n, const Ring *r)
 {
     for (slong i = 0; i <= n; i++)
         ratfun_clear(w + i, r);
@@ -562,8 +561,8 @@ static void lincomb(PointEq res, const PointEq x, const RatFunStruct *s,
     pteq_clear(acc, r);
 }
 
-void pteq_lincomb(PointEq res, const PointEq x, const RatFun s,
-                  const PointEq y, const RatFun u, const Ring *r)
+void pteq_lincomb(PointEq res, const PointEq x, const RatFun s, const PointEq y,
+                  const RatFun u, const Ring *r)
 {
     lincomb(res, x, ratfun_is_one(s, r) ? NULL : s, y,
             ratfun_is_one(u, r) ? NULL : u, r);
@@ -641,8 +640,8 @@ void pteq_subst_points(PointEq res, const PointEq x, const slong *cols,
     for (slong i = 0; i < x->len; i++) {
         if (which[i] < 0) {
             fmpz_mpoly_mul(t, x->terms[i].num, L, r->ctx);
-            fmpz_mpoly_add(acc + x->terms[i].point, acc + x->terms[i].point,
-                           t, r->ctx);
+            fmpz_mpoly_add(acc + x->terms[i].point, acc + x->terms[i].point, t,
+                           r->ctx);
             continue;
         }
         const PointEq *pj = p + which[i];
@@ -707,8 +706,7 @@ int pteq_compose_var(PointEq res, const PointEq x, slong var, const RatFun s,
         const fmpz_mpoly_struct *p = i < x->len ? x->terms[i].num : x->den;
         fmpz_mpoly_struct *out =
             i < x->len ? pteq_append(acc, x->terms[i].point, r) : acc->den;
-        if (!ratfun_poly_compose_homog(out, deg + i, p, var, s->num, s->den,
-                                       r))
+        if (!ratfun_poly_compose_homog(out, deg + i, p, var, s->num, s->den, r))
             st = RATFUN_EOVERFLOW;
         else
             e = FLINT_MAX(e, deg[i]);

@@ -30,7 +30,7 @@
 #include "compiler/ratfun.h"
 
 typedef struct PtTerm {
-    slong point;             // base point index
+    slong point;              // base point index
     fmpz_mpoly_struct num[1]; // its numerator over the common den, never 0
 } PtTerm;
 
@@ -87,8 +87,8 @@ int pteq_scalar_div(PointEq res, const PointEq x, const RatFun s,
 void pteq_addmul(PointEq res, const PointEq x, const PointEq y, const RatFun s,
                  const Ring *r);
 /* res = x*s + y*u: one common denominator, one content reduction */
-void pteq_lincomb(PointEq res, const PointEq x, const RatFun s,
-                  const PointEq y, const RatFun u, const Ring *r);
+void pteq_lincomb(PointEq res, const PointEq x, const RatFun s, const PointEq y,
+                  const RatFun u, const Ring *r);
 
 /* Replace base point `point` by the combination p ("replacing the simplex",
  * monograph 4.1): x = sum w_i X_i  ->  sum_{i != point} w_i X_i + w_point*p */

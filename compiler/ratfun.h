@@ -30,10 +30,10 @@ typedef RatFunStruct RatFun[1];
 
 enum {
     RATFUN_OK = 0,
-    RATFUN_EDIVZERO = -1, // division by an identically zero function
-    RATFUN_ESYNTAX = -2,  // ratfun_set_str: malformed text
-    RATFUN_ENAME = -3,    // ratfun_set_str: unknown variable name
-    RATFUN_EPOLE = -4,    // evaluation/substitution where the den vanishes
+    RATFUN_EDIVZERO = -1,  // division by an identically zero function
+    RATFUN_ESYNTAX = -2,   // ratfun_set_str: malformed text
+    RATFUN_ENAME = -3,     // ratfun_set_str: unknown variable name
+    RATFUN_EPOLE = -4,     // evaluation/substitution where the den vanishes
     RATFUN_EOVERFLOW = -5, // exponent too large (FLINT's limit or set_str's
                            // cap of RATFUN_STR_MAX_EXP)
 };
@@ -126,8 +126,7 @@ int ratfun_evaluate_fmpq(fmpq_t res, const RatFun x, const fmpq *vals,
  * bits: 8 MB of coefficients for one polynomial, far beyond what a scheme
  * of the monograph needs - its largest results are a few hundred bytes). */
 #define RATFUN_MAX_LOG2_BITS 26.0
-double ratfun_log2_bits_product(const RatFun x, const RatFun y,
-                                const Ring *r);
+double ratfun_log2_bits_product(const RatFun x, const RatFun y, const Ring *r);
 double ratfun_log2_bits_pow(const RatFun x, slong e, const Ring *r);
 /* the same estimate for the product of two polynomials */
 double ratfun_poly_log2_bits_mul(const fmpz_mpoly_t a, const fmpz_mpoly_t b,

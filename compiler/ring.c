@@ -98,8 +98,8 @@ static void remap(fmpz_mpoly_t q, const fmpz_mpoly_ctx_t cq,
     flint_free(e);
 }
 
-int ring_factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
-                        int full, const Ring *r)
+int ring_factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, int full,
+                        const Ring *r)
 {
     slong nv = r->ctx->minfo->nvars, k = 0;
     slong *degs = flint_malloc((size_t)nv * sizeof(slong));

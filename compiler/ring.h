@@ -51,7 +51,7 @@ int ring_factor(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, const Ring *r);
  * factoring spends time on every variable of the context, used or not, and
  * a ring with functions has dozens of kernel slots); f initialised.  The
  * caller decides that it is affordable (ring_factor_affordable). */
-int ring_factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
-                        int full, const Ring *r);
+int ring_factor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, int full,
+                        const Ring *r);
 
 #endif

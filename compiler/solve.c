@@ -15,12 +15,12 @@
  * cols[c], column nunk + k the known column known[k]. */
 typedef struct System {
     slong neq, nunk, nknown, width;
-    slong *known;                 // sorted point indices of the known columns
-    fmpz_mpoly_struct *a;         // neq * width entries
-    fmpz_mpoly_struct **row;      // row pointers (rows are swapped, not copied)
-    slong *orig;                  // orig[i]: the equation now in row i
-    char *nonzero;                // after elimination: row i's known part
-                                  // is not zero (classify)
+    slong *known;            // sorted point indices of the known columns
+    fmpz_mpoly_struct *a;    // neq * width entries
+    fmpz_mpoly_struct **row; // row pointers (rows are swapped, not copied)
+    slong *orig;             // orig[i]: the equation now in row i
+    char *nonzero;           // after elimination: row i's known part
+                             // is not zero (classify)
 } System;
 
 static slong find_col(const slong *cols, slong n, slong point)
@@ -62,7 +62,8 @@ static void system_init(System *S, const PointEq *eqs, slong neq,
     S->width = nunk + S->nknown;
     S->a = pc_xmalloc(sizeof(fmpz_mpoly_struct) *
                       (size_t)FLINT_MAX(neq * S->width, 1));
-    S->row = pc_xmalloc(sizeof(fmpz_mpoly_struct *) * (size_t)FLINT_MAX(neq, 1));
+    S->row =
+        pc_xmalloc(sizeof(fmpz_mpoly_struct *) * (size_t)FLINT_MAX(neq, 1));
     S->orig = pc_xmalloc(sizeof(slong) * (size_t)FLINT_MAX(neq, 1));
     S->nonzero = pc_xcalloc((size_t)FLINT_MAX(neq, 1), 1);
     for (slong e = 0; e < neq; e++) {
@@ -129,9 +130,8 @@ static int solve_numeric(PointEq *x, const System *S, const Ring *r)
     ok = fmpz_mat_solve(Y, det, U, I);
     if (ok) {
         fmpz_mpoly_t den, t;
-        fmpz_mpoly_struct *num =
-            pc_xmalloc(sizeof(fmpz_mpoly_struct) *
-                       (size_t)FLINT_MAX(S->nknown, 1));
+        fmpz_mpoly_struct *num = pc_xmalloc(sizeof(fmpz_mpoly_struct) *
+                                            (size_t)FLINT_MAX(S->nknown, 1));
         fmpz_mpoly_init(den, r->ctx);
         fmpz_mpoly_init(t, r->ctx);
         fmpz_mpoly_set_fmpz(den, det, r->ctx);
@@ -319,15 +319,15 @@ done:
  * (1 - cos(t)^2 - sin(t)^2 is a non-zero polynomial).  Each pivot row is
  * normalised to 1, so row i ends as X_pivcol[i] + sum_k R[i][k] K_k = 0. */
 static SolveStatus solve_normal(PointEq *x, System *S, char *undetermined,
-                                char *dependent, double deadline,
-                                LinNormal *nf, const Ring *r)
+                                char *dependent, double deadline, LinNormal *nf,
+                                const Ring *r)
 {
     slong n = S->nunk, w = S->width, rank = 0, m = S->neq;
     slong *pivcol = pc_xmalloc(sizeof(slong) * (size_t)FLINT_MAX(m, 1));
     char *used = pc_xcalloc((size_t)FLINT_MAX(n, 1), 1);
     RatFunStruct *a = ratfun_vec_init(FLINT_MAX(m * w, 1), r);
-    RatFunStruct **row = pc_xmalloc(sizeof(RatFunStruct *) *
-                                    (size_t)FLINT_MAX(m, 1));
+    RatFunStruct **row =
+        pc_xmalloc(sizeof(RatFunStruct *) * (size_t)FLINT_MAX(m, 1));
     SolveStatus st = SOLVE_OK;
     RatFun piv, t;
 
@@ -414,8 +414,8 @@ SolveStatus solve_points(PointEq *x, const PointEq *eqs, slong neq,
                          const slong *cols, slong nunk, char *undetermined,
                          char *dependent, const Ring *r)
 {
-    return solve_points_ex(x, eqs, neq, cols, nunk, undetermined, dependent,
-                           0, r);
+    return solve_points_ex(x, eqs, neq, cols, nunk, undetermined, dependent, 0,
+                           r);
 }
 
 SolveStatus solve_points_ex(PointEq *x, const PointEq *eqs, slong neq,

@@ -13,11 +13,11 @@
 
 #include <flint/flint.h>
 
+#include "base/mem.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
-#include "driver/cli/budget.h"
 #include "compiler/derive.h"
-#include "base/mem.h"
+#include "driver/cli/budget.h"
 #include "runtime/eval.h"
 
 struct pc_scheme {
@@ -69,16 +69,15 @@ static DeriveOptions derive_options(const pc_options *opt)
     return o;
 }
 
-pc_scheme *pc_scheme_parse_opts(const char *name, const char *text,
-                                size_t len, const pc_options *opt,
-                                char **diagnostics)
+pc_scheme *pc_scheme_parse_opts(const char *name, const char *text, size_t len,
+                                const pc_options *opt, char **diagnostics)
 {
     char *msg = NULL;
     size_t mlen = 0;
     DeriveOptions o = derive_options(opt);
     FILE *m = pc_xopen_memstream(&msg, &mlen);
-    Derived *d = derive_source_ex(name ? name : "<string>", text, len, m,
-                                  NULL, &o);
+    Derived *d =
+        derive_source_ex(name ? name : "<string>", text, len, m, NULL, &o);
     pc_xclose_memstream(m);
     return wrap(d, msg, diagnostics);
 }

@@ -17,15 +17,15 @@
 /* X-macro: node kind, dump name.  One comment of semantics per kind. */
 #define PC_NODE_KINDS(X)                                                       \
     X(ND_NUM, "num")   /* exact number; text kept verbatim (0.3 is 3/10) */    \
-    X(ND_NAME, "name") /* a declared name: point, param, const, definition */ \
+    X(ND_NAME, "name") /* a declared name: point, param, const, definition */  \
     X(ND_NEG, "neg")   /* -lhs */                                              \
     X(ND_ADD, "+")     /* lhs + rhs: scalars, or combinations of points */     \
     X(ND_SUB, "-")     /* lhs - rhs */                                         \
     X(ND_MUL, "*")     /* lhs * rhs: at most one side a combination */         \
     X(ND_DIV, "/")     /* lhs / rhs: rhs a non-zero scalar */                  \
     X(ND_POW, "^")     /* lhs ^ rhs: rhs an integer constant */                \
-    X(ND_CALL, "call") /* name(args): a builtin (along, meet, sin, ...) */    \
-    X(ND_INDEX, "index") /* name[lhs], or name[lhs..rhs] as call arguments: \
+    X(ND_CALL, "call") /* name(args): a builtin (along, meet, sin, ...) */     \
+    X(ND_INDEX, "index") /* name[lhs], or name[lhs..rhs] as call arguments:    \
                             members of a family (expand.c replaces them) */
 
 typedef enum NodeKind {
@@ -39,7 +39,7 @@ typedef struct Sym Sym; // compiler/sema.h
 typedef struct Node Node;
 struct Node {
     NodeKind kind;
-    Span span; // the whole expression, blamed in diagnostics
+    Span span;  // the whole expression, blamed in diagnostics
     Node *next; // next argument in a call's list
     int depth;  // height of the tree below (a leaf: 1); bounds recursion
 
@@ -106,21 +106,21 @@ struct Stmt {
     StmtKind kind;
     Span span; // the whole statement
     Stmt *next;
-    Name *names;  // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...)
-    Name *name;   // ST_SCHEME, ST_DEF: the defined name
-    Node *expr;   // ST_DEF
-    Node *lo, *hi; // ST_PARAM range (both NULL when absent); ST_CONST:
-                   // its bounds (`const e in (0, 1)`, `const a > 0`: lo
-                   // only, `const k < 1`: hi only)
+    Name *names;          // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...)
+    Name *name;           // ST_SCHEME, ST_DEF: the defined name
+    Node *expr;           // ST_DEF
+    Node *lo, *hi;        // ST_PARAM range (both NULL when absent); ST_CONST:
+                          // its bounds (`const e in (0, 1)`, `const a > 0`: lo
+                          // only, `const k < 1`: hi only)
     int lo_open, hi_open; // ST_PARAM, ST_CONST: an end that is excluded
                           // ('(' or ')', '>' or '<')
-    Equation *eqs; // ST_SOLVE
+    Equation *eqs;        // ST_SOLVE
 
     // filled by sema
-    Sym *sym; // ST_DEF: the defined name
+    Sym *sym;   // ST_DEF: the defined name
     int scalar; // ST_UNKNOWN: `unknown scalar k, ...`
-    int bad;  // ST_SOLVE, ST_PARAM (its range): an error was reported;
-              // derive skips it
+    int bad;    // ST_SOLVE, ST_PARAM (its range): an error was reported;
+                // derive skips it
 };
 
 typedef struct Scheme {
@@ -130,8 +130,7 @@ typedef struct Scheme {
 Node *ast_new_num(Arena *a, const char *text, Span span);
 Node *ast_new_name(Arena *a, const char *text, Span span);
 Node *ast_new_unary(Arena *a, NodeKind kind, Node *lhs, Span span);
-Node *ast_new_binary(Arena *a, NodeKind kind, Node *lhs, Node *rhs,
-                     Span span);
+Node *ast_new_binary(Arena *a, NodeKind kind, Node *lhs, Node *rhs, Span span);
 /* args: a list built with ast_append */
 Node *ast_new_call(Arena *a, const char *name, Span name_span, Node *args,
                    Span span);

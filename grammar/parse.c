@@ -1,6 +1,8 @@
 #include "grammar/parse.h"
 
+/* the parser's header first: the scanner's uses its types */
 #include "grammar/parser.h"
+
 #include "grammar/lexer.h"
 
 /* jq's jq_parse / PostgreSQL's raw_parser: init scanner, scan bytes, parse,
@@ -15,8 +17,7 @@ Scheme *parse_scheme(const Source *src, Arena *arena, Diag *diag)
         diag_error(diag, (Span){0, 0}, "cannot initialise the scanner");
         return parser.scheme;
     }
-    YY_BUFFER_STATE buf =
-        pc_yy_scan_bytes(src->text, (int)src->len, scanner);
+    YY_BUFFER_STATE buf = pc_yy_scan_bytes(src->text, (int)src->len, scanner);
     pc_yyparse(scanner, &parser);
     pc_yy_delete_buffer(buf, scanner);
     pc_yylex_destroy(scanner);

@@ -69,7 +69,6 @@ static void k_pole(double *restrict d, const double *restrict a)
         d[j] = (double)(a[j] == 0); // not ?: (see codegen/emit_weights.c)
 }
 
-
 static void k_powi(double *restrict d, const double *restrict a, int e)
 {
     for (int j = 0; j < BL; j++)

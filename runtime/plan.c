@@ -10,14 +10,13 @@
  * built in different ways still meet.
  */
 #include "runtime/plan.h"
-#include "base/numfmt.h"
 #include "base/mem.h"
+#include "base/numfmt.h"
 
 #include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
 
 static char **copy_names(int n, const char *const *names)
 {
@@ -431,7 +430,6 @@ int plan_pole(Plan *p, int den)
 {
     return plan_node(p, PLAN_POLE, den, 0);
 }
-
 
 /* x^e by a shared multiplication chain for small e (x^3 = x^2*x and
  * x^4 = x^2*x^2 reuse x^2), one POWI above PLAN_POW_CHAIN; negative powers

@@ -1,9 +1,9 @@
 /*
  * plan.h - the Plan: a flat, register-based numeric program that computes
  * the weights of a scheme's reduced point equations.  It is the one IR that
- * both back ends read: codegen/ prints it as C (emit_c.c, emit_weights.c), runtime/eval.c
- * interprets it.  runtime/ is FLINT-free; codegen/lower.c is the only bridge
- * that turns exact polynomials into a Plan.
+ * both back ends read: codegen/ prints it as C (emit_c.c, emit_weights.c),
+ * runtime/eval.c interprets it.  runtime/ is FLINT-free; codegen/lower.c is the
+ * only bridge that turns exact polynomials into a Plan.
  *
  *   register i  =  the value of instruction i  (SSA: each written once)
  *
@@ -25,9 +25,9 @@
 #ifndef PC_PLAN_H
 #define PC_PLAN_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <math.h>
 #include <stdio.h>
 
 /* X(name, number of register operands, C operator or NULL): one comment of
@@ -40,13 +40,13 @@
     X(SUB, 2, "-")    /* d = r[a] - r[b]                                    */ \
     X(MUL, 2, "*")    /* d = r[a] * r[b]                                    */ \
     X(DIV, 2, "/")    /* d = r[a] / r[b]   (b is checked by a POLE first)   */ \
-    X(POWI, 1, NULL)  /* d = pow(r[a], b), integer b > PLAN_POW_CHAIN       */  \
+    X(POWI, 1, NULL)  /* d = pow(r[a], b), integer b > PLAN_POW_CHAIN       */ \
     X(POLE, 1, NULL)  /* d = (r[a] == 0) ? 1 : 0   (pole check of a den)    */ \
     X(FN, 1, NULL)    /* d = f(r[a]), f = b: a PlanFn (sqrt, sin, ...)      */ \
     X(ATAN2, 2, NULL) /* d = atan2(r[a], r[b])                              */ \
     X(DOMAIN, 1, NULL) /* d = (r[a] outside the domain of PlanFn b) ? 1 : 0 */ \
-    X(DIST, 0, NULL)  /* d = |P_a - P_b|: base points a < b (uniform)     */ \
-    X(COORD, 0, NULL) /* d = P_a[b]: coordinate b >= 0 of point a (uniform) */
+    X(DIST, 0, NULL)   /* d = |P_a - P_b|: base points a < b (uniform)     */  \
+    X(COORD, 0, NULL)  /* d = P_a[b]: coordinate b >= 0 of point a (uniform) */
 
 /* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
  * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
@@ -80,24 +80,36 @@ static inline double plan_fn_eval(int b, double x)
 {
     int q = b >> 8;
     switch ((PlanFn)(b & 255)) {
-    case PLAN_FN_SQRT: return sqrt(x);
+    case PLAN_FN_SQRT:
+        return sqrt(x);
     case PLAN_FN_ROOT:
         if (q == 3)
             return cbrt(x);
         if (q % 2 && x < 0)
             return -pow(-x, 1.0 / q);
         return pow(x, 1.0 / q);
-    case PLAN_FN_SIN: return sin(x);
-    case PLAN_FN_COS: return cos(x);
-    case PLAN_FN_SINH: return sinh(x);
-    case PLAN_FN_COSH: return cosh(x);
-    case PLAN_FN_EXP: return exp(x);
-    case PLAN_FN_LOG: return log(x);
-    case PLAN_FN_ASIN: return asin(x);
-    case PLAN_FN_ACOS: return acos(x);
-    case PLAN_FN_ATAN: return atan(x);
-    case PLAN_FN_SIGN: return (double)((x > 0) - (x < 0));
-    default: return NAN;
+    case PLAN_FN_SIN:
+        return sin(x);
+    case PLAN_FN_COS:
+        return cos(x);
+    case PLAN_FN_SINH:
+        return sinh(x);
+    case PLAN_FN_COSH:
+        return cosh(x);
+    case PLAN_FN_EXP:
+        return exp(x);
+    case PLAN_FN_LOG:
+        return log(x);
+    case PLAN_FN_ASIN:
+        return asin(x);
+    case PLAN_FN_ACOS:
+        return acos(x);
+    case PLAN_FN_ATAN:
+        return atan(x);
+    case PLAN_FN_SIGN:
+        return (double)((x > 0) - (x < 0));
+    default:
+        return NAN;
     }
 }
 
@@ -115,11 +127,15 @@ static inline double plan_domain_eval(int b, double x)
 {
     switch ((PlanFn)(b & 255)) {
     case PLAN_FN_SQRT:
-    case PLAN_FN_ROOT: return (double)(x < 0.0);
-    case PLAN_FN_LOG: return (double)(x <= 0.0);
+    case PLAN_FN_ROOT:
+        return (double)(x < 0.0);
+    case PLAN_FN_LOG:
+        return (double)(x <= 0.0);
     case PLAN_FN_ASIN:
-    case PLAN_FN_ACOS: return (double)(fabs(x) > 1.0);
-    default: return 0.0;
+    case PLAN_FN_ACOS:
+        return (double)(fabs(x) > 1.0);
+    default:
+        return 0.0;
     }
 }
 
@@ -211,9 +227,9 @@ typedef enum PlanStatus {
 static inline PlanStatus plan_status(double bad)
 {
     return bad >= PLAN_DOMAIN_FLAG ? PLAN_STATUS_DOMAIN
-           : bad >= 1 ? PLAN_STATUS_POLE
-           : bad != 0 ? PLAN_STATUS_OVERFLOW
-                      : PLAN_STATUS_OK;
+           : bad >= 1              ? PLAN_STATUS_POLE
+           : bad != 0              ? PLAN_STATUS_OVERFLOW
+                                   : PLAN_STATUS_OK;
 }
 
 /* Builder.  Each returns a register; equal requests give equal registers,
@@ -228,7 +244,7 @@ int plan_mul(Plan *p, int a, int b);
 int plan_div(Plan *p, int a, int b);
 int plan_pow(Plan *p, int a, long e); // e >= 0; shares the powers it builds
 int plan_pole(Plan *p, int den);
-int plan_fn(Plan *p, int fn, int a);     // f(a), fn a PlanFn | q << 8
+int plan_fn(Plan *p, int fn, int a); // f(a), fn a PlanFn | q << 8
 int plan_atan2(Plan *p, int y, int x);
 int plan_domain(Plan *p, int fn, int a); // the domain flag of f(a)
 int plan_dist(Plan *p, int a, int b);    // |P_a - P_b|, base points a < b
@@ -246,8 +262,7 @@ static inline double plan_coord_eval(const double *P, int c, int dim)
 int plan_output_min_dim(const Plan *p, int o, int *point);
 
 /* |P - Q| in dim coordinates (the metric atoms: the same sum everywhere) */
-static inline double plan_dist_eval(const double *P, const double *Q,
-                                    int dim)
+static inline double plan_dist_eval(const double *P, const double *Q, int dim)
 {
     double s = 0;
     for (int c = 0; c < dim; c++)

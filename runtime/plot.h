@@ -40,13 +40,13 @@
 #include "runtime/plan.h"
 
 enum {
-    PLOT_INITIAL = 64,        // uniform segments before refinement
-    PLOT_MAX_DEPTH = 16,      // bisections of one initial segment
-    PLOT_MAX_SAMPLES = 4000,  // default budget per curve
+    PLOT_INITIAL = 64,            // uniform segments before refinement
+    PLOT_MAX_DEPTH = 16,          // bisections of one initial segment
+    PLOT_MAX_SAMPLES = 4000,      // default budget per curve
     PLOT_SAMPLES_LIMIT = 1000000, // the largest budget accepted
     PLOT_TOTAL_SAMPLES = 2000000, // all curves of a figure together
-    PLOT_MAX_TEETH = 10000,   // comb teeth
-    PLOT_MAX_TANGENTS = 1000, // tangent param values
+    PLOT_MAX_TEETH = 10000,       // comb teeth
+    PLOT_MAX_TANGENTS = 1000,     // tangent param values
 };
 
 /* Where a plan is evaluated: every param but the swept one fixed. */
@@ -96,7 +96,7 @@ typedef struct PlotCurve {
     unsigned char *cut; // cut[i] = 1: no segment between sample i-1 and i
     double *fac;        // n * nfac values of the denominator factors
     int nfac;
-    int *facreg;        // registers of the pole-checked factors
+    int *facreg; // registers of the pole-checked factors
 } PlotCurve;
 
 /* Samples output o (a point output) uniformly with lim->initial segments
@@ -119,7 +119,7 @@ typedef struct PlotMark {
     const char *name; // NULL: drawn without a label
     const double *at; // dim coordinates (borrowed)
     PlotMarkKind kind;
-    int curve;        // PLOT_CURRENT: index into PlotSpec.curves
+    int curve; // PLOT_CURRENT: index into PlotSpec.curves
 } PlotMark;
 
 /* A construction line through up to 4 marks (indices into PlotSpec.marks):
@@ -133,7 +133,7 @@ typedef struct PlotSpec {
     PlotEnv env;
     const int *curves; // point outputs drawn as curves
     int ncurves;
-    double lo, hi;     // the swept range
+    double lo, hi; // the swept range
     PlotView view;
     PlotLimits lim;
     const PlotMark *marks;
@@ -142,20 +142,20 @@ typedef struct PlotSpec {
     int nlines;
     const double *tangents; // param values of the tangent vectors
     int ntangents;
-    double tangent_scale;   // drawn vector = scale * dM/dt
-    int comb;               // teeth of the curvature comb, 0: none
-    double comb_scale;      // tooth = scale * curvature; 0: automatic
-    int width, height;      // pixels; height 0: from the aspect
-    const double *window;   // xmin, ymin, xmax, ymax or NULL: fitted
+    double tangent_scale; // drawn vector = scale * dM/dt
+    int comb;             // teeth of the curvature comb, 0: none
+    double comb_scale;    // tooth = scale * curvature; 0: automatic
+    int width, height;    // pixels; height 0: from the aspect
+    const double *window; // xmin, ymin, xmax, ymax or NULL: fitted
     const char *title;
 } PlotSpec;
 
 typedef struct PlotStats {
-    size_t samples;  // vertices of all curves (before clipping)
-    int subpaths;    // of all curves
-    double box[4];   // the window: xmin, ymin, xmax, ymax
-    int digits;      // significant digits of the curves' coordinates
-    int keep_curves; // in: 1 to receive the curves' samples below
+    size_t samples;    // vertices of all curves (before clipping)
+    int subpaths;      // of all curves
+    double box[4];     // the window: xmin, ymin, xmax, ymax
+    int digits;        // significant digits of the curves' coordinates
+    int keep_curves;   // in: 1 to receive the curves' samples below
     PlotCurve *curves; // out (keep_curves): ncurves, free each with
                        // plot_curve_clear, then the array with free()
 } PlotStats;

@@ -13,8 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/numfmt.h"
 #include "base/mem.h"
+#include "base/numfmt.h"
 
 int sample_number(const char *text, double *v)
 {

@@ -281,8 +281,8 @@ static int check_points(const EvalSetup *s, const Plan *p, const char *usage,
                 "output %s reads coordinate %d of base point %s "
                 "(coord(%s, %d)), but the points have %d: give every --at "
                 "point at least %d coordinates",
-                p->outputs[s->sel[j]].name, need, p->points[pt],
-                p->points[pt], need, s->dim, need);
+                p->outputs[s->sel[j]].name, need, p->points[pt], p->points[pt],
+                need, s->dim, need);
     }
     for (int j = 0; j < s->nsel && s->dim == 0; j++) {
         const PlanOutput *o = &p->outputs[s->sel[j]];

@@ -10,8 +10,8 @@
 
 #include <errno.h>
 #include <signal.h>
-#include <stdlib.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/time.h>
 #include <unistd.h>
@@ -105,7 +105,6 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
     b->max_memory = (size_t)(x * unit);
     return 2;
 }
-
 
 static void put_fd(void *ctx, const char *s, size_t n)
 {

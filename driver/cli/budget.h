@@ -51,7 +51,6 @@ void budget_options_default(BudgetOptions *b);
 int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
                         FILE *err);
 
-
 /* The options of a command line's derivation: its budget, -v (progress to
  * err) and -D; *bad_define as DeriveOptions.bad_define (may be NULL). */
 DeriveOptions derive_options_cli(const BudgetOptions *b, FILE *err,

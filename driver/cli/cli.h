@@ -18,8 +18,8 @@
 #include <stdio.h>
 
 #include "codegen/lower.h"
-#include "driver/cli/budget.h"
 #include "compiler/derive.h"
+#include "driver/cli/budget.h"
 
 typedef int CliCommand(int argc, char **argv, FILE *out, FILE *err);
 

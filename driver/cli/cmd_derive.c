@@ -8,9 +8,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "driver/cli/args.h"
 #include "compiler/print/format.h"
 #include "compiler/print/steps.h"
+#include "driver/cli/args.h"
 
 typedef struct DeriveArgs {
     FormatStyle style;

@@ -14,11 +14,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/mem.h"
 #include "codegen/collapse.h"
 #include "codegen/emit_c.h"
 #include "driver/cli/args.h"
 #include "driver/cli/outfile.h"
-#include "base/mem.h"
 
 typedef struct EmitArgs {
     const char *cpath, *hpath, *prefix; // NULL: stdout, none, the scheme's

@@ -16,10 +16,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "driver/cli/args.h"
-#include "driver/cli/table.h"
 #include "base/mem.h"
 #include "base/numfmt.h"
+#include "driver/cli/args.h"
+#include "driver/cli/table.h"
 #include "runtime/eval.h"
 
 /* rows per block: up to CHUNK, fewer for high dimensions */
@@ -177,8 +177,8 @@ static void report(FILE *err, const Plan *p, const EvalSetup *s, const Block *b,
             p->outputs[s->sel[j]].name);
     where(err, p, s, b, r);
     /* outside a declared range that the derivation assumed? */
-    for (int i = 0; st == PLAN_STATUS_DOMAIN && p->bound &&
-                    i < p->nparams + p->nconsts;
+    for (int i = 0;
+         st == PLAN_STATUS_DOMAIN && p->bound && i < p->nparams + p->nconsts;
          i++) {
         double x = i < p->nparams ? b->pv[i][r] : b->consts[i - p->nparams];
         if (plan_out_of_bounds(p, i, x)) {

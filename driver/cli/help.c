@@ -48,7 +48,7 @@ const char cli_usage[] =
 
 #define DERIVE_USAGE                                                           \
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin "       \
-    "POINT]\n"                                                                \
+    "POINT]\n"                                                                 \
     "                        [--steps] [--standalone] [--width N]\n"
 
 #define EMIT_C_USAGE                                                           \
@@ -97,8 +97,8 @@ static const char derive_help[] = DERIVE_USAGE
     "pdflatex\n"
     "  --width N           LaTeX: equations wider than N columns of source "
     "are\n"
-    "                      broken between terms (multline*; default 80)\n"
-    COMMON_HELP;
+    "                      broken between terms (multline*; default "
+    "80)\n" COMMON_HELP;
 
 static const char emit_c_help[] = EMIT_C_USAGE
     "\n"

@@ -19,9 +19,9 @@
 
 #include <flint/flint.h>
 
+#include "base/mem.h"
 #include "driver/cli/args.h"
 #include "driver/cli/cli.h"
-#include "base/mem.h"
 
 #define PC_VERSION "0.1.0"
 
@@ -31,11 +31,8 @@ typedef struct Command {
 } Command;
 
 static const Command commands[] = {
-    {"derive", cli_derive},
-    {"emit-c", cli_emit_c},
-    {"eval", cli_eval},
-    {"help", cli_help},
-    {"plot", cli_plot},
+    {"derive", cli_derive}, {"emit-c", cli_emit_c}, {"eval", cli_eval},
+    {"help", cli_help},     {"plot", cli_plot},
 };
 
 static const Command *find_command(const char *name)

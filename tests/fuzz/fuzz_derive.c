@@ -1,8 +1,9 @@
 /*
  * fuzz_derive.c - libFuzzer target for the whole pipeline (parse, sema,
- * exact derivation, then every back end: tests/fuzz/exercise.h).  `make fuzz` builds it with clang and runs it on the
- * example corpus; any crash, sanitizer report or inconsistent result (a
- * NULL derivation without an error, or an error with a derivation) is a bug.
+ * exact derivation, then every back end: tests/fuzz/exercise.h).  `make fuzz`
+ * builds it with clang and runs it on the example corpus; any crash, sanitizer
+ * report or inconsistent result (a NULL derivation without an error, or an
+ * error with a derivation) is a bug.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -16,8 +17,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     int nerr = -1;
-    Derived *d = derive_source("fuzz.pcs", (const char *)data, size, NULL,
-                               &nerr);
+    Derived *d =
+        derive_source("fuzz.pcs", (const char *)data, size, NULL, &nerr);
     if ((d != NULL) != (nerr == 0))
         abort();
     if (d)

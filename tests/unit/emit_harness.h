@@ -146,12 +146,11 @@ static int outside_assumed(const Derived *d, const DerivedOutput *out,
                 fmpq_add(b, lo, hi);
                 fmpq_div_2exp(b, b, 1);
             } else { /* in terms of the consts: [b, a] */
-                assert_int_equal(ratfun_evaluate_fmpq(b, e, vals, &d->ring),
-                                 0);
+                assert_int_equal(ratfun_evaluate_fmpq(b, e, vals, &d->ring), 0);
             }
             int c = fmpq_cmp(vals + v, b), f = d->bound_flags[v];
-            int open = f & (upper ? DERIVED_BOUND_HI_OPEN
-                                  : DERIVED_BOUND_LO_OPEN);
+            int open =
+                f & (upper ? DERIVED_BOUND_HI_OPEN : DERIVED_BOUND_LO_OPEN);
             if (upper ? (c > 0 || (open && c == 0))
                       : (c < 0 || (open && c == 0)))
                 st = 4;

@@ -117,8 +117,8 @@ static inline void rand_fmpq(fmpq_t q, flint_rand_t st)
 
 /* a random combination of the base points lo..hi-1 with weight sum `sum`
  * (1 a point, 0 a direction) */
-static inline void rand_comb(PointEq x, flint_rand_t st, slong lo, slong hi, int sum,
-                      const Ring *r)
+static inline void rand_comb(PointEq x, flint_rand_t st, slong lo, slong hi,
+                             int sum, const Ring *r)
 {
     slong n = hi - lo;
     slong *pts = malloc(sizeof(slong) * (size_t)n);
@@ -146,6 +146,5 @@ static inline void rand_comb(PointEq x, flint_rand_t st, slong lo, slong hi, int
     free(pts);
     ratfun_clear(acc, r);
 }
-
 
 #endif

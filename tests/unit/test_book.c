@@ -1,6 +1,6 @@
 /*
- * test_book.c - golden tests of how derive prints (compiler/book.c): every
- * rule of book.h with its expected text written by hand from the
+ * test_book.c - golden tests of how derive prints (compiler/print/book_*.c):
+ * every rule of book.h with its expected text written by hand from the
  * mathematics, not taken from the printer.
  */
 #include <setjmp.h>
@@ -21,7 +21,6 @@
 #include "compiler/print/latexbreak.h"
 #include "compiler/ring.h"
 #include "libpointcalc.h"
-
 
 /* derives src and prints it in style st with options; returns the text */
 static char *printed_ex(const char *src, FormatStyle st, int width,
@@ -54,11 +53,11 @@ static void expect(const char *src, FormatStyle st, const char *want)
     free(got);
 }
 
-#define DESARGUES                                                          \
-    "point A, B, C, D\nparam t in [0, 1]\n"                                \
-    "P = along(A, C, t)\nQ = along(C, B, t)\nK = along(B, D, t)\n"         \
-    "N = along(P, Q, t)\nJ = along(Q, K, t)\n"                             \
-    "T = meet(line(P, Q), line(A, B))\nS = meet(line(Q, K), line(C, D))\n" \
+#define DESARGUES                                                              \
+    "point A, B, C, D\nparam t in [0, 1]\n"                                    \
+    "P = along(A, C, t)\nQ = along(C, B, t)\nK = along(B, D, t)\n"             \
+    "N = along(P, Q, t)\nJ = along(Q, K, t)\n"                                 \
+    "T = meet(line(P, Q), line(A, B))\nS = meet(line(Q, K), line(C, D))\n"     \
     "M = meet(line(S, N), line(T, J))\n"
 
 /* the denominator 2t^2 - 2t + 1 is t^2 + (1 - t)^2 in the basis of t and
@@ -85,10 +84,9 @@ static void test_bernstein_denominator(void **state)
 static void test_sign_and_basis_of_the_conic(void **state)
 {
     (void)state;
-    static const char src[] =
-        "point A, B, C\nparam u in [0, 1]\nconst w\n"
-        "R = (A*(1-u)^2 + 2*w*C*u*(1-u) + B*u^2)/"
-        "((1-u)^2 + 2*w*u*(1-u) + u^2)\n";
+    static const char src[] = "point A, B, C\nparam u in [0, 1]\nconst w\n"
+                              "R = (A*(1-u)^2 + 2*w*C*u*(1-u) + B*u^2)/"
+                              "((1-u)^2 + 2*w*u*(1-u) + u^2)\n";
     expect(src, FMT_TEXT,
            "R = (A*(1 - u)^2 + B*u^2 + 2*w*C*u*(1 - u))"
            "/((1 - u)^2 + 2*w*u*(1 - u) + u^2)\n");
@@ -120,10 +118,10 @@ static void test_factor_order(void **state)
     (void)state;
     expect("param t in [0, 1]\nconst a\ns = (1 + t^2)*(2 + t)*t*(1 - t)*a\n",
            FMT_TEXT, "s = a*t*(1 - t)*(2 + t)*(1 + t^2)\n");
-    char *x = printed_ex("param t\ns = (3 + t)*(2 + t)*(t^2 + 5)\n",
-                         FMT_TEXT, 0, -1);
-    char *y = printed_ex("param t\ns = (t^2 + 5)*(t + 2)*(t + 3)\n",
-                         FMT_TEXT, 0, -1);
+    char *x =
+        printed_ex("param t\ns = (3 + t)*(2 + t)*(t^2 + 5)\n", FMT_TEXT, 0, -1);
+    char *y =
+        printed_ex("param t\ns = (t^2 + 5)*(t + 2)*(t + 3)\n", FMT_TEXT, 0, -1);
     assert_string_equal(x, y);
     assert_true(strcmp(x, "s = (2 + t)*(3 + t)*(5 + t^2)\n") == 0 ||
                 strcmp(x, "s = (3 + t)*(2 + t)*(5 + t^2)\n") == 0);
@@ -532,8 +530,7 @@ static void test_minus_outside(void **state)
     (void)state;
     expect("param t\nparam u\ns = (t + u^2)/(-1 - t)\n", FMT_TEXT,
            "s = -(t + u^2)/(1 + t)\n");
-    expect("param t\ns = -3*t/(2 - t^2)\n", FMT_TEXT,
-           "s = -3*t/(2 - t^2)\n");
+    expect("param t\ns = -3*t/(2 - t^2)\n", FMT_TEXT, "s = -3*t/(2 - t^2)\n");
 }
 
 /* vectors: a factor common to every weight once in front, opposite
@@ -601,17 +598,16 @@ static void test_latex_names(void **state)
 static void test_multline(void **state)
 {
     (void)state;
-    static const char src[] =
-        "point A, B, C\nparam u in [0, 1]\nconst w\n"
-        "R = (A*(1-u)^2 + 2*w*C*u*(1-u) + B*u^2)/"
-        "((1-u)^2 + 2*w*u*(1-u) + u^2)\n";
+    static const char src[] = "point A, B, C\nparam u in [0, 1]\nconst w\n"
+                              "R = (A*(1-u)^2 + 2*w*C*u*(1-u) + B*u^2)/"
+                              "((1-u)^2 + 2*w*u*(1-u) + u^2)\n";
     char *got = printed_ex(src, FMT_LATEX, 40, -1);
-    assert_string_equal(
-        got, "\\begin{multline*}\n"
-             "R = \\frac{1}{\\bar{u}^{2} + 2 w u \\bar{u} + u^{2}} "
-             "\\Bigl(A \\bar{u}^{2} \\\\\n"
-             "+ B u^{2} + 2 w C u \\bar{u}\\Bigr)\n"
-             "\\end{multline*}\n");
+    assert_string_equal(got,
+                        "\\begin{multline*}\n"
+                        "R = \\frac{1}{\\bar{u}^{2} + 2 w u \\bar{u} + u^{2}} "
+                        "\\Bigl(A \\bar{u}^{2} \\\\\n"
+                        "+ B u^{2} + 2 w C u \\bar{u}\\Bigr)\n"
+                        "\\end{multline*}\n");
     free(got);
     /* at the default width (80) it fits: the fraction is as wide as its
      * numerator */

@@ -106,9 +106,8 @@ static double check_output(const Derived *d, const Plan *p, const Collapse *col,
     double lo = co->lo, hi = co->hi, w = hi - lo;
     for (int s = 0; s < NS; s++)
         prm[pi][s] = s == NS - 1 ? hi : lo + w * s / (NS - 1);
-    const double outside[NOUT] = {lo - 0.25 * w - 0.5, hi + 0.5 * w + 0.25,
-                                  NAN, lo - 1e-3 * w - 1e-3,
-                                  hi + 2.0 * w + 1};
+    const double outside[NOUT] = {lo - 0.25 * w - 0.5, hi + 0.5 * w + 0.25, NAN,
+                                  lo - 1e-3 * w - 1e-3, hi + 2.0 * w + 1};
     for (int s = 0; s < NOUT; s++)
         prm[pi][NS + s] = outside[s];
     /* the outside samples in the middle of a block: the weights code gets
@@ -241,15 +240,14 @@ static double check_output(const Derived *d, const Plan *p, const Collapse *col,
 
 /* derives (a file, or text when not NULL; -D define), checks every
  * collapsed output; returns how many were collapsed */
-static int check_scheme(const char *path, const char *text,
-                        const char *define)
+static int check_scheme(const char *path, const char *text, const char *define)
 {
     const char *defs[1] = {define};
-    DeriveOptions opt = {.max_seconds = 60, .defines = defs,
-                         .ndefines = define ? 1 : 0};
-    Derived *d = text ? derive_source_ex(path, text, strlen(text), stderr,
-                                         NULL, &opt)
-                      : derive_file_ex(path, stderr, NULL, &opt);
+    DeriveOptions opt = {
+        .max_seconds = 60, .defines = defs, .ndefines = define ? 1 : 0};
+    Derived *d =
+        text ? derive_source_ex(path, text, strlen(text), stderr, NULL, &opt)
+             : derive_file_ex(path, stderr, NULL, &opt);
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
     assert_non_null(p);
@@ -391,13 +389,14 @@ static void test_collapse_bound_refuses(void **state)
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         const char *defs[1] = {cases[i].define};
-        DeriveOptions opt = {.max_seconds = 60, .defines = defs,
+        DeriveOptions opt = {.max_seconds = 60,
+                             .defines = defs,
                              .ndefines = cases[i].define ? 1 : 0};
-        Derived *d = cases[i].text
-                         ? derive_source_ex(cases[i].path, cases[i].text,
-                                            strlen(cases[i].text), stderr,
-                                            NULL, &opt)
-                         : derive_file_ex(cases[i].path, stderr, NULL, &opt);
+        Derived *d =
+            cases[i].text
+                ? derive_source_ex(cases[i].path, cases[i].text,
+                                   strlen(cases[i].text), stderr, NULL, &opt)
+                : derive_file_ex(cases[i].path, stderr, NULL, &opt);
         assert_non_null(d);
         Plan *p = lower_derived(d, stderr);
         Collapse *col = collapse_new(d, p);
@@ -503,7 +502,7 @@ static void test_collapse_fast_path_blocks(void **state)
     enum { NMAX = 4 * 64 + 9 };
     double lo = co->lo, hi = co->hi, w = hi - lo;
     const double flag_t[] = {lo - 0.5 * w, hi + 0.25 * w, NAN,
-                          nextafter(lo, -INFINITY), nextafter(hi, INFINITY)};
+                             nextafter(lo, -INFINITY), nextafter(hi, INFINITY)};
     static const int where[] = {64 + 17, 128, 191, 192 + 63, 200};
     static const size_t ns[] = {NMAX, 256, 192, 64, 63, 1, 0};
     static const int dims[] = {2, 3, 5};
@@ -530,12 +529,10 @@ static void test_collapse_fast_path_blocks(void **state)
                         int dim = dims[di];
                         memset(sa, 7, sizeof sa);
                         memset(sb, 7, sizeof sb);
-                        size_t ra =
-                            ref(n, t, pts[0], pts[1], pts[2], pts[3], dim, a,
-                                checked ? sa : NULL);
-                        size_t rb =
-                            got(n, t, pts[0], pts[1], pts[2], pts[3], dim, b,
-                                checked ? sb : NULL);
+                        size_t ra = ref(n, t, pts[0], pts[1], pts[2], pts[3],
+                                        dim, a, checked ? sa : NULL);
+                        size_t rb = got(n, t, pts[0], pts[1], pts[2], pts[3],
+                                        dim, b, checked ? sb : NULL);
                         if (!checked) {
                             assert_int_equal(sb[0], 7); // status untouched
                             if (bad) // no status: nothing to compare

@@ -121,8 +121,7 @@ static void check_case(const Case *c)
     for (int i = 0; i < np; i++) {
         prm[i] = malloc(sizeof(double) * NS);
         for (int k = 0; k < NS; k++) /* the first param sweeps, others 0 */
-            prm[i][k] = i ? 0.0
-                          : c->lo + (c->hi - c->lo) * (k + 0.5) / NS;
+            prm[i][k] = i ? 0.0 : c->lo + (c->hi - c->lo) * (k + 0.5) / NS;
     }
     static const int dims[] = {2, 3, 7};
     for (int di = 0; di < 3; di++) {
@@ -162,8 +161,8 @@ static void check_case(const Case *c)
             worst = fmax(worst, err);
         }
         if (!(worst < 1e-11))
-            fprintf(stderr, "%s, dim %d: property off by %g\n", c->file,
-                    f.dim, worst);
+            fprintf(stderr, "%s, dim %d: property off by %g\n", c->file, f.dim,
+                    worst);
         assert_true(worst < 1e-11);
         free(out);
     }
@@ -178,14 +177,50 @@ static void test_ellipses(void **state)
     (void)state;
     const double a = 3, b = 2, c = sqrt(a * a - b * b);
     const Case cases[] = {
-        {"examples/ellipse_central_angle.pcs", {a, b}, {a, 0}, {0, b},
-         {0, 0}, ELLIPSE, {c, 0}, {-c, 0}, 2 * a, 0, 2 * PI},
-        {"examples/ellipse_central_radius.pcs", {a, b}, {a, 0}, {0, b},
-         {0, 0}, ELLIPSE, {c, 0}, {-c, 0}, 2 * a, b, a},
-        {"examples/ellipse_focus_angle.pcs", {a, b}, {a, 0}, {0, b},
-         {0, 0}, ELLIPSE, {c, 0}, {-c, 0}, 2 * a, 0, 2 * PI},
-        {"examples/ellipse_compression.pcs", {a, b}, {a, 0}, {0, b},
-         {0, 0}, ELLIPSE, {c, 0}, {-c, 0}, 2 * a, 0, 2 * PI},
+        {"examples/ellipse_central_angle.pcs",
+         {a, b},
+         {a, 0},
+         {0, b},
+         {0, 0},
+         ELLIPSE,
+         {c, 0},
+         {-c, 0},
+         2 * a,
+         0,
+         2 * PI},
+        {"examples/ellipse_central_radius.pcs",
+         {a, b},
+         {a, 0},
+         {0, b},
+         {0, 0},
+         ELLIPSE,
+         {c, 0},
+         {-c, 0},
+         2 * a,
+         b,
+         a},
+        {"examples/ellipse_focus_angle.pcs",
+         {a, b},
+         {a, 0},
+         {0, b},
+         {0, 0},
+         ELLIPSE,
+         {c, 0},
+         {-c, 0},
+         2 * a,
+         0,
+         2 * PI},
+        {"examples/ellipse_compression.pcs",
+         {a, b},
+         {a, 0},
+         {0, b},
+         {0, 0},
+         ELLIPSE,
+         {c, 0},
+         {-c, 0},
+         2 * a,
+         0,
+         2 * PI},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         check_case(&cases[i]);
@@ -197,29 +232,30 @@ static void test_ellipses(void **state)
     const double la = hypot(B[0] - C[0], B[1] - C[1]);
     const double lb = hypot(A[0] - C[0], A[1] - C[1]);
     const double lc = hypot(B[0] - A[0], B[1] - A[1]);
-    const double al = acos(((B[0] - A[0]) * (C[0] - A[0]) +
-                            (B[1] - A[1]) * (C[1] - A[1])) / (lc * lb));
-    const double ga = acos(((A[0] - C[0]) * (B[0] - C[0]) +
-                            (A[1] - C[1]) * (B[1] - C[1])) / (lb * la));
+    const double al =
+        acos(((B[0] - A[0]) * (C[0] - A[0]) + (B[1] - A[1]) * (C[1] - A[1])) /
+             (lc * lb));
+    const double ga =
+        acos(((A[0] - C[0]) * (B[0] - C[0]) + (A[1] - C[1]) * (B[1] - C[1])) /
+             (lb * la));
     const double th = 0.7, mm = 3, nn = 1.5;
     const double ak = lb * sin(PI - al - th) / sin(th);
     const double K[2] = {A[0] + (B[0] - A[0]) * ak / lc,
                          A[1] + (B[1] - A[1]) * ak / lc};
     const double ck = hypot(K[0] - C[0], K[1] - C[1]);
     const double f = sqrt(mm * mm - nn * nn);
-    const Case tilted = {"examples/ellipse_axis_at_angle.pcs",
-                         {la, lb, lc, al, ga, th, mm, nn},
-                         {A[0], A[1]},
-                         {B[0], B[1]},
-                         {C[0], C[1]},
-                         ELLIPSE,
-                         {C[0] + f * (K[0] - C[0]) / ck,
-                          C[1] + f * (K[1] - C[1]) / ck},
-                         {C[0] - f * (K[0] - C[0]) / ck,
-                          C[1] - f * (K[1] - C[1]) / ck},
-                         2 * mm,
-                         0,
-                         2 * PI};
+    const Case tilted = {
+        "examples/ellipse_axis_at_angle.pcs",
+        {la, lb, lc, al, ga, th, mm, nn},
+        {A[0], A[1]},
+        {B[0], B[1]},
+        {C[0], C[1]},
+        ELLIPSE,
+        {C[0] + f * (K[0] - C[0]) / ck, C[1] + f * (K[1] - C[1]) / ck},
+        {C[0] - f * (K[0] - C[0]) / ck, C[1] - f * (K[1] - C[1]) / ck},
+        2 * mm,
+        0,
+        2 * PI};
     check_case(&tilted);
 }
 
@@ -229,12 +265,38 @@ static void test_hyperbolas(void **state)
     const double a = 2, b = 1.5, c = sqrt(a * a + b * b);
     const double w = asin(b / c); /* the asymptotes' angle */
     const Case cases[] = {
-        {"examples/hyperbola_central_angle.pcs", {a, b}, {a, 0}, {0, b},
-         {0, 0}, HYPERBOLA, {c, 0}, {-c, 0}, 2 * a, -w + 1e-3, w - 1e-3},
-        {"examples/hyperbola_central_radius.pcs", {a, b}, {a, 0}, {0, b},
-         {0, 0}, HYPERBOLA, {c, 0}, {-c, 0}, 2 * a, a, 10 * a},
-        {"examples/hyperbola_focus_angle.pcs", {a, b}, {a, 0}, {0, b},
-         {0, 0}, HYPERBOLA, {c, 0}, {-c, 0}, 2 * a, w + 1e-3,
+        {"examples/hyperbola_central_angle.pcs",
+         {a, b},
+         {a, 0},
+         {0, b},
+         {0, 0},
+         HYPERBOLA,
+         {c, 0},
+         {-c, 0},
+         2 * a,
+         -w + 1e-3,
+         w - 1e-3},
+        {"examples/hyperbola_central_radius.pcs",
+         {a, b},
+         {a, 0},
+         {0, b},
+         {0, 0},
+         HYPERBOLA,
+         {c, 0},
+         {-c, 0},
+         2 * a,
+         a,
+         10 * a},
+        {"examples/hyperbola_focus_angle.pcs",
+         {a, b},
+         {a, 0},
+         {0, b},
+         {0, 0},
+         HYPERBOLA,
+         {c, 0},
+         {-c, 0},
+         2 * a,
+         w + 1e-3,
          2 * PI - w - 1e-3},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
@@ -301,28 +363,72 @@ static void test_circles(void **state)
         double b2 = tB[0] * tB[0] + tB[1] * tB[1];
         double c2 = tC[0] * tC[0] + tC[1] * tC[1];
         ox = (a2 * (tB[1] - tC[1]) + b2 * (tC[1] - tA[1]) +
-              c2 * (tA[1] - tB[1])) / d;
+              c2 * (tA[1] - tB[1])) /
+             d;
         oy = (a2 * (tC[0] - tB[0]) + b2 * (tA[0] - tC[0]) +
-              c2 * (tB[0] - tA[0])) / d;
+              c2 * (tB[0] - tA[0])) /
+             d;
     }
     const double R3 = hypot(tA[0] - ox, tA[1] - oy);
-    const double qC[2] = {1.4, 2.2}, ky = (qC[0] * qC[0] + qC[1] * qC[1]) /
-                                         (2 * qC[1]);
+    const double qC[2] = {1.4, 2.2},
+                 ky = (qC[0] * qC[0] + qC[1] * qC[1]) / (2 * qC[1]);
     const Case cases[] = {
-        {"examples/circle_three_points.pcs", {0}, {tA[0], tA[1]},
-         {tB[0], tB[1]}, {tC[0], tC[1]}, CIRCLE, {ox, oy}, {0, 0}, R3, 0,
+        {"examples/circle_three_points.pcs",
+         {0},
+         {tA[0], tA[1]},
+         {tB[0], tB[1]},
+         {tC[0], tC[1]},
+         CIRCLE,
+         {ox, oy},
+         {0, 0},
+         R3,
+         0,
          50},
-        {"examples/circle_two_points_tangent.pcs", {0}, {0, 0}, {0, 0},
-         {qC[0], qC[1]}, CIRCLE, {0, ky}, {0, 0}, ky, 0, 50, {1.7, 0}},
-        {"examples/circle_angle_2.pcs", {a, b, g, R}, {b, 0},
-         {a * cos(g), a * sin(g)}, {0, 0}, CIRCLE, {0, 0}, {0, 0}, R, 0,
+        {"examples/circle_two_points_tangent.pcs",
+         {0},
+         {0, 0},
+         {0, 0},
+         {qC[0], qC[1]},
+         CIRCLE,
+         {0, ky},
+         {0, 0},
+         ky,
+         0,
+         50,
+         {1.7, 0}},
+        {"examples/circle_angle_2.pcs",
+         {a, b, g, R},
+         {b, 0},
+         {a * cos(g), a * sin(g)},
+         {0, 0},
+         CIRCLE,
+         {0, 0},
+         {0, 0},
+         R,
+         0,
          2 * PI},
-        {"examples/circle_angle_1.pcs", {a, b, g, dl, be}, {b, 0},
-         {a * cos(g), a * sin(g)}, {0, 0}, CIRCLE,
-         {b / 2, b / tan(dl) / 2}, {0, 0}, b / (2 * sin(dl)), 0, PI},
-        {"examples/circle_engineering_discriminant.pcs", {cc, h},
-         {-cc / 2, 0}, {cc / 2, 0}, {0, oc}, CIRCLE, {0, h - r}, {0, 0}, r,
-         0, 1},
+        {"examples/circle_angle_1.pcs",
+         {a, b, g, dl, be},
+         {b, 0},
+         {a * cos(g), a * sin(g)},
+         {0, 0},
+         CIRCLE,
+         {b / 2, b / tan(dl) / 2},
+         {0, 0},
+         b / (2 * sin(dl)),
+         0,
+         PI},
+        {"examples/circle_engineering_discriminant.pcs",
+         {cc, h},
+         {-cc / 2, 0},
+         {cc / 2, 0},
+         {0, oc},
+         CIRCLE,
+         {0, h - r},
+         {0, 0},
+         r,
+         0,
+         1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         check_case(&cases[i]);

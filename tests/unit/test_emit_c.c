@@ -185,8 +185,12 @@ static int kernel_values(const Derived *d, int o, fmpq *vals,
             y = fmpq_get_d(b);
         }
         switch (k->fn) {
-        case KF_PI: v = 3.14159265358979323846; break;
-        case KF_COORD: v = k->pb <= dim ? pts[k->pa][k->pb - 1] : NAN; break;
+        case KF_PI:
+            v = 3.14159265358979323846;
+            break;
+        case KF_COORD:
+            v = k->pb <= dim ? pts[k->pa][k->pb - 1] : NAN;
+            break;
         case KF_DIST: {
             double s2 = 0;
             for (int c = 0; c < dim; c++)
@@ -223,11 +227,21 @@ static int kernel_values(const Derived *d, int o, fmpq *vals,
             }
             break;
         }
-        case KF_SIN: v = sin(x); break;
-        case KF_COS: v = cos(x); break;
-        case KF_SINH: v = sinh(x); break;
-        case KF_COSH: v = cosh(x); break;
-        case KF_EXP: v = exp(x); break;
+        case KF_SIN:
+            v = sin(x);
+            break;
+        case KF_COS:
+            v = cos(x);
+            break;
+        case KF_SINH:
+            v = sinh(x);
+            break;
+        case KF_COSH:
+            v = cosh(x);
+            break;
+        case KF_EXP:
+            v = exp(x);
+            break;
         case KF_LN:
             if (fmpq_sgn(a) <= 0)
                 st = 4;
@@ -239,10 +253,17 @@ static int kernel_values(const Derived *d, int o, fmpq *vals,
                 st = 4;
             v = fabs(x) > 1 ? 0 : k->fn == KF_ASIN ? asin(x) : acos(x);
             break;
-        case KF_ATAN: v = atan(x); break;
-        case KF_ATAN2: v = atan2(x, y); break;
-        case KF_SIGN: v = (double)fmpq_sgn(a); break;
-        default: break;
+        case KF_ATAN:
+            v = atan(x);
+            break;
+        case KF_ATAN2:
+            v = atan2(x, y);
+            break;
+        case KF_SIGN:
+            v = (double)fmpq_sgn(a);
+            break;
+        default:
+            break;
         }
         fmpq_set_double(vals + k->var, v);
         fmpq_clear(b);
@@ -498,13 +519,12 @@ static void test_emit_c_examples_match_exact_and_runtime(void **state)
 static void test_emit_c_function_edges(void **state)
 {
     (void)state;
-    check_scheme_text("edges.pcs",
-                      "point A, B\nparam t\n"
-                      "M = along(A, B, t^(1/5))\n"
-                      "R = along(A, B, t^(3/7) + t^(1/9))\n"
-                      "L = ln(t)\n"
-                      "Q = along(A, B, t^(1/4))\n"
-                      "output M, R, L, Q\n");
+    check_scheme_text("edges.pcs", "point A, B\nparam t\n"
+                                   "M = along(A, B, t^(1/5))\n"
+                                   "R = along(A, B, t^(3/7) + t^(1/9))\n"
+                                   "L = ln(t)\n"
+                                   "Q = along(A, B, t^(1/4))\n"
+                                   "output M, R, L, Q\n");
 }
 
 /* An interpolation scheme passes through its nodes (issue: evaluation at
@@ -512,13 +532,13 @@ static void test_emit_c_function_edges(void **state)
  * generated C (one point and batch) and in the runtime (what `eval` runs),
  * to 1e-12 relative to the largest coordinate, in dims 2, 3 and 7, with
  * random (non-dyadic) points. */
-static void check_nodes_ex(const char *path, const char *define, int o,
-                           int nn, const double *tnode, const int *node_pt,
+static void check_nodes_ex(const char *path, const char *define, int o, int nn,
+                           const double *tnode, const int *node_pt,
                            const double *cst)
 {
     const char *defs[1] = {define};
-    DeriveOptions opt = {.max_seconds = 60, .defines = defs,
-                         .ndefines = define ? 1 : 0};
+    DeriveOptions opt = {
+        .max_seconds = 60, .defines = defs, .ndefines = define ? 1 : 0};
     Derived *d = derive_file_ex(path, stderr, NULL, &opt);
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
@@ -558,13 +578,13 @@ static void check_nodes_ex(const char *path, const char *define, int o,
                                      0);
             else if (way == 1)
                 assert_int_equal(batch((size_t)nn, prm, cst,
-                                       (const double *const *)pts, dim, out,
-                                       st, 1),
+                                       (const double *const *)pts, dim, out, st,
+                                       1),
                                  0);
             else
                 assert_int_equal(plan_eval(p, o, (size_t)nn, prm, cst,
-                                           (const double *const *)pts, dim,
-                                           out, st),
+                                           (const double *const *)pts, dim, out,
+                                           st),
                                  0);
             for (int k = 0; k < nn; k++)
                 for (int cc = 0; cc < dim; cc++) {
@@ -609,8 +629,8 @@ static void test_emit_c_interpolation_passes_through_nodes(void **state)
     check_nodes("examples/interpolation_bezier_order2.pcs", NULL, 2);
     check_nodes("examples/interpolation_desargues.pcs", NULL, 3);
     check_nodes("examples/interpolation_rational_cubic.pcs", NULL, 3);
-    static const char *const orders[] = {"n=1", "n=2", "n=3", "n=4", "n=5",
-                                         "n=6", "n=8", "n=12"};
+    static const char *const orders[] = {"n=1", "n=2", "n=3", "n=4",
+                                         "n=5", "n=6", "n=8", "n=12"};
     for (size_t i = 0; i < sizeof orders / sizeof *orders; i++)
         check_nodes("examples/interpolation_bezier.pcs", orders[i],
                     atoi(orders[i] + 2));
@@ -782,7 +802,6 @@ static void test_emit_c_clash_detects_function_names(void **state)
     derived_free(d);
 }
 
-
 /* lower_q_to_double is the nearest double, ties to even: |q - d| is at
  * most the distance to either neighbour, and on a tie d's last bit is 0 */
 static void test_lower_q_to_double_rounds_to_nearest(void **state)
@@ -909,11 +928,10 @@ static void test_lower_reports_unrepresentable_equations(void **state)
 static void test_lower_keeps_powers_of_factors(void **state)
 {
     (void)state;
-    check_scheme_text("powers.pcs",
-                      "scheme powers\nparam t, u\n"
-                      "s = 1/(t - 3/4)^201\n"
-                      "v = 1/((t - 3/4)^17*(u + 5/8)^17)\n"
-                      "output s, v\n");
+    check_scheme_text("powers.pcs", "scheme powers\nparam t, u\n"
+                                    "s = 1/(t - 3/4)^201\n"
+                                    "v = 1/((t - 3/4)^17*(u + 5/8)^17)\n"
+                                    "output s, v\n");
     static const char src[] = "param t\ns = 1/(t - 3/4)^201\n";
     Derived *d = derive_source("p.pcs", src, strlen(src), stderr, NULL);
     Plan *p = lower_derived(d, stderr);
@@ -974,8 +992,10 @@ static void test_emit_c_denominator_overflow_is_reported(void **state)
             for (int cc = 0; cc < dim; cc++)
                 assert_true(want[i] ? isnan(bout3[dim * i + cc])
                                     : fabs(bout3[dim * i + cc] -
-                                           (cc == 0 ? 1e10 : cc == 1 ? 2.0
-                                            : cc == 2 ? 5.0 : 7.0)) <= 1e-5);
+                                           (cc == 0   ? 1e10
+                                            : cc == 1 ? 2.0
+                                            : cc == 2 ? 5.0
+                                                      : 7.0)) <= 1e-5);
     }
     compiled_clear(&c);
     plan_free(p);
@@ -1000,10 +1020,9 @@ static void test_emit_c_coord_matches_exact(void **state)
     check_scheme_text("coord.pcs", text);
     /* an unknown scalar and kernels in one ring (lower.c's uses_atoms
      * wrote past its array: tests/fuzz/regressions/) */
-    check_scheme_text("us.pcs",
-                      "point A, B\nunknown scalar k\nparam t\n"
-                      "solve A*k + B*(1-k) = along(A, B, 1/2) for k\n"
-                      "M = along(A, B, sin(t)*k + coord(B, 1))\n");
+    check_scheme_text("us.pcs", "point A, B\nunknown scalar k\nparam t\n"
+                                "solve A*k + B*(1-k) = along(A, B, 1/2) for k\n"
+                                "M = along(A, B, sin(t)*k + coord(B, 1))\n");
 
     int nerr = 0;
     Derived *d = derive_source("coord.pcs", text, strlen(text), stderr, &nerr);

@@ -296,9 +296,10 @@ static void test_eval_scheme_errors_exit_1(void **state)
     snprintf(zargs, sizeof zargs, "eval %s/zero.pcs --param t=1", tmpdir);
     usage_error(zargs, "output Z is the zero vector");
     /* emit-c: two outputs that would make the same C function */
-    write_scheme("fnclash.pcs", "scheme f\npoint A, B\nparam t\n"
-                                "M = along(A, B, t)\n"
-                                "M_batch = along(B, A, t)\noutput M, M_batch\n");
+    write_scheme("fnclash.pcs",
+                 "scheme f\npoint A, B\nparam t\n"
+                 "M = along(A, B, t)\n"
+                 "M_batch = along(B, A, t)\noutput M, M_batch\n");
     snprintf(zargs, sizeof zargs, "emit-c %s/fnclash.pcs", tmpdir);
     Run z = run(zargs);
     assert_int_equal(z.rc, 1);

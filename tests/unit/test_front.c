@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+
 #include <cmocka.h>
 
 #include <stdio.h>
@@ -14,12 +15,12 @@
 #include <flint/flint.h>
 
 #include "base/arena.h"
-#include "driver/cli/budget.h"
-#include "compiler/derive.h"
 #include "base/diag.h"
+#include "compiler/derive.h"
 #include "compiler/sema.h"
-#include "libpointcalc.h"
+#include "driver/cli/budget.h"
 #include "grammar/parse.h"
+#include "libpointcalc.h"
 
 /* parses text and returns the AST dump (or the diagnostics); caller frees */
 static char *dump(const char *text, int *nerrors)
@@ -145,8 +146,8 @@ static void test_last_line_without_newline(void **state)
 static void test_scheme_name_defaults_to_file(void **state)
 {
     (void)state;
-    Derived *d = derive_source("dir/arc.v2.pcs", "point A\nM = A\n", 14,
-                               NULL, NULL);
+    Derived *d =
+        derive_source("dir/arc.v2.pcs", "point A\nM = A\n", 14, NULL, NULL);
     assert_non_null(d);
     assert_string_equal(d->scheme, "arc.v2");
     assert_int_equal(d->noutputs, 1);
@@ -257,11 +258,10 @@ static void test_diag_escapes_and_utf8_columns(void **state)
     (void)state;
     static const char esc[] = "point A\nM = A + \x1b[2J\n";
     char *out = diagnose("e\x1b.pcs", esc, sizeof esc - 1);
-    assert_string_equal(out,
-                        "e\\x1b.pcs:2:9: error: unexpected byte 0x1b; "
-                        "expected a name, a number, an operator or '#'\n"
-                        "M = A + \\x1b[2J\n"
-                        "        ^~~~\n");
+    assert_string_equal(out, "e\\x1b.pcs:2:9: error: unexpected byte 0x1b; "
+                             "expected a name, a number, an operator or '#'\n"
+                             "M = A + \\x1b[2J\n"
+                             "        ^~~~\n");
     free(out);
     /* two 2-byte letters (two cells), then an invalid byte (four); one
      * lexical error a line: the invalid byte after the letters is not
@@ -380,8 +380,8 @@ static void test_verbose_progress(void **state)
     size_t n = 0;
     FILE *mem = open_memstream(&out, &n);
     DeriveOptions opt = {.max_seconds = 0, .verbose = mem};
-    Derived *d = derive_source_ex("v.pcs", text, sizeof text - 1, NULL, NULL,
-                                  &opt);
+    Derived *d =
+        derive_source_ex("v.pcs", text, sizeof text - 1, NULL, NULL, &opt);
     fclose(mem);
     assert_non_null(d);
     derived_free(d);
@@ -403,8 +403,8 @@ static void test_api_time_budget(void **state)
     static const char text[] = "point A, B\nparam t\nM = along(A, B, t)\n";
     char *diag = NULL;
     pc_options opt = {.max_seconds = 1e-9};
-    pc_scheme *s = pc_scheme_parse_opts("a.pcs", text, sizeof text - 1, &opt,
-                                        &diag);
+    pc_scheme *s =
+        pc_scheme_parse_opts("a.pcs", text, sizeof text - 1, &opt, &diag);
     assert_null(s);
     assert_non_null(diag);
     assert_non_null(strstr(diag, "a.pcs:3:5: error: the time budget of 1e-09 "
@@ -436,8 +436,7 @@ static void test_api_defines(void **state)
     s = pc_scheme_parse_opts("f.pcs", text, sizeof text - 1, &opt, &diag);
     assert_null(s);
     assert_non_null(diag);
-    assert_string_equal(diag,
-                        "pointcalc: -D m=4: f.pcs declares no 'int m'\n");
+    assert_string_equal(diag, "pointcalc: -D m=4: f.pcs declares no 'int m'\n");
     free(diag);
 }
 

@@ -36,8 +36,8 @@
 static pc_scheme *scheme_of(const char *defs)
 {
     char text[8192];
-    snprintf(text, sizeof text,
-             "point A, B, C\nparam t, u\nconst a, b\n%s\n", defs);
+    snprintf(text, sizeof text, "point A, B, C\nparam t, u\nconst a, b\n%s\n",
+             defs);
     char *diag = NULL;
     pc_scheme *s = pc_scheme_parse("k.pcs", text, strlen(text), &diag);
     if (!s)
@@ -227,7 +227,11 @@ static double r_hyp(double t, double u, double a, double b)
 static double r_abs(double t, double u, double a, double b)
 {
     (void)a, (void)b;
-    return fabs(t - u) + (t > u ? 1.0 : t < u ? -1.0 : 0.0) + 3.14159265358979323846 * t;
+    return fabs(t - u) +
+           (t > u   ? 1.0
+            : t < u ? -1.0
+                    : 0.0) +
+           3.14159265358979323846 * t;
 }
 static double r_dellipse(double t, double u, double a, double b)
 {
@@ -337,8 +341,8 @@ static void fmpq_of_double(fmpq_t q, double d)
 }
 
 /* acc += (c2 t^2 + c1 t + c0) |t - k|^3, exactly */
-static void add_cube_term(fmpq_t acc, const fmpq_t t, long c2, long c1,
-                          long c0, long k)
+static void add_cube_term(fmpq_t acc, const fmpq_t t, long c2, long c1, long c0,
+                          long k)
 {
     fmpq_t p, a;
     fmpq_init(p);
@@ -466,14 +470,10 @@ static void test_derivatives_match_differences(void **state)
 {
     (void)state;
     static const char *const fs[] = {
-        "sin(t)*cos(u*t)",
-        "sqrt(1 + t^2)*exp(-t^2)",
-        "atan2(t^2 + 1, u - t)",
-        "acos(t/3)*ln(2 + t)",
-        "(t^2 + 2)^(1/3)*tanh(t)",
-        "a*b/sqrt(a^2*sin(t)^2 + b^2*cos(t)^2)",
-        "subst(sin(u)^2, u, t^2)",
-        "asin(sin(t)/2)",
+        "sin(t)*cos(u*t)",         "sqrt(1 + t^2)*exp(-t^2)",
+        "atan2(t^2 + 1, u - t)",   "acos(t/3)*ln(2 + t)",
+        "(t^2 + 2)^(1/3)*tanh(t)", "a*b/sqrt(a^2*sin(t)^2 + b^2*cos(t)^2)",
+        "subst(sin(u)^2, u, t^2)", "asin(sin(t)/2)",
     };
     const double t0[] = {0.2, 0.8, 1.3};
     const double us[] = {0.7, 0.7, 0.7};
@@ -572,9 +572,9 @@ static void test_metric_values(void **state)
             }
             double want[3] = {sqrt(d2), g * t, acos(g / sqrt(ab * ac))};
             for (int o = 0; o < 3; o++) {
-                assert_int_equal(pc_eval(p, o, 3, params, NULL, pts, dim,
-                                         out, NULL, NULL),
-                                 PC_OK);
+                assert_int_equal(
+                    pc_eval(p, o, 3, params, NULL, pts, dim, out, NULL, NULL),
+                    PC_OK);
                 assert_true(fabs(out[k] - want[o]) <
                             1e-12 * fmax(1, fabs(want[o])));
             }
@@ -584,16 +584,15 @@ static void test_metric_values(void **state)
                 PC_OK);
             double a = sqrt(bc), b = sqrt(ac), cc = sqrt(ab);
             for (int c = 0; c < dim; c++) {
-                double want_c = (a * A[c] + b * B[c] + cc * C[c]) /
-                                (a + b + cc);
+                double want_c =
+                    (a * A[c] + b * B[c] + cc * C[c]) / (a + b + cc);
                 assert_true(fabs(out[k * dim + c] - want_c) < 1e-12 * 4);
             }
         }
     }
     /* the distances read the points: without them the call is refused */
     double one;
-    assert_int_equal(pc_eval(p, 0, 1, params, NULL, NULL, 2, &one, NULL,
-                             NULL),
+    assert_int_equal(pc_eval(p, 0, 1, params, NULL, NULL, 2, &one, NULL, NULL),
                      PC_EINVAL);
     pc_plan_free(p);
     pc_scheme_free(s);
@@ -611,10 +610,9 @@ static void test_domain_status(void **state)
     double out[4];
     unsigned char st[4];
     size_t nbad = 0;
-    assert_int_equal(
-        pc_eval(p, 0, 4, params, (const double[]){1, 1}, NULL, 1, out, st,
-                &nbad),
-        PC_OK);
+    assert_int_equal(pc_eval(p, 0, 4, params, (const double[]){1, 1}, NULL, 1,
+                             out, st, &nbad),
+                     PC_OK);
     for (int k = 0; k < 3; k++) {
         assert_int_equal(st[k], 4);
         assert_true(isnan(out[k]));
@@ -642,14 +640,13 @@ static void test_printed_functions(void **state)
                               "s6 = atan2(t, a)\n"
                               "s7 = pi*acos(t)\n"
                               "output s1, s2, s3, s4, s5, s6, s7\n";
-    static const char *const text =
-        "s1 = sqrt(a^2 - b^2)\n"
-        "s2 = exp(t/2)\n"
-        "s3 = root(t, 5)\n"
-        "s4 = dist(A, B)\n"
-        "s5 = sin(t)^2\n"
-        "s6 = atan2(t, a)\n"
-        "s7 = pi*acos(t)\n";
+    static const char *const text = "s1 = sqrt(a^2 - b^2)\n"
+                                    "s2 = exp(t/2)\n"
+                                    "s3 = root(t, 5)\n"
+                                    "s4 = dist(A, B)\n"
+                                    "s5 = sin(t)^2\n"
+                                    "s6 = atan2(t, a)\n"
+                                    "s7 = pi*acos(t)\n";
     static const char *const latex =
         "\\[ s_{1} = \\sqrt{a^{2} - b^{2}} \\]\n"
         "\\[ s_{2} = e^{\\frac{t}{2}} \\]\n"

@@ -68,7 +68,8 @@ static void test_linsolve_random_square_exact(void **state)
     slong unique = 0, total = rand_iters(60);
     for (slong it = 0; it < total; it++) {
         slong n = 1 + (slong)n_randint(f->st, 4);
-        RatFunStruct *a = ratfun_vec_init(n * n, r), *a0 = ratfun_vec_init(n * n, r);
+        RatFunStruct *a = ratfun_vec_init(n * n, r),
+                     *a0 = ratfun_vec_init(n * n, r);
         RatFunStruct *b = ratfun_vec_init(n, r), *b0 = ratfun_vec_init(n, r);
         RatFunStruct *x0 = ratfun_vec_init(n, r), *x = ratfun_vec_init(n, r);
         RatFun t;
@@ -167,7 +168,8 @@ static void test_linsolve_singular_and_inconsistent(void **state)
 {
     Fixture *f = *state;
     const Ring *r = &f->r;
-    RatFunStruct *a = ratfun_vec_init(4, r), *b = ratfun_vec_init(2, r), *x = ratfun_vec_init(2, r);
+    RatFunStruct *a = ratfun_vec_init(4, r), *b = ratfun_vec_init(2, r),
+                 *x = ratfun_vec_init(2, r);
     slong rank = -1;
     RatFun e;
     ratfun_init(e, r);
@@ -214,7 +216,8 @@ static void test_linsolve_pivot_off_diagonal(void **state)
 {
     Fixture *f = *state;
     const Ring *r = &f->r;
-    RatFunStruct *a = ratfun_vec_init(4, r), *b = ratfun_vec_init(2, r), *x = ratfun_vec_init(2, r);
+    RatFunStruct *a = ratfun_vec_init(4, r), *b = ratfun_vec_init(2, r),
+                 *x = ratfun_vec_init(2, r);
     RatFun e;
     slong rank;
     ratfun_init(e, r);
@@ -245,7 +248,8 @@ static void test_linsolve_line_intersection_redundant_row(void **state)
     Fixture *f = *state;
     const Ring *r = &f->r;
     PointEq A, B, C, D, c1, c2, rhs, M1, M2;
-    RatFunStruct *a = ratfun_vec_init(6, r), *b = ratfun_vec_init(3, r), *x = ratfun_vec_init(2, r);
+    RatFunStruct *a = ratfun_vec_init(6, r), *b = ratfun_vec_init(3, r),
+                 *x = ratfun_vec_init(2, r);
     RatFun w, e;
     slong rank;
     pteq_init(A, r);
@@ -310,7 +314,8 @@ static void test_linsolve_parallel_lines_inconsistent(void **state)
     Fixture *f = *state;
     const Ring *r = &f->r;
     /* A = P0, B = P1, C = P2, D = C + (B - A): (B-A)l + (C-D)m = C - A */
-    RatFunStruct *a = ratfun_vec_init(6, r), *b = ratfun_vec_init(3, r), *x = ratfun_vec_init(2, r);
+    RatFunStruct *a = ratfun_vec_init(6, r), *b = ratfun_vec_init(3, r),
+                 *x = ratfun_vec_init(2, r);
     slong rank;
     static const char *const A[6] = {"-1", "1", "1", "-1", "0", "0"};
     static const char *const B[3] = {"-1", "0", "1"};

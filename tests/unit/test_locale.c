@@ -28,10 +28,10 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
-#include "driver/cli/table.h"
-#include "driver/cli/budget.h"
 #include "compiler/derive.h"
 #include "compiler/print/format.h"
+#include "driver/cli/budget.h"
+#include "driver/cli/table.h"
 #include "runtime/plan.h"
 #include "runtime/plot.h"
 #include "runtime/sample.h"
@@ -223,8 +223,9 @@ static void test_outputs_do_not_depend_on_the_locale(void **state)
     char *comma = numbers();
     setlocale(LC_ALL, "C");
     assert_string_equal(c, comma);
-    assert_string_equal(c, "0.5 -1.2499999999999999e-07 3 1.0000000000000001e+300 "
-                           "0.10000000000000001 0.250.50.750.5 s");
+    assert_string_equal(c,
+                        "0.5 -1.2499999999999999e-07 3 1.0000000000000001e+300 "
+                        "0.10000000000000001 0.250.50.750.5 s");
     free(c);
     free(comma);
 }

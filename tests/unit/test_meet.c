@@ -271,13 +271,11 @@ static void test_meet_degenerate_cases(void **state)
     ratfun_clear(s, r);
 }
 
-
 /* a generator made from X: along(X, Q, s) with Q a base point of lo..hi-1
  * or (a quarter of them) a random point; or (a sixth) a base point, or
  * when may_be_direction (a sixth) the direction (Q - X)*s */
-static void rand_gen_from(PointEq g, const PointEq x, flint_rand_t st,
-                          slong lo, slong hi, int may_be_direction,
-                          const Ring *r)
+static void rand_gen_from(PointEq g, const PointEq x, flint_rand_t st, slong lo,
+                          slong hi, int may_be_direction, const Ring *r)
 {
     PointEq q;
     RatFun s;
@@ -360,9 +358,8 @@ static void test_meet_flats_through_one_point(void **state)
             }
             construct_meet_stats(&fast1, &red1);
         }
-        MeetStatus ms =
-            check_meet((const PointEq *)a, 2, (const PointEq *)b,
-                       plane ? 3 : 2, r, __LINE__);
+        MeetStatus ms = check_meet((const PointEq *)a, 2, (const PointEq *)b,
+                                   plane ? 3 : 2, r, __LINE__);
         ok += ms == MEET_OK;
         if (span && ms == MEET_OK) {
             slong fast2, red2;

@@ -1,6 +1,6 @@
 /*
- * test_plot.c - runtime/plot_*.c and svg.c: the sampled paths against plan_eval (read
- * back from the SVG), poles cut, the sample budget, the projections, the
+ * test_plot.c - runtime/plot_*.c and svg.c: the sampled paths against plan_eval
+ * (read back from the SVG), poles cut, the sample budget, the projections, the
  * forward-mode derivatives against the scheme's own diff(), and the SVG's
  * structure (a small well-formedness checker below).
  */
@@ -193,9 +193,9 @@ static void test_xml_checker_can_fail(void **state)
 /* ---- reading paths back -------------------------------------------------- */
 
 typedef struct Path {
-    int n;          // vertices
+    int n; // vertices
     double *x, *y;
-    int *move;      // 1: the vertex starts a subpath (M)
+    int *move; // 1: the vertex starts a subpath (M)
     int subpaths;
 } Path;
 
@@ -278,8 +278,8 @@ static void check_path_against_eval(Fix *f, const PlotSpec *s, int o,
         int found = 0;
         for (; j < c->n && !found; j++) {
             /* the printed precision: a unit in the last digit */
-            double tol = fmax(fabs(P.x[v]), fabs(P.y[v])) *
-                             pow(10, 1 - digits) + 1e-300;
+            double tol =
+                fmax(fabs(P.x[v]), fabs(P.y[v])) * pow(10, 1 - digits) + 1e-300;
             if (fabs(c->x[j] - P.x[v]) <= tol && fabs(c->y[j] - P.y[v]) <= tol)
                 found = 1;
             else
@@ -339,8 +339,7 @@ static void test_plot_desargues_2d_path_is_eval(void **state)
     assert_true(st.curves[0].n > 10 && st.curves[0].n < 1000);
     assert_true(fabs(st.curves[0].x[0] - 0) < 1e-12);
     assert_true(fabs(st.curves[0].x[st.curves[0].n - 1] - 5) < 1e-12);
-    check_path_against_eval(&f, &s, curves[0], svg, &st.curves[0],
-                            st.digits);
+    check_path_against_eval(&f, &s, curves[0], svg, &st.curves[0], st.digits);
     /* small: a few KB */
     assert_true(strlen(svg) < 20000);
     plot_curve_clear(&st.curves[0]);
@@ -354,11 +353,10 @@ static void test_plot_pole_is_cut(void **state)
     (void)state;
     Fix f;
     /* M = (t, 1/(3t - 1)): a hyperbola with its pole at t = 1/3 */
-    static const char text[] =
-        "point A, B, C\nparam t in [-1, 1]\n"
-        "U = (B - A)*t + A\n"
-        "M = U + (C - A)*(1/(3*t - 1))\n"
-        "output M\n";
+    static const char text[] = "point A, B, C\nparam t in [-1, 1]\n"
+                               "U = (B - A)*t + A\n"
+                               "M = U + (C - A)*(1/(3*t - 1))\n"
+                               "output M\n";
     static const double pts[] = {0, 0, 1, 0, 0, 1};
     fix_init(&f, text, 2, pts);
     PlotSpec s;
@@ -396,7 +394,8 @@ static void test_plot_pole_is_cut(void **state)
     assert_int_equal(P.subpaths, 2);
     for (int v = 1; v < P.n; v++)
         if (!P.move[v]) /* a drawn segment never spans the asymptote */
-            assert_false(P.x[v - 1] * P.x[v] < 0 && fabs(P.y[v] - P.y[v - 1]) > 10);
+            assert_false(P.x[v - 1] * P.x[v] < 0 &&
+                         fabs(P.y[v] - P.y[v - 1]) > 10);
     path_clear(&P);
     plot_curve_clear(&st.curves[0]);
     free(st.curves);

@@ -20,6 +20,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+
 #include <cmocka.h>
 
 #include <dirent.h>
@@ -82,8 +83,8 @@ static char *trim(char *s)
     while (*s == ' ' || *s == '\t')
         s++;
     char *e = s + strlen(s);
-    while (e > s && (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' ||
-                     e[-1] == '\n'))
+    while (e > s &&
+           (e[-1] == ' ' || e[-1] == '\t' || e[-1] == '\r' || e[-1] == '\n'))
         *--e = '\0';
     return s;
 }
@@ -118,8 +119,8 @@ static Derived *derive_with_output_ex(const char *path, const char *text,
                                       const char *want)
 {
     /* drop any existing output statement: replace "output" at line start */
-    char *copy = malloc(len + strlen(name) + (want ? 2 * strlen(want) : 0) +
-                        64);
+    char *copy =
+        malloc(len + strlen(name) + (want ? 2 * strlen(want) : 0) + 64);
     size_t k = 0;
     const char *p = text;
     while (p < text + len) {
@@ -136,8 +137,9 @@ static Derived *derive_with_output_ex(const char *path, const char *text,
         p += l;
     }
     if (want)
-        k += (size_t)sprintf(copy + k, "\nexpect__ = (%s)\noutput %s, "
-                                       "expect__\n",
+        k += (size_t)sprintf(copy + k,
+                             "\nexpect__ = (%s)\noutput %s, "
+                             "expect__\n",
                              want, name);
     else
         k += (size_t)sprintf(copy + k, "\noutput %s\n", name);
@@ -207,8 +209,7 @@ static void check_expectations(const char *path)
                                                        : "scalar";
             CHECK(strcmp(got, want) == 0, "%s: kind of %s is %s, expected %s",
                   path, name, got, want);
-        } else if (strcmp(kind, "weight") == 0 ||
-                   strcmp(kind, "scalar") == 0) {
+        } else if (strcmp(kind, "weight") == 0 || strcmp(kind, "scalar") == 0) {
             RatFun exp, got;
             ratfun_init(exp, r);
             int rc = ratfun_set_str(exp, want, r);
@@ -237,8 +238,8 @@ static void check_expectations(const char *path)
             } else {
                 rc = ratfun_set_str(exp, want, r);
             }
-            CHECK(rc == 0, "%s: cannot parse expectation '%s' (%d)", path,
-                  want, rc);
+            CHECK(rc == 0, "%s: cannot parse expectation '%s' (%d)", path, want,
+                  rc);
             if (strcmp(kind, "scalar") == 0) {
                 CHECK(o->kind == KIND_SCALAR, "%s: %s is not a scalar", path,
                       name);
@@ -246,8 +247,7 @@ static void check_expectations(const char *path)
             } else {
                 slong pt = derived_find_point(d, point);
                 CHECK(pt >= 0, "%s: unknown point '%s'", path, point);
-                CHECK(o->kind != KIND_SCALAR, "%s: %s is a scalar", path,
-                      name);
+                CHECK(o->kind != KIND_SCALAR, "%s: %s is a scalar", path, name);
                 if (pt >= 0)
                     pteq_get_weight(got, o->eq, pt, r);
             }
@@ -336,8 +336,8 @@ static void check_errors(const char *path)
                      rest);
         }
         char *hit = pos ? strstr(pos, want) : NULL;
-        CHECK(hit != NULL, "%s: expected diagnostic\n  %s\ngot\n%s", path,
-              want, out);
+        CHECK(hit != NULL, "%s: expected diagnostic\n  %s\ngot\n%s", path, want,
+              out);
         if (hit)
             pos = hit + strlen(want);
     }
@@ -353,8 +353,8 @@ static void check_errors(const char *path)
         p = p ? strchr(p + 1, ':') : NULL;
         if (!p)
             continue;
-        snprintf(want, sizeof want, "%s:%.*s: note:%s", path,
-                 (int)(p - msg), msg, p + 1);
+        snprintf(want, sizeof want, "%s:%.*s: note:%s", path, (int)(p - msg),
+                 msg, p + 1);
         CHECK(out && strstr(out, want), "%s: expected note\n  %s\ngot\n%s",
               path, want, out);
     }

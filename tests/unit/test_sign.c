@@ -143,11 +143,12 @@ static void random_poly(fmpz_mpoly_t p, const World *w, flint_rand_t rs)
 
 /* a random rational in the box's side of v (beyond: past every end
  * that is not in keep: 1 lower, 2 upper) */
-static void random_in(fmpq_t x, const Box *b, int v, int keep,
-                      flint_rand_t rs)
+static void random_in(fmpq_t x, const Box *b, int v, int keep, flint_rand_t rs)
 {
-    int has_lo = b->has_lo[v] && (keep & 1), has_hi = b->has_hi[v] && (keep & 2);
-    slong lo = has_lo ? b->lo[v] * 64 : -2000, hi = has_hi ? b->hi[v] * 64 : 2000;
+    int has_lo = b->has_lo[v] && (keep & 1),
+        has_hi = b->has_hi[v] && (keep & 2);
+    slong lo = has_lo ? b->lo[v] * 64 : -2000,
+          hi = has_hi ? b->hi[v] * 64 : 2000;
     if (has_lo && !has_hi)
         hi = lo + 2000;
     if (has_hi && !has_lo)
@@ -265,20 +266,19 @@ static void test_sign_cases(void **state)
     World w;
     world_init(&w);
     /* x0 in [0, 1] (lo, hi = 0, 4 quarters), x1 in (0, 1), x2 free */
-    Box b = {{1, 1, 0}, {1, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 0, 0},
-             {4, 4, 0}};
-    assert_int_equal(sign_of(&w, &b, "x0"), 1);            /* >= 0 */
-    assert_int_equal(w.K.used[0], 1);                       /* lo only */
-    assert_int_equal(sign_of(&w, &b, "x1"), 2);            /* > 0: open */
-    assert_int_equal(sign_of(&w, &b, "x0 - 2"), -2);       /* hi only */
+    Box b = {{1, 1, 0}, {1, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 0, 0}, {4, 4, 0}};
+    assert_int_equal(sign_of(&w, &b, "x0"), 1);      /* >= 0 */
+    assert_int_equal(w.K.used[0], 1);                /* lo only */
+    assert_int_equal(sign_of(&w, &b, "x1"), 2);      /* > 0: open */
+    assert_int_equal(sign_of(&w, &b, "x0 - 2"), -2); /* hi only */
     assert_int_equal(w.K.used[0], 2);
-    assert_int_equal(sign_of(&w, &b, "x0 - x0^2"), 1);     /* factors */
-    assert_int_equal(sign_of(&w, &b, "x1^2 - 1"), -2);     /* (0, 1) */
-    assert_int_equal(w.K.used[1], 3);                       /* both ends */
-    assert_int_equal(sign_of(&w, &b, "x2^2 + 1"), 2);      /* even power */
+    assert_int_equal(sign_of(&w, &b, "x0 - x0^2"), 1); /* factors */
+    assert_int_equal(sign_of(&w, &b, "x1^2 - 1"), -2); /* (0, 1) */
+    assert_int_equal(w.K.used[1], 3);                  /* both ends */
+    assert_int_equal(sign_of(&w, &b, "x2^2 + 1"), 2);  /* even power */
     assert_int_equal(sign_of(&w, &b, "x2^2"), 1);
-    assert_int_equal(sign_of(&w, &b, "x2"), 0);            /* unknown */
-    assert_int_equal(sign_of(&w, &b, "3*x0 - 1"), 0);      /* changes */
+    assert_int_equal(sign_of(&w, &b, "x2"), 0);       /* unknown */
+    assert_int_equal(sign_of(&w, &b, "3*x0 - 1"), 0); /* changes */
     assert_int_equal(sign_of(&w, &b, "2*x0 - 1"), 0);
     assert_int_equal(sign_of(&w, &b, "x0*x2^2"), 1);
     assert_int_equal(sign_of(&w, &b, "-x1*x2^2 - x1"), -2);

@@ -20,6 +20,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+
 #include <cmocka.h>
 
 #include <stdio.h>
@@ -272,8 +273,7 @@ static void test_family_interpolation_is_lagrange(void **state)
         char def[32];
         const char *defs[1] = {def};
         snprintf(def, sizeof def, "n=%ld", (long)n);
-        DeriveOptions opt = {.max_seconds = 60, .defines = defs,
-                             .ndefines = 1};
+        DeriveOptions opt = {.max_seconds = 60, .defines = defs, .ndefines = 1};
         int nerr = 0;
         Derived *d = derive_source_ex("family.pcs", FAMILY, strlen(FAMILY),
                                       stderr, &nerr, &opt);
@@ -309,19 +309,18 @@ static void test_family_interpolation_is_lagrange(void **state)
 static void test_contour_arcs_match_the_book(void **state)
 {
     (void)state;
-    static const char *const den[] = {
-        "1 - (1-t)*t", "1 - 2*(1-t)*t", "1 - 3*(1-t)*t + (1-t)^2*t^2",
-        "1 - 4*(1-t)*t + 3*(1-t)^2*t^2"};
+    static const char *const den[] = {"1 - (1-t)*t", "1 - 2*(1-t)*t",
+                                      "1 - 3*(1-t)*t + (1-t)^2*t^2",
+                                      "1 - 4*(1-t)*t + 3*(1-t)^2*t^2"};
     for (int k = 2; k <= 5; k++) {
         char def[16], wa[128], wb[128];
         const char *defs[1] = {def};
         snprintf(def, sizeof def, "k=%d", k);
         snprintf(wa, sizeof wa, "(1-t)^%d/(%s)", k + 1, den[k - 2]);
         snprintf(wb, sizeof wb, "t^%d/(%s)", k + 1, den[k - 2]);
-        DeriveOptions opt = {.max_seconds = 60, .defines = defs,
-                             .ndefines = 1};
-        Derived *d = derive_file_ex("examples/contour_arcs.pcs", stderr, NULL,
-                                    &opt);
+        DeriveOptions opt = {.max_seconds = 60, .defines = defs, .ndefines = 1};
+        Derived *d =
+            derive_file_ex("examples/contour_arcs.pcs", stderr, NULL, &opt);
         assert_non_null(d);
         const DerivedOutput *m = &d->outputs[0];
         assert_int_equal(m->eq->len, 3);
@@ -356,8 +355,8 @@ static void test_solve_budgets(void **state)
     DeriveOptions opt = {.max_seconds = 0.2};
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    Derived *d = derive_source_ex("slow.pcs", slow, sizeof slow - 1, mem,
-                                  NULL, &opt);
+    Derived *d =
+        derive_source_ex("slow.pcs", slow, sizeof slow - 1, mem, NULL, &opt);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double secs = (double)(t1.tv_sec - t0.tv_sec) +
                   1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);

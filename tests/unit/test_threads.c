@@ -29,9 +29,9 @@
 #include <flint/flint.h>
 #include <math.h>
 
-#include "compiler/construct.h"
 #include "base/mem.h"
 #include "base/strbuf.h"
+#include "compiler/construct.h"
 #include "libpointcalc.h"
 #include "runtime/plan.h"
 
