@@ -14,6 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/check.h"
+
 typedef struct Builtin_info {
     const char *name;
     int min_args, max_args;
@@ -590,9 +592,8 @@ static int check_expr(Sema *S, Node *n)
     case ND_CALL:
         k = check_call(S, n);
         break;
-    case ND_INDEX: /* expand.c replaced every one; kept for safety */
-        diag_error(S->diag, n->span, "internal error: an unexpanded index");
-        break;
+    case ND_INDEX: /* expand.c replaced every one */
+        PC_UNREACHABLE("an index left by expand");
     }
     n->is_point = k > 0;
     return k;

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/check.h"
 #include "base/mem.h"
 #include "compiler/construct.h"
 
@@ -106,9 +107,7 @@ static int meet_report(Deriver *D, MeetStatus ms, const Node *n, const Node *fa,
         derive_kernel_error(D, nf->err, n, NULL);
         break;
     case MEET_NO_POINT: /* checked above */
-        diag_error(D->diag, n->span,
-                   "internal error: a flat of meet() without a point");
-        break;
+        PC_UNREACHABLE("a flat of meet() without a point");
     }
     return st;
 }
@@ -404,9 +403,7 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
     }
     default:
         /* sema reports unimplemented builtins and stray line()/plane() */
-        diag_error(D->diag, n->span, "internal error: unexpected %s()",
-                   n->text);
-        return -1;
+        PC_UNREACHABLE("a call sema should have refused");
     }
 }
 
@@ -436,10 +433,8 @@ static int eval_pow(Deriver *D, Value *res, const Node *n)
                        "most 1000");
             goto done;
         }
-        if (!D->K) { /* cannot happen: sema counted this power */
-            diag_error(D->diag, n->span, "internal error: no kernel slots");
-            goto done;
-        }
+        if (!D->K) /* the ring plan counted this power */
+            PC_UNREACHABLE("no kernel slots for a root");
         if (res->s->num->length + res->s->den->length > KERNEL_MAX_TERMS) {
             derive_kernel_error(D, KERNEL_EBIG, n, NULL);
             goto done;

@@ -9,6 +9,7 @@
 
 #include <stdlib.h>
 
+#include "base/check.h"
 #include "base/diag.h"
 
 /* ---- metric atoms: dot, dist, angle ------------------------------------- */
@@ -223,11 +224,9 @@ int derive_eval_coord(Deriver *D, Value *res, const Node *n)
             st = -1;
         }
     }
-    if (st == 0 && !D->K) { /* derive_source counts every coord() */
-        diag_error(D->diag, n->span,
-                   "internal error: no variable reserved for coord()");
-        st = -1;
-    } else if (st == 0) {
+    if (st == 0 && !D->K) /* the ring plan counts every coord() */
+        PC_UNREACHABLE("no variable reserved for coord()");
+    if (st == 0) {
         int rc = kernel_coord_pteq(D->K, res->s, P,
                                    strtol(derive_nth(n, 1)->text, NULL, 10));
         st = rc ? derive_kernel_error(D, rc, n, NULL) : 0;
