@@ -18,7 +18,7 @@
  */
 #include "codegen/lower.h"
 #include "base/mem.h"
-#include "compiler/kernel.h"
+#include "compiler/algebra/kernel.h"
 
 #include <math.h>
 #include <stdlib.h>

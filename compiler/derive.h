@@ -16,9 +16,9 @@
 #include <stdio.h>
 
 #include "base/source.h"
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
 
 typedef enum Kind {
     KIND_SCALAR, // a rational function of params and consts

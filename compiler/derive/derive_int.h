@@ -31,9 +31,9 @@
 
 #include "base/diag.h"
 #include "base/source.h"
+#include "compiler/algebra/kernel.h"
+#include "compiler/algebra/linsolve.h"
 #include "compiler/derive.h"
-#include "compiler/kernel.h"
-#include "compiler/linsolve.h"
 #include "compiler/sema.h"
 #include "grammar/ast.h"
 

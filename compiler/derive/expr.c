@@ -15,7 +15,7 @@
 
 #include "base/check.h"
 #include "base/mem.h"
-#include "compiler/construct.h"
+#include "compiler/algebra/construct.h"
 
 /* every argument of a flat is a point (sum 1) or a direction (sum 0),
  * and each flat has at least one point: 0, or -1 reported */

@@ -16,7 +16,7 @@
 #include "base/budget.h"
 #include "base/mem.h"
 #include "base/numfmt.h"
-#include "compiler/solve.h"
+#include "compiler/algebra/solve.h"
 
 /* replaces the unknown scalar var by its solution v in every value derived
  * so far (a value whose denominator vanishes then keeps its form: its

@@ -15,7 +15,7 @@
 
 #include "base/budget.h"
 #include "base/mem.h"
-#include "compiler/construct.h"
+#include "compiler/algebra/construct.h"
 
 void derive_step_clear(DerivedStep *st, const Ring *r)
 {

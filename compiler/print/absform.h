@@ -15,7 +15,7 @@
 #ifndef PC_ABSFORM_H
 #define PC_ABSFORM_H
 
-#include "compiler/kernel.h"
+#include "compiler/algebra/kernel.h"
 
 /* res = p with every sign kernel s = sign(x) whose terms all carry the
  * factor x rewritten as above; is_abs[v] (r->nvars entries, set by the

@@ -67,7 +67,7 @@ char *book_output(const Derived *d, const DerivedOutput *o,
 char *book_latex_name(const char *name);
 
 /* for tests/unit/test_book.c only: the printer's cheap proofs of
- * irreducibility (compiler/polyfactor.h; 1: proved; 0: no proof), which
+ * irreducibility (compiler/algebra/polyfactor.h; 1: proved; 0: no proof), which
  * let it skip FLINT's factoring.
  * surely_irreducible: p (of r) irreducible and primitive;
  * irreducible_mod_small_prime: u (degree >= 1) irreducible over Q;

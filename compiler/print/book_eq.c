@@ -555,14 +555,14 @@ static void put_lhs(StrBuf *b, const DerivedOutput *o, const Ctx *c)
     if (o->diff_of) {
         sb_puts(b, "\\frac{\\mathrm{d}");
         book_put_exp(b, (ulong)o->diff_order, c);
-        book_put_latex_name(b, o->diff_of);
+        poly_print_latex_name(b, o->diff_of);
         sb_puts(b, "}{\\mathrm{d}");
-        book_put_latex_name(b, o->diff_var);
+        poly_print_latex_name(b, o->diff_var);
         book_put_exp(b, (ulong)o->diff_order, c);
         sb_puts(b, "}");
         return;
     }
-    book_put_latex_name(b, o->name);
+    poly_print_latex_name(b, o->name);
 }
 
 /* one line of a multline* (and the line break after it unless last),

@@ -23,9 +23,9 @@
 #include <flint/fmpz_vec.h>
 
 #include "base/mem.h"
-#include "compiler/polyfactor.h"
+#include "compiler/algebra/polyfactor.h"
+#include "compiler/algebra/ring.h"
 #include "compiler/print/absform.h"
-#include "compiler/ring.h"
 
 /* ---- the forms of a polynomial ------------------------------------------ */
 

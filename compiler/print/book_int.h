@@ -11,7 +11,8 @@
 #include <flint/fmpz_mpoly.h>
 
 #include "base/strbuf.h"
-#include "compiler/kernel.h"
+#include "compiler/algebra/kernel.h"
+#include "compiler/algebra/poly_print.h"
 #include "compiler/print/book.h"
 
 /* ---- the print model: sums of products of atoms ------------------------ */
@@ -123,7 +124,6 @@ const DerivedName *book_named_for(slong var, ulong e, const Ctx *c);
 
 /* ---- book_write.c: models as text or LaTeX ------------------------------- */
 
-void book_put_latex_name(StrBuf *b, const char *name); // book.h's rule
 void book_put_point(StrBuf *b, const char *p, const Ctx *c);
 void book_put_exp(StrBuf *b, ulong e, const Ctx *c); // ^e, nothing for e <= 1
 /* num/den: \frac in LaTeX, parentheses as needed in text */

@@ -15,8 +15,8 @@
 #include <flint/fmpz_vec.h>
 
 #include "base/mem.h"
-#include "compiler/polyfactor.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/polyfactor.h"
+#include "compiler/algebra/ring.h"
 
 /* ---- roots where the user put them ----------------------------------------
  */

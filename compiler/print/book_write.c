@@ -20,92 +20,10 @@
 
 /* ---- names ------------------------------------------------------------ */
 
-static const char *const greek[] = {
-    "alpha", "beta",  "gamma", "delta",  "epsilon", "zeta",   "eta",
-    "theta", "iota",  "kappa", "lambda", "mu",      "nu",     "xi",
-    "pi",    "rho",   "sigma", "tau",    "upsilon", "phi",    "chi",
-    "psi",   "omega", "Gamma", "Delta",  "Theta",   "Lambda", "Xi",
-    "Pi",    "Sigma", "Phi",   "Psi",    "Omega",
-};
-
-static int all_digits(const char *s)
-{
-    if (!*s)
-        return 0;
-    for (; *s; s++)
-        if (!isdigit((unsigned char)*s))
-            return 0;
-    return 1;
-}
-
-void book_put_latex_name(StrBuf *b, const char *name)
-{
-    size_t n = strlen(name);
-    const char *under = strchr(name, '_');
-    if (under && under != name && under[1]) {
-        char *stem = pc_xstrndup(name, (size_t)(under - name));
-        StrBuf st = {0};
-        book_put_latex_name(&st, stem);
-        free(stem);
-        char *s = sb_take(&st);
-        size_t sl = strlen(s);
-        if (sl > 0 && s[sl - 1] == '}' && strstr(s, "_{")) {
-            /* the stem has its subscript already: one subscript,
-             * M116_abc -> M_{116,abc} (TeX has no double subscript) */
-            sb_putn(b, s, sl - 1);
-            sb_puts(b, ",");
-        } else {
-            sb_puts(b, s);
-            sb_puts(b, "_{");
-        }
-        free(s);
-        sb_puts(b, under + 1);
-        sb_puts(b, "}");
-        return;
-    }
-    size_t alpha = 0;
-    while (alpha < n && isalpha((unsigned char)name[alpha]))
-        alpha++;
-    for (size_t g = 0; g < sizeof greek / sizeof greek[0]; g++) {
-        size_t gl = strlen(greek[g]);
-        if (gl == alpha && strncmp(greek[g], name, gl) == 0 &&
-            (name[gl] == '\0' || all_digits(name + gl))) {
-            sb_puts(b, "\\");
-            /* the book's (and most texts') angle: \varphi */
-            sb_puts(b, strcmp(greek[g], "phi") == 0 ? "varphi" : greek[g]);
-            if (name[gl]) {
-                sb_puts(b, "_{");
-                sb_puts(b, name + gl);
-                sb_puts(b, "}");
-            }
-            return;
-        }
-    }
-    if (n == 1) {
-        sb_puts(b, name);
-        return;
-    }
-    /* one-letter stem, then capitals or digits: A1, fP, pD, d2M */
-    int sub = isalpha((unsigned char)name[0]);
-    for (size_t i = 1; i < n && sub; i++)
-        sub =
-            isupper((unsigned char)name[i]) || isdigit((unsigned char)name[i]);
-    if (sub) {
-        sb_putn(b, name, 1);
-        sb_puts(b, "_{");
-        sb_puts(b, name + 1);
-        sb_puts(b, "}");
-        return;
-    }
-    sb_puts(b, "\\mathit{");
-    sb_puts(b, name);
-    sb_puts(b, "}");
-}
-
 char *book_latex_name(const char *name)
 {
     StrBuf b = {0};
-    book_put_latex_name(&b, name);
+    poly_print_latex_name(&b, name);
     return sb_take(&b);
 }
 
@@ -117,7 +35,7 @@ static void put_var(StrBuf *b, slong v, const Ctx *c)
     if (c->latex && r->latex && r->latex[v])
         sb_puts(b, r->latex[v]);
     else if (c->latex)
-        book_put_latex_name(b, r->names[v]);
+        poly_print_latex_name(b, r->names[v]);
     else
         sb_puts(b, r->names[v]);
 }
@@ -125,7 +43,7 @@ static void put_var(StrBuf *b, slong v, const Ctx *c)
 void book_put_point(StrBuf *b, const char *p, const Ctx *c)
 {
     if (c->latex)
-        book_put_latex_name(b, p);
+        poly_print_latex_name(b, p);
     else
         sb_puts(b, p);
 }
@@ -304,7 +222,7 @@ void book_put_atom(StrBuf *b, const Atom *a, const Ctx *c)
         if (nm) {
             /* dist(A, C)^4 = a^2 for a = dist(A, C)^2 */
             if (c->latex)
-                book_put_latex_name(b, nm->name);
+                poly_print_latex_name(b, nm->name);
             else
                 sb_puts(b, nm->name);
             book_put_exp(b, a->exp / nm->exp, c);

@@ -6,8 +6,7 @@
  *
  * Also the small printer of weights as re-readable expressions
  * (format_weight: factored, '*' for every product, abs(x) for x*sign(x))
- * that JSON and --steps use, and the cheapest form of a scalar
- * (format_scalar_expanded: numerator and denominator expanded).
+ * that JSON and --steps use.  Polynomials expanded are algebra/poly_print.c's.
  */
 #include "compiler/print/format.h"
 
@@ -27,74 +26,10 @@
 
 static void latex_name(StrBuf *b, const char *name)
 {
-    char *s = book_latex_name(name);
-    sb_puts(b, s);
-    free(s);
+    poly_print_latex_name(b, name);
 }
 
 /* ---- polynomials ------------------------------------------------------ */
-
-/* Writes p expanded.  text: "2*t^2 - 2*t + 1"; json: "2*t^2-2*t+1";
- * latex: "2 t^{2} - 2 t + 1".  A polynomial with a negative leading
- * coefficient is written in ascending order ("1 - t"). */
-static void put_poly(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
-                     FormatStyle st)
-{
-    slong len = fmpz_mpoly_length(p, r->ctx);
-    if (len == 0) {
-        sb_puts(b, "0");
-        return;
-    }
-    fmpz_t c;
-    fmpz_init(c);
-    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(r->nvars ? r->nvars : 1));
-    fmpz_mpoly_get_term_coeff_fmpz(c, p, 0, r->ctx);
-    int reverse = fmpz_sgn(c) < 0 && len > 1;
-    for (slong k = 0; k < len; k++) {
-        slong i = reverse ? len - 1 - k : k;
-        fmpz_mpoly_get_term_coeff_fmpz(c, p, i, r->ctx);
-        fmpz_mpoly_get_term_exp_ui(e, p, i, r->ctx);
-        int neg = fmpz_sgn(c) < 0;
-        if (k == 0) {
-            if (neg)
-                sb_puts(b, "-");
-        } else if (st == FMT_JSON) {
-            sb_puts(b, neg ? "-" : "+");
-        } else {
-            sb_puts(b, neg ? " - " : " + ");
-        }
-        fmpz_abs(c, c);
-        int any_var = 0;
-        for (slong v = 0; v < r->nvars; v++)
-            any_var |= e[v] != 0;
-        int first = 1;
-        if (!fmpz_is_one(c) || !any_var) {
-            sb_fmpz(b, c);
-            first = 0;
-        }
-        for (slong v = 0; v < r->nvars; v++) {
-            if (!e[v])
-                continue;
-            if (!first)
-                sb_puts(b, st == FMT_LATEX ? " " : "*");
-            first = 0;
-            if (st == FMT_LATEX && r->latex && r->latex[v])
-                sb_puts(b, r->latex[v]);
-            else if (st == FMT_LATEX)
-                latex_name(b, r->names[v]);
-            else
-                sb_puts(b, r->names[v]);
-            if (e[v] > 1) {
-                char num[32];
-                snprintf(num, sizeof num, st == FMT_LATEX ? "^{%lu}" : "^%lu",
-                         e[v]);
-                sb_puts(b, num);
-            }
-        }
-    }
-    free(e);
-    fmpz_clear(c);
-}
 
 /* is p (up to the sign s) exactly 1 - v for a variable v?  returns v or -1 */
 static slong one_minus_var(const fmpz_mpoly_t p, const Ring *r)
@@ -157,14 +92,14 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
                 fmpz_mpoly_neg(q, p, r->ctx);
             else
                 fmpz_mpoly_set(q, p, r->ctx);
-            put_poly(b, q, r, st);
+            poly_print(b, q, r, st);
             fmpz_mpoly_clear(q, r->ctx);
             return 1;
         }
         int paren = !bare && fmpz_mpoly_length(p, r->ctx) > 1;
         if (paren)
             sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");
-        put_poly(b, p, r, st);
+        poly_print(b, p, r, st);
         if (paren)
             sb_puts(b, st == FMT_LATEX ? "\\right)" : ")");
         return 1;
@@ -217,10 +152,10 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
             sb_puts(b, "}");
         } else if (atom ||
                    (bare && f->num == 1 && fs[i].exp == 1 && fmpz_is_one(c))) {
-            put_poly(b, fs[i].poly, r, st);
+            poly_print(b, fs[i].poly, r, st);
         } else {
             sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");
-            put_poly(b, fs[i].poly, r, st);
+            poly_print(b, fs[i].poly, r, st);
             sb_puts(b, st == FMT_LATEX ? "\\right)" : ")");
         }
         if (fs[i].exp > 1) {
@@ -335,36 +270,6 @@ char *format_output_rhs(const Derived *d, const DerivedOutput *o,
 {
     BookOptions opt = {st == FMT_LATEX, 0, origin, NULL};
     return book_rhs(d, o, &opt);
-}
-
-char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st)
-{
-    StrBuf b = {0};
-    int frac = !fmpz_mpoly_is_one(x->den, r->ctx);
-    int multi = x->num->length > 1;
-    if (st == FMT_LATEX && frac) {
-        sb_puts(&b, "\\frac{");
-        put_poly(&b, x->num, r, st);
-        sb_puts(&b, "}{");
-        put_poly(&b, x->den, r, st);
-        sb_puts(&b, "}");
-        return sb_take(&b);
-    }
-    if (frac && multi)
-        sb_puts(&b, "(");
-    put_poly(&b, x->num, r, st);
-    if (frac && multi)
-        sb_puts(&b, ")");
-    if (frac) {
-        int dmulti = x->den->length > 1 ||
-                     (fmpz_mpoly_total_degree_si(x->den, r->ctx) > 0 &&
-                      !fmpz_mpoly_is_gen(x->den, -1, r->ctx));
-        sb_puts(&b, dmulti ? "/(" : "/");
-        put_poly(&b, x->den, r, st);
-        if (dmulti)
-            sb_puts(&b, ")");
-    }
-    return sb_take(&b);
 }
 
 void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)

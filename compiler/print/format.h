@@ -14,13 +14,8 @@
 
 #include <stdio.h>
 
+#include "compiler/algebra/poly_print.h" /* FormatStyle */
 #include "compiler/derive.h"
-
-typedef enum FormatStyle {
-    FMT_TEXT,  // book-like plain text
-    FMT_LATEX, // LaTeX math
-    FMT_JSON,  // machine-readable, contract section 4
-} FormatStyle;
 
 /* origin: a base point index to write the equations relative to
  * (M = (A - C)*f + (B - C)*g + C), or -1.  JSON ignores it. */
@@ -51,9 +46,5 @@ char *format_weight_k(const RatFun w, const Ring *r, const struct Kernels *K);
  * with free(). */
 char *format_output_rhs(const Derived *d, const DerivedOutput *o,
                         FormatStyle st, slong origin);
-
-/* x expanded (numerator and denominator as sums of terms, no factoring: as
- * cheap as printing gets), in style st (malloc'd; caller frees) */
-char *format_scalar_expanded(const RatFun x, const Ring *r, FormatStyle st);
 
 #endif

@@ -121,7 +121,7 @@ static void fmpq_set_double(fmpq_t r, double v)
 }
 
 #ifdef PC_DERIVE_H
-#include "compiler/kernel.h"
+#include "compiler/algebra/kernel.h"
 
 /* 4 when a param or const in vals lies outside a declared bound that
  * output o rests on (DerivedOutput.assumed: docs/language.md, "Declared

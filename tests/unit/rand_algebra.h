@@ -17,9 +17,9 @@
 #include <flint/fmpq.h>
 #include <flint/fmpz_mpoly.h>
 
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
 
 static inline void rand_init(flint_rand_t st)
 {

@@ -16,10 +16,10 @@
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 
+#include "compiler/algebra/ring.h"
 #include "compiler/print/book.h"
 #include "compiler/print/format.h"
 #include "compiler/print/latexbreak.h"
-#include "compiler/ring.h"
 #include "libpointcalc.h"
 
 /* derives src and prints it in style st with options; returns the text */

@@ -40,8 +40,8 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "compiler/algebra/kernel.h"
 #include "compiler/derive.h"
-#include "compiler/kernel.h"
 #include "runtime/eval.h"
 #include "tests/unit/emit_harness.h"
 

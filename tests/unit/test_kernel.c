@@ -1,5 +1,5 @@
 /*
- * test_kernel.c - the scalar functions (compiler/kernel.h) through the
+ * test_kernel.c - the scalar functions (compiler/algebra/kernel.h) through the
  * library API:
  *
  *   - identities: expressions that are zero by sin^2 + cos^2 = 1,

@@ -16,10 +16,10 @@
 
 #include <flint/flint.h>
 
-#include "compiler/linsolve.h"
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/linsolve.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
 #include "tests/unit/rand_algebra.h"
 
 static int setup(void **state)

@@ -24,10 +24,10 @@
 
 #include <flint/flint.h>
 
-#include "compiler/construct.h"
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/construct.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
 #include "tests/unit/rand_algebra.h"
 
 static int setup(void **state)

@@ -15,9 +15,9 @@
 
 #include <flint/flint.h>
 
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
 #include "tests/unit/rand_algebra.h"
 
 #define NPTS 6 /* base points 0..NPTS-1 in the random equations */

@@ -17,8 +17,8 @@
 #include <flint/flint.h>
 #include <flint/fmpq.h>
 
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
 #include "tests/unit/rand_algebra.h"
 
 /* the names of the fixture's ring, for rings of fewer variables */

@@ -1,5 +1,5 @@
 /*
- * test_sign.c - the sign proofs of compiler/kernel_sign.c, by random
+ * test_sign.c - the sign proofs of compiler/algebra/kernel_sign.c, by random
  * property tests against exact evaluation:
  *
  *   - random polynomials in three declared variables (random intervals:
@@ -28,7 +28,7 @@
 
 #include <flint/fmpq.h>
 
-#include "compiler/kernel.h"
+#include "compiler/algebra/kernel.h"
 
 enum { NDECL = 3, NSAMPLES = 60, NPOLYS = 400 };
 

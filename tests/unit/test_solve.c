@@ -1,5 +1,5 @@
 /*
- * test_solve.c - linear point systems (compiler/solve.c) and the family
+ * test_solve.c - linear point systems (compiler/algebra/solve.c) and the family
  * schemes built on them.
  *
  *  - Random systems with a known answer: unknowns X_j, true values T_j
@@ -28,12 +28,12 @@
 #include <string.h>
 #include <time.h>
 
+#include "compiler/algebra/linsolve.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
+#include "compiler/algebra/solve.h"
 #include "compiler/derive.h"
-#include "compiler/linsolve.h"
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
-#include "compiler/solve.h"
 #include "tests/unit/rand_algebra.h"
 
 static int setup(void **state)

@@ -31,7 +31,7 @@
 
 #include "base/mem.h"
 #include "base/strbuf.h"
-#include "compiler/construct.h"
+#include "compiler/algebra/construct.h"
 #include "libpointcalc.h"
 #include "runtime/plan.h"
 

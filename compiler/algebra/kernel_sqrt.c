@@ -10,7 +10,7 @@
  * kernel_apply (kernel_fold.c) calls kernel_sqrt_poly for every sqrt of a
  * non-constant argument.
  */
-#include "compiler/kernel_int.h"
+#include "compiler/algebra/kernel_int.h"
 
 #include <stdlib.h>
 

@@ -8,7 +8,7 @@
  * variables, so a scheme without scalars gets one hidden variable that no
  * polynomial ever uses.
  */
-#include "compiler/ring.h"
+#include "compiler/algebra/ring.h"
 
 #include <string.h>
 

@@ -9,7 +9,7 @@
 #ifndef PC_RATFUN_INT_H
 #define PC_RATFUN_INT_H
 
-#include "compiler/ratfun.h"
+#include "compiler/algebra/ratfun.h"
 
 /* Divides num and den by their gcd in place and fixes the sign of den.
  * den is non-zero. */

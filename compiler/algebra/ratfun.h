@@ -20,7 +20,7 @@
 #include <flint/fmpq.h>
 #include <flint/fmpz_mpoly.h>
 
-#include "compiler/ring.h"
+#include "compiler/algebra/ring.h"
 
 typedef struct RatFunStruct {
     fmpz_mpoly_t num; // numerator

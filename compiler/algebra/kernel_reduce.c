@@ -9,7 +9,7 @@
  * conjugate.  Every operation of kernel_fold.c, kernel_sqrt.c and
  * kernel_calc.c ends here; derive.c reduces what it combines.
  */
-#include "compiler/kernel_int.h"
+#include "compiler/algebra/kernel_int.h"
 
 #include <stdlib.h>
 

@@ -13,7 +13,7 @@
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly.h>
 
-#include "compiler/ring.h"
+#include "compiler/algebra/ring.h"
 
 /* ring_factor(f, p, r), done in a ring of only the variables p uses; f in
  * r's ring.  0 when ring_factor fails (f then unspecified). */

@@ -38,9 +38,9 @@
 #ifndef PC_KERNEL_H
 #define PC_KERNEL_H
 
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
-#include "compiler/ring.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
+#include "compiler/algebra/ring.h"
 
 /* X(id, name, C function): the functions a kernel can stand for */
 #define PC_KERNEL_FNS(X)                                                       \

@@ -7,7 +7,7 @@
  * step costs far more than the products it saves.  The kernels' calculus
  * (kernel_calc.c) and derive.c's diff() and subst() stand on these.
  */
-#include "compiler/ratfun_int.h"
+#include "compiler/algebra/ratfun_int.h"
 
 #include <stdlib.h>
 

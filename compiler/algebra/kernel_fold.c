@@ -10,7 +10,7 @@
  * What is left is a kernel (kernel.c), reduced (kernel_reduce.c).  Also
  * x^(p/q) and abs().
  */
-#include "compiler/kernel_int.h"
+#include "compiler/algebra/kernel_int.h"
 
 #include <stdlib.h>
 

@@ -19,7 +19,7 @@
  * operands instead (scalar_mul).  Reduced weights are formed only where a
  * caller asks for them (pteq_get_weight: printing, lowering, tests).
  */
-#include "compiler/pteq.h"
+#include "compiler/algebra/pteq.h"
 
 #include <stdint.h>
 #include <stdlib.h>

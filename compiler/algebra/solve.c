@@ -1,7 +1,7 @@
 /*
  * solve.c - linear systems of point equations (see solve.h).
  */
-#include "compiler/solve.h"
+#include "compiler/algebra/solve.h"
 
 #include <string.h>
 #include <time.h>

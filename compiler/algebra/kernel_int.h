@@ -13,7 +13,7 @@
 #ifndef PC_KERNEL_INT_H
 #define PC_KERNEL_INT_H
 
-#include "compiler/kernel.h"
+#include "compiler/algebra/kernel.h"
 
 /* 0, or the reason to stop (KERNEL_EBIG, KERNEL_ETIME): asked by every
  * loop of the normal form and of substitution (kernel.c) */

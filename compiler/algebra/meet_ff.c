@@ -35,7 +35,7 @@
  * ff_reduce, ff_rows, ff_need, ff_null_vector, ff_divide_multipliers,
  * ff_content, ff_check_rows, ff_form_rows, ff_divide_rows, ff_finish.
  */
-#include "compiler/meet_ff.h"
+#include "compiler/algebra/meet_ff.h"
 
 #include "base/check.h"
 

@@ -10,7 +10,7 @@
  * that settle most cases without factoring at all.  Every answer is exact: a
  * proof is a proof, and "no proof" only sends the caller to FLINT's factoring.
  */
-#include "compiler/polyfactor.h"
+#include "compiler/algebra/polyfactor.h"
 
 #include <stdlib.h>
 #include <string.h>

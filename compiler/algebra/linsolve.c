@@ -12,7 +12,7 @@
  * divisions.  Rows are swapped through an array of row pointers; entries are
  * never struct-copied.
  */
-#include "compiler/linsolve.h"
+#include "compiler/algebra/linsolve.h"
 
 /* x in the normal form; 0, or -1 with nf->err set */
 static int normal(LinNormal *nf, RatFunStruct *x)

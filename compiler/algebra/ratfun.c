@@ -17,7 +17,7 @@
  * Results are computed into fresh polynomials when an input aliases the
  * result, then swapped in; FLINT objects are never struct-copied.
  */
-#include "compiler/ratfun_int.h"
+#include "compiler/algebra/ratfun_int.h"
 
 #include <stdlib.h>
 

@@ -25,7 +25,7 @@
  * decides a sign is recorded (kernels_assumed): the result then holds only
  * on the declared range, and the numeric side checks it (docs/eval.md).
  */
-#include "compiler/kernel.h"
+#include "compiler/algebra/kernel.h"
 
 #include <stdlib.h>
 

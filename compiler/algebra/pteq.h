@@ -27,7 +27,7 @@
 #ifndef PC_PTEQ_H
 #define PC_PTEQ_H
 
-#include "compiler/ratfun.h"
+#include "compiler/algebra/ratfun.h"
 
 typedef struct PtTerm {
     slong point;              // base point index

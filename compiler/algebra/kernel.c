@@ -10,7 +10,7 @@
  * = a ...), the metric atoms dist(A, B) and the coordinates coord(A, k);
  * kernel_int.h lists the files that apply, reduce and derive them.
  */
-#include "compiler/kernel_int.h"
+#include "compiler/algebra/kernel_int.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,7 +18,7 @@
 #include <time.h>
 
 #include "base/mem.h"
-#include "compiler/print/format.h"
+#include "compiler/algebra/poly_print.h"
 
 /* 0, or the reason to stop: an intermediate polynomial beyond
  * KERNEL_MAX_WORK_TERMS terms, or the derivation's time budget spent.
@@ -214,7 +214,7 @@ static char *arg_text(const RatFun x, const Ring *r, FormatStyle st)
     /* expanded: factoring every argument (the printer's form) costs more
      * than the whole derivation of a conic, and reads no better: the book
      * writes sqrt(a^2 - b^2) */
-    char *s = format_scalar_expanded(x, r, st);
+    char *s = poly_print_ratfun(x, r, st);
     if (st == FMT_LATEX && strncmp(s, "\\left(", 6) == 0) {
         size_t n = strlen(s);
         if (n > 13 && strcmp(s + n - 7, "\\right)") == 0) {

@@ -6,7 +6,7 @@
 #ifndef PC_MEET_FF_H
 #define PC_MEET_FF_H
 
-#include "compiler/construct.h"
+#include "compiler/algebra/construct.h"
 
 /* the most columns (defining points of both flats) the fast path and the
  * meet's parameters take */

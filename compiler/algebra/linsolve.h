@@ -12,7 +12,7 @@
 #ifndef PC_LINSOLVE_H
 #define PC_LINSOLVE_H
 
-#include "compiler/ratfun.h"
+#include "compiler/algebra/ratfun.h"
 
 typedef enum LinSolveResult {
     LINSOLVE_UNIQUE,          // rank == n and consistent: x holds the solution

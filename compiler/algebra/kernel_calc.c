@@ -9,7 +9,7 @@
  * builds the image of var and of every kernel over it (sin(t) -> sin(s))
  * and composes all at once.  derive.c's diff() and subst() land here.
  */
-#include "compiler/kernel_int.h"
+#include "compiler/algebra/kernel_int.h"
 
 #include <stdlib.h>
 

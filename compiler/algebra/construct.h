@@ -7,9 +7,9 @@
 #ifndef PC_CONSTRUCT_H
 #define PC_CONSTRUCT_H
 
-#include "compiler/linsolve.h"
-#include "compiler/pteq.h"
-#include "compiler/ratfun.h"
+#include "compiler/algebra/linsolve.h"
+#include "compiler/algebra/pteq.h"
+#include "compiler/algebra/ratfun.h"
 
 typedef enum MeetStatus {
     MEET_OK,

@@ -30,8 +30,8 @@
 #ifndef PC_SOLVE_H
 #define PC_SOLVE_H
 
-#include "compiler/linsolve.h"
-#include "compiler/pteq.h"
+#include "compiler/algebra/linsolve.h"
+#include "compiler/algebra/pteq.h"
 
 typedef enum SolveStatus {
     SOLVE_OK,           // x holds the unknowns

@@ -8,7 +8,7 @@
  * beyond their limit before FLINT would spend minutes or gigabytes on it.
  */
 #define _DEFAULT_SOURCE // lgamma_r (lgamma writes the process-wide signgam)
-#include "compiler/ratfun.h"
+#include "compiler/algebra/ratfun.h"
 
 #include <math.h>
 

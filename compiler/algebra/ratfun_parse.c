@@ -6,7 +6,7 @@
  * exact decimals; the unit tests write their expectations with it
  * (test_ratfun, test_steps).  The language's own parser is grammar/.
  */
-#include "compiler/ratfun.h"
+#include "compiler/algebra/ratfun.h"
 
 #include <string.h>
 

@@ -8,13 +8,13 @@
  * linear system, which also names what is degenerate.  derive.c calls
  * these for every construction of a scheme.
  */
-#include "compiler/construct.h"
+#include "compiler/algebra/construct.h"
 
 #include <stdlib.h>
 
 #include "base/mem.h"
-#include "compiler/linsolve.h"
-#include "compiler/meet_ff.h"
+#include "compiler/algebra/linsolve.h"
+#include "compiler/algebra/meet_ff.h"
 
 /* P*(1 - s) + Q*s: one combination over one denominator */
 void construct_along(PointEq res, const PointEq p, const PointEq q,
