@@ -62,11 +62,10 @@ static void instruction(const Ctx *C, int r, const char *indent)
     case PLAN_FN: {
         int f = x->b & 255, q = x->b >> 8;
         static const char *const cfn[PLAN_NFNS] = {
-            [PLAN_FN_SQRT] = "sqrt", [PLAN_FN_SIN] = "sin",
-            [PLAN_FN_COS] = "cos",   [PLAN_FN_SINH] = "sinh",
-            [PLAN_FN_COSH] = "cosh", [PLAN_FN_EXP] = "exp",
-            [PLAN_FN_LOG] = "log",   [PLAN_FN_ASIN] = "asin",
-            [PLAN_FN_ACOS] = "acos", [PLAN_FN_ATAN] = "atan",
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(p)([PLAN_FN_##ID] = c, )
+#include "base/functions.def"
+#undef PC_FUNCTION
         };
         if (f == PLAN_FN_SIGN) {
             fputs("(double)((", out);
@@ -113,15 +112,15 @@ static void instruction(const Ctx *C, int r, const char *indent)
         fputs(")", out);
         break;
     case PLAN_DOMAIN: { /* the argument outside the function's domain */
-        int f = x->b & 255;
+        PcDomain dom = plan_fn_domain_of(x->b);
         fputs("(double)(", out);
-        if (f == PLAN_FN_ASIN || f == PLAN_FN_ACOS) {
+        if (dom == PC_DOM_UNIT) {
             fputs("fabs(", out);
             emit_operand(C, x->a);
             fputs(") > 1.0)", out);
         } else {
             emit_operand(C, x->a);
-            fputs(f == PLAN_FN_LOG ? " <= 0.0)" : " < 0.0)", out);
+            fputs(dom == PC_DOM_POS ? " <= 0.0)" : " < 0.0)", out);
         }
         break;
     }

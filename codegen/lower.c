@@ -573,37 +573,22 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
     free(den);
 }
 
-/* the PlanFn of a kernel */
+/* the PlanFn of a kernel (the same row of base/functions.def), with the
+ * root's index q in the bits above 8; -1 for the kernels that are no FN
+ * (pi, atan2, the metric atoms: lowered as their own ops) */
 static int plan_fn_of(const Kernel *k)
 {
-    switch (k->fn) {
-    case KF_SQRT:
-        return PLAN_FN_SQRT;
-    case KF_ROOT:
+    static const int fn_of[KF_COUNT] = {
+#define PC_FUNCTION(ID, name, ar, lang, kern, p, c, latex, dom)                \
+    PC_WHEN(kern)([KF_##ID] = PC_PICK(p)(PLAN_FN_##ID, -1), )
+#include "base/functions.def"
+#undef PC_FUNCTION
+        [KF_DIST] = -1,
+        [KF_COORD] = -1,
+    };
+    if (k->fn == KF_ROOT)
         return PLAN_FN_ROOT | (int)(k->q << 8);
-    case KF_SIN:
-        return PLAN_FN_SIN;
-    case KF_COS:
-        return PLAN_FN_COS;
-    case KF_SINH:
-        return PLAN_FN_SINH;
-    case KF_COSH:
-        return PLAN_FN_COSH;
-    case KF_EXP:
-        return PLAN_FN_EXP;
-    case KF_LN:
-        return PLAN_FN_LOG;
-    case KF_ASIN:
-        return PLAN_FN_ASIN;
-    case KF_ACOS:
-        return PLAN_FN_ACOS;
-    case KF_ATAN:
-        return PLAN_FN_ATAN;
-    case KF_SIGN:
-        return PLAN_FN_SIGN;
-    default:
-        return -1;
-    }
+    return fn_of[k->fn];
 }
 
 /* is x exactly an exp() kernel? */
@@ -779,8 +764,7 @@ static int bound_flags(Lower *L, const Derived *d, const DerivedOutput *o,
             int open = d->bound_flags[v] &
                        (upper ? DERIVED_BOUND_HI_OPEN : DERIVED_BOUND_LO_OPEN);
             int dom = plan_mul(
-                L->p,
-                plan_domain(L->p, open ? PLAN_FN_LOG : PLAN_FN_SQRT, diff),
+                L->p, plan_domain(L->p, open ? PLAN_FN_LN : PLAN_FN_SQRT, diff),
                 plan_const(L->p, PLAN_DOMAIN_FLAG));
             bad = bad < 0 ? dom : plan_add(L->p, bad, dom);
         }

@@ -20,13 +20,16 @@ typedef struct Builtin_info {
     const char *name;
     int min_args, max_args;
     int result; // 1 combination, 0 scalar, -1 as its first argument
-    int implemented;
 } BuiltinInfo;
 
-static const BuiltinInfo builtins[] = {
-#define X(id, name, lo, hi, res, impl) {name, lo, hi, res, impl},
+static const BuiltinInfo builtins[BI_COUNT] = {
+#define X(id, name, lo, hi, res) [id] = {name, lo, hi, res},
     PC_BUILTINS(X)
 #undef X
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(lang)([BI_##ID] = {name, ar, ar, 0}, )
+#include "base/functions.def"
+#undef PC_FUNCTION
 };
 
 enum { NBUCKETS = 64 };
@@ -317,8 +320,8 @@ static int check_coord(Sema *S, Node *n)
     return ok < 0 ? -1 : 0;
 }
 
-/* the builtin that call n names, its arity and whether it is implemented
- * checked (n->builtin set): the builtin, or -1 reported */
+/* the builtin that call n names, and its arity checked (n->builtin set):
+ * the builtin, or -1 reported */
 static int find_builtin(Sema *S, Node *n)
 {
     int b;
@@ -359,13 +362,6 @@ static int find_builtin(Sema *S, Node *n)
             diag_error(S->diag, n->span,
                        "%s() takes %d to %d arguments, found %d", bi->name,
                        bi->min_args, bi->max_args, n->nargs);
-        return -1;
-    }
-    if (!bi->implemented) {
-        diag_error(S->diag, n->name_span,
-                   "%s() is not supported yet: the metric scalars (dot, "
-                   "dist, angle) are planned with the projective circle",
-                   bi->name);
         return -1;
     }
     return b;

@@ -16,45 +16,38 @@
 
 #include "base/arena.h"
 #include "base/diag.h"
+#include "base/functions.h"
 #include "grammar/ast.h"
 
-/* X-macro: builtin, name, min args, max args (-1: any), what it returns,
- * implemented (0: reported as "not supported yet"). */
+/* X-macro: the constructions and metric calls: builtin, name, min args,
+ * max args (-1: any), what it returns (1 combination, 0 scalar, -1 as its
+ * first argument).  The scalar functions follow them, one row each of
+ * base/functions.def (those with lang = 1). */
 #define PC_BUILTINS(X)                                                         \
-    X(BI_ALONG, "along", 3, 3, 1, 1)    /* P + (Q - P)*s */                    \
-    X(BI_DIVIDE, "divide", 3, 3, 1, 1)  /* (P + k*Q)/(1 + k) */                \
-    X(BI_MEET, "meet", 2, 2, 1, 1)      /* meet(line, line|plane) */           \
-    X(BI_LINE, "line", 2, 2, 1, 1)      /* only inside meet */                 \
-    X(BI_PLANE, "plane", 3, 3, 1, 1)    /* only inside meet */                 \
-    X(BI_SUBST, "subst", 3, 3, -1, 1)   /* subst(E, t|A, s|P): kind of E */    \
-    X(BI_DIFF, "diff", 2, 3, -1, 1)     /* diff(E, t[, n]) */                  \
-    X(BI_BEZIER, "bezier", 3, -1, 1, 1) /* bezier(t, P0, ..., Pn) */           \
-    X(BI_DOT, "dot", 2, 2, 0, 1)        /* metric: U . V */                    \
-    X(BI_DIST, "dist", 2, 2, 0, 1)      /* metric: |PQ| */                     \
-    X(BI_ANGLE, "angle", 3, 3, 0, 1)    /* metric: angle PQR at Q */           \
-    X(BI_COORD, "coord", 2, 2, 0, 1) /* coordinate k of a point or vector */   \
-    X(BI_SQRT, "sqrt", 1, 1, 0, 1) /* functions: BI_SQRT..BI_SIGN in a row */  \
-    X(BI_SIN, "sin", 1, 1, 0, 1)                                               \
-    X(BI_COS, "cos", 1, 1, 0, 1)                                               \
-    X(BI_TAN, "tan", 1, 1, 0, 1)                                               \
-    X(BI_ASIN, "asin", 1, 1, 0, 1)                                             \
-    X(BI_ACOS, "acos", 1, 1, 0, 1)                                             \
-    X(BI_ATAN, "atan", 1, 1, 0, 1)                                             \
-    X(BI_ATAN2, "atan2", 2, 2, 0, 1) /* atan2(y, x) */                         \
-    X(BI_SINH, "sinh", 1, 1, 0, 1)                                             \
-    X(BI_COSH, "cosh", 1, 1, 0, 1)                                             \
-    X(BI_TANH, "tanh", 1, 1, 0, 1)                                             \
-    X(BI_EXP, "exp", 1, 1, 0, 1)                                               \
-    X(BI_LN, "ln", 1, 1, 0, 1)                                                 \
-    X(BI_ABS, "abs", 1, 1, 0, 1)                                               \
-    X(BI_SIGN, "sign", 1, 1, 0, 1)                                             \
-    X(BI_PI, "pi", 0, 0, 0, 1) /* the name pi (sema makes it this call) */
+    X(BI_ALONG, "along", 3, 3, 1)    /* P + (Q - P)*s */                       \
+    X(BI_DIVIDE, "divide", 3, 3, 1)  /* (P + k*Q)/(1 + k) */                   \
+    X(BI_MEET, "meet", 2, 2, 1)      /* meet(line, line|plane) */              \
+    X(BI_LINE, "line", 2, 2, 1)      /* only inside meet */                    \
+    X(BI_PLANE, "plane", 3, 3, 1)    /* only inside meet */                    \
+    X(BI_SUBST, "subst", 3, 3, -1)   /* subst(E, t|A, s|P): kind of E */       \
+    X(BI_DIFF, "diff", 2, 3, -1)     /* diff(E, t[, n]) */                     \
+    X(BI_BEZIER, "bezier", 3, -1, 1) /* bezier(t, P0, ..., Pn) */              \
+    X(BI_DOT, "dot", 2, 2, 0)        /* metric: U . V */                       \
+    X(BI_DIST, "dist", 2, 2, 0)      /* metric: |PQ| */                        \
+    X(BI_ANGLE, "angle", 3, 3, 0)    /* metric: angle PQR at Q */              \
+    X(BI_COORD, "coord", 2, 2, 0)    /* coordinate k of a point or vector */
 
 typedef enum Builtin {
-#define X(id, name, lo, hi, res, impl) id,
+#define X(id, name, lo, hi, res) id,
     PC_BUILTINS(X)
 #undef X
-        BI_COUNT
+        BI_FIRST_FUNCTION, // the scalar functions (pi the first, as a call)
+    BI_BEFORE_FUNCTIONS = BI_FIRST_FUNCTION - 1,
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(lang)(BI_##ID, )
+#include "base/functions.def"
+#undef PC_FUNCTION
+    BI_COUNT
 } Builtin;
 
 typedef enum SymKind {

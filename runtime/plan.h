@@ -30,6 +30,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "base/functions.h"
+
 /* X(name, number of register operands, C operator or NULL): one comment of
  * semantics per opcode, d = the instruction's own register. */
 #define PLAN_OPS(X)                                                            \
@@ -56,20 +58,23 @@ enum { PLAN_POW_CHAIN = 32 };
  * Their values and domains are defined once, here, for the runtime, the
  * folding of constants and (as C text) emit_c.c. */
 typedef enum PlanFn {
-    PLAN_FN_SQRT,
-    PLAN_FN_ROOT, // real q-th root (odd q: also of negative numbers)
-    PLAN_FN_SIN,
-    PLAN_FN_COS,
-    PLAN_FN_SINH,
-    PLAN_FN_COSH,
-    PLAN_FN_EXP,
-    PLAN_FN_LOG,
-    PLAN_FN_ASIN,
-    PLAN_FN_ACOS,
-    PLAN_FN_ATAN,
-    PLAN_FN_SIGN,
+/* the rows of base/functions.def with plan = 1; PLAN_FN_ROOT is the
+ * real q-th root (odd q: also of negative numbers) */
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(p)(PLAN_FN_##ID, )
+#include "base/functions.def"
+#undef PC_FUNCTION
     PLAN_NFNS
 } PlanFn;
+
+/* each PlanFn's domain (functions.def), and the C library function
+ * generated code calls for it (NULL: written inline) */
+static const PcDomain plan_fn_domain[PLAN_NFNS] = {
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(p)([PLAN_FN_##ID] = dom, )
+#include "base/functions.def"
+#undef PC_FUNCTION
+};
 
 /* A DOMAIN flag counts this much in an output's bad register (plan.h's
  * pole flags count 1 each, an overflow 0.5): bad >= PLAN_DOMAIN_FLAG is a
@@ -98,7 +103,7 @@ static inline double plan_fn_eval(int b, double x)
         return cosh(x);
     case PLAN_FN_EXP:
         return exp(x);
-    case PLAN_FN_LOG:
+    case PLAN_FN_LN:
         return log(x);
     case PLAN_FN_ASIN:
         return asin(x);
@@ -113,26 +118,32 @@ static inline double plan_fn_eval(int b, double x)
     }
 }
 
+/* the domain of PlanFn b: its row's, and for the real q-th root x >= 0
+ * when q is even */
+static inline PcDomain plan_fn_domain_of(int b)
+{
+    int f = b & 255;
+    if (f == PLAN_FN_ROOT)
+        return (b >> 8) % 2 == 0 ? PC_DOM_NONNEG : PC_DOM_ALL;
+    return f < PLAN_NFNS ? plan_fn_domain[f] : PC_DOM_ALL;
+}
+
 /* 1 when PlanFn b has a restricted domain (needs a DOMAIN check) */
 static inline int plan_fn_has_domain(int b)
 {
-    int f = b & 255;
-    return f == PLAN_FN_SQRT || (f == PLAN_FN_ROOT && (b >> 8) % 2 == 0) ||
-           f == PLAN_FN_LOG || f == PLAN_FN_ASIN || f == PLAN_FN_ACOS;
+    return plan_fn_domain_of(b) != PC_DOM_ALL;
 }
 
 /* 1.0 where x is outside the domain of PlanFn b (NaN is not: it shows as
  * a non-finite value) */
 static inline double plan_domain_eval(int b, double x)
 {
-    switch ((PlanFn)(b & 255)) {
-    case PLAN_FN_SQRT:
-    case PLAN_FN_ROOT:
+    switch (plan_fn_domain_of(b)) {
+    case PC_DOM_NONNEG:
         return (double)(x < 0.0);
-    case PLAN_FN_LOG:
+    case PC_DOM_POS:
         return (double)(x <= 0.0);
-    case PLAN_FN_ASIN:
-    case PLAN_FN_ACOS:
+    case PC_DOM_UNIT:
         return (double)(fabs(x) > 1.0);
     default:
         return 0.0;

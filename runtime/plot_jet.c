@@ -48,7 +48,7 @@ static void fn_jet(int b, double x, double *f0, double *f1, double *f2)
         d = f;
         dd = f;
         break;
-    case PLAN_FN_LOG:
+    case PLAN_FN_LN:
         d = 1 / x;
         dd = -1 / (x * x);
         break;

@@ -50,10 +50,20 @@ static int slot_left(Kernels *K)
     return 0;
 }
 
-static const char *const fn_names[] = {
-#define X(id, name, cfn) name,
-    PC_KERNEL_FNS(X)
-#undef X
+const char *const kernel_fn_names[KF_COUNT] = {
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(k)([KF_##ID] = name, )
+#include "base/functions.def"
+#undef PC_FUNCTION
+    [KF_DIST] = "dist",
+    [KF_COORD] = "coord",
+};
+
+const char *const kernel_fn_latex[KF_COUNT] = {
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(k)([KF_##ID] = latex, )
+#include "base/functions.def"
+#undef PC_FUNCTION
 };
 
 slong kernels_metric_slots(slong metric, slong npoints)
@@ -326,18 +336,8 @@ static void set_names(Kernels *K, Kernel *k)
         k->latex = cat3("e^{", la, "}");
         break;
     default: {
-        static const char *const lx[KF_COUNT] = {
-            [KF_SIN] = "\\sin",
-            [KF_COS] = "\\cos",
-            [KF_SINH] = "\\sinh",
-            [KF_COSH] = "\\cosh",
-            [KF_LN] = "\\ln",
-            [KF_ASIN] = "\\arcsin",
-            [KF_ACOS] = "\\arccos",
-            [KF_ATAN] = "\\arctan",
-            [KF_SIGN] = "\\operatorname{sign}",
-        };
-        char *t = cat3(fn_names[k->fn], "(", a);
+        const char *const *lx = kernel_fn_latex;
+        char *t = cat3(kernel_fn_names[k->fn], "(", a);
         k->name = cat3(t, ")", "");
         free(t);
         t = cat3(lx[k->fn], "\\left(", la);

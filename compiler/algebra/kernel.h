@@ -38,35 +38,29 @@
 #ifndef PC_KERNEL_H
 #define PC_KERNEL_H
 
+#include "base/functions.h"
 #include "compiler/algebra/pteq.h"
 #include "compiler/algebra/ratfun.h"
 #include "compiler/algebra/ring.h"
 
-/* X(id, name, C function): the functions a kernel can stand for */
-#define PC_KERNEL_FNS(X)                                                       \
-    X(KF_PI, "pi", NULL)                                                       \
-    X(KF_SQRT, "sqrt", "sqrt")                                                 \
-    X(KF_ROOT, "root", "cbrt") /* real q-th root, q >= 3 (emit: pow) */        \
-    X(KF_SIN, "sin", "sin")                                                    \
-    X(KF_COS, "cos", "cos")                                                    \
-    X(KF_SINH, "sinh", "sinh")                                                 \
-    X(KF_COSH, "cosh", "cosh")                                                 \
-    X(KF_EXP, "exp", "exp")                                                    \
-    X(KF_LN, "ln", "log")                                                      \
-    X(KF_ASIN, "asin", "asin")                                                 \
-    X(KF_ACOS, "acos", "acos")                                                 \
-    X(KF_ATAN, "atan", "atan")                                                 \
-    X(KF_ATAN2, "atan2", "atan2")                                              \
-    X(KF_SIGN, "sign", NULL)                                                   \
-    X(KF_DIST, "dist", NULL)   /* |P_a P_b| of two base points: the metric */  \
-    X(KF_COORD, "coord", NULL) /* coordinate pb (1-based) of base point pa */
-
+/* the functions a kernel can stand for: the rows of base/functions.def
+ * with kernel = 1 (pi, sqrt, the real q-th root of x^(p/q), sin, ...), then
+ * the metric atoms */
 typedef enum KernelFn {
-#define X(id, name, cfn) id,
-    PC_KERNEL_FNS(X)
-#undef X
-        KF_COUNT
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(k)(KF_##ID, )
+#include "base/functions.def"
+#undef PC_FUNCTION
+    KF_DIST,  // |P_a P_b| of two base points: the metric
+    KF_COORD, // coordinate pb (1-based) of base point pa
+    KF_COUNT
 } KernelFn;
+
+/* a kernel function's name as the language writes it ("dist", "coord" for
+ * the metric atoms) */
+extern const char *const kernel_fn_names[KF_COUNT];
+/* its LaTeX operator (\sin, \ln, ...), or NULL: written its own way */
+extern const char *const kernel_fn_latex[KF_COUNT];
 
 typedef struct Kernel {
     KernelFn fn;

@@ -7,44 +7,24 @@
  */
 #include "compiler/derive/derive_int.h"
 
-/* the scalar functions are the builtins BI_SQRT .. BI_SIGN (sema.h) */
+/* the scalar functions are the builtins of base/functions.def (sema.h),
+ * pi (a call of no arguments) the first */
 int derive_is_function(int b)
 {
-    return b >= BI_SQRT && b <= BI_SIGN;
+    return b >= BI_FIRST_FUNCTION && b < BI_COUNT;
 }
 
-/* the kernel a function builtin makes directly (tan, tanh and abs are
- * rewritten, kernel.h), or -1 */
+/* the kernel a function builtin makes directly (functions.def's kernel
+ * column; tan, tanh and abs are rewritten, kernel.h), or -1 */
 static int builtin_kernel(int b)
 {
-    switch ((Builtin)b) {
-    case BI_SQRT:
-        return KF_SQRT;
-    case BI_SIN:
-        return KF_SIN;
-    case BI_COS:
-        return KF_COS;
-    case BI_ASIN:
-        return KF_ASIN;
-    case BI_ACOS:
-        return KF_ACOS;
-    case BI_ATAN:
-        return KF_ATAN;
-    case BI_ATAN2:
-        return KF_ATAN2;
-    case BI_SINH:
-        return KF_SINH;
-    case BI_COSH:
-        return KF_COSH;
-    case BI_EXP:
-        return KF_EXP;
-    case BI_LN:
-        return KF_LN;
-    case BI_SIGN:
-        return KF_SIGN;
-    default:
-        return -1;
-    }
+    static const int kernel_of[BI_COUNT] = {
+#define PC_FUNCTION(ID, name, ar, lang, k, p, c, latex, dom)                   \
+    PC_WHEN(lang)([BI_##ID] = PC_PICK(k)(KF_##ID, -1), )
+#include "base/functions.def"
+#undef PC_FUNCTION
+    };
+    return derive_is_function(b) ? kernel_of[b] : -1;
 }
 
 /* a scalar function applied: sqrt(x), sin(x), ..., pi */

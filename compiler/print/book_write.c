@@ -148,11 +148,7 @@ static char *kernel_arg(const Kernel *k, const char *open, const char *close,
  * parentheses, the power on the function's name), \sqrt{X}^{2} */
 static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
 {
-    static const char *const lx[KF_COUNT] = {
-        [KF_SIN] = "\\sin",     [KF_COS] = "\\cos",     [KF_SINH] = "\\sinh",
-        [KF_COSH] = "\\cosh",   [KF_LN] = "\\ln",       [KF_ASIN] = "\\arcsin",
-        [KF_ACOS] = "\\arccos", [KF_ATAN] = "\\arctan",
-    };
+    const char *const *lx = kernel_fn_latex;
     char *a;
     if (k->fn == KF_SQRT) {
         a = kernel_arg(k, "sqrt(", ")", c);
@@ -165,15 +161,11 @@ static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
         free(a);
         return 1;
     }
-    if (k->fn >= KF_COUNT || !lx[k->fn])
+    /* the functions with an operator name; sign has its own form */
+    if (k->fn >= KF_COUNT || !lx[k->fn] || k->fn == KF_SIGN)
         return 0;
     char open[16];
-    static const char *const names[] = {
-#define X(id, name, cfn) name,
-        PC_KERNEL_FNS(X)
-#undef X
-    };
-    snprintf(open, sizeof open, "%s(", names[k->fn]);
+    snprintf(open, sizeof open, "%s(", kernel_fn_names[k->fn]);
     a = kernel_arg(k, open, ")", c);
     if (!a)
         return 0;
