@@ -29,6 +29,7 @@
  * in emit_weights.c, the fused _batch in emit_fast.c, the collapsed kernel
  * in collapse_emit.c; the C-writing helpers in cwrite.c.
  */
+#include "base/kind.h"
 #include "base/mem.h"
 #include "codegen/collapse.h"
 #include "codegen/emit_c_int.h"
@@ -70,11 +71,6 @@ static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
     }
 }
 
-static const char *kind_word(PlanKind k)
-{
-    return k == PLAN_SCALAR ? "scalar" : k == PLAN_POINT ? "point" : "vector";
-}
-
 static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
                    const char *what)
 {
@@ -94,9 +90,9 @@ static void banner(FILE *out, const Plan *p, const Names *N, const char *source,
             p->name);
     for (int i = 0; i < p->noutputs; i++) {
         const PlanOutput *o = &p->outputs[i];
-        fprintf(out, " * %s (%s, line %d)", o->name, kind_word(o->kind),
+        fprintf(out, " * %s (%s, line %d)", o->name, kind_name(o->kind),
                 o->line);
-        if (o->kind != PLAN_SCALAR) {
+        if (o->kind != KIND_SCALAR) {
             fputs(" = ", out);
             for (int k = 0; k < o->nterms; k++)
                 fprintf(out, "%s%s*w%d", k ? " + " : "", p->points[o->point[k]],

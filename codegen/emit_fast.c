@@ -256,7 +256,7 @@ int emit_batch_fast(Ctx *C)
     FILE *out = C->out;
     const PlanOutput *o = C->o;
     const Plan *p = C->p;
-    if (o->kind == PLAN_SCALAR || o->nterms == 0 || uses_domain(C))
+    if (o->kind == KIND_SCALAR || o->nterms == 0 || uses_domain(C))
         return 0;
     int inv = -1;
     if (o->bad >= 0 && (inv = pole_inverse(p, o->bad)) < 0)

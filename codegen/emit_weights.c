@@ -178,7 +178,7 @@ static void unused_args(const Ctx *C)
         dist |= C->live[r] &&
                 (p->ins[r].op == PLAN_DIST || p->ins[r].op == PLAN_COORD);
     for (int i = 0; i < C->N->npt; i++) {
-        int used = C->o->kind != PLAN_SCALAR && uses_point(C->o, i);
+        int used = C->o->kind != KIND_SCALAR && uses_point(C->o, i);
         for (int r = 0; r < p->nins && !used; r++)
             used = C->live[r] &&
                    ((p->ins[r].op == PLAN_DIST &&
@@ -187,7 +187,7 @@ static void unused_args(const Ctx *C)
         if (!used)
             fprintf(C->out, "    (void)%s;\n", C->N->pt[i]);
     }
-    if (C->o->kind == PLAN_SCALAR && !dist)
+    if (C->o->kind == KIND_SCALAR && !dist)
         fputs("    (void)dim;\n", C->out);
 }
 
@@ -205,14 +205,14 @@ void emit_one(const Ctx *C)
     emit_signature(out, C->p, C->N, C->oi, ONE_CHECKED);
     fputs("\n{\n", out);
     unused_args(C);
-    if (o->kind != PLAN_SCALAR)
+    if (o->kind != KIND_SCALAR)
         fputs("    int c;\n", out);
     emit_instructions(C, -1, "    ");
     if (o->bad >= 0) {
         fputs("    if (", out);
         emit_operand(C, o->bad);
         fputs(" != 0.0) { /* a denominator vanishes or overflows */\n", out);
-        if (o->kind == PLAN_SCALAR)
+        if (o->kind == KIND_SCALAR)
             fputs("        out[0] = (double)NAN;\n", out);
         else
             fputs("        for (c = 0; c < dim; c++)\n"
@@ -227,7 +227,7 @@ void emit_one(const Ctx *C)
         fputs(" >= 1.0 ? 1 : 2; /* 1 pole, 2 overflow", out);
         fputs(uses_domain(C) ? ", 4 domain */\n    }\n" : " */\n    }\n", out);
     }
-    if (o->kind == PLAN_SCALAR) {
+    if (o->kind == KIND_SCALAR) {
         fputs("    out[0] = ", out);
         weight(C, 0);
         fputs(";\n", out);
@@ -565,7 +565,7 @@ void emit_batch(Ctx *C)
 {
     FILE *out = C->out;
     const PlanOutput *o = C->o;
-    int scalar = o->kind == PLAN_SCALAR;
+    int scalar = o->kind == KIND_SCALAR;
     int nslots = scalar ? 1 : o->nterms;
     Slot *slot = pc_xcalloc((size_t)nslots + 1, sizeof *slot);
     char **owned = pc_xcalloc((size_t)nslots + 1, sizeof *owned);

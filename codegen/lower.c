@@ -919,9 +919,9 @@ Plan *lower_derived(const Derived *d, FILE *err)
             free(L.used);
             return NULL;
         }
-        PlanKind kind = out->kind == KIND_SCALAR  ? PLAN_SCALAR
-                        : out->kind == KIND_POINT ? PLAN_POINT
-                                                  : PLAN_VECTOR;
+        Kind kind = out->kind == KIND_SCALAR  ? KIND_SCALAR
+                    : out->kind == KIND_POINT ? KIND_POINT
+                                              : KIND_VECTOR;
         plan_add_output(L.p, out->name, kind, out->line, (int)n, point, reg,
                         bad);
         free(ws);

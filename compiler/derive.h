@@ -15,16 +15,11 @@
 
 #include <stdio.h>
 
+#include "base/kind.h"
 #include "base/source.h"
 #include "compiler/algebra/pteq.h"
 #include "compiler/algebra/ratfun.h"
 #include "compiler/algebra/ring.h"
-
-typedef enum Kind {
-    KIND_SCALAR, // a rational function of params and consts
-    KIND_POINT,  // a point equation whose weights sum to 1
-    KIND_VECTOR, // a point equation whose weights sum to 0
-} Kind;
 
 typedef struct DerivedOutput {
     const char *name; // the defined name (owned by the Derived)

@@ -287,7 +287,7 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
     if (!out || (pl->nparams && n && !params) || (pl->nconsts && !consts))
         return PC_EINVAL;
     const PlanOutput *o = &pl->outputs[output];
-    if (o->kind != PLAN_SCALAR && dim < 1)
+    if (o->kind != KIND_SCALAR && dim < 1)
         return PC_EINVAL;
     /* the points it reads: its weights' and its distances' (a scalar that
      * measures points reads them too) */

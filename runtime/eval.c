@@ -379,7 +379,7 @@ size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
     size_t nbad = 0;
     _Alignas(64) double cols[3][BL]; // dims 2, 3: columns, then interleaved
     prog_init(&g, p, o, consts, points, dim);
-    int scalar = po->kind == PLAN_SCALAR;
+    int scalar = po->kind == KIND_SCALAR;
     int ncols = scalar ? 1 : dim;
     for (size_t i0 = 0; i0 < n; i0 += BL) {
         size_t m = n - i0 < BL ? n - i0 : BL;

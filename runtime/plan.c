@@ -466,8 +466,8 @@ int plan_peel(const Plan *p, int w, int *sign)
     return w;
 }
 
-void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
-                     int nterms, const int *point, const int *reg, int bad)
+void plan_add_output(Plan *p, const char *name, Kind kind, int line, int nterms,
+                     const int *point, const int *reg, int bad)
 {
     p->outputs =
         pc_xrealloc(p->outputs, sizeof *p->outputs * (size_t)(p->noutputs + 1));
@@ -580,11 +580,6 @@ int plan_find_output(const Plan *p, const char *name)
         if (strcmp(p->outputs[i].name, name) == 0)
             return i;
     return -1;
-}
-
-static const char *kind_name(PlanKind k)
-{
-    return k == PLAN_SCALAR ? "scalar" : k == PLAN_POINT ? "point" : "vector";
 }
 
 static void dump_names(FILE *out, const char *what, int n, char **names)

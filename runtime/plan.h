@@ -31,6 +31,7 @@
 #include <stdio.h>
 
 #include "base/functions.h"
+#include "base/kind.h"
 
 /* X(name, number of register operands, C operator or NULL): one comment of
  * semantics per opcode, d = the instruction's own register. */
@@ -164,15 +165,12 @@ typedef struct PlanIns {
     int32_t line;    // scheme line of the output that first needed it
 } PlanIns;
 
-typedef enum PlanKind {
-    PLAN_SCALAR, // one value: slot 0 with point -1
-    PLAN_POINT,  // weights sum to 1
-    PLAN_VECTOR, // weights sum to 0
-} PlanKind;
+/* an output's kind is base/kind.h's: a scalar is one value (slot 0 with
+ * point -1), a point's weights sum to 1, a vector's to 0 */
 
 typedef struct PlanOutput {
     char *name; // owned
-    PlanKind kind;
+    Kind kind;
     int line;   // definition line in the scheme
     int nterms; // weight slots
     int *point; // owned: base point index of slot k (-1 for a scalar)
@@ -281,8 +279,8 @@ static inline double plan_dist_eval(const double *P, const double *Q, int dim)
     return sqrt(s);
 }
 /* Appends an output; consumes nothing (arrays are copied). */
-void plan_add_output(Plan *p, const char *name, PlanKind kind, int line,
-                     int nterms, const int *point, const int *reg, int bad);
+void plan_add_output(Plan *p, const char *name, Kind kind, int line, int nterms,
+                     const int *point, const int *reg, int bad);
 
 /* Splits a weight register w into  w = sign * root  (negations peeled), so
  * that a back end can negate the points' coordinates once per call instead

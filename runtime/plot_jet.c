@@ -188,7 +188,7 @@ int plot_jet(const PlotEnv *env, int o, double t, double *pos, double *d1,
     double(*r)[3] = pc_xmalloc(sizeof *r * (size_t)(p->nins + 1));
     plan_live(p, o, live);
     plot_jet_run(env, live, t, r);
-    int dim = po->kind == PLAN_SCALAR ? 1 : env->dim;
+    int dim = po->kind == KIND_SCALAR ? 1 : env->dim;
     double *out[3] = {pos, d1, d2};
     int finite = 1;
     for (int k = 0; k < 3; k++) {

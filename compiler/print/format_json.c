@@ -24,11 +24,6 @@ static void json_names(FILE *out, const char *key, char *const *names, slong n)
     fputs("]", out);
 }
 
-static const char *kind_name(Kind k)
-{
-    return k == KIND_POINT ? "point" : k == KIND_VECTOR ? "vector" : "scalar";
-}
-
 /* "key": "WEIGHT" with w's reduced form */
 static void json_weight(FILE *out, const char *key, const RatFun w,
                         const Derived *d)

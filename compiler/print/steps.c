@@ -551,11 +551,6 @@ static void json_ratfun(FILE *out, const Derived *d, const RatFun x)
     free(s);
 }
 
-static const char *kind_name(Kind k)
-{
-    return k == KIND_POINT ? "point" : k == KIND_VECTOR ? "vector" : "scalar";
-}
-
 /* "kind": .., "terms": {..} or "value": ".." (contract section 4's form) */
 static void json_value(FILE *out, const Derived *d, const DerivedOutput *o)
 {

@@ -286,7 +286,7 @@ static int check_points(const EvalSetup *s, const Plan *p, const char *usage,
     }
     for (int j = 0; j < s->nsel && s->dim == 0; j++) {
         const PlanOutput *o = &p->outputs[s->sel[j]];
-        if (o->kind != PLAN_SCALAR)
+        if (o->kind != KIND_SCALAR)
             return args_usage_error(err, usage,
                                     "output %s is the zero vector (it depends "
                                     "on no base point): give at least one "

@@ -297,7 +297,7 @@ static int setup_curves(Run *r, const PlotArgs *a, FILE *err)
         return 2;
     for (int j = 0; j < nsel; j++) {
         int o = r->sel[j];
-        if (p->outputs[o].kind == PLAN_POINT)
+        if (p->outputs[o].kind == KIND_POINT)
             r->sel[r->nsel++] = o;
         else if (a->ea.outputs.n > 0)
             return usage_error(err,
@@ -305,8 +305,7 @@ static int setup_curves(Run *r, const PlotArgs *a, FILE *err)
                                "outputs as curves (see --tangents for "
                                "derivatives)",
                                p->outputs[o].name,
-                               p->outputs[o].kind == PLAN_SCALAR ? "scalar"
-                                                                 : "vector");
+                               kind_name(p->outputs[o].kind));
     }
     if (r->nsel == 0)
         return usage_error(err, "the scheme has no point output to draw "

@@ -13,7 +13,7 @@
 
 int table_columns(const Plan *p, int o, int dim)
 {
-    return p->outputs[o].kind == PLAN_SCALAR ? 1 : dim;
+    return p->outputs[o].kind == KIND_SCALAR ? 1 : dim;
 }
 
 void table_number(FILE *out, double v, TableFormat f)
@@ -59,7 +59,7 @@ static void csv_head(FILE *out, const Plan *p, const EvalSetup *s)
         fprintf(out, "%s%s", sep, axis_name(p, column_axis(s, c)));
     for (int j = 0; j < s->nsel; j++) {
         const PlanOutput *o = &p->outputs[s->sel[j]];
-        if (o->kind == PLAN_SCALAR) {
+        if (o->kind == KIND_SCALAR) {
             fprintf(out, "%s%s", sep, o->name);
             sep = ",";
             continue;
@@ -89,11 +89,6 @@ static void csv_row(FILE *out, const Plan *p, const EvalSetup *s,
 }
 
 /* ---- JSON ------------------------------------------------------------- */
-
-static const char *kind_name(PlanKind k)
-{
-    return k == PLAN_SCALAR ? "scalar" : k == PLAN_POINT ? "point" : "vector";
-}
 
 /* "key": [the names of the axes of one sort] */
 static void json_axis_names(FILE *out, const char *key, const Plan *p,
@@ -160,12 +155,12 @@ static void json_values(FILE *out, const Plan *p, const EvalSetup *s,
         int nc = table_columns(p, s->sel[j], s->dim);
         fputs(j ? ", " : "", out);
         json_string(out, o->name);
-        fputs(o->kind == PLAN_SCALAR ? ": " : ": [", out);
+        fputs(o->kind == KIND_SCALAR ? ": " : ": [", out);
         for (int c = 0; c < nc; c++) {
             fputs(c ? ", " : "", out);
             json_number(out, r->values[j][c]);
         }
-        fputs(o->kind == PLAN_SCALAR ? "" : "]", out);
+        fputs(o->kind == KIND_SCALAR ? "" : "]", out);
     }
     fputs("}", out);
 }

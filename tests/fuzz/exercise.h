@@ -60,7 +60,7 @@ static inline void exercise_backends(const Derived *d)
         int *curves = calloc((size_t)p->noutputs + 1, sizeof *curves);
         int nc = 0;
         for (int o = 0; o < p->noutputs && p->nparams > 0; o++)
-            if (p->outputs[o].kind == PLAN_POINT)
+            if (p->outputs[o].kind == KIND_POINT)
                 curves[nc++] = o;
         if (nc > 0) {
             double pv[8] = {0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5};

@@ -328,7 +328,7 @@ static void check_derived(const Derived *d, const Plan *p, const Compiled *c)
     int nsamples = NPV;
     for (int o = 0; o < p->noutputs; o++) {
         const PlanOutput *po = &p->outputs[o];
-        int scalar = po->kind == PLAN_SCALAR;
+        int scalar = po->kind == KIND_SCALAR;
         int nterms = po->nterms;
         char name[64];
         snprintf(name, sizeof name, "w1_%d", o);

@@ -97,7 +97,7 @@ static void plot_points(FILE *m, const Plan *p)
     double *cv = calloc((size_t)p->nconsts + 1, sizeof *cv);
     int nc = 0;
     for (int o = 0; o < p->noutputs && p->nparams > 0; o++)
-        if (p->outputs[o].kind == PLAN_POINT)
+        if (p->outputs[o].kind == KIND_POINT)
             curves[nc++] = o;
     for (int i = 0; i < p->npoints; i++) {
         xy[2 * i] = i;

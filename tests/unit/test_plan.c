@@ -109,7 +109,7 @@ static void test_plan_uniform_and_prune(void **state)
     int w = plan_add(p, kkt, c1);
     int one = plan_sub(p, c1, w);
     int pt[2] = {0, 1}, rg[2] = {one, w};
-    plan_add_output(p, "M", PLAN_POINT, 4, 2, pt, rg, -1);
+    plan_add_output(p, "M", KIND_POINT, 4, 2, pt, rg, -1);
     int before = p->nins;
     plan_prune(p);
     assert_true(p->nins < before);
@@ -142,9 +142,9 @@ static void test_plan_eval_poles_blocks_dims(void **state)
     int w = plan_div(p, t, den);
     int v = plan_sub(p, plan_const(p, 1), w);
     int pt[2] = {0, 1}, rg[2] = {v, w};
-    plan_add_output(p, "M", PLAN_POINT, 1, 2, pt, rg, bad);
+    plan_add_output(p, "M", KIND_POINT, 1, 2, pt, rg, bad);
     int sl[1] = {-1}, sr[1] = {w};
-    plan_add_output(p, "w", PLAN_SCALAR, 2, 1, sl, sr, bad);
+    plan_add_output(p, "w", KIND_SCALAR, 2, 1, sl, sr, bad);
     const size_t n = 1000; // several blocks and a tail
     double *tv = malloc(sizeof *tv * n), *uv = calloc(n, sizeof *uv);
     for (size_t i = 0; i < n; i++)
@@ -283,7 +283,7 @@ static void test_plan_eval_random_dags_match_direct(void **state)
         /* output: the last three nodes as weights of A, B, C */
         int pt[3] = {0, 1, 2};
         int rg[3] = {reg[NODES - 3], reg[NODES - 2], reg[NODES - 1]};
-        plan_add_output(p, "M", PLAN_POINT, 1, 3, pt, rg, -1);
+        plan_add_output(p, "M", KIND_POINT, 1, 3, pt, rg, -1);
         plan_prune(p);
         double tv[N], uv[N], kval = (double)((int)rnd(9) - 4) / 8;
         for (int i = 0; i < N; i++) {
