@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """The printer's mutation experiment (issue 9): one-line changes to
-compiler/book.c, each built and run against the tests of what derive
+the book printer (compiler/print/book_*.c), each built and run against the tests of what derive
 prints (test_book's goldens, test_schemes' read-back, tests/printback.py,
 tests/latex_test.sh).  A mutant that no test kills is a rule no test pins.
 
-Run from a scratch copy of the tree (it edits compiler/book.c and restores
-it):  git worktree add /tmp/mut HEAD && cd /tmp/mut &&
+Run from a scratch copy of the tree (it edits the printer's files and
+restores them):  git worktree add /tmp/mut HEAD && cd /tmp/mut &&
       python3 bench/mutate_printer.py
 """
+import glob
 import subprocess
 import sys
 
@@ -60,16 +61,20 @@ def run(cmd):
 
 
 def main():
-    path = "compiler/book.c"
-    orig = open(path).read()
+    paths = sorted(glob.glob("compiler/print/book_*.c"))
+    origs = {p: open(p).read() for p in paths}
     survivors = []
     try:
         for name, old, new in MUTANTS:
-            if orig.count(old) != 1:
+            where = [p for p in paths if origs[p].count(old) == 1]
+            if len(where) != 1 or sum(o.count(old) for o in origs.values()) != 1:
                 print(f"?? {name}: the line to change is not unique or gone")
                 survivors.append(name)
                 continue
-            open(path, "w").write(orig.replace(old, new))
+            path = where[0]
+            for p in paths:
+                open(p, "w").write(origs[p])
+            open(path, "w").write(origs[path].replace(old, new))
             if run(["make", "-j2", "build/pointcalc", "build/tests/test_book",
                     "build/tests/test_schemes"]):
                 print(f"killed (does not build): {name}")
@@ -82,7 +87,8 @@ def main():
                 print(f"SURVIVED: {name}")
                 survivors.append(name)
     finally:
-        open(path, "w").write(orig)
+        for p in paths:
+            open(p, "w").write(origs[p])
     print(f"{len(MUTANTS) - len(survivors)}/{len(MUTANTS)} mutants killed")
     return 1 if survivors else 0
 
