@@ -10,6 +10,7 @@
 #   make check-fast  the fast tier: unit tests and the scheme corpus (no
 #                 generated-C compilation, no fuzzing), about a minute
 #   make lint     layers, format, unused exports, file and function sizes
+#   make oracle   the SymPy and Maxima derivations (tests/oracle/), where installed
 #   make format   clang-format the sources
 #   make flint-static  a static libflint.a from Debian's source package
 #                 (.ci/flint-static; pointcalc then links it and starts faster)
@@ -200,6 +201,10 @@ fuzz:
 	build-fuzz/fuzz_derive $(FUZZ_FLAGS) -max_len=4096 build-fuzz/corpus
 	build-fuzz/fuzz_eval_args $(FUZZ_FLAGS) -max_len=512 build-fuzz/corpus_eval
 
+# the independent derivations (SymPy, Maxima) where they are installed
+oracle: $(B)/pointcalc
+	tests/oracle/run.sh $(B)
+
 # PYTHON: the interpreter for bench/lambdify.py; by default the first python3
 # on PATH that has sympy and numpy (else the first with sympy)
 bench: $(BENCHES) $(B)/pointcalc $(if $(FLINT_STATIC),$(B)/pointcalc-shared)
@@ -238,5 +243,5 @@ flint-static:
 clean:
 	rm -rf build build-asan build-tsan build-fuzz
 
-.PHONY: all tests check check-fast lint asan tsan valgrind fuzz bench figures format clean flint-static
+.PHONY: all tests check check-fast lint oracle asan tsan valgrind fuzz bench figures format clean flint-static
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

@@ -7,7 +7,7 @@
                   the vertex weight w                    (not printed; (2.97) with w = (1 - k)/k)
   monograph 3.7   Desargues arc                          (3.6), for the book forms only
 
-Method (as bench/sympy/check_chapter2.py for the affine constructions): the
+Method (as tests/oracle/sympy/check_chapter2.py for the affine constructions): the
 base points are unit weight vectors of the simplex, every point of the
 book's construction is built again here (ratios along lines, and line meets
 solved as a linear system in the two line parameters for the weight of
@@ -20,7 +20,7 @@ O E1 E2 E3), that route is followed too and must give the same point.
 
 Then, for each scheme, pointcalc's own result (`build/pointcalc derive
 --format json examples/NAME.pcs`, every output) must equal the derivation,
-and every book form in tests/golden/book_forms.md (the fenced `pointcalc`
+and every book form in tests/oracle/golden/book_forms.md (the fenced `pointcalc`
 blocks: the book's final equations in pointcalc syntax, the book's grouping
 kept) must equal the derived weights, both in SymPy and when pointcalc
 itself reads the block.
@@ -29,7 +29,7 @@ With --expect NAME.pcs it prints the expectation comments of every
 definition of that scheme (from this derivation) instead of checking.
 
 Prints OK / MISPRINT / FAIL lines (verdicts.py); exits non-zero on a FAIL.
-Run from the repository root:  python3 bench/sympy/check_issue9.py
+Run from the repository root:  python3 tests/oracle/sympy/check_issue9.py
 """
 import json
 import os
@@ -51,8 +51,8 @@ fP, fQ, kp, kq = sp.symbols('fP fQ kp kq')
 SYM = {str(z): z for z in (u, v, w, k, n, t, fP, fQ, kp, kq)}
 use_symbols(SYM)
 
-ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
-PC = os.path.join(ROOT, 'build', 'pointcalc')
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', '..'))
+PC = os.environ.get('PC_BIN') or os.path.join(ROOT, 'build', 'pointcalc')
 
 
 # --- affine constructions on unit weight vectors -------------------------------
@@ -357,7 +357,7 @@ def check_pointcalc(label, path, names, defs):
 
 def golden_blocks():
     """{scheme file: [(name, text of 'NAME = EXPR' or aux lines)]} from book_forms.md."""
-    path = os.path.join(ROOT, 'tests', 'golden', 'book_forms.md')
+    path = os.path.join(ROOT, 'tests', 'oracle', 'golden', 'book_forms.md')
     text = open(path, encoding='utf-8').read()
     out, cur = {}, None
     for m in re.finditer(r'^## `?([A-Za-z0-9_]+\.pcs)`?|^```pointcalc\n(.*?)^```', text, re.M | re.S):
@@ -410,7 +410,7 @@ def check_golden(results):
     for path, (names, defs, label) in results.items():
         fname = os.path.basename(path)
         if fname not in blocks:
-            report(False, f"book forms: {fname}", "no block in tests/golden/book_forms.md")
+            report(False, f"book forms: {fname}", "no block in tests/oracle/golden/book_forms.md")
             continue
         for block in blocks[fname]:
             vals = parse_block(block, names)
@@ -471,6 +471,6 @@ if __name__ == '__main__':
             check_pointcalc(os.path.basename(path), path, names, defs)
         else:
             remark(f"{PC} not built: pointcalc's results not compared")
-    print("-- tests/golden/book_forms.md")
+    print("-- tests/oracle/golden/book_forms.md")
     check_golden(results)
     finish()

@@ -11,7 +11,7 @@ Covered (source, section, equations):
   article-circle-projective: circle through three points               (5), k, k1, x_O, y_O, R
   article-circle-projective: circle through two points and a tangent   K, R, (6), E, a1, (8), v, x(t), y(t)
 
-Method (as bench/sympy/check_chapter2.py).  Where a metric is needed the base
+Method (as tests/oracle/sympy/check_chapter2.py).  Where a metric is needed the base
 points get coordinates (C at the origin, CA along x, B = a (cos g, sin g),
 a = |CB|, b = |CA|, g = angle ACB); the current point is constructed in
 coordinates from the geometry (ratio chains, law of sines/cosines, rotation,
