@@ -1,3 +1,9 @@
+/*
+ * arena.c - compilation-lifetime memory (arena.h): blocks of 64 KiB (or one
+ * block the size of a larger request) handed out by bumping an offset,
+ * aligned for any type and zero-filled, freed all at once.  The AST, names
+ * and symbols of one compilation live here; nothing in it owns heap memory.
+ */
 #include "base/arena.h"
 
 #include <stdalign.h>

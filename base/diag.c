@@ -1,3 +1,12 @@
+/*
+ * diag.c - the one printer of user errors (diag.h): FILE:LINE:COL: error:
+ * message, the source line (a window of it when the line is long, control
+ * and bidirectional characters escaped) and a caret span; messages held
+ * and written in source order (diag_hold/diag_flush), at most
+ * DIAG_MAX_ERRORS a file.  The budget handlers write through a sink with
+ * write(2) only (diag_put_location, diag_put_excerpt): nothing here
+ * allocates on that path.
+ */
 #include "base/diag.h"
 
 #include <limits.h>

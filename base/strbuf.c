@@ -1,3 +1,8 @@
+/*
+ * strbuf.c - a growing string (strbuf.h) for the printers: append text,
+ * numbers (locale-independent, base/numfmt.h) and FLINT integers, then take
+ * the malloc'd result.
+ */
 #include "base/strbuf.h"
 
 #include <stdio.h>

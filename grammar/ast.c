@@ -1,3 +1,9 @@
+/*
+ * ast.c - the AST's constructors (arena-allocated nodes, statements, name
+ * lists and equations, each with its byte span) for the parser's actions,
+ * and ast_dump, the deterministic S-expression form the front end's golden
+ * tests compare (tests/unit/test_front.c).
+ */
 #include "grammar/ast.h"
 
 #include <stdio.h>

@@ -1,3 +1,9 @@
+/*
+ * parse.c - the front end in one call (parse.h): a reentrant flex scanner
+ * over the source's bytes feeding the pure bison parser; syntax errors go
+ * to the Diag at their spans, and the Scheme is what the parser built
+ * (partial when there were errors).
+ */
 #include "grammar/parse.h"
 
 /* the parser's header first: the scanner's uses its types */
