@@ -1,7 +1,7 @@
 /*
  * strbuf.c - a growing string (strbuf.h) for the printers: append text,
- * numbers (locale-independent, base/numfmt.h) and FLINT integers, then take
- * the malloc'd result.
+ * integers (%lu needs no locale) and FLINT integers, then take the
+ * malloc'd result.
  */
 #include "base/strbuf.h"
 
