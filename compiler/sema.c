@@ -146,7 +146,7 @@ static int check_name(Sema *S, Node *n)
 {
     Sym *s = lookup(S, n->text);
     if (!s && strcmp(n->text, "pi") == 0) {
-        /* the constant pi (a scheme may still declare its own 'pi') */
+        /* the constant pi (a built-in name: no scheme declares its own) */
         n->kind = ND_CALL;
         n->builtin = BI_PI;
         n->args = NULL;

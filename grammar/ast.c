@@ -230,11 +230,19 @@ void ast_dump(FILE *out, const Scheme *s)
             fputc(' ', out);
             dump_node(out, st->expr);
         }
-        if (st->lo) {
+        if (st->lo && st->hi) { /* a range: its open ends named */
             fputs(" (in ", out);
             dump_node(out, st->lo);
             fputc(' ', out);
             dump_node(out, st->hi);
+            fputs(st->lo_open ? " lo-open" : "", out);
+            fputs(st->hi_open ? " hi-open" : "", out);
+            fputc(')', out);
+        } else if (st->lo || st->hi) { /* a const's one-sided bound */
+            fprintf(out, " (%s ",
+                    st->lo ? (st->lo_open ? ">" : ">=")
+                           : (st->hi_open ? "<" : "<="));
+            dump_node(out, st->lo ? st->lo : st->hi);
             fputc(')', out);
         }
         for (const Equation *e = st->eqs; e; e = e->next) {

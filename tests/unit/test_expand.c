@@ -119,13 +119,18 @@ static void test_int_expressions(void **state)
     expands_to("int n = -12/4\nint m = 1099511627775\nx = n + m\n",
                "(int n (/ (neg 12) 4))\n(int m 1099511627775)\n"
                "(def x (+ (neg 3) 1099511627775))\n");
-    /* a param's range may use ints.  Not tested: a const's one-sided
-     * bound.  BUG (grammar/ast.c): ast_dump of `const k > 0` crashes, as
-     * it calls dump_node(NULL) for the missing upper end, and it leaves
-     * out the bound of `const k < 1`; expected: no crash, and both
-     * bounds shown in the dump. */
+    /* a param's range may use ints; open ends and a const's one-sided
+     * bounds are dumped as written (ast_dump once crashed on `const k >
+     * 0` and dropped `const k < 1`) */
     expands_to("int n = 2\nparam t in [0, n]\n",
                "(int n 2)\n(param t (in 0 2))\n");
+    expands_to("int n = 2\nparam t in (0, n]\nconst e in [0, 1)\n",
+               "(int n 2)\n(param t (in 0 2 lo-open))\n"
+               "(const e (in 0 1 hi-open))\n");
+    expands_to("int n = 2\nconst k > 0\nconst h < n\nconst a >= 1\n"
+               "const b <= 1\n",
+               "(int n 2)\n(const k (> 0))\n(const h (< 2))\n"
+               "(const a (>= 1))\n(const b (<= 1))\n");
 }
 
 static void test_int_too_large(void **state)
