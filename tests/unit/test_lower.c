@@ -308,6 +308,45 @@ static void test_lower_desargues_one_common_denominator(void **state)
     plan_free(p);
 }
 
+/* a function's value (a kernel) is computed once and shared by every
+ * output that uses it (docs/codegen.md); a kernel in a denominator has
+ * its pole check; diff of a point is a vector output */
+static void test_lower_kernels_shared_and_diff(void **state)
+{
+    (void)state;
+    Plan *p = lower_text("point A, B\nparam t\na = sin(t)\n"
+                         "b = 2*sin(t) + t\nc = 1/sin(t)\n"
+                         "M = along(A, B, t^2)\nW = diff(M, t)\n"
+                         "output a, b, c, W\n");
+    assert_int_equal(count_op(p, PLAN_FN), 1);
+    assert_int_equal(p->outputs[3].kind, KIND_VECTOR);
+    assert_string_equal(p->outputs[3].name, "W");
+    const double t[3] = {0.5, 0, -1};
+    const double *params[1] = {t};
+    double v[6];
+    unsigned char st[3];
+    assert_int_equal(eval_units(p, 0, 3, params, NULL, v, st), 0);
+    assert_close(v[0], sin(0.5));
+    assert_true(v[1] == 0);
+    assert_close(v[2], -sin(1.0));
+    assert_int_equal(eval_units(p, 1, 3, params, NULL, v, st), 0);
+    assert_close(v[0], 2 * sin(0.5) + 0.5);
+    assert_close(v[2], -2 * sin(1.0) - 1);
+    assert_int_equal(eval_units(p, 2, 3, params, NULL, v, st), 1);
+    assert_close(v[0], 1 / sin(0.5));
+    assert_int_equal(st[0], PLAN_STATUS_OK);
+    assert_int_equal(st[1], PLAN_STATUS_POLE);
+    assert_true(isnan(v[1]));
+    /* d/dt (A (1 - t^2) + B t^2) = 2t (B - A) */
+    assert_int_equal(eval_units(p, 3, 3, params, NULL, v, st), 0);
+    assert_close(v[0], -1);
+    assert_close(v[1], 1);
+    assert_true(v[2] == 0 && v[3] == 0);
+    assert_close(v[4], 2);
+    assert_close(v[5], -2);
+    plan_free(p);
+}
+
 /* divide(A, B, t) = (A + t B)/(1 + t): a pole at t = -1 (status 1, NaN),
  * counted in plan_eval's result */
 static void test_lower_pole_status(void **state)
@@ -650,6 +689,7 @@ int main(void)
         cmocka_unit_test(test_lower_folds_constant_denominators),
         cmocka_unit_test(test_lower_shares_registers_across_outputs),
         cmocka_unit_test(test_lower_desargues_one_common_denominator),
+        cmocka_unit_test(test_lower_kernels_shared_and_diff),
         cmocka_unit_test(test_lower_pole_status),
         cmocka_unit_test(test_lower_overflow_status),
         cmocka_unit_test(test_lower_domain_status),
