@@ -192,9 +192,10 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
 /* The largest scheme text accepted, in bytes (offsets in spans are int). */
 #define DERIVE_MAX_SOURCE (16 << 20)
 
-/* Same, reading the file; an unreadable file, a directory, or a file of
- * more than DERIVE_MAX_SOURCE bytes is one error ("FILE: error: cannot read
- * the file: WHY"), found in bounded time and memory. */
+/* Same, reading the file; a file that cannot be opened ("FILE: error:
+ * cannot open the file: WHY"), a directory, or one that cannot be read or
+ * holds more than DERIVE_MAX_SOURCE bytes ("FILE: error: cannot read the
+ * file: WHY") is one error, found in bounded time and memory. */
 Derived *derive_file(const char *filename, FILE *err, int *nerrors);
 Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
                         const DeriveOptions *opt);

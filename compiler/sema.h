@@ -51,10 +51,10 @@ typedef enum Builtin {
 } Builtin;
 
 typedef enum SymKind {
-    SYM_POINT, // base point of the simplex; index = point number
-    SYM_PARAM, // current parameter; index = ring variable
-    SYM_CONST, // symbolic constant; index = its place among the consts (its
-               // ring variable is nparams + index)
+    SYM_POINT,   // base point of the simplex; index = point number
+    SYM_PARAM,   // current parameter; index = ring variable
+    SYM_CONST,   // symbolic constant; index = its place among the consts (its
+                 // ring variable is nparams + index)
     SYM_UNKNOWN, // unknown point of a `solve`; index = unknown number
     SYM_DEF,     // NAME = EXPR; index = definition number
 } SymKind;

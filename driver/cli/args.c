@@ -301,11 +301,12 @@ static unsigned char *used_inputs(const EvalSetup *s, const Plan *p)
 {
     unsigned char *live = pc_xcalloc((size_t)p->nins + 1, 1);
     unsigned char *used = pc_xcalloc((size_t)(p->nparams + p->nconsts) + 1, 1);
-    for (int j = 0; j < s->nsel; j++)
+    for (int j = 0; j < s->nsel; j++) { /* plan_live clears live */
         plan_live(p, s->sel[j], live);
-    for (int i = 0; i < p->nins; i++)
-        if (live[i] && p->ins[i].op == PLAN_INPUT)
-            used[p->ins[i].a] = 1;
+        for (int i = 0; i < p->nins; i++)
+            if (live[i] && p->ins[i].op == PLAN_INPUT)
+                used[p->ins[i].a] = 1;
+    }
     free(live);
     return used;
 }

@@ -775,21 +775,16 @@ static void test_eval_setup_errors(void **state)
                 "--param t=a:1:3: malformed range 'a:1:3': lo and hi must be "
                 "numbers");
     /* missing inputs: consts first; only what the selected outputs read */
-    /* BUG (driver/cli/args.c, used_inputs): it calls plan_live once per
-     * selected output, but plan_live clears `live` first, so only the
-     * LAST selected output's inputs are required.  These should fail, and
-     * are accepted (eval then computes with k = 0, u = 0, exit 0):
-     *
-     *   setup_error(p, ARGS(PTS3, "--param", "t=0"),
-     *               "missing --set k=VALUE");   // all outputs: x is last
-     *   setup_error(p, ARGS("--output", "N,M", PTS3, "--param", "t=0"),
-     *               "missing --set k=VALUE");   // N is not last
-     *   setup_error(p, ARGS("--output", "s,M", PTS3, "--param", "t=0"),
-     *               "missing --param u=SPEC");
-     *
-     * (`pointcalc eval ev.pcs --at A=0,0,0 --at B=1,0,0 --at C=0,1,0
-     * --param t=0` prints a row and exits 0.)  With the output that reads
-     * the missing input last, it is found: */
+    /* every selected output's inputs are required, not only the last
+     * one's (used_inputs once asked plan_live, which clears its array,
+     * once per output and so kept only the last; eval then computed with
+     * k = 0, u = 0 and exited 0) */
+    setup_error(p, ARGS(PTS3, "--param", "t=0"),
+                "missing --set k=VALUE"); // all outputs: x is last
+    setup_error(p, ARGS("--output", "N,M", PTS3, "--param", "t=0"),
+                "missing --set k=VALUE"); // N is not last
+    setup_error(p, ARGS("--output", "s,M", PTS3, "--param", "t=0"),
+                "missing --param u=SPEC");
     setup_error(p, ARGS("--output", "M,N", PTS3, "--param", "t=0"),
                 "missing --set k=VALUE");
     setup_error(p, ARGS("--output", "N", "--at", "A=0", "--at", "C=1"),
