@@ -211,7 +211,7 @@ int main(void)
     if (!d)
         return 1;
     Plan *plan = lower_derived(d, stderr);
-    Collapse *col = plan ? collapse_new(d, plan) : NULL;
+    Collapse *col = plan ? lower_collapse(plan, d) : NULL;
     derived_free(d);
     int m = plan ? plan_find_output(plan, "M") : -1;
     if (m < 0) {
@@ -233,14 +233,12 @@ int main(void)
     f = fopen(cfile2, "w");
     if (!f)
         return 1;
-    emit_c_kernel(f, plan, "arcc", "examples/desargues_arc.pcs", EMIT_C_BATCH,
-                  col);
+    emit_c_kernel(f, plan, "arcc", "examples/desargues_arc.pcs", EMIT_C_BATCH);
     fclose(f);
     if (!col->o[m].ok) {
         fprintf(stderr, "bench_codegen: M not collapsed: %s\n", col->o[m].why);
         return 1;
     }
-    collapse_free(col);
 
     Contestant cs[NC];
     void *so[FLAGSETS];

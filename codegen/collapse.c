@@ -2,8 +2,10 @@
  * collapse.c - the collapsed kernel of emit-c, its exact analysis:
  * which outputs collapse, their exact coefficients in a centred monomial
  * basis and the emit-time conditioning bound (collapse.h; docs/codegen.md
- * "The collapsed kernel").  It reads the Derived weights (FLINT) after
- * lower.c made the Plan; the C it leads to is written by collapse_emit.c.
+ * "The collapsed kernel").  lower_collapse (lower.c) runs it on the
+ * Derived weights (FLINT) right after lowering and attaches the result,
+ * plain data, to the Plan; the C it leads to is written from the Plan by
+ * collapse_emit.c.
  */
 #include "codegen/collapse.h"
 #include "base/mem.h"
@@ -634,19 +636,4 @@ Collapse *collapse_new(const Derived *d, const Plan *p)
         }
     }
     return c;
-}
-
-void collapse_free(Collapse *c)
-{
-    if (!c)
-        return;
-    for (int i = 0; i < c->n; i++) {
-        free(c->o[i].name);
-        free(c->o[i].why);
-        free(c->o[i].point);
-        free(c->o[i].a);
-        free(c->o[i].b);
-    }
-    free(c->o);
-    free(c);
 }

@@ -38,31 +38,10 @@
 /* the largest degree collapsed */
 enum { COLLAPSE_MAX_DEGREE = 64 };
 
-typedef struct CollapseOutput {
-    char *name;    // the plan output's name (owned)
-    int ok;        // 1: collapsed (the fields below); 0: why says why
-    char *why;     // owned; also set when ok ("monomial basis ...")
-    int param;     // the param t (index)
-    int deg;       // n: the largest degree of the n_k and d in t
-    int nterms;    // K
-    int *point;    // K base point indices (owned)
-    double *a;     // (deg + 1) * K, a[j * K + k] (owned)
-    double *b;     // deg + 1 (owned)
-    double mid;    // m
-    double scale;  // 2^-e
-    double lo, hi; // the doubles in [a, b]: the smallest and the largest
-    double kappa, kappa_d, bound;
-} CollapseOutput;
-
-typedef struct Collapse {
-    int n; // = the plan's outputs, in its order
-    CollapseOutput *o;
-} Collapse;
-
-/* The collapsed forms of p's outputs (p lowered from d; outputs matched by
- * name, so after plan_keep_outputs too). */
+/* The collapsed forms of p's outputs, p just lowered from d (the Collapse
+ * is plain data, runtime/plan.h; lower_collapse attaches it to the Plan,
+ * and plan_keep_outputs keeps it in step). */
 Collapse *collapse_new(const Derived *d, const Plan *p);
-void collapse_free(Collapse *c);
 
 /* The names the emitter uses (emit_c.c's, borrowed). */
 typedef struct CollapseNames {

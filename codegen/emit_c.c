@@ -142,10 +142,20 @@ void emit_c(FILE *out, const Plan *p, const char *prefix, const char *source)
     emit_c_ex(out, p, prefix, source, EMIT_C_ALL);
 }
 
+static void emit_all(FILE *out, const Plan *p, const char *prefix,
+                     const char *source, unsigned functions,
+                     const Collapse *col);
+
 void emit_c_ex(FILE *out, const Plan *p, const char *prefix, const char *source,
                unsigned functions)
 {
-    emit_c_kernel(out, p, prefix, source, functions, NULL);
+    emit_all(out, p, prefix, source, functions, NULL);
+}
+
+void emit_c_kernel(FILE *out, const Plan *p, const char *prefix,
+                   const char *source, unsigned functions)
+{
+    emit_all(out, p, prefix, source, functions, p->collapse);
 }
 
 /* the collapsed batch function of output i (col, collapse.h), today's as
@@ -176,8 +186,11 @@ static int emit_collapsed(Ctx *C, Names *N, const Collapse *col, int i)
     return 1;
 }
 
-void emit_c_kernel(FILE *out, const Plan *p, const char *prefix,
-                   const char *source, unsigned functions, const Collapse *col)
+/* the file: with the collapsed kernel of the outputs col says (NULL:
+ * none) */
+static void emit_all(FILE *out, const Plan *p, const char *prefix,
+                     const char *source, unsigned functions,
+                     const Collapse *col)
 {
     Names N;
     emit_names_init(&N, p, prefix);

@@ -47,11 +47,10 @@ void emit_c_ex(FILE *out, const Plan *p, const char *prefix, const char *source,
 void emit_c_header_ex(FILE *out, const Plan *p, const char *prefix,
                       const char *source, unsigned functions);
 /* emit_c_ex with the collapsed kernel (emit-c --kernel collapsed,
- * codegen/collapse.h) for the outputs col says (NULL: emit_c_ex) */
-struct Collapse;
+ * codegen/collapse.h) for the outputs p->collapse says (lower_collapse;
+ * NULL: emit_c_ex) */
 void emit_c_kernel(FILE *out, const Plan *p, const char *prefix,
-                   const char *source, unsigned functions,
-                   const struct Collapse *col);
+                   const char *source, unsigned functions);
 /* the bits of a --functions list ("plain,batch", "checked", "all" ...);
  * 0 when an item is not one of plain, checked, batch, batch_checked, all
  * (*bad then points at it) */

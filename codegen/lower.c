@@ -17,7 +17,9 @@
  * reach the Plan: they are folded into the constant c_i.
  */
 #include "codegen/lower.h"
+
 #include "base/mem.h"
+#include "codegen/collapse.h"
 #include "compiler/algebra/kernel.h"
 
 #include <math.h>
@@ -933,4 +935,11 @@ Plan *lower_derived(const Derived *d, FILE *err)
     free(L.used);
     plan_prune(L.p);
     return L.p;
+}
+
+Collapse *lower_collapse(Plan *p, const Derived *d)
+{
+    collapse_free(p->collapse);
+    p->collapse = collapse_new(d, p);
+    return p->collapse;
 }

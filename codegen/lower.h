@@ -31,6 +31,12 @@
  * double holds (beyond ~1.8e308, or non-zero below ~4.9e-324). */
 Plan *lower_derived(const Derived *d, FILE *err);
 
+/* The collapsed forms of p's outputs (emit-c --kernel collapsed,
+ * codegen/collapse.h), p just lowered from d: computed exactly from d's
+ * weights and attached to p (p->collapse, replacing any), so that the C
+ * writer needs only the Plan.  Returns p->collapse. */
+Collapse *lower_collapse(Plan *p, const Derived *d);
+
 /* Why a coefficient cannot become a double. */
 typedef enum LowerError {
     LOWER_OK,

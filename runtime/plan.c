@@ -80,6 +80,21 @@ Plan *plan_new(const char *name, int nparams, const char *const *params,
     return p;
 }
 
+void collapse_free(Collapse *c)
+{
+    if (!c)
+        return;
+    for (int i = 0; i < c->n; i++) {
+        free(c->o[i].name);
+        free(c->o[i].why);
+        free(c->o[i].point);
+        free(c->o[i].a);
+        free(c->o[i].b);
+    }
+    free(c->o);
+    free(c);
+}
+
 void plan_free(Plan *p)
 {
     if (!p)
@@ -97,6 +112,7 @@ void plan_free(Plan *p)
     for (int i = 0; p->bound && i < p->nparams + p->nconsts; i++)
         free(p->bound[i].text);
     free(p->bound);
+    collapse_free(p->collapse);
     free(p->ins);
     free(p->k);
     free(p->hash);
@@ -570,6 +586,27 @@ void plan_keep_outputs(Plan *p, const int *sel, int n)
     free(keep);
     free(p->outputs);
     p->outputs = kept;
+    if (p->collapse) { /* the collapsed forms follow their outputs */
+        Collapse *c = p->collapse;
+        CollapseOutput *ck = pc_xcalloc((size_t)n + 1, sizeof *ck);
+        for (int i = 0; i < n; i++) {
+            ck[i] = c->o[sel[i]];
+            c->o[sel[i]].name = NULL; // moved
+            c->o[sel[i]].why = NULL;
+            c->o[sel[i]].point = NULL;
+            c->o[sel[i]].a = c->o[sel[i]].b = NULL;
+        }
+        for (int o = 0; o < c->n; o++) {
+            free(c->o[o].name);
+            free(c->o[o].why);
+            free(c->o[o].point);
+            free(c->o[o].a);
+            free(c->o[o].b);
+        }
+        free(c->o);
+        c->o = ck;
+        c->n = n;
+    }
     p->noutputs = n;
     plan_prune(p);
 }

@@ -195,6 +195,34 @@ typedef struct PlanBound {
                          // the derivation ("[0, 1]", "(0, 2*pi]"), or NULL
 } PlanBound;
 
+/* The collapsed form of each output, for emit-c --kernel collapsed
+ * (codegen/collapse.h, docs/codegen.md "The collapsed kernel"): computed
+ * exactly while lowering (lower_collapse) and kept here as plain data, so
+ * that the C writer reads only the Plan. */
+typedef struct CollapseOutput {
+    char *name;    // the plan output's name (owned)
+    int ok;        // 1: collapsed (the fields below); 0: why says why
+    char *why;     // owned; also set when ok ("monomial basis ...")
+    int param;     // the param t (index)
+    int deg;       // n: the largest degree of the n_k and d in t
+    int nterms;    // K
+    int *point;    // K base point indices (owned)
+    double *a;     // (deg + 1) * K, a[j * K + k] (owned)
+    double *b;     // deg + 1 (owned)
+    double mid;    // m
+    double scale;  // 2^-e
+    double lo, hi; // the doubles in [a, b]: the smallest and the largest
+    double kappa, kappa_d, bound;
+} CollapseOutput;
+
+typedef struct Collapse {
+    int n; // = the plan's outputs, in its order
+    CollapseOutput *o;
+} Collapse;
+
+/* frees a Collapse (NULL: nothing) */
+void collapse_free(Collapse *c);
+
 typedef struct Plan {
     char *name; // scheme name (owned): prefix of generated C names
     int nparams, nconsts, npoints;
@@ -205,8 +233,11 @@ typedef struct Plan {
     double *k; // constant pool
     int noutputs;
     PlanOutput *outputs;
-    PlanBound *bound; // nparams + nconsts entries (params, then consts), or
-                      // NULL: no bound assumed
+    PlanBound *bound;   // nparams + nconsts entries (params, then consts), or
+                        // NULL: no bound assumed
+    Collapse *collapse; // the outputs' collapsed forms, in their order
+                        // (lower_collapse; emit-c --kernel collapsed), or
+                        // NULL
     /* builder state */
     int32_t *hash; // open addressing table of instruction indices, or NULL
     int hcap;

@@ -116,19 +116,17 @@ static int check_names(const EmitArgs *a, const char *file, FILE *err)
 }
 
 /* the C (or the plan dump) and the header, then the files */
-static int write_outputs(const EmitArgs *a, const Plan *p, const Derived *d,
-                         const char *file, FILE *out, FILE *err)
+static int write_outputs(const EmitArgs *a, const Plan *p, const char *file,
+                         FILE *out, FILE *err)
 {
     char *ctext = NULL, *htext = NULL;
     size_t clen = 0, hlen = 0;
     FILE *m = pc_xopen_memstream(&ctext, &clen);
     if (a->dump)
         plan_dump(m, p);
-    else if (a->collapsed) {
-        Collapse *col = collapse_new(d, p);
-        emit_c_kernel(m, p, a->prefix, file, a->functions, col);
-        collapse_free(col);
-    } else
+    else if (a->collapsed)
+        emit_c_kernel(m, p, a->prefix, file, a->functions);
+    else
         emit_c_ex(m, p, a->prefix, file, a->functions);
     pc_xclose_memstream(m);
     if (a->hpath) {
@@ -169,11 +167,13 @@ static int emit(const EmitArgs *a, const char *file, FILE *out, FILE *err)
         return rc;
     if (!a->dump && emit_c_check(p, d, a->prefix, err) != 0)
         rc = 1;
+    if (!rc && a->collapsed)
+        lower_collapse(p, d);
+    derived_free(d); /* the C is written from the Plan alone */
     if (!rc)
         rc = select_outputs(a, p, err);
     if (!rc)
-        rc = write_outputs(a, p, d, file, out, err);
-    derived_free(d);
+        rc = write_outputs(a, p, file, out, err);
     plan_free(p);
     return rc;
 }

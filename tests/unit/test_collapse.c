@@ -59,12 +59,12 @@ typedef size_t (*batch_fn)(size_t n, const double *const *prm,
 static int total_checks, total_collapsed;
 
 /* the C (collapsed kernel), its header and a wrapper wb_O per output */
-static void compile(Compiled *c, const Plan *p, const Collapse *col)
+static void compile(Compiled *c, const Plan *p)
 {
     char *src = NULL, *hdr = NULL, *wrap = NULL;
     size_t len = 0;
     FILE *m = open_memstream(&src, &len);
-    emit_c_kernel(m, p, "pcx", "test.pcs", EMIT_C_ALL, col);
+    emit_c_kernel(m, p, "pcx", "test.pcs", EMIT_C_ALL);
     fclose(m);
     m = open_memstream(&hdr, &len);
     emit_c_header(m, p, "pcx", "test.pcs");
@@ -251,14 +251,14 @@ static int check_scheme(const char *path, const char *text, const char *define)
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
     assert_non_null(p);
-    Collapse *col = collapse_new(d, p);
+    Collapse *col = lower_collapse(p, d);
     assert_int_equal(col->n, p->noutputs);
     int any = 0;
     for (int o = 0; o < col->n; o++)
         any += col->o[o].ok;
     if (any) {
         Compiled c;
-        compile(&c, p, col);
+        compile(&c, p);
         for (int o = 0; o < col->n; o++) {
             if (!col->o[o].ok)
                 continue;
@@ -272,7 +272,6 @@ static int check_scheme(const char *path, const char *text, const char *define)
         compiled_clear(&c);
     }
     total_collapsed += any;
-    collapse_free(col);
     plan_free(p);
     derived_free(d);
     return any;
@@ -352,19 +351,17 @@ static void test_collapse_high_degree(void **state)
     Derived *d = derive_source("high.pcs", high, strlen(high), stderr, NULL);
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
-    Collapse *col = collapse_new(d, p);
+    Collapse *col = lower_collapse(p, d);
     assert_int_equal(find(col, "M")->deg, 12);
     assert_true(find(col, "R")->deg >= 12);
     assert_true(find(col, "M")->ok && find(col, "R")->ok);
-    collapse_free(col);
     plan_free(p);
     derived_free(d);
     d = derive_source("odd.pcs", odd, strlen(odd), stderr, NULL);
     p = lower_derived(d, stderr);
-    col = collapse_new(d, p);
+    col = lower_collapse(p, d);
     assert_false(find(col, "M")->ok); // the same power: refused over this range
     assert_true(find(col, "Q")->ok);
-    collapse_free(col);
     plan_free(p);
     derived_free(d);
 }
@@ -399,7 +396,7 @@ static void test_collapse_bound_refuses(void **state)
                 : derive_file_ex(cases[i].path, stderr, NULL, &opt);
         assert_non_null(d);
         Plan *p = lower_derived(d, stderr);
-        Collapse *col = collapse_new(d, p);
+        Collapse *col = lower_collapse(p, d);
         const CollapseOutput *co = find(col, cases[i].out);
         fprintf(stderr, "collapse: %s %s: %s\n", cases[i].path,
                 cases[i].define ? cases[i].define : "", co->why);
@@ -409,11 +406,10 @@ static void test_collapse_bound_refuses(void **state)
         char *text = NULL;
         size_t len = 0;
         FILE *m = open_memstream(&text, &len);
-        emit_c_kernel(m, p, NULL, NULL, EMIT_C_ALL, col);
+        emit_c_kernel(m, p, NULL, NULL, EMIT_C_ALL);
         fclose(m);
         assert_null(strstr(text, "collapsed kernel (emit-c"));
         free(text);
-        collapse_free(col);
         plan_free(p);
         derived_free(d);
     }
@@ -426,23 +422,22 @@ static void test_collapse_detects_a_broken_coefficient(void **state)
     Derived *d = derive_file("examples/desargues_arc.pcs", stderr, NULL);
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
-    Collapse *col = collapse_new(d, p);
+    Collapse *col = lower_collapse(p, d);
     int o = plan_find_output(p, "M");
     assert_true(col->o[o].ok);
     Compiled c;
-    compile(&c, p, col);
+    compile(&c, p);
     double good = check_output(d, p, col, &c, o, 1);
     compiled_clear(&c);
     CollapseOutput *co = &col->o[o];
     co->a[2 * co->nterms + 1] *= 1 + 1e-9;
-    compile(&c, p, col);
+    compile(&c, p);
     double bad = check_output(d, p, col, &c, o, 0);
     compiled_clear(&c);
     fprintf(stderr, "collapse: desargues M max error %g, broken %g\n", good,
             bad);
     assert_true(good <= co->bound);
     assert_true(bad > 1e3 * co->bound);
-    collapse_free(col);
     plan_free(p);
     derived_free(d);
 }
@@ -466,14 +461,14 @@ static void test_collapse_fast_path_blocks(void **state)
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
     assert_non_null(p);
-    Collapse *col = collapse_new(d, p);
+    Collapse *col = lower_collapse(p, d);
     const CollapseOutput *co = find(col, "M");
     assert_true(co->ok);
     char *src = NULL;
     size_t len = 0;
     FILE *m = open_memstream(&src, &len);
-    emit_c_kernel(m, p, "pcd", "arc.pcs", EMIT_C_ALL, NULL);
-    emit_c_kernel(m, p, "pcx", "arc.pcs", EMIT_C_ALL, col);
+    emit_c_ex(m, p, "pcd", "arc.pcs", EMIT_C_ALL);
+    emit_c_kernel(m, p, "pcx", "arc.pcs", EMIT_C_ALL);
     fclose(m);
     Compiled c;
     char path[128], cmd[512];
@@ -568,7 +563,6 @@ static void test_collapse_fast_path_blocks(void **state)
         }
     }
     compiled_clear(&c);
-    collapse_free(col);
     plan_free(p);
     derived_free(d);
 }
@@ -587,7 +581,7 @@ static void test_collapse_default_is_unchanged(void **state)
     emit_c_ex(m, p, NULL, "x.pcs", EMIT_C_ALL);
     fclose(m);
     m = open_memstream(&b, &lb);
-    emit_c_kernel(m, p, NULL, "x.pcs", EMIT_C_ALL, NULL);
+    emit_c_kernel(m, p, NULL, "x.pcs", EMIT_C_ALL); /* p->collapse NULL */
     fclose(m);
     assert_string_equal(a, b);
     free(a);
@@ -603,10 +597,50 @@ static int teardown(void **state)
     return 0;
 }
 
+/* the collapsed forms live in the Plan (lower_collapse) and follow its
+ * outputs through plan_keep_outputs: reordered, dropped, each still its
+ * own output's (name, degree, coefficients), so emit-c reads the Plan
+ * alone */
+static void test_collapse_follows_kept_outputs(void **state)
+{
+    (void)state;
+    const char *text = "scheme keep\npoint A, B, C\nparam t in [0, 1]\n"
+                       "M = along(A, B, t)\n"
+                       "Q = along(along(A, B, t), along(B, C, t), t)\n"
+                       "R = bezier(t, A, B, C, A)\noutput M, Q, R\n";
+    Derived *d = derive_source("keep.pcs", text, strlen(text), stderr, NULL);
+    assert_non_null(d);
+    Plan *p = lower_derived(d, stderr);
+    assert_non_null(p);
+    assert_null(p->collapse);
+    Collapse *col = lower_collapse(p, d);
+    assert_ptr_equal(col, p->collapse);
+    assert_int_equal(col->n, 3);
+    /* degrees 1, 2, 3 in t, all collapsed over [0, 1] */
+    for (int o = 0; o < 3; o++) {
+        assert_true(col->o[o].ok);
+        assert_int_equal(col->o[o].deg, o + 1);
+    }
+    double r1 = col->o[2].a[col->o[2].nterms]; /* R's tau^1 coefficient */
+    int sel[2] = {2, 0};                       /* R, then M; Q dropped */
+    plan_keep_outputs(p, sel, 2);
+    assert_ptr_equal(p->collapse, col);
+    assert_int_equal(col->n, 2);
+    assert_string_equal(col->o[0].name, "R");
+    assert_string_equal(p->outputs[0].name, "R");
+    assert_int_equal(col->o[0].deg, 3);
+    assert_true(col->o[0].a[col->o[0].nterms] == r1);
+    assert_string_equal(col->o[1].name, "M");
+    assert_int_equal(col->o[1].deg, 1);
+    plan_free(p); /* frees the collapsed forms too (valgrind checks) */
+    derived_free(d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_collapse_default_is_unchanged),
+        cmocka_unit_test(test_collapse_follows_kept_outputs),
         cmocka_unit_test(test_collapse_bound_refuses),
         cmocka_unit_test(test_collapse_detects_a_broken_coefficient),
         cmocka_unit_test(test_collapse_high_degree),
