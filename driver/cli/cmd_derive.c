@@ -1,5 +1,5 @@
 /*
- * derive.c - `pointcalc derive FILE [--format text|latex|json]
+ * cmd_derive.c - `pointcalc derive FILE [--format text|latex|json]
  * [--origin POINT] [--steps]`: the exact equations of the outputs
  * (format.h), after every step of the derivation with --steps (steps.h).
  */

@@ -1,5 +1,5 @@
 /*
- * emit_c.c - `pointcalc emit-c FILE [-o OUT.c] [--header OUT.h]
+ * cmd_emit_c.c - `pointcalc emit-c FILE [-o OUT.c] [--header OUT.h]
  * [--prefix NAME] [--output NAMES] [--functions LIST] [--kernel K]
  * [--dump-plan]`: C99
  * for the outputs

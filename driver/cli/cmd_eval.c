@@ -1,5 +1,5 @@
 /*
- * eval.c - `pointcalc eval FILE --at A=x,y ... [--set k=SPEC ...]
+ * cmd_eval.c - `pointcalc eval FILE --at A=x,y ... [--set k=SPEC ...]
  * --param t=SPEC ... [--output NAMES] [--format csv|json]`: the outputs'
  * numbers at every sample of the grid (docs/eval.md).
  *

@@ -1,5 +1,5 @@
 /*
- * plot.c - `pointcalc plot FILE --at A=x,y ... -o OUT.svg`: the curves of
+ * cmd_plot.c - `pointcalc plot FILE --at A=x,y ... -o OUT.svg`: the curves of
  * the point outputs as SVG, with the construction at --at-param
  * (docs/plot.md; the drawing is runtime/plot_sample.c and runtime/svg.c).
  *
