@@ -29,6 +29,18 @@ void budget_statement(const Source *src, Span span)
     cur = next;
 }
 
+static _Thread_local const char *volatile phase_now;
+
+void budget_phase(const char *phase)
+{
+    phase_now = phase;
+}
+
+const char *budget_phase_now(void)
+{
+    return phase_now;
+}
+
 void budget_where(const Source **src, Span *span)
 {
     const Where *w = &slots[cur];

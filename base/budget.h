@@ -25,6 +25,13 @@ void budget_statement(const Source *src, Span span);
  * signal handler: the mark is published by flipping an index. */
 void budget_where(const Source **src, Span *span);
 
+/* What this thread does after the derivation, for the budget handlers'
+ * messages ("ran out while PHASE"): a static string such as "printing the
+ * result", or NULL while deriving (the handlers then point at the marked
+ * statement).  budget_phase_now reads it (safe in a signal handler). */
+void budget_phase(const char *phase);
+const char *budget_phase_now(void);
+
 /* "60 s", "2 GiB", "512 MiB": the budgets as the messages write them */
 void budget_format_seconds(char *buf, size_t cap, double s);
 void budget_format_bytes(char *buf, size_t cap, size_t b);

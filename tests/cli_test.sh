@@ -167,6 +167,14 @@ check "time budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the time b
 "$PCB" derive "$tmp/chain.pcs" --max-memory 20M >"$tmp/out" 2>"$tmp/err"
 check "memory budget: exit 1" test $? -eq 1
 check "memory budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the memory budget of 20 MiB ran out while deriving this; raise it with --max-memory" "$tmp/err"
+# a budget that runs out after the derivation says which phase it was in,
+# unlocated, and leaves nothing on stdout: the five-point conic derives in
+# under 64 KiB of counted memory and prints in about 290 KiB (its form
+# search factors), so 128K runs out while printing
+"$PCB" derive examples/conic_five_points.pcs --max-memory 128K >"$tmp/out" 2>"$tmp/err"
+check "memory budget while printing: exit 1" test $? -eq 1
+check "memory budget while printing: nothing on stdout" test ! -s "$tmp/out"
+check "memory budget while printing: the phase named" grep -qx "pointcalc: error: the memory budget of 131072 bytes ran out while printing the result; raise it with --max-memory" "$tmp/err"
 "$PCB" emit-c "$tmp/chain.pcs" --max-seconds 0.2 >"$tmp/out" 2>"$tmp/err"
 check "emit-c time budget" test $? -eq 1 -a ! -s "$tmp/out"
 "$PCB" eval "$tmp/chain.pcs" --max-memory 20M --at A=0,0 --at B=1,0 --at C=0,1 \

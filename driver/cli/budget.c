@@ -20,7 +20,12 @@
 #include "base/mem.h"
 #include "base/numfmt.h"
 
-static char time_msg[160], mem_msg[160], oom_msg[96];
+/* the messages, each around the phase: HEAD PHASE TAIL */
+static char time_head[96], mem_head[96];
+static const char oom_head[] = "out of memory while ";
+static const char time_tail[] = "; raise it with --max-seconds";
+static const char mem_tail[] = "; raise it with --max-memory";
+static const char oom_tail[] = " (the system refused more)";
 
 void budget_options_default(BudgetOptions *b)
 {
@@ -118,37 +123,46 @@ static void put_fd(void *ctx, const char *s, size_t n)
     }
 }
 
-/* the located message (or a plain one when no statement is current) */
-static void report(const char *msg)
+/* "HEAD PHASE TAIL": located at the marked statement while deriving, a
+ * plain message in the phases after it (budget_phase) or with no
+ * statement marked */
+static void report(const char *head, const char *tail)
 {
     static const int fd = 2;
     DiagSink k = {put_fd, (void *)&fd};
     const Source *src;
     Span span;
     budget_where(&src, &span);
-    if (src != NULL) {
+    const char *phase = budget_phase_now();
+    if (phase)
+        src = NULL;
+    if (src != NULL)
         diag_put_location(&k, src, span, "error");
-        put_fd((void *)&fd, msg, strlen(msg));
-        put_fd((void *)&fd, "\n", 1);
-        diag_put_excerpt(&k, src, span);
-    } else {
+    else
         put_fd((void *)&fd, "pointcalc: error: ", 18);
-        put_fd((void *)&fd, msg, strlen(msg));
-        put_fd((void *)&fd, "\n", 1);
-    }
+    put_fd((void *)&fd, head, strlen(head));
+    phase = phase ? phase : "deriving this";
+    put_fd((void *)&fd, phase, strlen(phase));
+    put_fd((void *)&fd, tail, strlen(tail));
+    put_fd((void *)&fd, "\n", 1);
+    if (src != NULL)
+        diag_put_excerpt(&k, src, span);
 }
 
 static void on_alarm(int sig)
 {
     (void)sig;
-    report(time_msg);
+    report(time_head, time_tail);
     _exit(1);
 }
 
 static void on_oom(MemFailure why, void *arg)
 {
     (void)arg;
-    report(why == MEM_BUDGET ? mem_msg : oom_msg);
+    if (why == MEM_BUDGET)
+        report(mem_head, mem_tail);
+    else
+        report(oom_head, oom_tail);
     _exit(1);
 }
 
@@ -156,17 +170,12 @@ void budget_arm(double max_seconds, size_t max_memory)
 {
     char amount[48];
     budget_format_seconds(amount, sizeof amount, max_seconds);
-    snprintf(time_msg, sizeof time_msg,
-             "the time budget of %s ran out while deriving this; raise it "
-             "with --max-seconds",
-             amount);
+    snprintf(time_head, sizeof time_head,
+             "the time budget of %s ran out while ", amount);
     budget_format_bytes(amount, sizeof amount, max_memory);
-    snprintf(mem_msg, sizeof mem_msg,
-             "the memory budget of %s ran out while deriving this; raise it "
-             "with --max-memory",
-             amount);
-    snprintf(oom_msg, sizeof oom_msg,
-             "out of memory while deriving this (the system refused more)");
+    snprintf(mem_head, sizeof mem_head,
+             "the memory budget of %s ran out while ", amount);
+    budget_phase(NULL); /* deriving */
     mem_set_limit(max_memory);
     mem_set_oom_handler(on_oom, NULL);
     if (max_seconds > 0) {

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/mem.h"
 #include "compiler/print/format.h"
 #include "compiler/print/steps.h"
 #include "driver/cli/args.h"
@@ -70,6 +71,34 @@ static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
     return 2;
 }
 
+/* The result is made in memory and written in one piece: a budget that
+ * runs out while printing (the handler exits 1, "ran out while printing
+ * the result") leaves nothing on stdout, as docs/language.md promises for
+ * every exit 1. */
+static void print_result(const DeriveArgs *a, const Derived *d, slong origin,
+                         FILE *out)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = pc_xopen_memstream(&text, &len);
+    if (a->steps && a->style == FMT_JSON) /* the object with "steps" */
+        steps_print(m, d, a->style, origin);
+    else {
+        if (a->standalone)
+            format_latex_begin(m, d);
+        if (a->steps) { /* the steps, a blank line, then the outputs */
+            steps_print(m, d, a->style, origin);
+            fputs("\n", m);
+        }
+        format_derived_width(m, d, a->style, origin, a->width);
+        if (a->standalone)
+            format_latex_end(m);
+    }
+    pc_xclose_memstream(m);
+    fwrite(text, 1, len, out);
+    free(text);
+}
+
 int cli_derive(int argc, char **argv, FILE *out, FILE *err)
 {
     DeriveArgs a = {FMT_TEXT, NULL, 0, 0, 0, help_usage("derive")};
@@ -92,19 +121,8 @@ int cli_derive(int argc, char **argv, FILE *out, FILE *err)
                               "--origin '%s' is not a base point of the "
                               "scheme",
                               a.origin);
-    else if (a.steps && a.style == FMT_JSON) /* the object with "steps" */
-        steps_print(out, d, a.style, origin);
-    else {
-        if (a.standalone)
-            format_latex_begin(out, d);
-        if (a.steps) { /* the steps, a blank line, then the outputs */
-            steps_print(out, d, a.style, origin);
-            fputs("\n", out);
-        }
-        format_derived_width(out, d, a.style, origin, a.width);
-        if (a.standalone)
-            format_latex_end(out);
-    }
+    else
+        print_result(&a, d, origin, out);
     derived_free(d);
     return rc;
 }

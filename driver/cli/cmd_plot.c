@@ -826,8 +826,10 @@ int cli_plot(int argc, char **argv, FILE *out, FILE *err)
         return rc;
     }
     budget_arm(bo.max_seconds, bo.max_memory);
+    budget_phase("lowering the equations to numbers");
     r.p = lower_all(&r, err);
     budget_disarm(); /* the drawing takes what the budget of samples allows */
+    budget_phase("drawing the plot");
     if (!r.p) {
         run_clear(&r);
         args_clear(&a);

@@ -14,6 +14,7 @@ Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
     budget_arm(b->max_seconds, b->max_memory);
     Derived *d = derive_file_ex(file, err, NULL, &opt);
     budget_disarm(); /* the derivation is budgeted, not the output */
+    budget_phase("printing the result"); /* for the memory budget */
     *rc = d ? 0 : bad_define ? 2 : 1;
     return d;
 }
@@ -25,8 +26,10 @@ Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
     DeriveOptions opt = derive_options_cli(b, err, &bad_define);
     budget_arm(b->max_seconds, b->max_memory);
     Derived *d = derive_file_ex(file, err, NULL, &opt);
+    budget_phase("lowering the equations to numbers");
     Plan *p = d ? lower_derived(d, err) : NULL;
     budget_disarm(); /* evaluation takes what the grid asks for */
+    budget_phase("writing the result");
     *rc = p ? 0 : !d && bad_define ? 2 : 1;
     if (p && derived)
         *derived = d;
