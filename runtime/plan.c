@@ -80,19 +80,30 @@ Plan *plan_new(const char *name, int nparams, const char *const *params,
     return p;
 }
 
+static void collapse_output_clear(CollapseOutput *o)
+{
+    free(o->name);
+    free(o->why);
+    free(o->point);
+    free(o->a);
+    free(o->b);
+}
+
 void collapse_free(Collapse *c)
 {
     if (!c)
         return;
-    for (int i = 0; i < c->n; i++) {
-        free(c->o[i].name);
-        free(c->o[i].why);
-        free(c->o[i].point);
-        free(c->o[i].a);
-        free(c->o[i].b);
-    }
+    for (int i = 0; i < c->n; i++)
+        collapse_output_clear(&c->o[i]);
     free(c->o);
     free(c);
+}
+
+static void output_clear(PlanOutput *o)
+{
+    free(o->name);
+    free(o->point);
+    free(o->reg);
 }
 
 void plan_free(Plan *p)
@@ -103,11 +114,8 @@ void plan_free(Plan *p)
     free_names(p->nparams, p->params);
     free_names(p->nconsts, p->consts);
     free_names(p->npoints, p->points);
-    for (int o = 0; o < p->noutputs; o++) {
-        free(p->outputs[o].name);
-        free(p->outputs[o].point);
-        free(p->outputs[o].reg);
-    }
+    for (int o = 0; o < p->noutputs; o++)
+        output_clear(&p->outputs[o]);
     free(p->outputs);
     for (int i = 0; p->bound && i < p->nparams + p->nconsts; i++)
         free(p->bound[i].text);
@@ -577,32 +585,20 @@ void plan_keep_outputs(Plan *p, const int *sel, int n)
         kept[i] = p->outputs[sel[i]]; // its arrays move
         keep[sel[i]] = 1;
     }
+    Collapse *c = p->collapse; /* its forms follow their outputs */
+    CollapseOutput *ck = c ? pc_xcalloc((size_t)n + 1, sizeof *ck) : NULL;
+    for (int i = 0; c && i < n; i++)
+        ck[i] = c->o[sel[i]]; // its arrays move too
     for (int o = 0; o < p->noutputs; o++)
         if (!keep[o]) {
-            free(p->outputs[o].name);
-            free(p->outputs[o].point);
-            free(p->outputs[o].reg);
+            output_clear(&p->outputs[o]);
+            if (c)
+                collapse_output_clear(&c->o[o]);
         }
     free(keep);
     free(p->outputs);
     p->outputs = kept;
-    if (p->collapse) { /* the collapsed forms follow their outputs */
-        Collapse *c = p->collapse;
-        CollapseOutput *ck = pc_xcalloc((size_t)n + 1, sizeof *ck);
-        for (int i = 0; i < n; i++) {
-            ck[i] = c->o[sel[i]];
-            c->o[sel[i]].name = NULL; // moved
-            c->o[sel[i]].why = NULL;
-            c->o[sel[i]].point = NULL;
-            c->o[sel[i]].a = c->o[sel[i]].b = NULL;
-        }
-        for (int o = 0; o < c->n; o++) {
-            free(c->o[o].name);
-            free(c->o[o].why);
-            free(c->o[o].point);
-            free(c->o[o].a);
-            free(c->o[o].b);
-        }
+    if (c) {
         free(c->o);
         c->o = ck;
         c->n = n;

@@ -298,7 +298,7 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
 {
     const Ring *r = D->r;
     int st = 0;
-    if (derive_is_function(n->builtin) || n->builtin == BI_PI)
+    if (derive_is_function(n->builtin)) /* pi among them */
         return derive_eval_function(D, res, n);
     if (n->builtin == BI_DOT || n->builtin == BI_DIST || n->builtin == BI_ANGLE)
         return derive_eval_metric(D, res, n);

@@ -167,11 +167,11 @@ static int emit(const EmitArgs *a, const char *file, FILE *out, FILE *err)
         return rc;
     if (!a->dump && emit_c_check(p, d, a->prefix, err) != 0)
         rc = 1;
-    if (!rc && a->collapsed)
-        lower_collapse(p, d);
-    derived_free(d); /* the C is written from the Plan alone */
     if (!rc)
         rc = select_outputs(a, p, err);
+    if (!rc && a->collapsed) /* only the outputs written are analysed */
+        lower_collapse(p, d);
+    derived_free(d); /* the C is written from the Plan alone */
     if (!rc)
         rc = write_outputs(a, p, file, out, err);
     plan_free(p);
