@@ -691,6 +691,11 @@ int kernel_pow_q(Kernels *K, RatFun res, const RatFun x, slong p, slong q)
         else if (rc == 1)
             rc = 0;
     }
+    /* the root may be a polynomial (sqrt((t + 1)^1000) = (t + 1)^500):
+     * its power has the size guard of every power (ratfun.h), before the
+     * one FLINT call that could otherwise run for hours */
+    if (rc == 0 && ratfun_log2_bits_pow(t, p, r) > RATFUN_MAX_LOG2_BITS)
+        rc = KERNEL_EBIG;
     if (rc == 0 && ratfun_pow_si(t, t, p, r) != 0) {
         K->why = "negative power of zero";
         rc = KERNEL_EDOMAIN;

@@ -439,8 +439,16 @@ static int eval_pow(Deriver *D, Value *res, const Node *n)
             derive_kernel_error(D, KERNEL_EBIG, n, NULL);
             goto done;
         }
-        int rc = kernel_pow_q(D->K, res->s, res->s, fmpz_get_si(fmpq_numref(q)),
-                              fmpz_get_si(fmpq_denref(q)));
+        slong pn = fmpz_get_si(fmpq_numref(q)),
+              qd = fmpz_get_si(fmpq_denref(q));
+        int rc = kernel_pow_q(D->K, res->s, res->s, pn, qd);
+        /* refused by the size guard (res unchanged): the root's power is
+         * about x^(p/q), its bits those of x^|p| over q */
+        if (rc == KERNEL_EBIG &&
+            derive_too_big(
+                D, ratfun_log2_bits_pow(res->s, labs(pn), r) - log2((double)qd),
+                n) < 0)
+            goto done;
         if (rc != 0) {
             derive_kernel_error(D, rc, n, n->lhs);
             goto done;
