@@ -20,10 +20,12 @@
 #include <cmocka.h>
 
 #include <dirent.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include <flint/flint.h>
 
@@ -102,11 +104,50 @@ static int seen_before(uint64_t key)
 }
 
 /* checks one input: success XOR errors, nothing else */
+/* A watchdog: one FLINT call cannot be interrupted, so an input that
+ * would run for hours (an unguarded size) would hang the suite.  Past
+ * PROBE_SECONDS the run stops, saying which input of which seeded run did
+ * it, so that PC_FUZZ_SEED repeats it. */
+enum { PROBE_SECONDS = 120 };
+static const char *probe_name;
+static const char *probe_buf;
+static size_t probe_len;
+
+static void put_err(const char *s, size_t n)
+{
+    while (n > 0) {
+        ssize_t w = write(2, s, n);
+        if (w <= 0)
+            return;
+        s += w;
+        n -= (size_t)w;
+    }
+}
+
+static void on_watchdog(int sig)
+{
+    (void)sig;
+    static const char head[] = "\nfuzz: FAIL: one input of ";
+    static const char mid[] = " ran past the watchdog (PC_FUZZ_SEED printed "
+                              "above repeats the run); the input:\n";
+    put_err(head, sizeof head - 1);
+    put_err(probe_name, strlen(probe_name));
+    put_err(mid, sizeof mid - 1);
+    put_err(probe_buf, probe_len);
+    put_err("\n", 1);
+    _exit(1);
+}
+
 static int probe(const char *name, const char *buf, size_t len)
 {
     int nerr = -1;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
+    probe_name = name;
+    probe_buf = buf;
+    probe_len = len;
+    if (!getenv("PC_VALGRIND")) /* valgrind is ~30x slower: no watchdog */
+        alarm(PROBE_SECONDS);
     Derived *d = derive_source(name, buf, len, NULL, &nerr);
     int ok = (d != NULL) == (nerr == 0);
     if (d && !seen_before(token_key(buf, len)))
@@ -114,6 +155,7 @@ static int probe(const char *name, const char *buf, size_t len)
     else if (d)
         nskipped++;
     derived_free(d);
+    alarm(0);
     clock_gettime(CLOCK_MONOTONIC, &t1);
     double sec = (double)(t1.tv_sec - t0.tv_sec) +
                  1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
@@ -238,6 +280,8 @@ static void test_fuzz_examples_never_crash(void **state)
     run_seed = se ? strtoull(se, NULL, 10) : (uint64_t)time(NULL);
     printf("fuzz: seed %llu (PC_FUZZ_SEED=%llu repeats this run)\n",
            (unsigned long long)run_seed, (unsigned long long)run_seed);
+    fflush(stdout); /* seen even if the watchdog ends the run */
+    signal(SIGALRM, on_watchdog);
     int files = fuzz_dir("examples", m) + fuzz_dir("tests/schemes", m) +
                 fuzz_dir("tests/errors", m);
     assert_true(files > 0);
