@@ -1,7 +1,9 @@
 /*
  * check.c - the one way an internal invariant fails (check.h): a line on
  * stderr with write(2) (no allocation: the failure may be in the memory
- * path), then abort() so a debugger or a core dump sees the stack.
+ * path), then abort() so a debugger or a core dump sees the stack; and
+ * pc_write_all, the one write loop that such last words (the budget
+ * handlers', the fuzz watchdog's) go through.
  */
 #include "base/check.h"
 
@@ -9,16 +11,20 @@
 #include <string.h>
 #include <unistd.h>
 
-static void put(const char *s)
+void pc_write_all(int fd, const char *s, size_t n)
 {
-    size_t n = strlen(s);
     while (n > 0) {
-        ssize_t w = write(2, s, n);
+        ssize_t w = write(fd, s, n);
         if (w <= 0)
             return;
         s += w;
         n -= (size_t)w;
     }
+}
+
+static void put(const char *s)
+{
+    pc_write_all(2, s, strlen(s));
 }
 
 _Noreturn void pc_internal_error(const char *file, int line, const char *what)

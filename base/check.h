@@ -12,6 +12,13 @@
 #ifndef PC_BASE_CHECK_H
 #define PC_BASE_CHECK_H
 
+#include <stddef.h>
+
+/* writes s[0..n) to fd with write(2), retrying short writes; allocates
+ * nothing and is safe in a signal handler (the budget's and the tests'
+ * last words); gives up silently when the fd refuses */
+void pc_write_all(int fd, const char *s, size_t n);
+
 /* prints "pointcalc: internal error at FILE:LINE: WHAT (a bug: please
  * report it with the scheme)" to stderr and aborts */
 _Noreturn void pc_internal_error(const char *file, int line, const char *what);

@@ -16,6 +16,7 @@
 #include <sys/time.h>
 #include <unistd.h>
 
+#include "base/check.h"
 #include "base/diag.h"
 #include "base/mem.h"
 #include "base/numfmt.h"
@@ -113,14 +114,7 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
 
 static void put_fd(void *ctx, const char *s, size_t n)
 {
-    int fd = *(const int *)ctx;
-    while (n > 0) {
-        ssize_t w = write(fd, s, n);
-        if (w <= 0)
-            return;
-        s += w;
-        n -= (size_t)w;
-    }
+    pc_write_all(*(const int *)ctx, s, n);
 }
 
 /* "HEAD PHASE TAIL": located at the marked statement while deriving, a

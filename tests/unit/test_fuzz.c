@@ -29,6 +29,7 @@
 
 #include <flint/flint.h>
 
+#include "base/check.h"
 #include "compiler/derive.h"
 #include "tests/fuzz/exercise.h"
 
@@ -113,28 +114,17 @@ static const char *probe_name;
 static const char *probe_buf;
 static size_t probe_len;
 
-static void put_err(const char *s, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(2, s, n);
-        if (w <= 0)
-            return;
-        s += w;
-        n -= (size_t)w;
-    }
-}
-
 static void on_watchdog(int sig)
 {
     (void)sig;
     static const char head[] = "\nfuzz: FAIL: one input of ";
     static const char mid[] = " ran past the watchdog (PC_FUZZ_SEED printed "
                               "above repeats the run); the input:\n";
-    put_err(head, sizeof head - 1);
-    put_err(probe_name, strlen(probe_name));
-    put_err(mid, sizeof mid - 1);
-    put_err(probe_buf, probe_len);
-    put_err("\n", 1);
+    pc_write_all(2, head, sizeof head - 1);
+    pc_write_all(2, probe_name, strlen(probe_name));
+    pc_write_all(2, mid, sizeof mid - 1);
+    pc_write_all(2, probe_buf, probe_len);
+    pc_write_all(2, "\n", 1);
     _exit(1);
 }
 
