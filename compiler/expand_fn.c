@@ -511,64 +511,63 @@ static int check_knots(Expander *E, Node **knots, int n)
  *   (p1 + pn)/2 + sum_k (p_{k+1} - p_k)/2 * sign(t - t_k)
  * (Dolya 2.3.1, Theorem 1): p1 before t1, p_k between t_{k-1} and t_k, pn
  * after; at a knot the mean of its two pieces (their common value when the
- * curve is continuous there). */
-static int expand_piecewise(Expander *E, Node **slot)
+ * curve is continuous there).  a[0] is t, a[2k-1] piece k, a[2k] knot k. */
+static int piecewise_formula(Expander *E, Node **slot, Node **a, int na)
 {
-    Node *n = *slot, *a[2 * 1024];
-    Span sp = n->span;
-    int na = 0;
-    for (Node *x = n->args; x; x = x->next) {
-        if (na == 2 * 1024) {
-            diag_error(E->d, x->span,
-                       "piecewise() takes at most 1023 knots; expected fewer");
-            return -1;
-        }
-        a[na++] = x;
-    }
-    if (na < 2 || na % 2) {
-        diag_error(E->d, sp,
-                   "piecewise() takes the param, then pieces and knots in "
-                   "turn: piecewise(t, p1, t1, p2, ..., pn); found %d "
-                   "argument%s",
-                   na, na == 1 ? "" : "s");
-        return -1;
-    }
-    int npieces = na / 2;
-    Node *knots[1024];
-    for (int k = 1; k < npieces; k++) /* a[2k-1] is piece k, a[2k] knot k */
+    Span sp = (*slot)->span;
+    int npieces = na / 2, st = -1;
+    Node **knots = pc_xmalloc(sizeof(Node *) * (size_t)npieces);
+    Node **terms = pc_xmalloc(sizeof(Node *) * (size_t)npieces);
+    for (int k = 1; k < npieces; k++)
         knots[k - 1] = a[2 * k];
     if (check_knots(E, knots, npieces - 1) < 0)
-        return -1;
-    Node **terms = pc_xmalloc(sizeof(Node *) * (size_t)npieces);
-    int ok = 1;
+        goto done;
     if (npieces == 1)
         terms[0] = use(E, a[1]);
     else
         terms[0] = bin(E, ND_DIV,
                        bin(E, ND_ADD, use(E, a[1]), use(E, a[na - 1]), sp),
                        num(E, "2", sp), sp);
-    for (int k = 1; k < npieces && ok; k++) {
-        Node *lo = use(E, a[2 * k - 1]), *hi = use(E, a[2 * k + 1]);
-        Node *tk = use(E, a[2 * k]), *t = use(E, a[0]);
-        if (!lo || !hi || !tk || !t) {
-            ok = 0;
-            break;
-        }
-        Node *jump =
-            bin(E, ND_DIV, bin(E, ND_SUB, hi, lo, sp), num(E, "2", sp), sp);
-        terms[k] = bin(E, ND_MUL, jump,
-                       call1(E, "sign", bin(E, ND_SUB, t, tk, sp), sp), sp);
-        ok = terms[k] != NULL;
-    }
-    if (!ok || !terms[0]) {
-        free(terms);
-        return -1;
+    if (!terms[0])
+        goto done;
+    for (int k = 1; k < npieces; k++) {
+        Node *jump = bin(E, ND_DIV,
+                         bin(E, ND_SUB, use(E, a[2 * k + 1]),
+                             use(E, a[2 * k - 1]), sp),
+                         num(E, "2", sp), sp);
+        Node *side = bin(E, ND_SUB, use(E, a[0]), use(E, a[2 * k]), sp);
+        terms[k] = bin(E, ND_MUL, jump, call1(E, "sign", side, sp), sp);
+        if (!terms[k])
+            goto done;
     }
     Node *f = balanced(E, ND_ADD, terms, npieces, sp);
-    free(terms);
-    int st = ex_rewrite(E, &f);
+    st = ex_rewrite(E, &f);
     if (st == 0)
         replace(slot, f);
+done:
+    free(knots);
+    free(terms);
+    return st;
+}
+
+static int expand_piecewise(Expander *E, Node **slot)
+{
+    Node *n = *slot;
+    int na = n->nargs;
+    if (na < 2 || na % 2) {
+        diag_error(E->d, n->span,
+                   "piecewise() takes the param, then pieces and knots in "
+                   "turn: piecewise(t, p1, t1, p2, ..., pn); found %d "
+                   "argument%s",
+                   na, na == 1 ? "" : "s");
+        return -1;
+    }
+    Node **a = pc_xmalloc(sizeof(Node *) * (size_t)na);
+    na = 0;
+    for (Node *x = n->args; x; x = x->next)
+        a[na++] = x;
+    int st = piecewise_formula(E, slot, a, na);
+    free(a);
     return st;
 }
 
@@ -696,53 +695,30 @@ static void add_joint(Expander *E, const JoinArg *g, const JoinArg *h,
     E->stmt->joints = ast_append_equation(E->stmt->joints, q);
 }
 
-/* join(t, [g0[-inf..b],] t0, g1[a..b], t1, ..., gn[a..b], tn [, g[a..inf]])
- * (Dolya 2.1, Theorems 1-3); smoothjoin(m, t, ...) blends with the C^m
- * step instead of the ramp (Theorem 2). */
-static int expand_join(Expander *E, Node **slot, int smooth)
+/* a join() call, its arguments read and checked */
+typedef struct Join {
+    const char *fn; // "join" or "smoothjoin"
+    Node *m, *t;    // the smoothness (NULL: the ramp) and the param
+    JoinArg *a;     // the arguments after t
+    int na;
+    int head, tail; // an infinite first (a[0]) or last (a[na-1]) branch
+    int first;      // a[first] is the first knot
+    Node **knots;
+    int nknots, nseg;
+} Join;
+
+/* the pattern: [g0[-inf..b]] knot (segment knot)+ [g[a..inf]], or two
+ * infinite branches around one knot */
+static int join_pattern(Expander *E, Join *J, Span sp)
 {
-    Node *n = *slot, *m = NULL, *t;
-    Span sp = n->span;
-    const char *fn = smooth ? "smoothjoin" : "join";
-    JoinArg a[1024];
-    int na = 0, st = 0;
-    Node *x = n->args;
-    if (smooth) {
-        m = x;
-        x = x ? x->next : NULL;
-    }
-    t = x;
-    if (!t) {
-        diag_error(E->d, sp,
-                   "%s() takes %sthe param, then knots and segments in turn: "
-                   "%s(%st, t0, g1[a..b], t1, ...)",
-                   fn, smooth ? "the smoothness m, " : "", fn,
-                   smooth ? "m, " : "");
-        return -1;
-    }
-    for (x = t->next; x; x = x->next) {
-        if (na == 1024) {
-            diag_error(E->d, x->span, "%s() takes at most 1023 segments", fn);
-            return -1;
-        }
-        if (join_arg(E, x, &a[na++]) < 0)
-            st = -1;
-    }
-    if (st < 0)
-        return -1;
-    /* the pattern: [inf-seg] knot (seg knot)+ [inf-seg], or inf-seg knot
-     * inf-seg */
-    int first = 0, last = na - 1;
-    int head = na > 0 && a[0].seg && a[0].lo_inf;
-    int tail = na > 0 && a[last].seg && a[last].hi_inf;
-    if (head)
-        first = 1;
-    if (tail)
-        last--;
-    int nknots = 0, nseg = 0;
-    Node *knots[1024];
-    for (int k = first; k <= last; k++) {
-        int want_knot = (k - first) % 2 == 0;
+    JoinArg *a = J->a;
+    int last = J->na - 1;
+    J->head = J->na > 0 && a[0].seg && a[0].lo_inf;
+    J->tail = J->na > 0 && a[last].seg && a[last].hi_inf;
+    J->first = J->head;
+    last -= J->tail;
+    for (int k = J->first; k <= last; k++) {
+        int want_knot = (k - J->first) % 2 == 0;
         const JoinArg *j = &a[k];
         if (want_knot != !j->seg || (j->seg && (j->lo_inf || j->hi_inf)) ||
             (!want_knot && k == last)) {
@@ -750,50 +726,54 @@ static int expand_join(Expander *E, Node **slot, int smooth)
                        "expected %s here: %s() takes knots and segments in "
                        "turn, t0, g1[a..b], t1, ..., the first and the last "
                        "segment may be infinite (g0[-inf..b], g[a..inf])",
-                       want_knot ? "a knot" : "a finite segment g[a..b]", fn);
+                       want_knot ? "a knot" : "a finite segment g[a..b]",
+                       J->fn);
             return -1;
         }
         if (want_knot)
-            knots[nknots++] = j->node;
+            J->knots[J->nknots++] = j->node;
         else
-            nseg++;
+            J->nseg++;
     }
-    if (nknots == 0 || (nseg == 0 && !(head && tail))) {
+    if (J->nknots == 0 || (J->nseg == 0 && !(J->head && J->tail))) {
         diag_error(E->d, sp,
                    "%s() needs at least one segment between two knots, or "
                    "two infinite branches at one knot",
-                   fn);
+                   J->fn);
         return -1;
     }
-    if (check_knots(E, knots, nknots) < 0)
-        return -1;
-    /* the terms of (2)/(4)/(8) */
-    Node *terms[2048];
+    return check_knots(E, J->knots, J->nknots);
+}
+
+/* the terms of formula (2), (4) or (8) of 2.1 into terms (at most nseg +
+ * 2); their number, or -1 when a copy ran over the budget */
+static int join_terms(Expander *E, const Join *J, Node **terms, Span sp)
+{
+    const JoinArg *a = J->a;
+    Node *m = J->m, *t = J->t;
     int nt = 0;
-    const JoinArg *g1 = nseg ? &a[first + 1] : NULL;
-    Node *t0 = knots[0], *tn = knots[nknots - 1];
-    if (head) { /* R0(b0 + Ql(t, t0)) */
+    if (J->head) /* R0(b0 + Ql(t, t0)) */
         terms[nt++] = seg_at(
             E, &a[0],
             bin(E, ND_ADD, use(E, a[0].hi),
-                ray(E, m, use(E, t), use(E, t0), 0, sp), sp),
+                ray(E, m, use(E, t), use(E, J->knots[0]), 0, sp), sp),
             sp);
-    } else {
-        terms[nt++] = seg_at(E, g1, use(E, g1->lo), sp);
-    }
-    for (int k = 0; k < nseg; k++) {
-        const JoinArg *g = &a[first + 1 + 2 * k];
-        Node *ta = knots[k], *tb = knots[k + 1];
+    else /* R1(tau_1^0) */
+        terms[nt++] = seg_at(E, &a[1], use(E, a[1].lo), sp);
+    for (int k = 0; k < J->nseg; k++) {
+        const JoinArg *g = &a[J->first + 1 + 2 * k];
+        Node *ta = J->knots[k], *tb = J->knots[k + 1];
         Node *w = bin(E, ND_SUB, use(E, tb), use(E, ta), sp);
         Node *al = blend(E, m, use(E, t), use(E, ta), w, sp);
         Node *dt = bin(E, ND_SUB, use(E, g->hi), use(E, g->lo), sp);
-        Node *arg = bin(E, ND_ADD, use(E, g->lo), bin(E, ND_MUL, dt, al, sp),
-                        sp);
+        Node *arg =
+            bin(E, ND_ADD, use(E, g->lo), bin(E, ND_MUL, dt, al, sp), sp);
         terms[nt++] = bin(E, ND_SUB, seg_at(E, g, arg, sp),
                           seg_at(E, g, use(E, g->lo), sp), sp);
     }
-    if (tail) { /* R_{n+1}(a + Q(t, tn)) - R_{n+1}(a) */
-        const JoinArg *g = &a[na - 1];
+    if (J->tail) { /* R_{n+1}(a + Q(t, tn)) - R_{n+1}(a) */
+        const JoinArg *g = &a[J->na - 1];
+        Node *tn = J->knots[J->nknots - 1];
         Node *arg = bin(E, ND_ADD, use(E, g->lo),
                         ray(E, m, use(E, t), use(E, tn), 1, sp), sp);
         terms[nt++] = bin(E, ND_SUB, seg_at(E, g, arg, sp),
@@ -802,20 +782,67 @@ static int expand_join(Expander *E, Node **slot, int smooth)
     for (int k = 0; k < nt; k++)
         if (!terms[k])
             return -1;
-    /* the joints, where the segments must meet */
-    const JoinArg *prev = head ? &a[0] : NULL;
-    for (int k = 0; k < nseg; k++) {
-        const JoinArg *g = &a[first + 1 + 2 * k];
+    return nt;
+}
+
+/* the joints, where consecutive segments must meet */
+static void join_joints(Expander *E, const Join *J)
+{
+    const JoinArg *a = J->a, *prev = J->head ? &a[0] : NULL;
+    for (int k = 0; k < J->nseg; k++) {
+        const JoinArg *g = &a[J->first + 1 + 2 * k];
         if (prev)
-            add_joint(E, prev, g, &a[first + 2 * k]);
+            add_joint(E, prev, g, &a[J->first + 2 * k]);
         prev = g;
     }
-    if (tail && prev)
-        add_joint(E, prev, &a[na - 1], &a[last]);
-    Node *f = balanced(E, ND_ADD, terms, nt, sp);
-    st = ex_rewrite(E, &f);
-    if (st == 0)
-        replace(slot, f);
+    if (J->tail && prev)
+        add_joint(E, prev, &a[J->na - 1], &a[J->na - 2]);
+}
+
+/* join(t, [g0[-inf..b],] t0, g1[a..b], t1, ..., gn[a..b], tn [, g[a..inf]])
+ * (Dolya 2.1, Theorems 1-3); smoothjoin(m, t, ...) blends with the C^m
+ * step instead of the ramp (Theorem 2). */
+static int expand_join(Expander *E, Node **slot, int smooth)
+{
+    Node *n = *slot, *x = n->args;
+    Span sp = n->span;
+    Join J = {smooth ? "smoothjoin" : "join", NULL, NULL, NULL, 0, 0, 0,
+              0, NULL, 0, 0};
+    if (smooth) {
+        J.m = x;
+        x = x ? x->next : NULL;
+    }
+    J.t = x;
+    if (!J.t) {
+        diag_error(E->d, sp,
+                   "%s() takes %sthe param, then knots and segments in turn: "
+                   "%s(%st, t0, g1[a..b], t1, ...)",
+                   J.fn, smooth ? "the smoothness m, " : "", J.fn,
+                   smooth ? "m, " : "");
+        return -1;
+    }
+    int st = 0;
+    J.a = pc_xmalloc(sizeof(JoinArg) * (size_t)(n->nargs + 1));
+    J.knots = pc_xmalloc(sizeof(Node *) * (size_t)(n->nargs + 1));
+    Node **terms = pc_xmalloc(sizeof(Node *) * (size_t)(n->nargs + 3));
+    for (x = J.t->next; x; x = x->next)
+        if (join_arg(E, x, &J.a[J.na++]) < 0)
+            st = -1;
+    int nt = -1;
+    if (st == 0 && join_pattern(E, &J, sp) == 0)
+        nt = join_terms(E, &J, terms, sp);
+    if (nt > 0) {
+        join_joints(E, &J);
+        Node *f = balanced(E, ND_ADD, terms, nt, sp);
+        st = ex_rewrite(E, &f);
+        if (st == 0)
+            replace(slot, f);
+    } else {
+        st = -1;
+    }
+    free(J.a);
+    free(J.knots);
+    free(terms);
     return st;
 }
 
