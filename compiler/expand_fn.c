@@ -582,6 +582,31 @@ typedef struct JoinArg {
     int lo_inf, hi_inf;
 } JoinArg;
 
+/* a segment's interval [lo, hi] must not be empty where its ends are
+ * numbers */
+static int check_segment(Expander *E, const JoinArg *j)
+{
+    fmpq_t lo, hi;
+    int st = 0;
+    fmpq_init(lo);
+    fmpq_init(hi);
+    if (knot_value(E, j->lo, lo) == 0 && knot_value(E, j->hi, hi) == 0 &&
+        fmpq_cmp(lo, hi) >= 0) {
+        char *sl = fmpq_get_str(NULL, 10, lo), *sh = fmpq_get_str(NULL, 10, hi);
+        diag_error(E->d, j->node->span,
+                   "the segment %s[%s..%s] is empty; expected an interval "
+                   "lo..hi with lo < hi (the segment is traced from lo to hi)",
+                   j->node->text, sl, sh);
+        flint_free(sl);
+        flint_free(sh);
+        st = -1;
+    }
+    fmpq_clear(lo);
+    fmpq_clear(hi);
+    return st;
+}
+
+
 static int is_inf(Expander *E, const Node *n, int neg)
 {
     if (neg)
@@ -615,7 +640,7 @@ static int join_arg(Expander *E, Node *x, JoinArg *j)
     j->hi = x->rhs;
     j->lo_inf = is_inf(E, x->lhs, 1);
     j->hi_inf = is_inf(E, x->rhs, 0);
-    return 0;
+    return j->lo_inf || j->hi_inf ? 0 : check_segment(E, j);
 }
 
 /* g(arg) as a call, expanded later with the formula */

@@ -808,6 +808,12 @@ static void test_sum_and_join_errors(void **state)
                "x.pcs:2:5: note: g() is defined here\n"
                "def g(u, v) = u\n"
                "    ^\n");
+    fails_with("param t\ndef g(u) = u\nx = join(t, 0, g[2..1/2], 1)\n", 1,
+               "x.pcs:3:16: error: the segment g[2..1/2] is empty; expected "
+               "an interval lo..hi with lo < hi (the segment is traced from "
+               "lo to hi)\n"
+               "x = join(t, 0, g[2..1/2], 1)\n"
+               "               ^~~~~~~~~\n");
     fails_with("param t\ndef g(u) = u\nx = join(t, 0)\n", 1,
                "x.pcs:3:5: error: join() needs at least one segment between "
                "two knots, or two infinite branches at one knot\n"
