@@ -116,7 +116,7 @@ static void add_name(Expander *E, const char *name, Span span)
     E->spans[E->nnames++] = span;
 }
 
-const char *ex_member_name(Expander *E, const char *base, slong k)
+static const char *ex_member_name(Expander *E, const char *base, slong k)
 {
     char buf[32];
     size_t n = strlen(base);
@@ -169,7 +169,8 @@ int ex_eval_int(Expander *E, const Node *n, slong *out)
                            "below 2^40 in magnitude");
             return -1;
         }
-        return ex_int_range(E, n->span, (__int128)strtoll(n->text, NULL, 10), out);
+        return ex_int_range(E, n->span, (__int128)strtoll(n->text, NULL, 10),
+                            out);
     }
     case ND_NAME: {
         const Binding *bd = ex_find_binding(E, n->text);
@@ -314,7 +315,7 @@ long ex_count_nodes(const Node *n)
 }
 
 /* the number v as an expression (a negative one as -|v|) at span */
-Node *ex_number(Expander *E, slong v, Span span)
+static Node *ex_number(Expander *E, slong v, Span span)
 {
     char buf[32];
     snprintf(buf, sizeof buf, "%ld", (long)(v < 0 ? -v : v));
@@ -360,7 +361,6 @@ static Family *family_of(Expander *E, const char *name, Span span)
     return f;
 }
 
-
 /* a call's argument list with every range NAME[a..b] replaced by its
  * members */
 int ex_rewrite_args(Expander *E, Node *call)
@@ -392,7 +392,8 @@ int ex_rewrite_args(Expander *E, Node *call)
             if (ex_budget_nodes(E, x, hi - lo + 1) < 0)
                 return -1;
             for (slong k = lo; k <= hi; k++) {
-                *tail = ast_new_name(E->a, ex_member_name(E, f->name, k), x->span);
+                *tail =
+                    ast_new_name(E->a, ex_member_name(E, f->name, k), x->span);
                 tail = &(*tail)->next;
                 nargs++;
             }
@@ -558,8 +559,8 @@ static Name *declare_names(Expander *E, Name *list, const char *what,
         }
         E->fams[E->nfams++] = (Family){nm->text, lo, hi, nm->span, what};
         for (slong k = lo; k <= hi; k++) {
-            Name *m =
-                ast_new_namelist(E->a, ex_member_name(E, nm->text, k), nm->span);
+            Name *m = ast_new_namelist(E->a, ex_member_name(E, nm->text, k),
+                                       nm->span);
             *tail = m;
             tail = &m->next;
         }
@@ -579,8 +580,8 @@ static Name *refer_names(Expander *E, Name *list)
             Family *f = ex_find_family(E, nm->text);
             if (f) { /* the whole family */
                 for (slong k = f->lo; k <= f->hi; k++) {
-                    Name *m = ast_new_namelist(E->a, ex_member_name(E, f->name, k),
-                                               nm->span);
+                    Name *m = ast_new_namelist(
+                        E->a, ex_member_name(E, f->name, k), nm->span);
                     *tail = m;
                     tail = &m->next;
                 }
@@ -599,7 +600,8 @@ static Name *refer_names(Expander *E, Name *list)
                 continue;
             hi = lo;
         } else {
-            if (ex_eval_int(E, nm->lo, &lo) < 0 || ex_eval_int(E, nm->hi, &hi) < 0)
+            if (ex_eval_int(E, nm->lo, &lo) < 0 ||
+                ex_eval_int(E, nm->hi, &hi) < 0)
                 continue;
             if (lo <= hi && (lo < f->lo || hi > f->hi)) {
                 const Node *bad = lo < f->lo ? nm->lo : nm->hi;

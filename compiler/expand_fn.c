@@ -27,7 +27,7 @@
 
 /* ---- bindings and functions --------------------------------------------- */
 
-Func *ex_find_func(Expander *E, const char *name)
+static Func *ex_find_func(Expander *E, const char *name)
 {
     for (int i = 0; i < E->nfuncs; i++)
         if (strcmp(E->funcs[i].name, name) == 0)
@@ -55,8 +55,7 @@ void ex_bind(Expander *E, const char *name, const Node *arg, slong value)
 {
     if (E->nbinds == E->capbinds) {
         E->capbinds = E->capbinds ? 2 * E->capbinds : 16;
-        E->binds =
-            pc_xrealloc(E->binds, sizeof(Binding) * (size_t)E->capbinds);
+        E->binds = pc_xrealloc(E->binds, sizeof(Binding) * (size_t)E->capbinds);
     }
     E->binds[E->nbinds++] = (Binding){name, arg, value};
 }
@@ -229,8 +228,8 @@ static int call_func(Expander *E, Func *F, Node **slot)
     if (ex_rewrite_args(E, n) < 0)
         return -1;
     if (n->nargs != F->nparams) {
-        diag_error(E->d, n->span, "%s() takes %d argument%s, found %d",
-                   F->name, F->nparams, F->nparams == 1 ? "" : "s", n->nargs);
+        diag_error(E->d, n->span, "%s() takes %d argument%s, found %d", F->name,
+                   F->nparams, F->nparams == 1 ? "" : "s", n->nargs);
         diag_note(E->d, F->span, "%s() is defined here", F->name);
         return -1;
     }
@@ -266,7 +265,8 @@ static int call_func(Expander *E, Func *F, Node **slot)
     return 0;
 }
 
-/* ---- building expressions ------------------------------------------------- */
+/* ---- building expressions -------------------------------------------------
+ */
 
 /* (NULL when an operand is: a copy ran over the node budget) */
 static Node *bin(Expander *E, NodeKind k, Node *a, Node *b, Span span)
@@ -302,7 +302,8 @@ static Node *use(Expander *E, const Node *n)
     return ex_clone(E, n);
 }
 
-/* ---- sum and prod ----------------------------------------------------------- */
+/* ---- sum and prod -----------------------------------------------------------
+ */
 
 static int compr_bounds(Expander *E, const Node *n, slong *lo, slong *hi)
 {
@@ -322,7 +323,8 @@ static int compr_bounds(Expander *E, const Node *n, slong *lo, slong *hi)
     }
     if (ex_check_free(E, n->var, n->var_span, 1) < 0)
         return -1;
-    if (ex_eval_int(E, n->args, lo) < 0 || ex_eval_int(E, n->args->next, hi) < 0)
+    if (ex_eval_int(E, n->args, lo) < 0 ||
+        ex_eval_int(E, n->args->next, hi) < 0)
         return -1;
     return 0;
 }
@@ -350,8 +352,8 @@ int ex_expand_compr(Expander *E, Node **slot)
         E->nbinds--;
     }
     if (st == 0)
-        replace(slot, balanced(E, prod ? ND_MUL : ND_ADD, terms, count,
-                               n->span));
+        replace(slot,
+                balanced(E, prod ? ND_MUL : ND_ADD, terms, count, n->span));
     free(terms);
     return st;
 }
@@ -370,17 +372,17 @@ int ex_eval_int_compr(Expander *E, const Node *n, slong *out)
         ex_bind(E, n->var, NULL, k);
         int st = ex_eval_int(E, n->lhs, &v);
         E->nbinds--;
-        if (st < 0 ||
-            ex_int_range(E, n->span,
-                         prod ? (__int128)acc * v : (__int128)acc + v,
-                         &acc) < 0)
+        if (st < 0 || ex_int_range(E, n->span,
+                                   prod ? (__int128)acc * v : (__int128)acc + v,
+                                   &acc) < 0)
             return -1;
     }
     *out = acc;
     return 0;
 }
 
-/* ---- knots ---------------------------------------------------------------- */
+/* ---- knots ----------------------------------------------------------------
+ */
 
 /* q = the number a knot's literal text denotes (12, 0.5, 1e-3) */
 static int literal_value(fmpq_t q, const char *s)
@@ -489,10 +491,11 @@ static int check_knots(Expander *E, Node **knots, int n)
             continue;
         }
         if (have && fmpq_cmp(b, a) <= 0) {
-            char *sa = fmpq_get_str(NULL, 10, a), *sb = fmpq_get_str(NULL, 10, b);
+            char *sa = fmpq_get_str(NULL, 10, a),
+                 *sb = fmpq_get_str(NULL, 10, b);
             diag_error(E->d, knots[k]->span,
-                       "the knots must increase: this one is %s, after %s",
-                       sb, sa);
+                       "the knots must increase: this one is %s, after %s", sb,
+                       sa);
             flint_free(sa);
             flint_free(sb);
             st = -1;
@@ -505,7 +508,8 @@ static int check_knots(Expander *E, Node **knots, int n)
     return st;
 }
 
-/* ---- piecewise ------------------------------------------------------------- */
+/* ---- piecewise -------------------------------------------------------------
+ */
 
 /* piecewise(t, p1, t1, p2, ..., pn) =
  *   (p1 + pn)/2 + sum_k (p_{k+1} - p_k)/2 * sign(t - t_k)
@@ -525,16 +529,16 @@ static int piecewise_formula(Expander *E, Node **slot, Node **a, int na)
     if (npieces == 1)
         terms[0] = use(E, a[1]);
     else
-        terms[0] = bin(E, ND_DIV,
-                       bin(E, ND_ADD, use(E, a[1]), use(E, a[na - 1]), sp),
-                       num(E, "2", sp), sp);
+        terms[0] =
+            bin(E, ND_DIV, bin(E, ND_ADD, use(E, a[1]), use(E, a[na - 1]), sp),
+                num(E, "2", sp), sp);
     if (!terms[0])
         goto done;
     for (int k = 1; k < npieces; k++) {
-        Node *jump = bin(E, ND_DIV,
-                         bin(E, ND_SUB, use(E, a[2 * k + 1]),
-                             use(E, a[2 * k - 1]), sp),
-                         num(E, "2", sp), sp);
+        Node *jump =
+            bin(E, ND_DIV,
+                bin(E, ND_SUB, use(E, a[2 * k + 1]), use(E, a[2 * k - 1]), sp),
+                num(E, "2", sp), sp);
         Node *side = bin(E, ND_SUB, use(E, a[0]), use(E, a[2 * k]), sp);
         terms[k] = bin(E, ND_MUL, jump, call1(E, "sign", side, sp), sp);
         if (!terms[k])
@@ -571,7 +575,8 @@ static int expand_piecewise(Expander *E, Node **slot)
     return st;
 }
 
-/* ---- join ------------------------------------------------------------------ */
+/* ---- join ------------------------------------------------------------------
+ */
 
 /* one argument of join(): a knot, or a segment g[lo..hi] (lo may be -inf
  * for the first, hi inf for the last) */
@@ -605,7 +610,6 @@ static int check_segment(Expander *E, const JoinArg *j)
     fmpq_clear(hi);
     return st;
 }
-
 
 static int is_inf(Expander *E, const Node *n, int neg)
 {
@@ -661,8 +665,8 @@ static Node *blend(Expander *E, Node *m, Node *t, Node *a, Node *w, Span sp)
         if (!w2 || !t2 || !a2 || !w3)
             return NULL;
         Node *d1 = call1(E, "abs", bin(E, ND_SUB, t, a, sp), sp);
-        Node *d2 = call1(E, "abs",
-                         bin(E, ND_SUB, bin(E, ND_SUB, t2, a2, sp), w2, sp), sp);
+        Node *d2 = call1(
+            E, "abs", bin(E, ND_SUB, bin(E, ND_SUB, t2, a2, sp), w2, sp), sp);
         return bin(E, ND_DIV, bin(E, ND_SUB, bin(E, ND_ADD, w, d1, sp), d2, sp),
                    bin(E, ND_MUL, num(E, "2", sp), w3, sp), sp);
     }
@@ -694,9 +698,10 @@ static Node *ray(Expander *E, Node *m, Node *t, Node *a, int right, Span sp)
     if (!mm || !t3 || !a3)
         return NULL;
     /* (t - a)^m on the right, (a - t)^m = (-1)^m (t - a)^m on the left */
-    Node *p = bin(E, ND_POW,
-                  right ? bin(E, ND_SUB, t3, a3, sp) : bin(E, ND_SUB, a3, t3, sp),
-                  mm, sp);
+    Node *p =
+        bin(E, ND_POW,
+            right ? bin(E, ND_SUB, t3, a3, sp) : bin(E, ND_SUB, a3, t3, sp), mm,
+            sp);
     return bin(E, ND_MUL, p, r, sp);
 }
 
@@ -713,8 +718,8 @@ static void add_joint(Expander *E, const JoinArg *g, const JoinArg *h,
     if (!l || !r || ex_rewrite(E, &l) < 0 || ex_rewrite(E, &r) < 0)
         return;
     Equation *q = ast_new_equation(E->a, l, r, sp);
-    char *what = arena_alloc(E->a, strlen(g->seg->name) +
-                                       strlen(h->seg->name) + 8);
+    char *what =
+        arena_alloc(E->a, strlen(g->seg->name) + strlen(h->seg->name) + 8);
     sprintf(what, "%s %s", g->seg->name, h->seg->name);
     q->what = what;
     E->stmt->joints = ast_append_equation(E->stmt->joints, q);
@@ -778,11 +783,11 @@ static int join_terms(Expander *E, const Join *J, Node **terms, Span sp)
     Node *m = J->m, *t = J->t;
     int nt = 0;
     if (J->head) /* R0(b0 + Ql(t, t0)) */
-        terms[nt++] = seg_at(
-            E, &a[0],
-            bin(E, ND_ADD, use(E, a[0].hi),
-                ray(E, m, use(E, t), use(E, J->knots[0]), 0, sp), sp),
-            sp);
+        terms[nt++] =
+            seg_at(E, &a[0],
+                   bin(E, ND_ADD, use(E, a[0].hi),
+                       ray(E, m, use(E, t), use(E, J->knots[0]), 0, sp), sp),
+                   sp);
     else /* R1(tau_1^0) */
         terms[nt++] = seg_at(E, &a[1], use(E, a[1].lo), sp);
     for (int k = 0; k < J->nseg; k++) {
@@ -831,8 +836,17 @@ static int expand_join(Expander *E, Node **slot, int smooth)
 {
     Node *n = *slot, *x = n->args;
     Span sp = n->span;
-    Join J = {smooth ? "smoothjoin" : "join", NULL, NULL, NULL, 0, 0, 0,
-              0, NULL, 0, 0};
+    Join J = {smooth ? "smoothjoin" : "join",
+              NULL,
+              NULL,
+              NULL,
+              0,
+              0,
+              0,
+              0,
+              NULL,
+              0,
+              0};
     if (smooth) {
         J.m = x;
         x = x ? x->next : NULL;

@@ -73,21 +73,18 @@ typedef struct Expander {
 IntSym *ex_find_int(Expander *E, const char *name);
 Family *ex_find_family(Expander *E, const char *name);
 int ex_find_name(Expander *E, const char *name);
-Func *ex_find_func(Expander *E, const char *name);
 /* the visible binding of name, innermost first, or NULL */
 const Binding *ex_find_binding(const Expander *E, const char *name);
 void ex_bind(Expander *E, const char *name, const Node *arg, slong value);
 /* the innermost visible index binding (for "at i = 3" in messages) */
 const Binding *ex_index_binding(const Expander *E);
 int ex_check_free(Expander *E, const char *name, Span span, int plain_too);
-const char *ex_member_name(Expander *E, const char *base, slong k);
 int ex_eval_int(Expander *E, const Node *n, slong *out);
 /* *out = v, or an error at span when |v| >= EXPAND_MAX_INT */
 int ex_int_range(Expander *E, Span span, __int128 v, slong *out);
 int ex_budget_nodes(Expander *E, const Node *n, long k);
 Node *ex_clone(Expander *E, const Node *n);
 long ex_count_nodes(const Node *n);
-Node *ex_number(Expander *E, slong v, Span span);
 int ex_too_deep(const Node *n);
 int ex_rewrite(Expander *E, Node **slot);
 /* rewrite_args: a call's arguments, ranges NAME[a..b] replaced by members */

@@ -26,8 +26,8 @@
     X(ND_POW, "^")     /* lhs ^ rhs: rhs an integer constant */                \
     X(ND_CALL, "call") /* name(args): a builtin (along, meet, sin, ...) */     \
     X(ND_INDEX, "index") /* name[lhs], or name[lhs..rhs] as call arguments:    \
-                            members of a family (expand.c replaces them) */  \
-    X(ND_COMPR, "compr") /* text(lhs for var in args..args->next): sum or     \
+                            members of a family (expand.c replaces them) */    \
+    X(ND_COMPR, "compr") /* text(lhs for var in args..args->next): sum or      \
                             prod over an index (expand.c unrolls it) */
 
 typedef enum NodeKind {
@@ -90,7 +90,7 @@ struct Name {
     X(ST_INT, "int")         /* int n = EXPR: an integer scheme constant */    \
     X(ST_UNKNOWN, "unknown") /* unknown C1, C2 (solved by `solve`) */          \
     X(ST_DEF, "def")         /* NAME = EXPR */                                 \
-    X(ST_FUNC, "function")   /* def NAME(a, b) = EXPR: a user function */     \
+    X(ST_FUNC, "function")   /* def NAME(a, b) = EXPR: a user function */      \
     X(ST_SOLVE, "solve")     /* solve EQ, ... for X, ... */                    \
     X(ST_OUTPUT, "output")   /* output NAME, ... */
 

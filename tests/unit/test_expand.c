@@ -620,7 +620,6 @@ static void test_size_bounds(void **state)
                "      ^~~~~~~~~~\n");
 }
 
-
 /* ---- user functions, sum and prod, piecewise, join ---------------------- */
 
 static void test_function_calls(void **state)
@@ -628,10 +627,11 @@ static void test_function_calls(void **state)
     (void)state;
     /* a call is a copy of the body with each parameter replaced by its
      * argument; the def itself is kept as written */
-    expands_to("point A, B\nparam t\ndef m(X, Y, s) = X + (Y - X)*s\n"
-               "M = m(B, A, t/2)\n",
-               "(point A B)\n(param t)\n(function m X Y s (+ X (* (- Y X) s)))\n"
-               "(def M (+ B (* (- A B) (/ t 2))))\n");
+    expands_to(
+        "point A, B\nparam t\ndef m(X, Y, s) = X + (Y - X)*s\n"
+        "M = m(B, A, t/2)\n",
+        "(point A B)\n(param t)\n(function m X Y s (+ X (* (- Y X) s)))\n"
+        "(def M (+ B (* (- A B) (/ t 2))))\n");
     /* parameters named like points are the parameters: f(B, A) swaps them
      * (replaced once, not again inside the argument) */
     expands_to("point A, B\ndef f(A, B) = along(A, B, 1/3)\nM = f(B, A)\n",
@@ -657,8 +657,9 @@ static void test_sums_and_products(void **state)
     /* a balanced tree of the terms (depth log n, not n) */
     expands_to("param t\nx = sum(t^i for i in 1..3)\n",
                "(param t)\n(def x (+ (^ t 1) (+ (^ t 2) (^ t 3))))\n");
-    expands_to("param t\nx = prod(t - i for i in 1..4)\n",
-               "(param t)\n(def x (* (* (- t 1) (- t 2)) (* (- t 3) (- t 4))))\n");
+    expands_to(
+        "param t\nx = prod(t - i for i in 1..4)\n",
+        "(param t)\n(def x (* (* (- t 1) (- t 2)) (* (- t 3) (- t 4))))\n");
     /* the empty sum is 0, the empty product 1 */
     expands_to("param t\nx = sum(t for i in 2..1) + prod(t for i in 1..0)\n",
                "(param t)\n(def x (+ 0 1))\n");
