@@ -57,7 +57,9 @@ static const char *const tokens[] = {
     "1/0",     "t^-3",       "A - A",   "(t-t)",  "sqrt(",  "cos(",
     "exp(",    "ln(",        "^(1/2)",  " > 0",   "dist(",  "dot(",
     "angle(",  " in (0, 1)", " < 1",    ">= 2",   "abs(",   "sign(",
-    "coord(",  ", 2)",
+    "coord(",  ", 2)",     "def ",    "def P(t, a) = ", "sum(", "prod(",
+    " for i in 1..3)", "..", "piecewise(", "join(", "smoothjoin(", "g[0..1]",
+    "-inf",    "inf",
 };
 
 /* The back ends of one derived scheme are exercised once per file and
