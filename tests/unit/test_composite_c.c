@@ -8,14 +8,14 @@
  * composite-curve text written with abs) and a reference written here
  * independently of pointcalc: the piecewise definition of the curve (a
  * polyline through its vertices, the C^1 and C^2 steps of (2.1.5) and
- * (2.1.6) piece by piece) or the defining sum evaluated in exact rationals
- * with |x| and sign(x) of fmpq.  The generated code (NAME_M and
- * NAME_M_batch, compiled with the contract's flags) and plan_eval get the
- * doubles t; the reference is taken at the exact value of the same double,
- * so the comparison measures the evaluation alone: |got - exact| <= 1e-12
- * max(1, |exact|).  At a dyadic knot of a curve with dyadic pieces the value
- * must be exact (sign(0) = 0: the two pieces' mean, which for a continuous
- * curve is its value there).
+ * (2.1.6) piece by piece, the pieces of piecewise() and join()) or the defining
+ * sum evaluated in exact rationals with |x| and sign(x) of fmpq.  The generated
+ * code (NAME_M and NAME_M_batch, compiled with the contract's flags) and
+ * plan_eval get the doubles t; the reference is taken at the exact value of the
+ * same double, so the comparison measures the evaluation alone: |got - exact|
+ * <= 1e-12 max(1, |exact|).  At a dyadic knot of a curve with dyadic pieces the
+ * value must be exact (sign(0) = 0: the two pieces' mean, which for a
+ * continuous curve is its value there).
  *
  * The generated per-sample code must be branch-free: no '?' and no 'if' in
  * the lines that compute registers (sign is (x > 0) - (x < 0)).
@@ -228,6 +228,36 @@ static void ref_spline(fmpq *out, const fmpq_t t)
     fmpq_clear(x);
 }
 
+/* the join of the four sides (the square again), the piecewise P = t^2,
+ * 2t - 1, 5 - t, 2 with knots 1, 2, 3, and L = the infinite polyline
+ * O->A (through A at t = 0), A->B, B->C (at B for t = 1) of Theorem 3 */
+static void ref_join(fmpq *out, const fmpq_t t)
+{
+    polyline(out, t, square_v, 4);
+    if (fmpq_cmp_si(t, 1) <= 0) {
+        fmpq_mul(out + 2, t, t);
+    } else if (fmpq_cmp_si(t, 2) <= 0) {
+        fmpq_mul_si(out + 2, t, 2);
+        fmpq_sub_si(out + 2, out + 2, 1);
+    } else if (fmpq_cmp_si(t, 3) <= 0) {
+        fmpq_neg(out + 2, t);
+        fmpq_add_si(out + 2, out + 2, 5);
+    } else {
+        fmpq_set_si(out + 2, 2, 1);
+    }
+    if (fmpq_sgn(t) <= 0) { // (1 + t, 0)
+        fmpq_add_si(out + 3, t, 1);
+        fmpq_zero(out + 4);
+    } else if (fmpq_cmp_si(t, 1) <= 0) { // (1, t)
+        fmpq_one(out + 3);
+        fmpq_set(out + 4, t);
+    } else { // (2 - t, 1)
+        fmpq_neg(out + 3, t);
+        fmpq_add_si(out + 3, out + 3, 2);
+        fmpq_one(out + 4);
+    }
+}
+
 /* ---- the cases ---------------------------------------------------------- */
 
 typedef struct Case {
@@ -274,6 +304,18 @@ static const char spline[] =
     "Q = abs(t^2 - 1/4)\n"
     "output S, F, J, Q\n";
 
+/* written with the composite forms of docs/language.md */
+static const char joined[] =
+    "scheme joined\npoint O, A, B, C\nparam t\n"
+    "def g1(u) = along(O, A, u)\ndef g2(u) = along(A, B, u)\n"
+    "def g3(u) = along(B, C, u)\ndef g4(u) = along(C, O, u)\n"
+    "R = join(t, 0, g1[0..1], 1, g2[0..1], 2, g3[0..1], 3, g4[0..1], 4)\n"
+    "P = piecewise(t, t^2, 1, 2*t - 1, 2, 5 - t, 3, 2)\n"
+    "def h0(u) = O + (A - O)*u\ndef h1(u) = along(A, B, u)\n"
+    "def h2(u) = B + (C - B)*u\n"
+    "L = join(t, h0[-inf..1], 0, h1[0..1], 1, h2[0..inf])\n"
+    "output R, P, L\n";
+
 static const char *const q_knots[] = {"-1/2", "1/2", "2"};
 
 static const Case cases[] = {
@@ -285,6 +327,7 @@ static const Case cases[] = {
     {NULL, triangle_c1, NULL, 1, 2, ref_triangle_c1, int_knots, 4, 1},
     {NULL, spline, NULL, 1, 4, ref_spline, spline_knots, NSPLINE, 0},
     {NULL, spline, NULL, 1, 4, ref_spline, q_knots, 3, 0},
+    {NULL, joined, square_pts, 2, 5, ref_join, int_knots, 5, 1},
 };
 enum { NCASES = sizeof cases / sizeof *cases };
 
