@@ -631,7 +631,7 @@ static void knot_mark(const Fig *g, double x, double y, const char *colour)
     put_px(g->out, px);
     fputs("\" cy=\"", g->out);
     put_px(g->out, py);
-    fprintf(g->out, "\" r=\"2.5\" fill=\"#fff\" stroke=\"%s\"/>\n", colour);
+    fprintf(g->out, "\" r=\"5\" stroke=\"%s\"/>\n", colour);
 }
 
 /* A mark at each knot of the curves (plot_knots: where a sign kernel's
@@ -645,7 +645,7 @@ static void write_knots(const Fig *g, const PlotSpec *s, const PlotCurve *cv)
         any |= cv[k].nknots > 0;
     if (!any)
         return;
-    fputs("<g class=\"knots\" stroke-width=\"1.5\">\n", g->out);
+    fputs("<g class=\"knots\" fill=\"none\" stroke-width=\"1.5\">\n", g->out);
     for (int k = 0; k < s->ncurves; k++) {
         const char *colour = palette[k % NPALETTE];
         for (size_t i = 0; i < cv[k].nknots; i++) {
