@@ -7,7 +7,7 @@
  * depends on the param, find their zeros exactly, then at each zero
  * compare the one-sided derivatives order by order.  Everything is exact:
  * a one-sided value is the weight with the vanishing sign kernels replaced
- * by +-1 (kernel_compose), differentiated by the chain rule
+ * by +-1, differentiated by the chain rule
  * (kernel_derivative: a sign kernel's derivative is 0 off its zero) and
  * composed with t := t_k, where the other sign kernels take their exact
  * values.  Called by the printers (format_json.c, knots_print.c).
@@ -47,6 +47,8 @@ typedef struct Scan {
     slong nz, zalloc;
     slong *other; // the kernels whose zeros were not found, nother
     slong nother;
+    slong ndep;  // kernels dep covers
+    slong nscan; // kernels used covers (those made before the scan)
 } Scan;
 
 /* ---- which kernels depend on what ------------------------------------- */
@@ -65,8 +67,7 @@ static int rf_has(const RatFunStruct *x, slong v, const Ring *r)
 /* 1 when x depends on var directly or through a kernel (dep: per kernel,
  * its argument does) */
 static int uses(const Kernels *K, const unsigned char *dep,
-                const RatFunStruct *x,
-                slong var)
+                const RatFunStruct *x, slong var)
 {
     if (rf_has(x, var, K->r))
         return 1;
@@ -80,14 +81,15 @@ static int uses(const Kernels *K, const unsigned char *dep,
  * the variables before the kernel, so one pass in order suffices) */
 static void fill_dep(const Kernels *K, unsigned char *dep, slong var)
 {
+    memset(dep, 0, (size_t)K->n + 1);
     for (slong i = 0; i < K->n; i++) {
         const Kernel *k = &K->k[i];
         dep[i] = 0;
         if (k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD)
             continue;
-        dep[i] = (unsigned char)(uses(K, dep, k->arg, var) ||
-                                 (k->fn == KF_ATAN2 &&
-                                  uses(K, dep, k->arg2, var)));
+        dep[i] =
+            (unsigned char)(uses(K, dep, k->arg, var) ||
+                            (k->fn == KF_ATAN2 && uses(K, dep, k->arg2, var)));
     }
 }
 
@@ -114,8 +116,7 @@ static void fill_used(const Kernels *K, unsigned char *used,
 
 /* ---- the zeros of one sign kernel --------------------------------------- */
 
-static void add_zero(Scan *S, slong var, const RatFun root, int right,
-                     int left)
+static void add_zero(Scan *S, slong var, const RatFun root, int right, int left)
 {
     if (S->nz == S->zalloc) {
         S->zalloc = S->zalloc ? 2 * S->zalloc : 8;
@@ -290,6 +291,7 @@ static void scan_init(Scan *S, const Derived *d, const RatFunStruct *xs,
     S->used = pc_xcalloc((size_t)n + 1, 1);
     S->other = pc_xcalloc((size_t)n + 1, sizeof *S->other);
     fill_dep(S->K, S->dep, t);
+    S->ndep = S->nscan = n;
     fill_used(S->K, S->used, xs, nx);
     for (slong i = 0; i < n; i++)
         if (S->used[i] && S->dep[i] && S->K->k[i].fn == KF_SIGN)
@@ -308,6 +310,98 @@ static void scan_clear(Scan *S)
 
 /* ---- one-sided values ---------------------------------------------------- */
 
+/* S->dep for kernels made since the scan (kernel_derivative and the side
+ * substitutions can make some) */
+static void refresh_dep(Scan *S)
+{
+    if (S->ndep == S->K->n)
+        return;
+    S->ndep = S->K->n;
+    S->dep = pc_xrealloc(S->dep, (size_t)S->ndep + 1);
+    fill_dep(S->K, S->dep, S->t);
+}
+
+/* res = x with every variable v that has an image img[v] replaced by it,
+ * one after another: the images are free of every replaced variable */
+static int compose_images(Scan *S, RatFun res, const RatFunStruct *x,
+                          RatFunStruct *const *img, slong nv)
+{
+    int rc = 0;
+    ratfun_set(res, x, S->r);
+    for (slong v = 0; v < nv && rc == 0; v++)
+        if (img[v] && rf_has(res, v, S->r))
+            rc = ratfun_compose_var(res, res, v, img[v], S->r);
+    return rc;
+}
+
+/* res = x with var := val (free of var and of every kernel that depends
+ * on it), exactly: var and every kernel x uses whose argument depends on it
+ * (dep, per kernel of the ring) replaced by their values.  kernel_compose
+ * would remake every kernel of the ring that depends on var, and a value
+ * at a knot that holds a const needs a new kernel for each of them
+ * (sign(t - a) at t = b is sign(b - a)); only those x uses are remade
+ * here. */
+static int subst_const(Scan *S, RatFun res, const RatFunStruct *x, slong var,
+                       const RatFunStruct *val, const unsigned char *dep)
+{
+    const Ring *r = S->r;
+    Kernels *K = S->K;
+    slong n = K->n, nv = r->ctx->minfo->nvars;
+    unsigned char *used = pc_xcalloc((size_t)n + 1, 1);
+    RatFunStruct **img = pc_xcalloc((size_t)nv, sizeof *img);
+    fill_used(K, used, x, 1);
+    img[var] = ratfun_vec_init(1, r);
+    ratfun_set(img[var], val, r);
+    int rc = 0;
+    RatFun a, b;
+    ratfun_init(a, r);
+    ratfun_init(b, r);
+    for (slong i = 0; i < n && rc == 0; i++) {
+        const Kernel *k = &K->k[i];
+        if (!used[i] || !dep[i])
+            continue;
+        slong kv = k->var;
+        KernelFn fn = k->fn;
+        slong q = k->q;
+        rc = compose_images(S, a, k->arg, img, nv);
+        if (rc == 0 && fn == KF_ATAN2)
+            rc = compose_images(S, b, k->arg2, img, nv);
+        if (rc == 0)
+            rc = kernel_reduce(K, a);
+        if (rc == 0 && fn == KF_ATAN2)
+            rc = kernel_reduce(K, b);
+        if (rc != 0)
+            break;
+        /* (k may move from here on: kernel_apply can add kernels) */
+        RatFunStruct *v = ratfun_vec_init(1, r);
+        img[kv] = v;
+        if (fn == KF_ROOT)
+            rc = kernel_pow_q(K, v, a, 1, q);
+        else
+            rc = kernel_apply(K, v, fn, a, fn == KF_ATAN2 ? b : NULL);
+    }
+    if (rc == 0)
+        rc = compose_images(S, res, x, img, nv);
+    if (rc == 0)
+        rc = kernel_reduce(K, res);
+    ratfun_clear(b, r);
+    ratfun_clear(a, r);
+    for (slong v = 0; v < nv; v++)
+        if (img[v])
+            ratfun_vec_clear(img[v], 1, r);
+    free(img);
+    free(used);
+    return rc;
+}
+
+/* res = x at t = t0 (subst_const) */
+static int eval_at(Scan *S, RatFun res, const RatFunStruct *x,
+                   const RatFunStruct *t0)
+{
+    refresh_dep(S);
+    return subst_const(S, res, x, S->t, t0, S->dep);
+}
+
 /* Checks that no sign kernel but those with a zero at t0 vanishes there:
  * 0, or -1 (why set). */
 static int others_nonzero(Scan *S, const RatFun t0, const char **why)
@@ -316,7 +410,7 @@ static int others_nonzero(Scan *S, const RatFun t0, const char **why)
     RatFun v;
     ratfun_init(v, r);
     int rc = 0;
-    for (slong i = 0; i < S->K->n && rc == 0; i++) {
+    for (slong i = 0; i < S->nscan && rc == 0; i++) {
         if (!S->used[i] || !S->dep[i] || S->K->k[i].fn != KF_SIGN)
             continue;
         int has = 0;
@@ -326,7 +420,7 @@ static int others_nonzero(Scan *S, const RatFun t0, const char **why)
                 has = 1;
         if (has)
             continue;
-        if (kernel_compose(S->K, v, S->K->k[i].arg, S->t, t0) != 0) {
+        if (eval_at(S, v, S->K->k[i].arg, t0) != 0) {
             rc = -1;
             *why = "a sign kernel's argument is not finite there";
         } else if (ratfun_is_zero(v, r)) {
@@ -353,7 +447,10 @@ static int side_subst(Scan *S, RatFun res, const RatFun x, const RatFun t0,
         if (!ratfun_equal(S->z[j].root, t0, r))
             continue;
         ratfun_set_si(s, side > 0 ? S->z[j].right : S->z[j].left, r);
-        rc = kernel_compose(S->K, res, res, S->z[j].var, s);
+        unsigned char *dep = pc_xcalloc((size_t)S->K->n + 1, 1);
+        fill_dep(S->K, dep, S->z[j].var);
+        rc = subst_const(S, res, res, S->z[j].var, s, dep);
+        free(dep);
     }
     ratfun_clear(s, r);
     return rc;
@@ -386,8 +483,7 @@ static int sides_init(Sides *Q, Scan *S, const RatFunStruct *xs, slong nx,
     int rc = 0;
     for (int k = 0; k < 2; k++) {
         Q->s[k].cur = ratfun_vec_init(nx, S->r);
-        Q->s[k].val =
-            pc_xcalloc(KNOTS_MAX_ORDER + 1, sizeof *Q->s[k].val);
+        Q->s[k].val = pc_xcalloc(KNOTS_MAX_ORDER + 1, sizeof *Q->s[k].val);
         for (slong i = 0; i < nx && rc == 0; i++)
             rc = side_subst(S, Q->s[k].cur + i, xs + i, t0, k ? -1 : 1);
     }
@@ -418,7 +514,7 @@ static const RatFunStruct *side_value(Sides *Q, int k, int j)
             if (s->have > 0)
                 rc = kernel_derivative(S->K, s->cur + i, s->cur + i, S->t);
             if (rc == 0)
-                rc = kernel_compose(S->K, v + i, s->cur + i, S->t, Q->t0);
+                rc = eval_at(S, v + i, s->cur + i, Q->t0);
         }
         if (rc != 0) {
             ratfun_vec_clear(v, Q->nx, S->r);
@@ -536,8 +632,8 @@ static void geometric_order(Knot *k, Sides *Q)
             ratfun_sub(tin + i, r2 + i, mu, r);
             ok = kernel_reduce(S->K, tin + i) == 0;
         }
-        if (ok && (vec_is_zero(tin, nx, r) ||
-                   proportional(S->K, mu, tin, l1, nx))) {
+        if (ok &&
+            (vec_is_zero(tin, nx, r) || proportional(S->K, mu, tin, l1, nx))) {
             k->geometric = k->continuity > 2 ? k->continuity : 2;
             k->g_more = k->c_more;
         } else if (!ok)
@@ -776,7 +872,7 @@ int knots_one_sided(RatFun res, const Derived *d, const RatFun x, slong var,
     for (ulong i = 0; i < j && rc == 0; i++)
         rc = kernel_derivative(S.K, v, v, var);
     if (rc == 0)
-        rc = kernel_compose(S.K, res, v, var, t0);
+        rc = eval_at(&S, res, v, t0);
     ratfun_clear(v, &d->ring);
     scan_clear(&S);
     return rc == 0 ? 0 : -1;

@@ -40,14 +40,14 @@
 enum { KNOTS_MAX_ORDER = 8 };
 
 typedef struct Knot {
-    RatFun t;       // the knot: a number or an expression free of params
-    double approx;  // its value (NAN when it depends on a const)
-    int analysed;   // 1: the fields below hold; 0: why says what stopped it
-    const char *why; // static text, or NULL
-    int continuity; // C^continuity: -1 (a jump of the point itself) ..
-                    // KNOTS_MAX_ORDER
-    int c_more;     // 1: no jump up to KNOTS_MAX_ORDER: "C^8 or more"
-    int jump_order; // continuity + 1, or -1 (c_more, or not analysed)
+    RatFun t;           // the knot: a number or an expression free of params
+    double approx;      // its value (NAN when it depends on a const)
+    int analysed;       // 1: the fields below hold; 0: why says what stopped it
+    const char *why;    // static text, or NULL
+    int continuity;     // C^continuity: -1 (a jump of the point itself) ..
+                        // KNOTS_MAX_ORDER
+    int c_more;         // 1: no jump up to KNOTS_MAX_ORDER: "C^8 or more"
+    int jump_order;     // continuity + 1, or -1 (c_more, or not analysed)
     RatFunStruct *jump; // njump exact jumps of derivative jump_order: one
     slong njump;        // per term of the output's equation (its weights'
                         // order, DerivedOutput.w), one for a scalar; NULL
@@ -61,12 +61,12 @@ typedef struct Knot {
 } Knot;
 
 typedef struct KnotList {
-    slong param;  // the ring variable t, or -1: none (no knots) or several
-                  // params (note says so)
-    slong n;      // knots, increasing (those that depend on a const last)
-    Knot *k;      // owned
-    slong nskip;  // sign kernels whose zeros were not analysed: their text
-    char **skip;  // ("sign(t^2 - 2)"), owned
+    slong param;      // the ring variable t, or -1: none (no knots) or several
+                      // params (note says so)
+    slong n;          // knots, increasing (those that depend on a const last)
+    Knot *k;          // owned
+    slong nskip;      // sign kernels whose zeros were not analysed: their text
+    char **skip;      // ("sign(t^2 - 2)"), owned
     const char *note; // static text about the whole output, or NULL
 } KnotList;
 

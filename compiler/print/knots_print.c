@@ -19,10 +19,11 @@
 #include "base/strbuf.h"
 #include "compiler/print/format.h"
 
-/* "6*B - 6/5*O": each term a number times the point where the weight is
- * a number, else B*(w) */
-char *knots_jump_text(const Derived *d, const DerivedOutput *o,
-                      const Knot *k)
+/* The jump of knot k of output o as a combination of base points, "6*B -
+ * 6/5*O": each term a number times the point where the weight is a number,
+ * else B*(w); a scalar's value.  Caller frees with free(). */
+static char *knots_jump_text(const Derived *d, const DerivedOutput *o,
+                             const Knot *k)
 {
     if (!k->jump)
         return pc_xstrdup("");
@@ -118,8 +119,9 @@ void knots_print(FILE *out, const Derived *d)
             print_knot(out, d, out_o, t, &L.k[i]);
         for (slong i = 0; i < L.nskip; i++)
             fprintf(out,
-                    "%s: the zeros of %s are not analysed (not rational, "
-                    "or the argument is not linear in %s)\n",
+                    "%s: the zeros of %s are not analysed (only rational "
+                    "zeros are, and those of an argument linear in %s whose "
+                    "sign change is known)\n",
                     out_o->name, L.skip[i], t);
         if (L.note)
             fprintf(out, "%s: %s\n", out_o->name, L.note);

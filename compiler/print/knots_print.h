@@ -21,9 +21,4 @@ void knots_print(FILE *out, const Derived *d);
  * param */
 void knots_json(FILE *out, const Derived *d, slong o);
 
-/* The jump of knot k of output o as a combination of base points:
- * "6*B - 6*O", or a scalar's value.  Caller frees with free(). */
-char *knots_jump_text(const Derived *d, const DerivedOutput *o,
-                      const Knot *k);
-
 #endif

@@ -50,7 +50,7 @@ const char cli_usage[] =
 #define DERIVE_USAGE                                                           \
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin "       \
     "POINT]\n"                                                                 \
-    "                        [--steps] [--knots] [--standalone] [--width "  \
+    "                        [--steps] [--knots] [--standalone] [--width "     \
     "N]\n"
 
 #define EMIT_C_USAGE                                                           \

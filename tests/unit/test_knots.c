@@ -294,9 +294,9 @@ static void test_knots_geometric(void **state)
         int c, g;
         const char *jump;
     } cases[] = {
-        {"corner", 0, 0, "X=2 O=-2"}, {"turn", 0, 0, "X=2 O=-2"},
-        {"speed", 0, 1, "X=1 O=-1"},  {"para", 0, 2, "X=1 O=-1"},
-        {"stop", 1, 1, "X=4 O=-4"},   {"jump", -1, -1, "X=2 O=-2"},
+        {"corner", 0, 0, "X=2 O=-2"},      {"turn", 0, 0, "X=2 O=-2"},
+        {"speed", 0, 1, "X=1 O=-1"},       {"para", 0, 2, "X=1 O=-1"},
+        {"stop", 1, 1, "X=4 O=-4"},        {"jump", -1, -1, "X=2 O=-2"},
         {"quintic", 4, 4, "Y=240 O=-240"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
@@ -435,7 +435,7 @@ static void test_knots_one_sided(void **state)
         int side;
         ulong j;
         slong want;
-    } cases[] = {{1, 0, 1}, {-1, 0, 1}, {1, 1, 1},  {-1, 1, 1},
+    } cases[] = {{1, 0, 1}, {-1, 0, 1},  {1, 1, 1}, {-1, 1, 1},
                  {1, 3, 6}, {-1, 3, -6}, {1, 4, 0}, {-1, 2, 0}};
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         assert_int_equal(knots_one_sided(v, d, d->outputs[0].scalar, 0, one,
