@@ -20,6 +20,7 @@
 
 #include <flint/fmpz_poly.h>
 #include <flint/fmpz_poly_factor.h>
+#include <flint/fmpz_vec.h>
 
 #include "base/mem.h"
 #include "compiler/algebra/kernel.h"
@@ -27,6 +28,10 @@
 /* the largest degree in t of an argument whose zeros are looked for by
  * factoring (FLINT's fmpz_poly_factor is fast far beyond this) */
 enum { KNOTS_MAX_FACTOR_DEGREE = 200 };
+/* a one-sided form with more terms (numerator and denominator) than this
+ * is not differentiated further: eight derivatives of a large rational
+ * function grow like its denominator's ninth power */
+enum { KNOTS_MAX_TERMS = 4000 };
 
 /* one zero of one sign kernel: sign(a) just right and left of it */
 typedef struct Zero {
@@ -47,7 +52,6 @@ typedef struct Scan {
     slong nz, zalloc;
     slong *other; // the kernels whose zeros were not found, nother
     slong nother;
-    slong ndep;  // kernels dep covers
     slong nscan; // kernels used covers (those made before the scan)
 } Scan;
 
@@ -291,7 +295,7 @@ static void scan_init(Scan *S, const Derived *d, const RatFunStruct *xs,
     S->used = pc_xcalloc((size_t)n + 1, 1);
     S->other = pc_xcalloc((size_t)n + 1, sizeof *S->other);
     fill_dep(S->K, S->dep, t);
-    S->ndep = S->nscan = n;
+    S->nscan = n;
     fill_used(S->K, S->used, xs, nx);
     for (slong i = 0; i < n; i++)
         if (S->used[i] && S->dep[i] && S->K->k[i].fn == KF_SIGN)
@@ -310,39 +314,106 @@ static void scan_clear(Scan *S)
 
 /* ---- one-sided values ---------------------------------------------------- */
 
-/* S->dep for kernels made since the scan (kernel_derivative and the side
- * substitutions can make some) */
-static void refresh_dep(Scan *S)
+/* res = p with every variable v where has[v] replaced by the integer
+ * val[v], all in one pass over p's terms: into a dense polynomial in t
+ * when no other variable is left (the common case: a composite curve's
+ * weight with its signs replaced), else with one sort at the end */
+static void eval_ints(fmpz_mpoly_t res, const fmpz_mpoly_t p,
+                      const unsigned char *has, const fmpz *val, slong t,
+                      const Ring *r)
 {
-    if (S->ndep == S->K->n)
-        return;
-    S->ndep = S->K->n;
-    S->dep = pc_xrealloc(S->dep, (size_t)S->ndep + 1);
-    fill_dep(S->K, S->dep, S->t);
+    slong nv = r->ctx->minfo->nvars;
+    ulong *e = flint_malloc(sizeof(ulong) * (size_t)nv);
+    slong *deg = flint_malloc(sizeof(slong) * (size_t)nv);
+    fmpz_mpoly_degrees_si(deg, p, r->ctx);
+    int dense = 1;
+    for (slong v = 0; v < nv; v++)
+        if (v != t && !has[v] && deg[v] > 0)
+            dense = 0;
+    fmpz_t c, pw;
+    fmpz_init(c);
+    fmpz_init(pw);
+    fmpz_mpoly_t acc;
+    fmpz_mpoly_init(acc, r->ctx);
+    fmpz_poly_t dp;
+    fmpz_poly_init(dp);
+    for (slong i = 0; i < p->length; i++) {
+        fmpz_mpoly_get_term_coeff_fmpz(c, p, i, r->ctx);
+        fmpz_mpoly_get_term_exp_ui(e, p, i, r->ctx);
+        for (slong v = 0; v < nv && !fmpz_is_zero(c); v++)
+            if (has[v] && e[v]) {
+                fmpz_pow_ui(pw, val + v, e[v]);
+                fmpz_mul(c, c, pw);
+                e[v] = 0;
+            }
+        if (fmpz_is_zero(c))
+            continue;
+        if (dense) {
+            fmpz_poly_get_coeff_fmpz(pw, dp, (slong)e[t]);
+            fmpz_add(pw, pw, c);
+            fmpz_poly_set_coeff_fmpz(dp, (slong)e[t], pw);
+        } else
+            fmpz_mpoly_push_term_fmpz_ui(acc, c, e, r->ctx);
+    }
+    if (dense) {
+        fmpz_mpoly_set_fmpz_poly(acc, dp, t, r->ctx);
+    } else {
+        fmpz_mpoly_sort_terms(acc, r->ctx);
+        fmpz_mpoly_combine_like_terms(acc, r->ctx);
+    }
+    fmpz_mpoly_swap(res, acc, r->ctx);
+    fmpz_poly_clear(dp);
+    fmpz_mpoly_clear(acc, r->ctx);
+    fmpz_clear(pw);
+    fmpz_clear(c);
+    flint_free(deg);
+    flint_free(e);
 }
 
-/* res = x with every variable v that has an image img[v] replaced by it,
- * one after another: the images are free of every replaced variable */
+/* res = x with every variable v that has an image img[v] replaced by it:
+ * the integer images (the signs +-1 and 0, integer knots) in one pass,
+ * the others one after another (ratfun_compose_var); the images are free
+ * of every replaced variable */
 static int compose_images(Scan *S, RatFun res, const RatFunStruct *x,
                           RatFunStruct *const *img, slong nv)
 {
-    int rc = 0;
-    ratfun_set(res, x, S->r);
+    const Ring *r = S->r;
+    int rc = 0, nint = 0;
+    unsigned char *has = pc_xcalloc((size_t)nv + 1, 1);
+    fmpz *val = _fmpz_vec_init(nv);
+    fmpq_t q;
+    fmpq_init(q);
+    for (slong v = 0; v < nv; v++)
+        if (img[v] && rf_has(x, v, r) && ratfun_get_fmpq(q, img[v], r) &&
+            fmpz_is_one(fmpq_denref(q))) {
+            has[v] = 1;
+            fmpz_set(val + v, fmpq_numref(q));
+            nint++;
+        }
+    ratfun_set(res, x, r);
+    if (nint) {
+        eval_ints(res->num, res->num, has, val, S->t, r);
+        eval_ints(res->den, res->den, has, val, S->t, r);
+        rc = ratfun_canonicalise(res, r) == 0 ? 0 : RATFUN_EPOLE;
+    }
     for (slong v = 0; v < nv && rc == 0; v++)
-        if (img[v] && rf_has(res, v, S->r))
-            rc = ratfun_compose_var(res, res, v, img[v], S->r);
+        if (img[v] && !has[v] && rf_has(res, v, r))
+            rc = ratfun_compose_var(res, res, v, img[v], r);
+    fmpq_clear(q);
+    _fmpz_vec_clear(val, nv);
+    free(has);
     return rc;
 }
 
-/* res = x with var := val (free of var and of every kernel that depends
- * on it), exactly: var and every kernel x uses whose argument depends on it
- * (dep, per kernel of the ring) replaced by their values.  kernel_compose
- * would remake every kernel of the ring that depends on var, and a value
- * at a knot that holds a const needs a new kernel for each of them
- * (sign(t - a) at t = b is sign(b - a)); only those x uses are remade
- * here. */
-static int subst_const(Scan *S, RatFun res, const RatFunStruct *x, slong var,
-                       const RatFunStruct *val, const unsigned char *dep)
+/* res = x with the variables vars[0..nsub-1] := vals[0..nsub-1] (free of
+ * all of them and of every kernel that depends on one), exactly: they and
+ * every kernel x uses whose argument depends on one of them are replaced
+ * by their values.  kernel_compose would remake every kernel of the ring
+ * that depends on a variable, and a value at a knot that holds a const
+ * needs a new kernel for each of them (sign(t - a) at t = b is sign(b -
+ * a)); only those x uses are remade here. */
+static int subst_vars(Scan *S, RatFun res, const RatFunStruct *x, slong nsub,
+                      const slong *vars, const RatFunStruct *vals)
 {
     const Ring *r = S->r;
     Kernels *K = S->K;
@@ -350,15 +421,25 @@ static int subst_const(Scan *S, RatFun res, const RatFunStruct *x, slong var,
     unsigned char *used = pc_xcalloc((size_t)n + 1, 1);
     RatFunStruct **img = pc_xcalloc((size_t)nv, sizeof *img);
     fill_used(K, used, x, 1);
-    img[var] = ratfun_vec_init(1, r);
-    ratfun_set(img[var], val, r);
+    for (slong i = 0; i < nsub; i++) {
+        img[vars[i]] = ratfun_vec_init(1, r);
+        ratfun_set(img[vars[i]], vals + i, r);
+    }
     int rc = 0;
     RatFun a, b;
     ratfun_init(a, r);
     ratfun_init(b, r);
     for (slong i = 0; i < n && rc == 0; i++) {
         const Kernel *k = &K->k[i];
-        if (!used[i] || !dep[i])
+        if (!used[i] || k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD)
+            continue;
+        /* remade when its argument holds a replaced variable (a kernel
+         * remade before it counts: it has an image) */
+        int dep = 0;
+        for (slong v = 0; v < nv && !dep; v++)
+            dep = img[v] && (rf_has(k->arg, v, r) ||
+                             (k->fn == KF_ATAN2 && rf_has(k->arg2, v, r)));
+        if (!dep)
             continue;
         slong kv = k->var;
         KernelFn fn = k->fn;
@@ -394,65 +475,68 @@ static int subst_const(Scan *S, RatFun res, const RatFunStruct *x, slong var,
     return rc;
 }
 
-/* res = x at t = t0 (subst_const) */
+/* res = x at t = t0 (subst_vars) */
 static int eval_at(Scan *S, RatFun res, const RatFunStruct *x,
                    const RatFunStruct *t0)
 {
-    refresh_dep(S);
-    return subst_const(S, res, x, S->t, t0, S->dep);
+    return subst_vars(S, res, x, 1, &S->t, t0);
 }
 
-/* Checks that no sign kernel but those with a zero at t0 vanishes there:
- * 0, or -1 (why set). */
-static int others_nonzero(Scan *S, const RatFun t0, const char **why)
+/* The side forms of a knot t0: the sign kernels the values use that
+ * depend on t, each replaced by a number or a value free of t - those
+ * with a zero at t0 by their sign just right of it (side +1) or just left
+ * (-1), the others by their exact value at t0, where they are locally
+ * constant - then only t and the other functions of t are left.  Returns
+ * 0, or -1 with why set (another sign kernel vanishes at t0, or a value
+ * is not finite there). */
+static int side_forms(Scan *S, const RatFunStruct *t0, const RatFunStruct *xs,
+                      slong nx, RatFunStruct *right, RatFunStruct *left,
+                      const char **why)
 {
     const Ring *r = S->r;
-    RatFun v;
-    ratfun_init(v, r);
+    slong nsub = 0;
+    slong *vars = pc_xcalloc((size_t)S->nscan + 1, sizeof *vars);
+    RatFunStruct *vr = ratfun_vec_init(S->nscan + 1, r);
+    RatFunStruct *vl = ratfun_vec_init(S->nscan + 1, r);
+    RatFun a;
+    ratfun_init(a, r);
     int rc = 0;
     for (slong i = 0; i < S->nscan && rc == 0; i++) {
-        if (!S->used[i] || !S->dep[i] || S->K->k[i].fn != KF_SIGN)
+        const Kernel *k = &S->K->k[i];
+        if (!S->used[i] || !S->dep[i] || k->fn != KF_SIGN)
             continue;
-        int has = 0;
-        for (slong j = 0; j < S->nz; j++)
-            if (S->z[j].var == S->K->k[i].var &&
-                ratfun_equal(S->z[j].root, t0, r))
-                has = 1;
-        if (has)
-            continue;
-        if (eval_at(S, v, S->K->k[i].arg, t0) != 0) {
+        slong var = k->var, j;
+        for (j = 0; j < S->nz; j++)
+            if (S->z[j].var == var && ratfun_equal(S->z[j].root, t0, r))
+                break;
+        if (j < S->nz) {
+            ratfun_set_si(vr + nsub, S->z[j].right, r);
+            ratfun_set_si(vl + nsub, S->z[j].left, r);
+        } else if (eval_at(S, a, S->K->k[i].arg, t0) != 0) {
             rc = -1;
             *why = "a sign kernel's argument is not finite there";
-        } else if (ratfun_is_zero(v, r)) {
+        } else if (ratfun_is_zero(a, r)) {
             rc = -1;
             *why = "another argument of abs() or sign() vanishes there, "
                    "whose zeros were not analysed";
+        } else if (kernel_apply(S->K, vr + nsub, KF_SIGN, a, NULL) != 0) {
+            rc = -1;
+            *why = "a sign kernel's value there could not be made";
+        } else
+            ratfun_set(vl + nsub, vr + nsub, r);
+        vars[nsub++] = var;
+    }
+    for (slong i = 0; i < nx && rc == 0; i++) {
+        if (subst_vars(S, right + i, xs + i, nsub, vars, vr) != 0 ||
+            subst_vars(S, left + i, xs + i, nsub, vars, vl) != 0) {
+            rc = -1;
+            *why = "the one-sided forms could not be made exactly";
         }
     }
-    ratfun_clear(v, r);
-    return rc;
-}
-
-/* res = x with every sign kernel vanishing at t0 replaced by its value on
- * side (+1 right, -1 left) */
-static int side_subst(Scan *S, RatFun res, const RatFun x, const RatFun t0,
-                      int side)
-{
-    const Ring *r = S->r;
-    RatFun s;
-    ratfun_init(s, r);
-    ratfun_set(res, x, r);
-    int rc = 0;
-    for (slong j = 0; j < S->nz && rc == 0; j++) {
-        if (!ratfun_equal(S->z[j].root, t0, r))
-            continue;
-        ratfun_set_si(s, side > 0 ? S->z[j].right : S->z[j].left, r);
-        unsigned char *dep = pc_xcalloc((size_t)S->K->n + 1, 1);
-        fill_dep(S->K, dep, S->z[j].var);
-        rc = subst_const(S, res, res, S->z[j].var, s, dep);
-        free(dep);
-    }
-    ratfun_clear(s, r);
+    ratfun_clear(a, r);
+    ratfun_vec_clear(vl, S->nscan + 1, r);
+    ratfun_vec_clear(vr, S->nscan + 1, r);
+    free(vars);
     return rc;
 }
 
@@ -463,7 +547,8 @@ typedef struct Side {
     RatFunStruct *cur;  // nx
     RatFunStruct **val; // KNOTS_MAX_ORDER + 1 rows of nx, made on demand
     int have;           // orders 0..have-1 are in val
-    int failed;         // an order could not be made: stop there
+    int failed;         // an order could not be made: 1 not finite or exact, 2
+                        // too large (KNOTS_MAX_TERMS)
 } Side;
 
 typedef struct Sides {
@@ -474,20 +559,17 @@ typedef struct Sides {
 } Sides;
 
 static int sides_init(Sides *Q, Scan *S, const RatFunStruct *xs, slong nx,
-                      const RatFun t0)
+                      const RatFun t0, const char **why)
 {
     memset(Q, 0, sizeof *Q);
     Q->S = S;
     Q->t0 = t0;
     Q->nx = nx;
-    int rc = 0;
     for (int k = 0; k < 2; k++) {
         Q->s[k].cur = ratfun_vec_init(nx, S->r);
         Q->s[k].val = pc_xcalloc(KNOTS_MAX_ORDER + 1, sizeof *Q->s[k].val);
-        for (slong i = 0; i < nx && rc == 0; i++)
-            rc = side_subst(S, Q->s[k].cur + i, xs + i, t0, k ? -1 : 1);
     }
-    return rc;
+    return side_forms(S, t0, xs, nx, Q->s[0].cur, Q->s[1].cur, why);
 }
 
 static void sides_clear(Sides *Q)
@@ -511,6 +593,10 @@ static const RatFunStruct *side_value(Sides *Q, int k, int j)
         RatFunStruct *v = ratfun_vec_init(Q->nx, S->r);
         int rc = 0;
         for (slong i = 0; i < Q->nx && rc == 0; i++) {
+            if (ratfun_length(s->cur + i, S->r) > KNOTS_MAX_TERMS) {
+                rc = 2;
+                break;
+            }
             if (s->have > 0)
                 rc = kernel_derivative(S->K, s->cur + i, s->cur + i, S->t);
             if (rc == 0)
@@ -518,12 +604,20 @@ static const RatFunStruct *side_value(Sides *Q, int k, int j)
         }
         if (rc != 0) {
             ratfun_vec_clear(v, Q->nx, S->r);
-            s->failed = 1;
+            s->failed = rc == 2 ? 2 : 1;
             break;
         }
         s->val[s->have++] = v;
     }
     return s->have > j ? s->val[j] : NULL;
+}
+
+/* why side_value failed */
+static const char *side_why(const Sides *Q)
+{
+    return Q->s[0].failed == 2 || Q->s[1].failed == 2
+               ? "the one-sided derivatives grow too large to compare"
+               : "a one-sided derivative is not finite or exact";
 }
 
 static int vec_is_zero(const RatFunStruct *v, slong n, const Ring *r)
@@ -583,7 +677,7 @@ static void geometric_order(Knot *k, Sides *Q)
             const RatFunStruct *v = side_value(Q, s, j);
             if (!v) {
                 k->geometric = -2;
-                k->gwhy = "a one-sided derivative is not finite or exact";
+                k->gwhy = side_why(Q);
                 return;
             }
             if (!vec_is_zero(v, nx, r))
@@ -637,7 +731,7 @@ static void geometric_order(Knot *k, Sides *Q)
             k->geometric = k->continuity > 2 ? k->continuity : 2;
             k->g_more = k->c_more;
         } else if (!ok)
-            k->gwhy = "a one-sided derivative is not finite or exact";
+            k->gwhy = side_why(Q);
     }
     ratfun_clear(mu, r);
     ratfun_clear(lambda, r);
@@ -651,11 +745,8 @@ static void analyse_knot(Knot *k, Scan *S, const RatFunStruct *xs, slong nx)
     k->continuity = -1;
     k->jump_order = -1;
     k->geometric = -1;
-    if (others_nonzero(S, k->t, &k->why) != 0)
-        return;
     Sides Q;
-    if (sides_init(&Q, S, xs, nx, k->t) != 0) {
-        k->why = "the one-sided forms could not be made exactly";
+    if (sides_init(&Q, S, xs, nx, k->t, &k->why) != 0) {
         sides_clear(&Q);
         return;
     }
@@ -665,7 +756,7 @@ static void analyse_knot(Knot *k, Scan *S, const RatFunStruct *xs, slong nx)
         const RatFunStruct *R = side_value(&Q, 0, j);
         const RatFunStruct *L = side_value(&Q, 1, j);
         if (!R || !L || vec_sub(S->K, jump, R, L, nx) != 0) {
-            k->why = "a one-sided derivative is not finite or exact";
+            k->why = side_why(&Q);
             break;
         }
         if (!vec_is_zero(jump, nx, r))
@@ -864,15 +955,16 @@ int knots_one_sided(RatFun res, const Derived *d, const RatFun x, slong var,
     Scan S;
     scan_init(&S, d, x, 1, var);
     const char *why = NULL;
-    int rc = others_nonzero(&S, t0, &why);
-    RatFun v;
+    RatFun v, w;
     ratfun_init(v, &d->ring);
-    if (rc == 0)
-        rc = side_subst(&S, v, x, t0, side);
+    ratfun_init(w, &d->ring);
+    int rc = side > 0 ? side_forms(&S, t0, x, 1, v, w, &why)
+                      : side_forms(&S, t0, x, 1, w, v, &why);
     for (ulong i = 0; i < j && rc == 0; i++)
         rc = kernel_derivative(S.K, v, v, var);
     if (rc == 0)
         rc = eval_at(&S, res, v, t0);
+    ratfun_clear(w, &d->ring);
     ratfun_clear(v, &d->ring);
     scan_clear(&S);
     return rc == 0 ? 0 : -1;
