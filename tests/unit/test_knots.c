@@ -328,7 +328,11 @@ static void test_knots_geometric(void **state)
  *   |t^2 - 2|: irrational zeros, listed as not analysed
  *   sqrt(|t - 1|): continuous, its derivative is infinite there
  *   |t - u| in two params: a note, no knots
- *   t^2 + 1 under abs() has no real zero: no knot */
+ *   t^2 + 1 under abs() has no real zero: no knot
+ *   nested: sign(sign(t - 1) + 1/2) is 1 right of 1 and -1 left: a jump
+ *   of 2; |t - |t - 2|| is 2 right of 2 and 2t - 2 left of it: C^0, the
+ *   derivative jumps by 0 - 2, and the outer argument's zero (at 1) is
+ *   listed as not analysed */
 static void test_knots_arguments(void **state)
 {
     (void)state;
@@ -337,7 +341,10 @@ static void test_knots_arguments(void **state)
                              "s3 = abs(t - a)\ns4 = t*abs(t - pi/2)\n"
                              "s5 = abs(t^2 - 2)\ns6 = sqrt(abs(t - 1))\n"
                              "s7 = abs(t - u)\ns8 = abs(t^2 + 1)*abs(t)\n"
-                             "output s1, s2, s3, s4, s5, s6, s7, s8\n");
+                             "s9 = sign(sign(t - 1) + 1/2)\n"
+                             "s10 = abs(t - abs(t - 2))\n"
+                             "output s1, s2, s3, s4, s5, s6, s7, s8, s9, "
+                             "s10\n");
     KnotList L;
     slong o = output(d, "s1");
     knots_analyse(&L, d, o);
@@ -401,6 +408,20 @@ static void test_knots_arguments(void **state)
     knots_analyse(&L, d, o);
     assert_int_equal(L.n, 1);
     expect_knot(d, o, &L, "0", 0, 0, "=2");
+    knots_clear(&L, d);
+
+    o = output(d, "s9");
+    knots_analyse(&L, d, o);
+    assert_int_equal(L.n, 1);
+    expect_knot(d, o, &L, "1", -1, -1, "=2");
+    assert_int_equal(L.nskip, 1);
+    knots_clear(&L, d);
+
+    o = output(d, "s10");
+    knots_analyse(&L, d, o);
+    assert_int_equal(L.n, 1);
+    expect_knot(d, o, &L, "2", 0, 0, "=-2");
+    assert_int_equal(L.nskip, 1);
     knots_clear(&L, d);
     derived_free(d);
 }
