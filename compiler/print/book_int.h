@@ -23,6 +23,8 @@ typedef enum AtomKind {
     AT_SUM,   // a parenthesised sum
     AT_POINT, // a point name, or a difference of two (point2)
     AT_ABS,   // |x| of the sign kernel var = sign(x) (absform.h)
+    AT_KNOT,  // x of the sign kernel var = sign(x), as its |x| writes it: the
+              // (t - 1) of the book's (2t + 1)(t - 1)|t - 1|
 } AtomKind;
 
 typedef struct PSum PSum;

@@ -250,6 +250,20 @@ void book_put_atom(StrBuf *b, const Atom *a, const Ctx *c)
         free(x);
         break;
     }
+    case AT_KNOT: { /* x of |x|, as |x| writes it: (t - 1), t */
+        const Kernel *k = kernels_of_var(c->K, a->var);
+        char *x = absform_arg_text(k, c->latex);
+        const fmpz_mpoly_struct *xn = k->arg->num;
+        int one = fmpz_mpoly_length(xn, c->r->ctx) == 1 &&
+                  fmpz_mpoly_total_degree_si(xn, c->r->ctx) == 1 &&
+                  fmpz_is_one(xn->coeffs) &&
+                  fmpz_mpoly_is_one(k->arg->den, c->r->ctx);
+        sb_puts(b, one ? "" : open);
+        sb_puts(b, x);
+        sb_puts(b, one ? "" : close);
+        free(x);
+        break;
+    }
     case AT_POINT:
         if (a->point2) {
             sb_puts(b, open);
