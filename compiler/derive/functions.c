@@ -23,6 +23,8 @@
  */
 #include "compiler/derive/derive_int.h"
 
+#include <flint/fmpz_vec.h>
+
 /* the scalar functions are the builtins of base/functions.def (sema.h),
  * pi (a call of no arguments) the first */
 int derive_is_function(int b)
@@ -44,15 +46,34 @@ static int builtin_kernel(int b)
 }
 
 /* s = sign(x) where the coefficient of s vanishes at x = 0: a declared
- * range that proves x >= 0 (x <= 0) gives 1 (-1), as abs() does */
+ * range that proves x >= 0 (x <= 0) gives 1 (-1), as abs() does.  Over a
+ * number (t - 1/2 = (2t - 1)/2) and with an integer content (2t - 2) the
+ * argument is taken primitive, sign(2t - 1), sign(t - 1): the kernels
+ * keep sign(x/2) apart from sign(x), and the printers read |x| only of an
+ * argument without a denominator (absform.h) */
 static int step_sign(Kernels *K, RatFun s, const RatFun x)
 {
+    const Ring *r = K->r;
     int known = kernel_sign(K, x);
     if (known) {
-        ratfun_set_si(s, known > 0 ? 1 : -1, K->r);
+        ratfun_set_si(s, known > 0 ? 1 : -1, r);
         return 0;
     }
-    return kernel_apply(K, s, KF_SIGN, x, NULL);
+    RatFun y;
+    ratfun_init(y, r);
+    ratfun_set(y, x, r);
+    slong len = fmpz_mpoly_length(y->num, r->ctx);
+    if (len > 0 && fmpz_mpoly_is_fmpz(y->den, r->ctx)) { /* den > 0 */
+        fmpz_t g;
+        fmpz_init(g);
+        _fmpz_vec_content(g, y->num->coeffs, len);
+        fmpz_mpoly_scalar_divexact_fmpz(y->num, y->num, g, r->ctx);
+        fmpz_mpoly_one(y->den, r->ctx);
+        fmpz_clear(g);
+    }
+    int rc = kernel_apply(K, s, KF_SIGN, y, NULL);
+    ratfun_clear(y, r);
+    return rc;
 }
 
 /* res = the smoothstep p(s) of degree 2m + 1 (see the top of the file) */
@@ -109,11 +130,13 @@ static int eval_step(Deriver *D, Value *res, const Node *n)
     }
     ratfun_sub(x, t, a, r); /* x = t - a */
     if (b == BI_RAYR || b == BI_RAYL) {
-        rc = kernel_abs(K, y, x);
+        rc = step_sign(K, s1, x); /* |x| = x*sign(x) */
         if (rc == 0) {
+            ratfun_mul(y, x, s1, r);
             (b == BI_RAYR ? ratfun_add : ratfun_sub)(res->s, x, y, r);
             ratfun_set_si(y, 2, r);
             ratfun_div(res->s, res->s, y, r);
+            rc = kernel_reduce(K, res->s);
         }
         goto done;
     }
