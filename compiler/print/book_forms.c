@@ -678,11 +678,15 @@ static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
         for (slong i = 0; i < na; i++)
             if (g[j].ex[i])
                 xs[nx++] = (Atom){AT_VAR, av[i], NULL, NULL, NULL, g[j].ex[i]};
-        if (nx == 0) { /* the free part: its terms join the sum */
-            push_collected(s, g[j].coef, xs, 0, depth, c);
+        PSum *cs = book_render(g[j].coef, depth + 1, c);
+        if (nx == 0) { /* the free part first, its terms joining the sum:
+                        * (t - 3 + abs(t - 3))/2, the text's Q(t, 3) */
+            lead_positive(cs);
+            for (slong i = 0; i < cs->n; i++)
+                book_term_absorb(book_sum_push(s), &cs->t[i]);
+            book_sum_free(cs, c);
             continue;
         }
-        PSum *cs = book_render(g[j].coef, depth + 1, c);
         PTerm *t = book_sum_push(s);
         if (cs->n == 1) {
             book_term_absorb(t, &cs->t[0]);

@@ -169,7 +169,7 @@ static int atom_cmp(const Ctx *c, const Atom *a, const Atom *b)
         if (a->var != b->var)
             return a->var < b->var ? -1 : 1;
         if (a->kind != b->kind) /* (t - 1)*abs(t - 1): the knot first */
-            return a->kind == AT_KNOT  ? -1
+            return a->kind == AT_KNOT   ? -1
                    : b->kind == AT_KNOT ? 1
                    : a->kind < b->kind  ? -1
                                         : 1;
