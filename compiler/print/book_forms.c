@@ -511,7 +511,7 @@ static int knot_of(slong v, const Ctx *c, slong *u, fmpq_t k)
     const Kernel *kn = kernels_of_var(c->K, v);
     const fmpz_mpoly_struct *x = kn->arg->num;
     slong len = fmpz_mpoly_length(x, r->ctx);
-    if (!fmpz_mpoly_is_one(kn->arg->den, r->ctx) || len < 1 || len > 2 ||
+    if (!fmpz_mpoly_is_fmpz(kn->arg->den, r->ctx) || len < 1 || len > 2 ||
         fmpz_mpoly_total_degree_si(x, r->ctx) != 1)
         return 0;
     *u = -1;
@@ -876,7 +876,7 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
     fmpz_mpoly_t q;
     fmpz_mpoly_init(q, r->ctx);
     PSum *s;
-    if (absform_rewrite(q, mask, p, c->K, r) > 0) {
+    if (absform_rewrite_num(q, mask, p, c->K, r) > 0) {
         Ctx a = *c;
         a.is_abs = mask;
         a.mode = 1;

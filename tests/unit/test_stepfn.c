@@ -338,6 +338,15 @@ static void test_printing(void **state)
     expect_printed("param t in [0, 4]\nv = step(t, 0, 1, 1)\n", FMT_TEXT,
                    "v = (1 + 3*t^2 - 2*t^3 + (1 + 2*t)*(t - 1)*abs(t - "
                    "1))/2\n");
+    /* a knot that is not whole: |t - 1/2| = |2t - 1|/2, and ramp(t, 1/2,
+     * 1/3) = 1/2 + (3/2)|t - 1/2| - (3/2)|t - 5/6| */
+    expect_printed("param t\nx = abs(t - 1/2)\ny = ramp(t, 1/2, 1/3)\n"
+                   "output x, y\n",
+                   FMT_TEXT,
+                   "x = abs(2*t - 1)/2\n"
+                   "y = (2 + 3*abs(2*t - 1) - abs(6*t - 5))/4\n");
+    expect_printed("param t\nx = abs(t - 1/2)\n", FMT_LATEX,
+                   "\\[ x = \\frac{\\left|2 t - 1\\right|}{2} \\]\n");
     /* a printed result never has x*sign(x) */
     char *s = printed("param t\nv = diff(step(t, 0, 1, 3), t, 2)\n", FMT_TEXT);
     assert_null(strstr(s, "sign"));
