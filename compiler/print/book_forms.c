@@ -714,6 +714,7 @@ static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
     free(e);
     free(av);
     book_sum_finish(s, p, c);
+    s->keep_order = 1;
     return s;
 }
 

@@ -50,6 +50,8 @@ struct PSum {
     PTerm *t;
     fmpz_mpoly_t poly; // what the sum is, up to sign (for the total order)
     int has_param;     // it involves a param
+    int keep_order;    // collected by the knots (book_forms.c): never rotated
+                       // (a leading minus is taken out whole instead)
 };
 
 typedef struct Ctx {

@@ -85,6 +85,7 @@ PSum *book_sum_copy(const PSum *s, const Ctx *c)
     r->n = s->n;
     fmpz_mpoly_set(r->poly, s->poly, c->r->ctx);
     r->has_param = s->has_param;
+    r->keep_order = s->keep_order;
     return r;
 }
 

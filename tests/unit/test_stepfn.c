@@ -328,6 +328,17 @@ static void test_printing(void **state)
      * |t-3|) */
     expect_printed("param t\nx = ramp(t, 0, 1) - ramp(t, 2, 1)\n", FMT_TEXT,
                    "x = (abs(t) - abs(t - 1) - abs(t - 2) + abs(t - 3))/2\n");
+    /* in the order of the knots even with a leading minus: -(P(t,0,1) -
+     * P(t,2,1)) */
+    expect_printed("param t\nx = ramp(t, 2, 1) - ramp(t, 0, 1)\n", FMT_TEXT,
+                   "x = -(abs(t) - abs(t - 1) - abs(t - 2) + abs(t - 3))/2\n");
+    /* 2.2 ex. 2: 1 + Q_l(t,1) - P(t,2,1) = 1/2 (t - |t-1| - |t-2| +
+     * |t-3|), P(t,1,1) - Q(t,3) = 1/2 (4 - t + |t-1| - |t-2| - |t-3|) */
+    expect_printed("param t\nx = 1 + rayl(t, 1) - ramp(t, 2, 1)\n"
+                   "y = ramp(t, 1, 1) - rayr(t, 3)\noutput x, y\n",
+                   FMT_TEXT,
+                   "x = (t - abs(t - 1) - abs(t - 2) + abs(t - 3))/2\n"
+                   "y = (4 - t + abs(t - 1) - abs(t - 2) - abs(t - 3))/2\n");
     /* (9): Q(t, 3) = 1/2 (t - 3 + |t - 3|), Q_l(t, 3) = 1/2 (t - 3 - |t -
      * 3|) */
     expect_printed("param t\nq = rayr(t, 3)\nql = rayl(t, 3)\noutput q, ql\n",
