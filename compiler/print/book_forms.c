@@ -681,6 +681,13 @@ static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
         PSum *cs = book_render(g[j].coef, depth + 1, c);
         if (nx == 0) { /* the free part first, its terms joining the sum:
                         * (t - 3 + abs(t - 3))/2, the text's Q(t, 3) */
+            if (cs->n == 1 && cs->t[0].neg &&
+                fmpz_mpoly_length(g[j].coef, r->ctx) > 1) {
+                /* -2*(1 - t)*(1 + t) would put a minus in front of the
+                 * knots: 2*t^2 - 2 (the text's t^2 - 1 + ...) */
+                book_sum_free(cs, c);
+                cs = book_form_expanded(g[j].coef, c);
+            }
             lead_positive(cs);
             for (slong i = 0; i < cs->n; i++)
                 book_term_absorb(book_sum_push(s), &cs->t[i]);

@@ -339,6 +339,13 @@ static void test_printing(void **state)
                    FMT_TEXT,
                    "x = (t - abs(t - 1) - abs(t - 2) + abs(t - 3))/2\n"
                    "y = (4 - t + abs(t - 1) - abs(t - 2) - abs(t - 3))/2\n");
+    /* Theorem 3, example 5 of 2.1: y = t^2 - 1 + (t + 1)|t - 1|/2 +
+     * (1 - t)|t + 1|/2, the free part first with a positive lead */
+    expect_printed("param t\ny = t^2 - 1 + (t + 1)*abs(t - 1)/2 + "
+                   "(1 - t)*abs(t + 1)/2\n",
+                   FMT_TEXT,
+                   "y = (2*t^2 - 2 + (1 - t)*abs(t + 1) + (1 + t)*abs(t - "
+                   "1))/2\n");
     /* (9): Q(t, 3) = 1/2 (t - 3 + |t - 3|), Q_l(t, 3) = 1/2 (t - 3 - |t -
      * 3|) */
     expect_printed("param t\nq = rayr(t, 3)\nql = rayl(t, 3)\noutput q, ql\n",
