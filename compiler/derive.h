@@ -179,6 +179,9 @@ typedef struct DeriveOptions {
                      // wrong, not the scheme), else 0
     int keep_steps;  // 1: also record Derived.steps (derive --steps); 0
                      // costs nothing
+    int keep_abs;    // 1: the declared ranges of params decide no sign, so
+                     // abs(t - a) stays abs on param t in [lo, hi]
+                     // (--keep-abs); the bounds of consts still do
 } DeriveOptions;
 
 /* Derive a scheme from source text.  Diagnostics (contract section 4 format)

@@ -171,6 +171,18 @@ check "memory budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the memo
 # unlocated, and leaves nothing on stdout: the five-point conic derives in
 # under 64 KiB of counted memory and prints in about 290 KiB (its form
 # search factors), so 128K runs out while printing
+# --keep-abs: a param's range simplifies no abs (issue 19), and the output
+# then rests on no range: eval at t = -1 is a number, not nan
+printf 'point A, B\nparam t in [0, 4]\nR = A + (B - A)*(1 + abs(t) - abs(t - 1))/2\n' >"$tmp/ka.pcs"
+"$PCB" derive "$tmp/ka.pcs" >"$tmp/out" 2>"$tmp/err"
+check "ranges simplify abs(t) to t" grep -q '^R = (A\*(1 - t + abs(t - 1)) + B\*(1 + t - abs(t - 1)))/2$' "$tmp/out"
+"$PCB" derive "$tmp/ka.pcs" --keep-abs >"$tmp/out" 2>"$tmp/err"
+check "--keep-abs keeps abs(t)" grep -q '^R = (A\*(1 - abs(t) + abs(t - 1)) + B\*(1 + abs(t) - abs(t - 1)))/2$' "$tmp/out"
+"$PCB" eval "$tmp/ka.pcs" --keep-abs --at A=0 --at B=2 --param t=-1 --format csv >"$tmp/out" 2>"$tmp/err"
+check "--keep-abs: eval outside the range" grep -q '^-1,0$' "$tmp/out"
+"$PCB" eval "$tmp/ka.pcs" --keep-abs --at A=0 --at B=2 --param t=0.5 --format csv >"$tmp/out" 2>"$tmp/err"
+check "--keep-abs: eval inside the range" grep -q '^0.5,1$' "$tmp/out"
+
 "$PCB" derive examples/conic_five_points.pcs --max-memory 128K >"$tmp/out" 2>"$tmp/err"
 check "memory budget while printing: exit 1" test $? -eq 1
 check "memory budget while printing: nothing on stdout" test ! -s "$tmp/out"

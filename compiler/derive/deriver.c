@@ -163,6 +163,8 @@ static int declare_end(Deriver *D, Derived *d, slong var, const Node *end,
         found = kernel_bounds(D->K, *vb, lo, &lo_open, hi, &hi_open);
     }
     int constant = found || ratfun_get_fmpq(q, *vb, r);
+    if (D->keep_abs && !is_const) /* --keep-abs: a param's range decides */
+        found = 0, constant = 1;  /* no sign */
     if (!constant && is_const) {
         diag_error(D->diag, end->span,
                    "expected a number as the bound of a const (like 0, 1/2 "
@@ -257,6 +259,7 @@ void deriver_init(Deriver *D, Derived *d, SemaInfo *info, Diag *diag,
     if (D->K)
         D->K->deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D->max_seconds = opt->max_seconds;
+    D->keep_abs = opt->keep_abs;
     D->deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D->verbose = opt->verbose;
     D->defs =

@@ -44,6 +44,10 @@ int budget_parse_option(BudgetOptions *b, int argc, char **argv, int i,
         b->verbose = 1;
         return 1;
     }
+    if (strcmp(a, "--keep-abs") == 0) {
+        b->keep_abs = 1;
+        return 1;
+    }
     if (strncmp(a, "-D", 2) == 0) {
         const char *d = a[2] ? a + 2 : i + 1 < argc ? argv[i + 1] : NULL;
         if (!d) {
@@ -202,6 +206,7 @@ DeriveOptions derive_options_cli(const BudgetOptions *b, FILE *err,
                        .verbose = b->verbose ? err : NULL,
                        .defines = b->defines,
                        .ndefines = b->ndefines,
-                       .bad_define = bad_define};
+                       .bad_define = bad_define,
+                       .keep_abs = b->keep_abs};
     return o;
 }

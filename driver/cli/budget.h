@@ -44,6 +44,7 @@ typedef struct BudgetOptions {
     double max_seconds;
     size_t max_memory;
     int verbose;
+    int keep_abs; // --keep-abs: params' ranges simplify no abs (derive.h)
     const char *defines[BUDGET_MAX_DEFINES]; // -D NAME=INTEGER (argv's
     int ndefines;                            // strings), expand.h
 } BudgetOptions;

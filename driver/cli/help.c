@@ -44,6 +44,9 @@ const char cli_usage[] =
     "  -D NAME=INTEGER     overrides the scheme's 'int NAME = ...' (e.g. the " \
     "order of\n"                                                               \
     "                      a family scheme)\n"                                 \
+    "  --keep-abs          params' declared ranges simplify no abs or sign "   \
+    "(abs(t)\n"                                                                \
+    "                      stays abs(t) on t in [0, 4])\n"                     \
     "  -h, --help          this text\n"                                        \
     "\nExit status: 0 success, 1 an error in the scheme, 2 a usage error.\n"
 
