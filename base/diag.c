@@ -31,6 +31,7 @@ void diag_init(Diag *d, const Source *src, FILE *out)
     d->hold = 0;
     d->msgs = NULL;
     d->nmsgs = d->amsgs = 0;
+    d->nctx = 0;
 }
 
 void diag_hold(Diag *d)
@@ -354,6 +355,14 @@ static void emit(Diag *d, Span span, const char *what, const char *fmt,
     diag_put_excerpt(&k, d->src, span);
 }
 
+static void context_notes(Diag *d)
+{
+    int n = d->nctx < DIAG_MAX_CONTEXT ? d->nctx : DIAG_MAX_CONTEXT;
+    for (int i = n - 1; i >= 0; i--)
+        diag_note(d, d->ctx_span[i], "in the call of %s() here",
+                  d->ctx_name[i]);
+}
+
 void diag_error(Diag *d, Span span, const char *fmt, ...)
 {
     va_list ap;
@@ -361,12 +370,29 @@ void diag_error(Diag *d, Span span, const char *fmt, ...)
     report(d, span, "error", fmt, ap);
     va_end(ap);
     d->nerrors++;
+    context_notes(d);
 }
 
 void diag_verror(Diag *d, Span span, const char *fmt, va_list ap)
 {
     report(d, span, "error", fmt, ap);
     d->nerrors++;
+    context_notes(d);
+}
+
+void diag_push_context(Diag *d, Span span, const char *name)
+{
+    if (d->nctx < DIAG_MAX_CONTEXT) {
+        d->ctx_span[d->nctx] = span;
+        d->ctx_name[d->nctx] = name;
+    }
+    d->nctx++;
+}
+
+void diag_pop_context(Diag *d)
+{
+    if (d->nctx > 0)
+        d->nctx--;
 }
 
 void diag_note(Diag *d, Span span, const char *fmt, ...)

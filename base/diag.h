@@ -29,6 +29,9 @@ typedef struct DiagMsg {
 /* the most messages held for sorting (diag_hold) */
 #define DIAG_MAX_HELD 2000
 
+/* the most nested calls of user functions whose notes follow an error */
+#define DIAG_MAX_CONTEXT 8
+
 typedef struct Diag {
     const Source *src; // borrowed
     FILE *out;         // borrowed; NULL = count only
@@ -39,6 +42,11 @@ typedef struct Diag {
     int hold;      // 1: messages wait in msgs until diag_flush
     DiagMsg *msgs; // owned
     int nmsgs, amsgs;
+    // the calls of user functions being expanded or checked, outermost
+    // first: every error is followed by a note at each, innermost first
+    Span ctx_span[DIAG_MAX_CONTEXT];
+    const char *ctx_name[DIAG_MAX_CONTEXT];
+    int nctx; // may exceed DIAG_MAX_CONTEXT: the deeper ones get no note
 } Diag;
 
 void diag_init(Diag *d, const Source *src, FILE *out);
@@ -61,6 +69,10 @@ void diag_verror(Diag *d, Span span, const char *fmt, va_list ap);
 __attribute__((format(printf, 3, 4)))
 #endif
 void diag_note(Diag *d, Span span, const char *fmt, ...);
+/* From now until the matching pop, every error is followed by the note
+ * "in the call of NAME() here" at span (name borrowed) */
+void diag_push_context(Diag *d, Span span, const char *name);
+void diag_pop_context(Diag *d);
 
 /* The parts of a message, written through a sink: what diag_error prints,
  * and what a handler that may not allocate (the budgets' signal handler,

@@ -14,40 +14,10 @@
 #include <string.h>
 
 #include "base/mem.h"
+#include "compiler/expand_int.h"
 #include "compiler/sema.h"
 
-typedef struct IntSym {
-    const char *name;
-    slong value;
-    Span span;
-    int bad; // its definition had an error: uses are not re-reported
-} IntSym;
-
-typedef struct Family {
-    const char *name;
-    slong lo, hi; // members lo..hi (empty when lo > hi)
-    Span span;
-    const char *what; // "points", "unknowns"
-} Family;
-
-typedef struct Expander {
-    Arena *a;
-    Diag *d;
-    IntSym *ints;
-    int nints, capints;
-    Family *fams;
-    int nfams, capfams;
-    const char **names; // plain names declared so far
-    Span *spans;
-    int nnames, capnames;
-    const char *var; // the comprehension variable being unrolled, or NULL
-    slong var_value;
-    long members; // family members and unrolled equations so far
-    long nodes;   // nodes copied so far
-    int over;     // a size limit was reported
-} Expander;
-
-static IntSym *find_int(Expander *E, const char *name)
+IntSym *ex_find_int(Expander *E, const char *name)
 {
     for (int i = 0; i < E->nints; i++)
         if (strcmp(E->ints[i].name, name) == 0)
@@ -55,7 +25,7 @@ static IntSym *find_int(Expander *E, const char *name)
     return NULL;
 }
 
-static Family *find_family(Expander *E, const char *name)
+Family *ex_find_family(Expander *E, const char *name)
 {
     for (int i = 0; i < E->nfams; i++)
         if (strcmp(E->fams[i].name, name) == 0)
@@ -63,7 +33,7 @@ static Family *find_family(Expander *E, const char *name)
     return NULL;
 }
 
-static int find_name(Expander *E, const char *name)
+int ex_find_name(Expander *E, const char *name)
 {
     for (int i = 0; i < E->nnames; i++)
         if (strcmp(E->names[i], name) == 0)
@@ -109,11 +79,11 @@ static Family *member_of(Expander *E, const char *name, slong *index)
 /* 0, or -1 after reporting that name is taken by an int, a family or a
  * family member, or (plain_too) by a plain name: sema reports two plain
  * declarations of one name itself */
-static int check_free(Expander *E, const char *name, Span span, int plain_too)
+int ex_check_free(Expander *E, const char *name, Span span, int plain_too)
 {
-    IntSym *is = find_int(E, name);
-    Family *f = find_family(E, name);
-    int k = plain_too ? find_name(E, name) : -1;
+    IntSym *is = ex_find_int(E, name);
+    Family *f = ex_find_family(E, name);
+    int k = plain_too ? ex_find_name(E, name) : -1;
     slong idx;
     if (is || f || k >= 0) {
         diag_error(E->d, span, "redefinition of '%s'", name);
@@ -146,7 +116,7 @@ static void add_name(Expander *E, const char *name, Span span)
     E->spans[E->nnames++] = span;
 }
 
-static const char *member_name(Expander *E, const char *base, slong k)
+static const char *ex_member_name(Expander *E, const char *base, slong k)
 {
     char buf[32];
     size_t n = strlen(base);
@@ -159,7 +129,7 @@ static const char *member_name(Expander *E, const char *base, slong k)
 
 /* ---- integer expressions ------------------------------------------------ */
 
-static int int_range(Expander *E, Span span, __int128 v, slong *out)
+int ex_int_range(Expander *E, Span span, __int128 v, slong *out)
 {
     if (v >= EXPAND_MAX_INT || v <= -EXPAND_MAX_INT) {
         diag_error(E->d, span,
@@ -173,12 +143,11 @@ static int int_range(Expander *E, Span span, __int128 v, slong *out)
 
 /* n as a whole number: numbers, int constants, the comprehension variable,
  * + - * / ^ (an exact division, a non-negative exponent) */
-static int too_deep(const Node *n);
 
-static int eval_int(Expander *E, const Node *n, slong *out)
+int ex_eval_int(Expander *E, const Node *n, slong *out)
 {
     slong a, b;
-    if (too_deep(n)) {
+    if (ex_too_deep(n)) {
         diag_error(E->d, n->span,
                    "expression nested too deeply (%d levels; at most %d)",
                    n->depth, SEMA_MAX_DEPTH);
@@ -200,14 +169,18 @@ static int eval_int(Expander *E, const Node *n, slong *out)
                            "below 2^40 in magnitude");
             return -1;
         }
-        return int_range(E, n->span, (__int128)strtoll(n->text, NULL, 10), out);
+        return ex_int_range(E, n->span, (__int128)strtoll(n->text, NULL, 10),
+                            out);
     }
     case ND_NAME: {
-        if (E->var && strcmp(n->text, E->var) == 0) {
-            *out = E->var_value;
+        const Binding *bd = ex_find_binding(E, n->text);
+        if (bd && !bd->arg) {
+            *out = bd->value;
             return 0;
         }
-        IntSym *is = find_int(E, n->text);
+        if (bd) /* a parameter: its argument, expanded at the call */
+            return ex_eval_int(E, bd->arg, out);
+        IntSym *is = ex_find_int(E, n->text);
         if (is) {
             *out = is->value;
             return is->bad ? -1 : 0;
@@ -219,7 +192,7 @@ static int eval_int(Expander *E, const Node *n, slong *out)
         return -1;
     }
     case ND_NEG:
-        if (eval_int(E, n->lhs, &a) < 0)
+        if (ex_eval_int(E, n->lhs, &a) < 0)
             return -1;
         *out = -a;
         return 0;
@@ -228,15 +201,15 @@ static int eval_int(Expander *E, const Node *n, slong *out)
     case ND_MUL:
     case ND_DIV:
     case ND_POW:
-        if (eval_int(E, n->lhs, &a) < 0 || eval_int(E, n->rhs, &b) < 0)
+        if (ex_eval_int(E, n->lhs, &a) < 0 || ex_eval_int(E, n->rhs, &b) < 0)
             return -1;
         switch (n->kind) {
         case ND_ADD:
-            return int_range(E, n->span, (__int128)a + b, out);
+            return ex_int_range(E, n->span, (__int128)a + b, out);
         case ND_SUB:
-            return int_range(E, n->span, (__int128)a - b, out);
+            return ex_int_range(E, n->span, (__int128)a - b, out);
         case ND_MUL:
-            return int_range(E, n->span, (__int128)a * b, out);
+            return ex_int_range(E, n->span, (__int128)a * b, out);
         case ND_DIV:
             if (b == 0) {
                 diag_error(E->d, n->rhs->span, "division by zero");
@@ -262,15 +235,17 @@ static int eval_int(Expander *E, const Node *n, slong *out)
             for (slong k = 0; k < b; k++) {
                 p *= a;
                 if (p >= EXPAND_MAX_INT || p <= -EXPAND_MAX_INT)
-                    return int_range(E, n->span, p, out);
+                    return ex_int_range(E, n->span, p, out);
                 if (p == 0 || p == 1)
                     break;
             }
             if (p == 1 && a == -1 && b % 2)
                 p = -1;
-            return int_range(E, n->span, p, out);
+            return ex_int_range(E, n->span, p, out);
         }
         }
+    case ND_COMPR:
+        return ex_eval_int_compr(E, n, out);
     case ND_CALL:
     case ND_INDEX:
         break;
@@ -283,7 +258,7 @@ static int eval_int(Expander *E, const Node *n, slong *out)
 
 /* ---- expressions -------------------------------------------------------- */
 
-static int budget_nodes(Expander *E, const Node *n, long k)
+int ex_budget_nodes(Expander *E, const Node *n, long k)
 {
     E->nodes += k;
     if (E->nodes <= EXPAND_MAX_NODES)
@@ -312,35 +287,35 @@ static int budget_members(Expander *E, Span span, slong k)
     return -1;
 }
 
-static Node *clone(Expander *E, const Node *n)
+Node *ex_clone(Expander *E, const Node *n)
 {
     if (!n)
         return NULL;
     Node *c = arena_new(E->a, Node);
     *c = *n;
-    c->lhs = clone(E, n->lhs);
-    c->rhs = clone(E, n->rhs);
+    c->lhs = ex_clone(E, n->lhs);
+    c->rhs = ex_clone(E, n->rhs);
     c->next = NULL;
     c->args = NULL;
     Node **tail = &c->args;
     for (const Node *x = n->args; x; x = x->next) {
-        *tail = clone(E, x);
+        *tail = ex_clone(E, x);
         tail = &(*tail)->next;
     }
     return c;
 }
 
-static long count_nodes(const Node *n)
+long ex_count_nodes(const Node *n)
 {
     long k = 0;
     for (; n; n = n->next)
-        k += 1 + count_nodes(n->lhs) + count_nodes(n->rhs) +
-             count_nodes(n->args);
+        k += 1 + ex_count_nodes(n->lhs) + ex_count_nodes(n->rhs) +
+             ex_count_nodes(n->args);
     return k;
 }
 
 /* the number v as an expression (a negative one as -|v|) at span */
-static Node *number(Expander *E, slong v, Span span)
+static Node *ex_number(Expander *E, slong v, Span span)
 {
     char buf[32];
     snprintf(buf, sizeof buf, "%ld", (long)(v < 0 ? -v : v));
@@ -351,18 +326,19 @@ static Node *number(Expander *E, slong v, Span span)
 /* the member index of family f that n's index denotes, checked */
 static int member_index(Expander *E, const Family *f, const Node *ix, slong *k)
 {
-    if (eval_int(E, ix, k) < 0)
+    if (ex_eval_int(E, ix, k) < 0)
         return -1;
     if (*k < f->lo || *k > f->hi) {
         if (f->lo > f->hi)
             diag_error(E->d, ix->span,
                        "index %ld is out of range: the family %s is empty",
                        (long)*k, f->name);
-        else if (E->var)
+        else if (ex_index_binding(E))
             diag_error(E->d, ix->span,
                        "index %ld (at %s = %ld) is out of range: %s has the "
                        "members %s[%ld..%ld]",
-                       (long)*k, E->var, (long)E->var_value, f->name, f->name,
+                       (long)*k, ex_index_binding(E)->name,
+                       (long)ex_index_binding(E)->value, f->name, f->name,
                        (long)f->lo, (long)f->hi);
         else
             diag_error(E->d, ix->span,
@@ -376,7 +352,7 @@ static int member_index(Expander *E, const Family *f, const Node *ix, slong *k)
 
 static Family *family_of(Expander *E, const char *name, Span span)
 {
-    Family *f = find_family(E, name);
+    Family *f = ex_find_family(E, name);
     if (!f)
         diag_error(E->d, span,
                    "'%s' is not a family; expected NAME[i] of a family "
@@ -385,11 +361,9 @@ static Family *family_of(Expander *E, const char *name, Span span)
     return f;
 }
 
-static int rewrite(Expander *E, Node **slot);
-
 /* a call's argument list with every range NAME[a..b] replaced by its
  * members */
-static int rewrite_args(Expander *E, Node *call)
+int ex_rewrite_args(Expander *E, Node *call)
 {
     int st = 0;
     Node *out = NULL, **tail = &out;
@@ -400,8 +374,8 @@ static int rewrite_args(Expander *E, Node *call)
         if (x->kind == ND_INDEX && x->rhs) {
             Family *f = family_of(E, x->text, x->name_span);
             slong lo, hi;
-            if (!f || eval_int(E, x->lhs, &lo) < 0 ||
-                eval_int(E, x->rhs, &hi) < 0) {
+            if (!f || ex_eval_int(E, x->lhs, &lo) < 0 ||
+                ex_eval_int(E, x->rhs, &hi) < 0) {
                 st = -1;
                 continue;
             }
@@ -415,16 +389,17 @@ static int rewrite_args(Expander *E, Node *call)
                 st = -1;
                 continue;
             }
-            if (budget_nodes(E, x, hi - lo + 1) < 0)
+            if (ex_budget_nodes(E, x, hi - lo + 1) < 0)
                 return -1;
             for (slong k = lo; k <= hi; k++) {
-                *tail = ast_new_name(E->a, member_name(E, f->name, k), x->span);
+                *tail =
+                    ast_new_name(E->a, ex_member_name(E, f->name, k), x->span);
                 tail = &(*tail)->next;
                 nargs++;
             }
             continue;
         }
-        if (rewrite(E, &x) < 0)
+        if (ex_rewrite(E, &x) < 0)
             st = -1;
         *tail = x;
         tail = &x->next;
@@ -441,30 +416,39 @@ static int rewrite_args(Expander *E, Node *call)
 /* An expression deeper than sema accepts is left alone: sema refuses it at
  * its root before recursing, and so must every pass before it (the
  * recursion below would otherwise run as deep as the parser allows). */
-static int too_deep(const Node *n)
+int ex_too_deep(const Node *n)
 {
     return n->depth > SEMA_MAX_DEPTH;
 }
 
-static int rewrite(Expander *E, Node **slot)
+int ex_rewrite(Expander *E, Node **slot)
 {
     Node *n = *slot;
-    if (too_deep(n))
+    if (ex_too_deep(n))
         return 0;
     switch (n->kind) {
     case ND_NUM:
         return 0;
     case ND_NAME: {
         slong v;
-        if ((E->var && strcmp(n->text, E->var) == 0) || find_int(E, n->text)) {
-            if (eval_int(E, n, &v) < 0)
+        const Binding *b = ex_find_binding(E, n->text);
+        if (b && b->arg) { /* a parameter: a copy of its argument */
+            if (ex_budget_nodes(E, n, ex_count_nodes(b->arg)) < 0)
                 return -1;
-            Node *num = number(E, v, n->span);
+            Node *c = ex_clone(E, b->arg);
+            c->next = n->next;
+            *slot = c;
+            return 0;
+        }
+        if (b || ex_find_int(E, n->text)) {
+            if (ex_eval_int(E, n, &v) < 0)
+                return -1;
+            Node *num = ex_number(E, v, n->span);
             num->next = n->next;
             *slot = num;
             return 0;
         }
-        Family *f = find_family(E, n->text);
+        Family *f = ex_find_family(E, n->text);
         if (f) {
             diag_error(E->d, n->span,
                        "'%s' is a family of %s; expected a member %s[i] or "
@@ -487,21 +471,27 @@ static int rewrite(Expander *E, Node **slot)
         Family *f = family_of(E, n->text, n->name_span);
         if (!f || member_index(E, f, n->lhs, &k) < 0)
             return -1;
-        Node *m = ast_new_name(E->a, member_name(E, f->name, k), n->span);
+        Node *m = ast_new_name(E->a, ex_member_name(E, f->name, k), n->span);
         m->next = n->next;
         *slot = m;
         return 0;
     }
-    case ND_CALL:
-        return rewrite_args(E, n);
+    case ND_CALL: {
+        int st;
+        if (ex_expand_call(E, slot, &st))
+            return st;
+        return ex_rewrite_args(E, n);
+    }
+    case ND_COMPR:
+        return ex_expand_compr(E, slot);
     case ND_NEG:
     case ND_ADD:
     case ND_SUB:
     case ND_MUL:
     case ND_DIV:
     case ND_POW: {
-        int st = rewrite(E, &n->lhs);
-        if (n->rhs && rewrite(E, &n->rhs) < 0)
+        int st = ex_rewrite(E, &n->lhs);
+        if (n->rhs && ex_rewrite(E, &n->rhs) < 0)
             st = -1;
         n->depth = n->lhs->depth + 1;
         if (n->rhs && n->rhs->depth + 1 > n->depth)
@@ -531,7 +521,7 @@ static Name *declare_names(Expander *E, Name *list, const char *what,
                                       "supported");
             continue;
         }
-        if (check_free(E, nm->text, nm->span, nm->lo != NULL) < 0)
+        if (ex_check_free(E, nm->text, nm->span, nm->lo != NULL) < 0)
             continue;
         if (!nm->lo) {
             add_name(E, nm->text, nm->span);
@@ -540,7 +530,7 @@ static Name *declare_names(Expander *E, Name *list, const char *what,
             continue;
         }
         slong lo, hi;
-        if (eval_int(E, nm->lo, &lo) < 0 || eval_int(E, nm->hi, &hi) < 0)
+        if (ex_eval_int(E, nm->lo, &lo) < 0 || ex_eval_int(E, nm->hi, &hi) < 0)
             continue;
         if (lo < 0) {
             diag_error(E->d, nm->lo->span,
@@ -569,8 +559,8 @@ static Name *declare_names(Expander *E, Name *list, const char *what,
         }
         E->fams[E->nfams++] = (Family){nm->text, lo, hi, nm->span, what};
         for (slong k = lo; k <= hi; k++) {
-            Name *m =
-                ast_new_namelist(E->a, member_name(E, nm->text, k), nm->span);
+            Name *m = ast_new_namelist(E->a, ex_member_name(E, nm->text, k),
+                                       nm->span);
             *tail = m;
             tail = &m->next;
         }
@@ -587,11 +577,11 @@ static Name *refer_names(Expander *E, Name *list)
         next = nm->next;
         nm->next = NULL;
         if (!nm->index && !nm->lo) {
-            Family *f = find_family(E, nm->text);
+            Family *f = ex_find_family(E, nm->text);
             if (f) { /* the whole family */
                 for (slong k = f->lo; k <= f->hi; k++) {
-                    Name *m = ast_new_namelist(E->a, member_name(E, f->name, k),
-                                               nm->span);
+                    Name *m = ast_new_namelist(
+                        E->a, ex_member_name(E, f->name, k), nm->span);
                     *tail = m;
                     tail = &m->next;
                 }
@@ -610,7 +600,8 @@ static Name *refer_names(Expander *E, Name *list)
                 continue;
             hi = lo;
         } else {
-            if (eval_int(E, nm->lo, &lo) < 0 || eval_int(E, nm->hi, &hi) < 0)
+            if (ex_eval_int(E, nm->lo, &lo) < 0 ||
+                ex_eval_int(E, nm->hi, &hi) < 0)
                 continue;
             if (lo <= hi && (lo < f->lo || hi > f->hi)) {
                 const Node *bad = lo < f->lo ? nm->lo : nm->hi;
@@ -624,7 +615,7 @@ static Name *refer_names(Expander *E, Name *list)
         }
         for (slong k = lo; k <= hi; k++) {
             Name *m =
-                ast_new_namelist(E->a, member_name(E, f->name, k), nm->span);
+                ast_new_namelist(E->a, ex_member_name(E, f->name, k), nm->span);
             *tail = m;
             tail = &m->next;
         }
@@ -671,9 +662,9 @@ static void expand_int(Expander *E, Stmt *st, const char *const *defines,
     slong v = 0;
     const char *name = st->name->text;
     int bad;
-    if (check_free(E, name, st->name->span, 1) < 0)
+    if (ex_check_free(E, name, st->name->span, 1) < 0)
         return;
-    bad = eval_int(E, st->expr, &v) < 0;
+    bad = ex_eval_int(E, st->expr, &v) < 0;
     for (int k = 0; k < ndefines; k++) {
         char dn[128];
         slong dv;
@@ -697,8 +688,8 @@ static void expand_solve(Expander *E, Stmt *st)
     for (Equation *e = st->eqs, *next; e; e = next) {
         next = e->next;
         e->next = NULL;
-        if (!e->var || too_deep(e->lhs) || too_deep(e->rhs)) {
-            if (rewrite(E, &e->lhs) < 0 || rewrite(E, &e->rhs) < 0) {
+        if (!e->var || ex_too_deep(e->lhs) || ex_too_deep(e->rhs)) {
+            if (ex_rewrite(E, &e->lhs) < 0 || ex_rewrite(E, &e->rhs) < 0) {
                 st->bad = 1;
                 continue;
             }
@@ -707,28 +698,23 @@ static void expand_solve(Expander *E, Stmt *st)
             continue;
         }
         slong lo, hi;
-        if (E->var) { /* cannot happen: comprehensions do not nest */
-            st->bad = 1;
-            continue;
-        }
-        if (check_free(E, e->var, e->var_span, 1) < 0 ||
-            eval_int(E, e->lo, &lo) < 0 || eval_int(E, e->hi, &hi) < 0 ||
+        if (ex_check_free(E, e->var, e->var_span, 1) < 0 ||
+            ex_eval_int(E, e->lo, &lo) < 0 || ex_eval_int(E, e->hi, &hi) < 0 ||
             budget_members(E, e->span, hi - lo + 1) < 0) {
             st->bad = 1;
             continue;
         }
-        long size = count_nodes(e->lhs) + count_nodes(e->rhs);
+        long size = ex_count_nodes(e->lhs) + ex_count_nodes(e->rhs);
         for (slong k = lo; k <= hi; k++) {
-            if (budget_nodes(E, e->lhs, size) < 0) {
+            if (ex_budget_nodes(E, e->lhs, size) < 0) {
                 st->bad = 1;
                 break;
             }
-            Equation *c = ast_new_equation(E->a, clone(E, e->lhs),
-                                           clone(E, e->rhs), e->span);
-            E->var = e->var;
-            E->var_value = k;
-            int bad = rewrite(E, &c->lhs) < 0 || rewrite(E, &c->rhs) < 0;
-            E->var = NULL;
+            Equation *c = ast_new_equation(E->a, ex_clone(E, e->lhs),
+                                           ex_clone(E, e->rhs), e->span);
+            ex_bind(E, e->var, NULL, k);
+            int bad = ex_rewrite(E, &c->lhs) < 0 || ex_rewrite(E, &c->rhs) < 0;
+            E->nbinds--;
             if (bad) { /* one report is enough: stop at the first value */
                 st->bad = 1;
                 break;
@@ -749,6 +735,7 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
     for (int k = 0; k < ndefines; k++)
         used[k] = 0;
     for (Stmt *st = s->stmts; st && !E.over; st = st->next) {
+        E.stmt = st;
         switch (st->kind) {
         case ST_SCHEME:
             break;
@@ -766,14 +753,17 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
             st->names = declare_names(
                 &E, st->names, st->kind == ST_PARAM ? "params" : "consts", 0);
             if (st->lo)
-                rewrite(&E, &st->lo);
+                ex_rewrite(&E, &st->lo);
             if (st->hi)
-                rewrite(&E, &st->hi);
+                ex_rewrite(&E, &st->hi);
+            break;
+        case ST_FUNC:
+            ex_define_func(&E, st);
             break;
         case ST_DEF:
-            if (check_free(&E, st->name->text, st->name->span, 0) == 0)
+            if (ex_check_free(&E, st->name->text, st->name->span, 0) == 0)
                 add_name(&E, st->name->text, st->name->span);
-            rewrite(&E, &st->expr);
+            ex_rewrite(&E, &st->expr);
             break;
         case ST_SOLVE:
             expand_solve(&E, st);
@@ -785,6 +775,8 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
     }
     free(E.ints);
     free(E.fams);
+    free(E.funcs);
+    free(E.binds);
     free(E.names);
     free(E.spans);
     return diag->nerrors - errors0;

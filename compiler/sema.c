@@ -90,6 +90,14 @@ static void push(Sema *S, Sym ***arr, int *n, int *cap, Sym *s)
     (*arr)[(*n)++] = s;
 }
 
+int sema_is_builtin(const char *name)
+{
+    for (int b = 0; b < BI_COUNT; b++)
+        if (strcmp(builtins[b].name, name) == 0)
+            return 1;
+    return 0;
+}
+
 static int is_reserved(const char *name)
 {
     if (strcmp(name, "pi") == 0)
@@ -503,8 +511,22 @@ static int check_call(Sema *S, Node *n)
     return -1;
 }
 
-/* returns 1 combination, 0 scalar, -1 error (already reported) */
+static int check_node(Sema *S, Node *n);
+
+/* returns 1 combination, 0 scalar, -1 error (already reported); the
+ * errors inside a user function's expansion are followed by a note at its
+ * call */
 static int check_expr(Sema *S, Node *n)
+{
+    if (!n->call_site)
+        return check_node(S, n);
+    diag_push_context(S->diag, n->call_site->span, n->call_site->text);
+    int k = check_node(S, n);
+    diag_pop_context(S->diag);
+    return k;
+}
+
+static int check_node(Sema *S, Node *n)
 {
     int k = -1;
     /* every later pass recurses over the tree: bound its height here, at
@@ -589,7 +611,8 @@ static int check_expr(Sema *S, Node *n)
         k = check_call(S, n);
         break;
     case ND_INDEX: /* expand.c replaced every one */
-        PC_UNREACHABLE("an index left by expand");
+    case ND_COMPR:
+        PC_UNREACHABLE("an index or a comprehension left by expand");
     }
     n->is_point = k > 0;
     return k;
@@ -807,8 +830,13 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
             check_solve(&S, st);
             push_step(&S, st);
             break;
+        case ST_FUNC: /* expand.c expanded every call */
+            break;
         case ST_DEF: {
             int k = check_expr(&S, st->expr);
+            for (Equation *e = st->joints; e; e = e->next)
+                if (check_expr(&S, e->lhs) < 0 || check_expr(&S, e->rhs) < 0)
+                    k = -1;
             Sym *s = declare(&S, st->name->text, st->name->span, SYM_DEF);
             if (!s)
                 break;

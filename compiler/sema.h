@@ -96,4 +96,7 @@ typedef struct SemaInfo {
  * marked bad, so that the others can still be derived and checked. */
 SemaInfo *sema_check(Scheme *s, Arena *a, Diag *diag);
 
+/* 1 when name is a built-in function of the language (along, sin, ...) */
+int sema_is_builtin(const char *name);
+
 #endif

@@ -68,6 +68,30 @@ Node *ast_new_call(Arena *a, const char *name, Span name_span, Node *args,
     return n;
 }
 
+Node *ast_new_compr(Arena *a, const char *name, Span name_span, Node *body,
+                    const char *var, Span var_span, Node *lo, Node *hi,
+                    Span span)
+{
+    Node *n = arena_new(a, Node);
+    n->kind = ND_COMPR;
+    n->text = name;
+    n->name_span = name_span;
+    n->lhs = body;
+    n->var = var;
+    n->var_span = var_span;
+    lo->next = hi;
+    n->args = lo;
+    n->nargs = 2;
+    n->span = span;
+    n->depth = body->depth;
+    if (lo->depth > n->depth)
+        n->depth = lo->depth;
+    if (hi->depth > n->depth)
+        n->depth = hi->depth;
+    n->depth++;
+    return n;
+}
+
 Node *ast_new_index(Arena *a, const char *name, Span name_span, Node *lo,
                     Node *hi, Span span)
 {
@@ -182,6 +206,15 @@ static void dump_node(FILE *out, const Node *n)
             dump_node(out, n->rhs);
         }
         fputc(')', out);
+        return;
+    case ND_COMPR:
+        fprintf(out, "(%s ", n->text);
+        dump_node(out, n->lhs);
+        fprintf(out, " (for %s ", n->var);
+        dump_node(out, n->args);
+        fputc(' ', out);
+        dump_node(out, n->args->next);
+        fputs("))", out);
         return;
     case ND_CALL:
         fprintf(out, "(%s", n->text);

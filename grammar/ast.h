@@ -26,7 +26,9 @@
     X(ND_POW, "^")     /* lhs ^ rhs: rhs an integer constant */                \
     X(ND_CALL, "call") /* name(args): a builtin (along, meet, sin, ...) */     \
     X(ND_INDEX, "index") /* name[lhs], or name[lhs..rhs] as call arguments:    \
-                            members of a family (expand.c replaces them) */
+                            members of a family (expand.c replaces them) */    \
+    X(ND_COMPR, "compr") /* text(lhs for var in args..args->next): sum or      \
+                            prod over an index (expand.c unrolls it) */
 
 typedef enum NodeKind {
 #define X(k, s) k,
@@ -55,6 +57,14 @@ struct Node {
     Node *args; // linked by next
     int nargs;
 
+    // ND_COMPR: the index variable (its bounds are args and args->next)
+    const char *var;
+    Span var_span;
+
+    // set by expand.c on the root of a user function's expansion: the
+    // call it replaced (its span and name), for the notes of diagnostics
+    const Node *call_site;
+
     // filled by sema
     Sym *sym;     // ND_NAME: what the name means
     int builtin;  // ND_CALL: a Builtin (compiler/sema.h)
@@ -80,6 +90,7 @@ struct Name {
     X(ST_INT, "int")         /* int n = EXPR: an integer scheme constant */    \
     X(ST_UNKNOWN, "unknown") /* unknown C1, C2 (solved by `solve`) */          \
     X(ST_DEF, "def")         /* NAME = EXPR */                                 \
+    X(ST_FUNC, "function")   /* def NAME(a, b) = EXPR: a user function */      \
     X(ST_SOLVE, "solve")     /* solve EQ, ... for X, ... */                    \
     X(ST_OUTPUT, "output")   /* output NAME, ... */
 
@@ -99,6 +110,8 @@ struct Equation {
     const char *var; // the comprehension's variable, or NULL
     Span var_span;
     Node *lo, *hi;
+    const char *what; // a joint of join(): "g1 g2", the two segments that
+                      // must meet (lhs = g1's end, rhs = g2's start)
 };
 
 typedef struct Stmt Stmt;
@@ -106,15 +119,18 @@ struct Stmt {
     StmtKind kind;
     Span span; // the whole statement
     Stmt *next;
-    Name *names;          // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...)
-    Name *name;           // ST_SCHEME, ST_DEF: the defined name
-    Node *expr;           // ST_DEF
+    Name *names;          // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...),
+                          // ST_FUNC: the parameters
+    Name *name;           // ST_SCHEME, ST_DEF, ST_FUNC: the defined name
+    Node *expr;           // ST_DEF, ST_FUNC (the body)
     Node *lo, *hi;        // ST_PARAM range (both NULL when absent); ST_CONST:
                           // its bounds (`const e in (0, 1)`, `const a > 0`: lo
                           // only, `const k < 1`: hi only)
     int lo_open, hi_open; // ST_PARAM, ST_CONST: an end that is excluded
                           // ('(' or ')', '>' or '<')
     Equation *eqs;        // ST_SOLVE
+    Equation *joints;     // ST_DEF: where the segments of a join() must meet
+                          // (expand.c; derive checks them)
 
     // filled by sema
     Sym *sym;   // ST_DEF: the defined name
@@ -134,6 +150,10 @@ Node *ast_new_binary(Arena *a, NodeKind kind, Node *lhs, Node *rhs, Span span);
 /* args: a list built with ast_append */
 Node *ast_new_call(Arena *a, const char *name, Span name_span, Node *args,
                    Span span);
+/* name(body for var in lo..hi): a sum or product over an index */
+Node *ast_new_compr(Arena *a, const char *name, Span name_span, Node *body,
+                    const char *var, Span var_span, Node *lo, Node *hi,
+                    Span span);
 /* name[lo] (hi NULL) or the range name[lo..hi] */
 Node *ast_new_index(Arena *a, const char *name, Span name_span, Node *lo,
                     Node *hi, Span span);

@@ -116,7 +116,7 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
 %right '^'
 
 %type <Node *> expr args
-%type <Name *> names name
+%type <Name *> names name params
 %type <Stmt *> stmt
 %type <int> lbr rbr
 
@@ -184,6 +184,21 @@ stmt:
                           $$->name = ast_new_namelist(p->arena, $2, @2);
                           $$->expr = $4;
                       } }
+| IDENT IDENT '(' params ')' '=' expr /* `def P(t, a, w) = ...`: def is a
+                         keyword only here */
+                    { if (strcmp($1, "def") != 0) {
+                          diag_error(p->diag, @1,
+                                     "unexpected '%s' before '%s(...)'; "
+                                     "expected 'def %s(NAME, ...) = ...' (a "
+                                     "function)",
+                                     $1, $2, $2);
+                          $$ = NULL;
+                      } else {
+                          $$ = ast_new_stmt(p->arena, ST_FUNC, @$);
+                          $$->name = ast_new_namelist(p->arena, $2, @2);
+                          $$->names = $4;
+                          $$->expr = $7;
+                      } }
 | SOLVE             { p->seqs = NULL; p->snames = NULL; }
   solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;
                       p->seqs = NULL; p->snames = NULL; }
@@ -207,6 +222,12 @@ name:
                     { $$ = ast_new_namelist(p->arena, $1, @$); $$->index = $3; }
 | IDENT '[' expr DOTDOT expr ']'
                     { $$ = ast_new_namelist(p->arena, $1, @$); $$->lo = $3; $$->hi = $5; }
+;
+
+/* a function's parameters: plain names */
+params:
+  IDENT             { $$ = ast_new_namelist(p->arena, $1, @1); }
+| params ',' IDENT  { $$ = ast_append_name($1, ast_new_namelist(p->arena, $3, @3)); }
 ;
 
 names:
@@ -251,6 +272,8 @@ expr:
   NUMBER            { $$ = ast_new_num(p->arena, $1, @$); }
 | IDENT             { $$ = ast_new_name(p->arena, $1, @$); }
 | IDENT '(' args ')' { $$ = ast_new_call(p->arena, $1, @1, $3, @$); }
+| IDENT '(' expr FOR IDENT IN expr DOTDOT expr ')' /* sum(E for i in a..b) */
+                    { $$ = ast_new_compr(p->arena, $1, @1, $3, $5, @5, $7, $9, @$); }
 | IDENT '[' expr ']' { $$ = ast_new_index(p->arena, $1, @1, $3, NULL, @$); }
 | IDENT '[' expr DOTDOT expr ']'
                     { $$ = ast_new_index(p->arena, $1, @1, $3, $5, @$); }

@@ -7,11 +7,75 @@
  */
 #include "compiler/derive/derive_int.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "base/budget.h"
 #include "base/mem.h"
 #include "base/numfmt.h"
+
+/* the difference x (a combination or a scalar) as text, each weight by
+ * derive_show: "A*(w) + B*(w)"; the caller frees it */
+static char *show_difference(Deriver *D, const Value *x)
+{
+    const Ring *r = D->r;
+    if (!x->is_point)
+        return derive_show(x->s, r);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = pc_xopen_memstream(&text, &len);
+    RatFun w;
+    ratfun_init(w, r);
+    for (slong i = 0; i < x->p->len; i++) {
+        pteq_get_weight(w, x->p, x->p->terms[i].point, r);
+        char *ws = derive_show(w, r);
+        fprintf(m, "%s%s*(%s)", i ? " + " : "",
+                D->info->points[x->p->terms[i].point]->name, ws);
+        flint_free(ws);
+    }
+    ratfun_clear(w, r);
+    pc_xclose_memstream(m);
+    return text;
+}
+
+/* the joints of the join() calls of a definition: where segment g ends,
+ * segment h must begin (Dolya 2.1: R_{k-1}(tau^1) = R_k(tau^0)) */
+static int check_joints(Deriver *D, Sym *s)
+{
+    const Ring *r = D->r;
+    int st = 0;
+    for (const Equation *e = s->def->joints; e && st == 0; e = e->next) {
+        Value a, b;
+        derive_value_init(&a, r);
+        derive_value_init(&b, r);
+        if (derive_eval(D, &a, e->lhs) < 0 || derive_eval(D, &b, e->rhs) < 0) {
+            st = -1;
+        } else {
+            if (a.is_point)
+                pteq_sub(a.p, a.p, b.p, r);
+            else
+                ratfun_sub(a.s, a.s, b.s, r);
+            if (derive_reduce_value(D, &a, e->lhs) < 0)
+                st = -1;
+            else if (a.is_point ? !pteq_is_zero(a.p, r)
+                                : !ratfun_is_zero(a.s, r)) {
+                const char *sp = strchr(e->what, ' ');
+                char *txt = show_difference(D, &a);
+                diag_error(D->diag, e->span,
+                           "the segments %.*s and %s do not meet at this "
+                           "knot: the end of %.*s minus the start of %s is "
+                           "%s, expected 0",
+                           (int)(sp - e->what), e->what, sp + 1,
+                           (int)(sp - e->what), e->what, sp + 1, txt);
+                free(txt);
+                st = -1;
+            }
+        }
+        derive_value_clear(&a, r);
+        derive_value_clear(&b, r);
+    }
+    return st;
+}
 
 /* derives definition i and checks its weight sum */
 static void derive_def(Deriver *D, Sym *s)
@@ -22,6 +86,10 @@ static void derive_def(Deriver *D, Sym *s)
     budget_statement(D->src, s->def->expr->span);
     derive_assume_clear(D);
     if (s->bad || D->expired || derive_eval(D, v, s->def->expr) < 0) {
+        D->state[s->index] = -1;
+        return;
+    }
+    if (s->def->joints && check_joints(D, s) < 0) {
         D->state[s->index] = -1;
         return;
     }

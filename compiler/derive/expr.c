@@ -485,7 +485,11 @@ static int eval_node(Deriver *D, Value *res, const Node *n);
 /* res receives the exact value of n; 0 or -1 (reported) */
 int derive_eval(Deriver *D, Value *res, const Node *n)
 {
+    if (n->call_site) /* a user function's expansion: errors note the call */
+        diag_push_context(D->diag, n->call_site->span, n->call_site->text);
     int st = eval_node(D, res, n);
+    if (n->call_site)
+        diag_pop_context(D->diag);
     if (st == 0 && n->kind != ND_NUM && n->kind != ND_NAME && n->kind != ND_NEG)
         st = derive_reduce_value(D, res, n);
     return st;
@@ -624,6 +628,7 @@ static int eval_node(Deriver *D, Value *res, const Node *n)
     case ND_CALL:
         return eval_call(D, res, n);
     case ND_INDEX: /* expand.c replaced every one */
+    case ND_COMPR:
         return -1;
     }
     return -1;

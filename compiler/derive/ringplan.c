@@ -98,6 +98,11 @@ static slong plan_kernel_slots(const SemaInfo *info, slong npoints)
         const Stmt *st = info->steps[i];
         if (st->kind == ST_DEF)
             count_kernel_uses(st->expr, &calls, &ops, &pis, &metric);
+        for (const Equation *e = st->kind == ST_DEF ? st->joints : NULL; e;
+             e = e->next) {
+            count_kernel_uses(e->lhs, &calls, &ops, &pis, &metric);
+            count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
+        }
         for (const Equation *e = st->kind == ST_SOLVE ? st->eqs : NULL; e;
              e = e->next) {
             count_kernel_uses(e->lhs, &calls, &ops, &pis, &metric);

@@ -620,6 +620,208 @@ static void test_size_bounds(void **state)
                "      ^~~~~~~~~~\n");
 }
 
+/* ---- user functions, sum and prod, piecewise, join ---------------------- */
+
+static void test_function_calls(void **state)
+{
+    (void)state;
+    /* a call is a copy of the body with each parameter replaced by its
+     * argument; the def itself is kept as written */
+    expands_to(
+        "point A, B\nparam t\ndef m(X, Y, s) = X + (Y - X)*s\n"
+        "M = m(B, A, t/2)\n",
+        "(point A B)\n(param t)\n(function m X Y s (+ X (* (- Y X) s)))\n"
+        "(def M (+ B (* (- A B) (/ t 2))))\n");
+    /* parameters named like points are the parameters: f(B, A) swaps them
+     * (replaced once, not again inside the argument) */
+    expands_to("point A, B\ndef f(A, B) = along(A, B, 1/3)\nM = f(B, A)\n",
+               "(point A B)\n(function f A B (along A B (/ 1 3)))\n"
+               "(def M (along B A (/ 1 3)))\n");
+    /* a function calls an earlier one; the inner call sees only its own
+     * parameters: g's t does not reach f's body */
+    expands_to("point A, B\nparam t\ndef f(X) = along(X, B, t)\n"
+               "def g(t) = f(A)*t\nM = g(1/2)\n",
+               "(point A B)\n(param t)\n(function f X (along X B t))\n"
+               "(function g t (* (f A) t))\n"
+               "(def M (* (along A B t) (/ 1 2)))\n");
+    /* an int argument used as an index, and ints in the body */
+    expands_to("int n = 2\npoint M[0..n]\ndef v(k) = M[k + 1] - M[k]\n"
+               "V = v(n - 1)\n",
+               "(int n 2)\n(point M_0 M_1 M_2)\n"
+               "(function v k (- (M (+ k 1)) (M k)))\n(def V (- M_2 M_1))\n");
+}
+
+static void test_sums_and_products(void **state)
+{
+    (void)state;
+    /* a balanced tree of the terms (depth log n, not n) */
+    expands_to("param t\nx = sum(t^i for i in 1..3)\n",
+               "(param t)\n(def x (+ (^ t 1) (+ (^ t 2) (^ t 3))))\n");
+    expands_to(
+        "param t\nx = prod(t - i for i in 1..4)\n",
+        "(param t)\n(def x (* (* (- t 1) (- t 2)) (* (- t 3) (- t 4))))\n");
+    /* the empty sum is 0, the empty product 1 */
+    expands_to("param t\nx = sum(t for i in 2..1) + prod(t for i in 1..0)\n",
+               "(param t)\n(def x (+ 0 1))\n");
+    /* over the members of a family, bounds from ints; nested, the inner
+     * bound depending on the outer index */
+    expands_to("int n = 2\npoint M[1..n]\nG = sum(M[i] for i in 1..n)/n\n",
+               "(int n 2)\n(point M_1 M_2)\n(def G (/ (+ M_1 M_2) 2))\n");
+    expands_to("x = sum(sum(j for j in 1..i) for i in 1..2)\n",
+               "(def x (+ 1 (+ 1 2)))\n");
+    /* in an int: the whole number; 1+2+3+4 = 10, 3! = 6 */
+    expands_to("int n = sum(i for i in 1..4) + prod(i for i in 1..3)\nx = n\n",
+               "(int n (+ (sum i (for i 1 4)) (prod i (for i 1 3))))\n"
+               "(def x 16)\n");
+}
+
+static void test_piecewise_and_join(void **state)
+{
+    (void)state;
+    /* (p1 + p2)/2 + (p2 - p1)/2 sign(t - t1) */
+    expands_to("param t\nx = piecewise(t, 0, 1, t - 1)\n",
+               "(param t)\n(def x (+ (/ (+ 0 (- t 1)) 2) "
+               "(* (/ (- (- t 1) 0) 2) (sign (- t 1)))))\n");
+    /* one segment between the knots 0 and 2: g(a) + (g(a + (b - a) P) -
+     * g(a)) with the ramp P(t, 0, 2 - 0) */
+    expands_to("param t\ndef g(u) = u^2\nx = join(t, 0, g[1..3], 2)\n",
+               "(param t)\n(function g u (^ u 2))\n"
+               "(def x (+ (^ 1 2) (- (^ (+ 1 (* (- 3 1) (/ (- (+ (- 2 0) "
+               "(abs (- t 0))) (abs (- (- t 0) (- 2 0)))) (* 2 (- 2 0))))) 2) "
+               "(^ 1 2))))\n");
+}
+
+static void test_function_errors(void **state)
+{
+    (void)state;
+    fails_with("point A\ndef f(x) = x + Z\n", 1,
+               "x.pcs:2:16: error: 'Z' is not a parameter of f() and is not "
+               "declared before it; expected one of its parameters or an "
+               "earlier name\n"
+               "def f(x) = x + Z\n"
+               "               ^\n");
+    fails_with("def f(x) = f(x)\n", 1,
+               "x.pcs:1:12: error: f() calls itself; a function cannot be "
+               "recursive\n"
+               "def f(x) = f(x)\n"
+               "           ^\n");
+    fails_with("def f(x, x) = x\n", 1,
+               "x.pcs:1:10: error: the parameter 'x' of f() is repeated; "
+               "expected distinct names\n"
+               "def f(x, x) = x\n"
+               "         ^\n");
+    fails_with("def sin(x) = x\n", 1,
+               "x.pcs:1:5: error: 'sin' is a built-in function; choose "
+               "another name\n"
+               "def sin(x) = x\n"
+               "    ^~~\n");
+    fails_with("def f(x) = x\ndef f(y) = y\n", 1,
+               "x.pcs:2:5: error: redefinition of the function 'f'\n"
+               "def f(y) = y\n"
+               "    ^\n"
+               "x.pcs:1:5: note: 'f' was first defined here\n"
+               "def f(x) = x\n"
+               "    ^\n");
+    fails_with("def f(x) = g(x)\n", 1,
+               "x.pcs:1:12: error: unknown function 'g'; a function may call "
+               "the built-in functions and the functions defined before it\n"
+               "def f(x) = g(x)\n"
+               "           ^\n");
+    /* arity at the call, with a note at the definition */
+    fails_with("def f(x, y) = x\na = f(1)\n", 1,
+               "x.pcs:2:5: error: f() takes 2 arguments, found 1\n"
+               "a = f(1)\n"
+               "    ^~~~\n"
+               "x.pcs:1:5: note: f() is defined here\n"
+               "def f(x, y) = x\n"
+               "    ^\n");
+    /* an index out of range inside an expansion: a note at the call */
+    fails_with("point M[1..2]\ndef v(k) = M[k]\nV = v(3)\n", 1,
+               "x.pcs:2:14: error: index 3 is out of range: M has the members "
+               "M[1..2]\n"
+               "def v(k) = M[k]\n"
+               "             ^\n"
+               "x.pcs:3:5: note: in the call of v() here\n"
+               "V = v(3)\n"
+               "    ^~~~\n");
+}
+
+static void test_sum_and_join_errors(void **state)
+{
+    (void)state;
+    fails_with("param t\nx = foo(t for i in 1..2)\n", 1,
+               "x.pcs:2:5: error: 'foo' takes no comprehension; expected "
+               "sum(EXPR for i in a..b) or prod(EXPR for i in a..b)\n"
+               "x = foo(t for i in 1..2)\n"
+               "    ^~~\n");
+    fails_with("param t\nx = sum(i for t in 1..2)\n", 1,
+               "x.pcs:2:15: error: redefinition of 't'\n"
+               "x = sum(i for t in 1..2)\n"
+               "              ^\n"
+               "x.pcs:1:7: note: 't' was first declared here\n"
+               "param t\n"
+               "      ^\n");
+    fails_with("x = sum(sum(i for i in 1..2) for i in 1..2)\n", 1,
+               "x.pcs:1:19: error: 'i' is already bound here; expected "
+               "another name for the index\n"
+               "x = sum(sum(i for i in 1..2) for i in 1..2)\n"
+               "                  ^\n");
+    fails_with("x = sum(1 for i in 1..t)\n", 1,
+               "x.pcs:1:23: error: 't' is not an integer; expected whole "
+               "numbers, 'int' constants and comprehension variables here\n"
+               "x = sum(1 for i in 1..t)\n"
+               "                      ^\n");
+    fails_with("param t\nx = sum(t)\n", 1,
+               "x.pcs:2:5: error: sum() takes one comprehension: sum(EXPR for "
+               "i in a..b)\n"
+               "x = sum(t)\n"
+               "    ^~~~~~\n");
+    fails_with("param t\nx = sum(t for i in 1..2^30)\n", 1,
+               "x.pcs:2:5: error: the scheme unrolls to more than 4194304 "
+               "expression nodes; expected smaller families or "
+               "comprehensions\n"
+               "x = sum(t for i in 1..2^30)\n"
+               "    ^~~~~~~~~~~~~~~~~~~~~~~\n");
+    fails_with("param t\nx = piecewise(t, 1, 2, 3, 1, 4)\n", 1,
+               "x.pcs:2:27: error: the knots must increase: this one is 1, "
+               "after 2\n"
+               "x = piecewise(t, 1, 2, 3, 1, 4)\n"
+               "                          ^\n");
+    fails_with("param t\ndef g(u) = u\nx = join(t, 0, g[0..1], 0.5, "
+               "g[1..2], 1/2)\n",
+               1,
+               "x.pcs:3:39: error: the knots must increase: this one is 1/2, "
+               "after 1/2\n"
+               "x = join(t, 0, g[0..1], 0.5, g[1..2], 1/2)\n"
+               "                                      ^~~\n");
+    fails_with("param t\ndef g(u) = u\nx = join(t, 0, g[0..1], g[1..2], 1)\n",
+               1,
+               "x.pcs:3:25: error: expected a knot here: join() takes knots "
+               "and segments in turn, t0, g1[a..b], t1, ..., the first and "
+               "the last segment may be infinite (g0[-inf..b], g[a..inf])\n"
+               "x = join(t, 0, g[0..1], g[1..2], 1)\n"
+               "                        ^~~~~~~\n");
+    fails_with("param t\ndef g(u, v) = u\nx = join(t, 0, g[0..1], 1)\n", 1,
+               "x.pcs:3:16: error: the segment function g() takes 2 "
+               "parameters; expected a function of one parameter\n"
+               "x = join(t, 0, g[0..1], 1)\n"
+               "               ^\n"
+               "x.pcs:2:5: note: g() is defined here\n"
+               "def g(u, v) = u\n"
+               "    ^\n");
+    fails_with("param t\ndef g(u) = u\nx = join(t, 0, g[2..1/2], 1)\n", 1,
+               "x.pcs:3:16: error: the segment g[2..1/2] is empty; expected "
+               "an interval lo..hi with lo < hi (the segment is traced from "
+               "lo to hi)\n"
+               "x = join(t, 0, g[2..1/2], 1)\n"
+               "               ^~~~~~~~~\n");
+    fails_with("param t\ndef g(u) = u\nx = join(t, 0)\n", 1,
+               "x.pcs:3:5: error: join() needs at least one segment between "
+               "two knots, or two infinite branches at one knot\n"
+               "x = join(t, 0)\n"
+               "    ^~~~~~~~~~\n");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -640,6 +842,11 @@ int main(void)
         cmocka_unit_test(test_family_misuse),
         cmocka_unit_test(test_member_name_clashes),
         cmocka_unit_test(test_size_bounds),
+        cmocka_unit_test(test_function_calls),
+        cmocka_unit_test(test_sums_and_products),
+        cmocka_unit_test(test_piecewise_and_join),
+        cmocka_unit_test(test_function_errors),
+        cmocka_unit_test(test_sum_and_join_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
