@@ -23,9 +23,13 @@ printed formula correct?, the correct formula.  Exits 1 on a FAIL (a
 derivation that does not hold); a MISPRINT is an expected verdict, recorded
 in docs/errata.md (entries D1-D9).
 
-With --weights it prints, instead, the expected base-point weights of the
-example schemes examples/dolya_*.pcs (from this derivation, in pointcalc
-syntax), which the schemes' `# expect-weight` lines copy.
+Then every example scheme examples/dolya_*.pcs is checked: its
+`# expect-weight R.POINT:` lines must equal the weights derived here (the
+same theorem constructions, with the base points as symbols), and
+pointcalc's own `derive --format json` of R (build/pointcalc, or $PC_BIN)
+must equal them on every interval between the knots.  With
+`--expect NAME` it prints the expectation lines of examples/NAME.pcs from
+this derivation instead.
 
 Run from the repository root:  python3 tests/oracle/dolya_ch2.py
 """
@@ -127,9 +131,11 @@ def on_piece(expr, lo, hi, at=None):
             hiv = hi if hi == oo else sp.nsimplify(sp.sympify(hi).subs(at))
             if rv is not None and rv.is_real and lov < rv < hiv:
                 raise ValueError(f'{u} changes sign inside ({lo}, {hi})')
-        return u if val > 0 else -u
+        return 1 if val > 0 else -1
 
-    return expr.replace(lambda e: isinstance(e, Abs), repl)
+    expr = expr.replace(lambda e: isinstance(e, Abs), lambda e: e.args[0] * repl(e))
+    # sign(u), as pointcalc's JSON writes |u| inside functions: u*sign(u)
+    return expr.replace(lambda e: isinstance(e, sp.sign), repl)
 
 
 def zero(d):
@@ -278,10 +284,20 @@ def abs_form(expr):
     e = sp.expand(expr)
     ab = sorted(e.atoms(Abs), key=lambda a: float(sp.solve(a.args[0], t)[0]))
     parts = sp.collect(e, ab, evaluate=False)
-    out = []
+    out = []                             # (negative?, text without its sign)
     rest = parts.get(sp.S.One, 0)
     if rest != 0:
-        out.append(pc(sp.factor(rest)))
+        out.append((False, pc(sp.factor(rest))))
+
+    def term(coef, absu):
+        if coef.is_number:
+            neg = coef < 0
+            m = abs(coef)
+            return neg, absu if m == 1 else f'{pc(m)}*{absu}'
+        neg = sp.factor(coef).could_extract_minus_sign()
+        f = sp.factor(-coef if neg else coef)
+        return neg, (f'({pc(f)})' if isinstance(f, sp.Add) else pc(f)) + f'*{absu}'
+
     for a in ab:
         c = sp.factor(parts.get(a, 0))
         if c == 0:
@@ -289,10 +305,15 @@ def abs_form(expr):
         u = a.args[0]
         q, r = sp.div(sp.expand(c), sp.expand(u**2), t)
         if r == 0 and not q.has(t):
-            out.append(f'{pc(q)}*abs({pc(u)})^3')
+            out.append(term(q, f'abs({pc(u)})^3'))
         else:
-            out.append(f'({pc(c)})*abs({pc(u)})')
-    return ' + '.join(out) if out else '0'
+            out.append(term(c, f'abs({pc(u)})'))
+    if not out:
+        return '0'
+    txt = ('-' if out[0][0] else '') + out[0][1]
+    for neg, x in out[1:]:
+        txt += (' - ' if neg else ' + ') + x
+    return txt
 
 
 # --- the joining theorems of 2.1 ------------------------------------------
@@ -1116,7 +1137,163 @@ def table():
         print(f'| {ex} | {g} | {f} |')
 
 
+# ===========================================================================
+# The example schemes: their weights, derived here, against their
+# expectation lines and against pointcalc's own result
+# ===========================================================================
+
+def frame(xy, names=('O', 'X', 'Y', 'Z')):
+    """weights of the point with coordinates xy in the frame O, X, Y(, Z):
+    O + x (X - O) + y (Y - O) (+ z (Z - O))."""
+    w = {names[j + 1]: c for j, c in enumerate(xy)}
+    w[names[0]] = 1 - sum(xy)
+    return w
+
+
+def weights_of(curve, syms):
+    """weights of a combination of symbolic points (one coordinate each)."""
+    e = sp.expand(curve)
+    return {str(s): e.coeff(s) for s in syms if e.coeff(s) != 0}
+
+
+def lin_sym(p0, p1):
+    return (lambda s: [p0 + (p1 - p0) * s], 0, 1)
+
+
+def example_weights():
+    """scheme file -> {point: weight of R}, each from the construction of
+    the theorem the example uses (independent of the scheme's own text)."""
+    W = {}
+    A0, A1 = sp.symbols('A0 A1', real=True)
+    W['dolya_2_1_ex1'] = weights_of(theorem1([lin_sym(A0, A1)], [0, 1])[0], [A0, A1])
+    W['dolya_2_1_ex2'] = frame(theorem1([(lambda s: [s, 0], 0, 1),
+                                         (lambda s: [cos(pi * s / 2), sin(pi * s / 2)], 0, 1)], [0, 1, 2]))
+    a, b, c = sp.symbols('a b c', positive=True)
+    W['dolya_2_1_ex3'] = frame(theorem1([(lambda s: [a * cos(s), b * sin(s)], 0, pi),
+                                         (lambda s: [a * cos(s), c * sin(s)], pi, 2 * pi)], [0, 1, 2]))
+    h = pi / 2
+    W['dolya_2_1_ex4'] = frame(theorem1([(lambda s: [cos(s), sin(s), 0], 0, h), (lambda s: [0, cos(s), sin(s)], 0, h),
+                                         (lambda s: [sin(s), 0, cos(s)], 0, h)], [0, 1, 2, 3]))
+    O, A, B, C = sp.symbols('O A B C', real=True)
+    W['dolya_2_1_ex4_c1_triangle'] = weights_of(
+        theorem1([lin_sym(O, A), lin_sym(A, B), lin_sym(B, O)], [0, 1, 2, 3], 'P13')[0], [O, A, B])
+    sq = [lin_sym(O, A), lin_sym(A, B), lin_sym(B, C), lin_sym(C, O)]
+    W['dolya_2_1_ex5_c2_square'] = weights_of(theorem1(sq, [0, 1, 2, 3, 4], 'P25')[0], [O, A, B, C])
+    W['dolya_2_5_ex1'] = weights_of(theorem1(sq, [0, 1, 2, 3, 4], 'P13')[0], [O, A, B, C])
+    W['dolya_2_5_ex2'] = frame(theorem1([(lambda s: [cos(pi * s), sin(pi * s)], 0, 1),
+                                         (lambda s: [-1 + 2 * s, 0], 0, 1)], [0, 1, 2]))
+    W['dolya_2_1_th3_ex4'] = frame(theorem3(lambda s: [s, pi * s], 0, [(lambda s: [s, sin(pi * s)], 0, 2)],
+                                            lambda s: [s + 2, pi * s], 0, [0, 2]))
+    W['dolya_2_1_th3_ex5'] = frame(theorem3(lambda s: [s, s**2 - 1], -1, [(lambda s: [-2 - s, 0], -1, 1)],
+                                            lambda s: [s - 4, s**2 - 1], 1, [-1, 1]))
+    W['dolya_2_2_polyline'] = weights_of(polyline_rays([[A], [B], [C]], [A - O], [O - C], [1, 2, 3])[0], [O, A, B, C])
+    W['dolya_2_2_parallelogram'] = weights_of(
+        polyline_rays([[O], [A], [B], [C], [O]], [0], [0], [0, 2, 3, 5, 6])[0], [O, A, B, C])
+    W['dolya_2_2_ngon'] = frame(ngon_correct(6, sp.Symbol('r', positive=True))[0])
+    W['dolya_2_3_1_ex1'] = frame(pp_one_formula([(lambda s: [-1 + s, 0 * s], 0, 2),
+                                                 (lambda s: [1 - s, 2 * s - s**2], 0, 2)], [0, 2, 4])[0])
+    W['dolya_2_3_1_ex2'] = frame(pp_one_formula([(lambda s: [-1 + s, 1 - 2 * s + s**2], 0, 2),
+                                                 (lambda s: [1 - s, 2 - (1 - s)**3], 0, 1),
+                                                 (lambda s: [-s, 2 - s**3], 0, 1)], [0, 2, 3, 4])[0])
+    r = sp.symbols('r_0:4', real=True)
+    W['dolya_2_3_1_polyline_knots'] = weights_of(pp_one_formula(
+        [((lambda i: (lambda s: [r[i - 1] + (r[i] - r[i - 1]) * s]))(i), 0, 1) for i in (1, 2, 3)],
+        [0, 1, 3, 6])[0][0], r)
+    # Hermite, n = 3: theorem 1 of 2.3.1 applied to the Hermite pieces (not the text's P_k)
+    T = sp.symbols('T_0:4', real=True)
+    v = [T[k] - r[k] for k in range(4)]
+    s_ = sp.Symbol('s_')
+    herm = [((lambda j: (lambda u: [hermite_piece(j, r[j - 1], r[j], v[j - 1], v[j]).subs(t, u + j - 1)]))(j), 0, 1)
+            for j in (1, 2, 3)]
+    W['dolya_2_3_2_hermite'] = weights_of(pp_one_formula(herm, [0, 1, 2, 3])[0][0], list(r) + list(T))
+    f = lambda *xy: [sp.nsimplify(z) for z in xy]
+    W['dolya_2_3_3_bezier_cubic'] = frame(bezier_composite(
+        [[f(1, 0), f(1.5, 0), f(2, 0.5), f(2, 1)], [f(2, 1), f(2, 1.5), f(1.5, 2), f(1, 2)],
+         [f(1, 2), f(0.5, 2), f(0, 1.5), f(0, 1)], [f(0, 1), f(0, 0.5), f(0.5, 0), f(1, 0)]]))
+    W['dolya_2_3_3_bezier_quintic'] = frame(bezier_composite(
+        [[f(i / 5, 0) for i in range(6)], [f(1, 0), f(1.2, 0), f(1.4, 1), f(-0.4, 1), f(-0.2, 0), f(0, 0)]]))
+    Bs = sp.symbols('B_0:7', real=True)
+    W['dolya_2_3_3_bezier_composite'] = weights_of(bezier_composite([[[Bs[i]] for i in range(4)],
+                                                                     [[Bs[i]] for i in range(3, 7)]])[0], Bs)
+    W['dolya_2_3_3_bezier_polyline'] = frame(bezier_composite([[f(1, 0), f(2, 1)], [f(2, 1), f(1, 2)],
+                                                               [f(1, 2), f(0, 1)]]))
+    for kind in ('natural', 'clamped', 'periodic'):
+        if kind not in SPLINES:
+            sec_2_3_4()
+        W[f'dolya_2_3_4_spline_{kind}'] = frame(SPLINES[kind])
+    return W
+
+
+PARSE = {'t': t, 'pi': pi, 'sin': sin, 'cos': cos, 'sqrt': sqrt, 'abs': Abs, 'Abs': Abs, 'sign': sp.sign,
+         'a': sp.Symbol('a', positive=True), 'b': sp.Symbol('b', positive=True),
+         'c': sp.Symbol('c', positive=True), 'r': sp.Symbol('r', positive=True)}
+
+
+def parse(e):
+    return sp.sympify(e.replace('^', '**'), locals=PARSE)
+
+
+def check_examples(root):
+    """every examples/dolya_*.pcs: its `# expect-weight R.POINT:` lines equal
+    the derived weights for every t (and name every point with a nonzero
+    weight); with PC_BIN (make oracle), pointcalc's derive --format json of R
+    equals them too."""
+    import glob
+    import json
+    import os
+    import subprocess
+    W = example_weights()
+    pcbin = os.environ.get('PC_BIN') or os.path.join(root, 'build', 'pointcalc')
+    files = sorted(glob.glob(os.path.join(root, 'examples', 'dolya_*.pcs')))
+    seen = set()
+    for path in files:
+        name = os.path.basename(path)[:-4]
+        seen.add(name)
+        if name not in W:
+            ok(False, f'{name}: no derivation in dolya_ch2.py')
+            continue
+        want = W[name]
+        exp = {}
+        for ln in open(path, encoding='utf-8'):
+            if ln.startswith('# expect-weight R.'):
+                key, val = ln[len('# expect-weight R.'):].split(':', 1)
+                exp[key.strip()] = parse(val.strip())
+        bad = [p for p in set(want) | set(exp)
+               if equal_everywhere([want.get(p, sp.S.Zero)], [exp.get(p, sp.S.Zero)])]
+        ok(not bad and set(exp) == {p for p, w in want.items() if w != 0},
+           f'{name}: expect-weight lines = derivation', f'{len(exp)} weights' + (f'; differ: {bad}' if bad else ''))
+        if os.access(pcbin, os.X_OK):
+            out = subprocess.run([pcbin, 'derive', '--format', 'json', path], capture_output=True, text=True)
+            if out.returncode != 0:
+                ok(False, f'{name}: pointcalc derive', out.stderr.strip()[:200])
+                continue
+            js = json.loads(out.stdout)
+            terms = next(o for o in js['outputs'] if o['name'] == 'R')['terms']
+            got = {k: parse(v) for k, v in terms.items()}
+            bad = [p for p in set(want) | set(got)
+                   if equal_everywhere([want.get(p, sp.S.Zero)], [got.get(p, sp.S.Zero)])]
+            ok(not bad, f'{name}: pointcalc derive = derivation', 'every weight on every interval'
+               + (f'; differ: {bad}' if bad else ''))
+    missing = sorted(set(W) - seen)
+    ok(not missing, 'every derived example has its scheme', str(missing))
+
+
+def print_expect(name):
+    for p, w in sorted(example_weights()[name].items()):
+        if w != 0:
+            print(f'# expect-weight R.{p}: {abs_form(w) if sp.sympify(w).atoms(Abs) else pc(sp.factor(w))}')
+
+
 def main():
+    import os
+    root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
+    if len(sys.argv) == 3 and sys.argv[1] == '--expect':
+        import contextlib
+        import io
+        with contextlib.redirect_stdout(io.StringIO()):
+            sec_2_3_4()
+        print_expect(sys.argv[2])
+        return 0
     sec_2_1()
     sec_2_2()
     sec_2_3_1()
@@ -1124,6 +1301,7 @@ def main():
     sec_2_3_3()
     sec_2_3_4()
     sec_2_5()
+    check_examples(root)
     table()
     print()
     if NUMERIC:
