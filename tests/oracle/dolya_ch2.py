@@ -27,7 +27,9 @@ Then every example scheme examples/dolya_*.pcs is checked: its
 `# expect-weight R.POINT:` lines must equal the weights derived here (the
 same theorem constructions, with the base points as symbols), and
 pointcalc's own `derive --format json` of R (build/pointcalc, or $PC_BIN)
-must equal them on every interval between the knots.  With
+must equal them on every interval between the knots; `pointcalc eval` of R
+must agree with the exact values to 1e-12 at the knots, 1e-7 left and right
+of them and at non-dyadic points (also with -D n=8, -D N=5).  With
 `--expect NAME` it prints the expectation lines of examples/NAME.pcs from
 this derivation instead.
 
@@ -1278,6 +1280,72 @@ def check_examples(root):
     ok(not missing, 'every derived example has its scheme', str(missing))
 
 
+EVAL_T = ['-1.5', '-1', '-0.3', '0', '1e-7', '0.3333333333333333', '0.9999999', '1', '1.0000001', '1.7',
+          '2', '2.0000001', '2.6666666666666665', '3', '3.0000001', '3.9999999', '4', '4.1', '5', '6', '6.5']
+CONSTS = {'a': R(3, 2), 'b': 1, 'c': R(1, 2), 'r': 2}
+
+
+def coords_for(points):
+    """the frame O, X, Y(, Z) where a scheme has one; otherwise fixed
+    rational coordinates in the plane."""
+    if set(points) <= {'O', 'X', 'Y', 'Z'}:
+        dim = 3 if 'Z' in points else 2
+        unit = {'O': [0] * dim, 'X': [1, 0, 0][:dim], 'Y': [0, 1, 0][:dim], 'Z': [0, 0, 1]}
+        return {p: unit[p] for p in points}
+    out = {}
+    for k, p in enumerate(sorted(points)):
+        out[p] = [R((7 * k + 3) % 11, 3) - 1, R((5 * k + 2) % 13, 4) - 1]
+    return out
+
+
+def eval_check(root, W):
+    """pointcalc eval (the runtime) of R against the exact values of the
+    derived weights, at the knots, 1e-7 left and right of them and at
+    non-dyadic points; the relative error must stay below 1e-12."""
+    import csv
+    import io
+    import os
+    import subprocess
+    pcbin = os.environ.get('PC_BIN') or os.path.join(root, 'build', 'pointcalc')
+    if not os.access(pcbin, os.X_OK):
+        line('SKIP', 'eval checks', f'no {pcbin}')
+        return
+    runs = [(n, [], W[n]) for n in sorted(W)]
+    Rr = sp.Symbol('r', positive=True)
+    runs.append(('dolya_2_2_ngon', ['-D', 'n=8'], frame(ngon_correct(8, Rr)[0])))
+    Bs = sp.symbols('B_0:11', real=True)
+    runs.append(('dolya_2_3_3_bezier_composite', ['-D', 'N=5'], weights_of(
+        bezier_composite([[[Bs[i]] for i in range(6)], [[Bs[i]] for i in range(5, 11)]])[0], Bs)))
+    worst = 0
+    for name, extra, w in runs:
+        pts = coords_for([p for p, v in w.items() if v != 0])
+        cmd = [pcbin, 'eval'] + extra + [os.path.join(root, 'examples', name + '.pcs')]
+        for p, xy in pts.items():
+            cmd += ['--at', f'{p}=' + ','.join(str(float(z)) for z in xy)]
+        for k, v in CONSTS.items():
+            if any(sp.Symbol(k, positive=True) in sp.sympify(x).free_symbols for x in w.values()):
+                cmd += ['--set', f'{k}={float(v)}']
+        cmd += ['--param', 't=' + ','.join(EVAL_T), '--output', 'R', '--format', 'csv']
+        out = subprocess.run(cmd, capture_output=True, text=True)
+        if out.returncode != 0:
+            ok(False, f'{name} {" ".join(extra)}: pointcalc eval', out.stderr.strip()[:300])
+            continue
+        rows = list(csv.reader(io.StringIO(out.stdout)))[1:]
+        err = 0
+        subs = {sp.Symbol(k, positive=True): v for k, v in CONSTS.items()}
+        for row, ts in zip(rows, EVAL_T):
+            tv = sp.Rational(ts)
+            dim = len(next(iter(pts.values())))
+            for j in range(dim):
+                exact = sum(sp.sympify(v).subs(subs).subs(t, tv) * pts[p][j] for p, v in w.items() if v != 0)
+                ex = float(sp.N(exact, 30))
+                err = max(err, abs(float(row[1 + j]) - ex) / max(1.0, abs(ex)))
+        worst = max(worst, err)
+        ok(err < 1e-12 and len(rows) == len(EVAL_T), f'{name} {" ".join(extra)}: pointcalc eval = exact',
+           f'{len(rows)} values of t (knots, knots +- 1e-7, non-dyadic), max relative error {err:.1e}')
+    line('NOTE', 'eval', f'largest relative error over all example schemes {worst:.1e}')
+
+
 def print_expect(name):
     for p, w in sorted(example_weights()[name].items()):
         if w != 0:
@@ -1302,6 +1370,7 @@ def main():
     sec_2_3_4()
     sec_2_5()
     check_examples(root)
+    eval_check(root, example_weights())
     table()
     print()
     if NUMERIC:
