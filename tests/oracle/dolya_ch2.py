@@ -1346,6 +1346,77 @@ def eval_check(root, W):
     line('NOTE', 'eval', f'largest relative error over all example schemes {worst:.1e}')
 
 
+def emit_c_check(root, W):
+    """the C that `pointcalc emit-c` writes for R, compiled (cc -std=c99
+    -Wall -Wextra -Werror -O2) and run at the same values of t as eval_check,
+    against the exact values: relative error below 1e-12."""
+    import json
+    import os
+    import shutil
+    import subprocess
+    import tempfile
+    pcbin = os.environ.get('PC_BIN') or os.path.join(root, 'build', 'pointcalc')
+    cc = shutil.which(os.environ.get('CC', 'cc'))
+    if not os.access(pcbin, os.X_OK) or not cc:
+        line('SKIP', 'emit-c checks', 'no pointcalc or no C compiler')
+        return
+    Rr = sp.Symbol('r', positive=True)
+    Bs = sp.symbols('B_0:11', real=True)
+    runs = [(n, [], W[n]) for n in sorted(W)]
+    runs.append(('dolya_2_2_ngon', ['-D', 'n=8'], frame(ngon_correct(8, Rr)[0])))
+    runs.append(('dolya_2_3_3_bezier_composite', ['-D', 'N=5'], weights_of(
+        bezier_composite([[[Bs[i]] for i in range(6)], [[Bs[i]] for i in range(5, 11)]])[0], Bs)))
+    subs = {sp.Symbol(k, positive=True): v for k, v in CONSTS.items()}
+    worst = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, extra, w in runs:
+            src = os.path.join(root, 'examples', name + '.pcs')
+            js = json.loads(subprocess.run([pcbin, 'derive', '--format', 'json'] + extra + [src],
+                                           capture_output=True, text=True).stdout)
+            pts = coords_for([p for p, v in w.items() if v != 0])
+            dim = len(next(iter(pts.values())))
+            cfile, hfile, exe = (os.path.join(tmp, name + x) for x in ('.c', '.h', ''))
+            r = subprocess.run([pcbin, 'emit-c'] + extra + [src, '-o', cfile, '--header', hfile, '--output', 'R'],
+                               capture_output=True, text=True)
+            if r.returncode != 0:
+                r = subprocess.run([pcbin, 'emit-c'] + extra + [src, '-o', cfile, '--header', hfile],
+                                   capture_output=True, text=True)
+            if r.returncode != 0:
+                ok(False, f'{name}: emit-c', r.stderr.strip()[:200])
+                continue
+            args = ['ts[i]'] + [repr(float(CONSTS[k])) for k in js['consts']] + js['points']
+            drv = [f'#include "{name}.h"', '#include <stdio.h>', 'int main(void)', '{']
+            for p in js['points']:
+                xy = pts.get(p, [0.0] * dim)
+                drv.append(f'    static const double {p}[] = {{{", ".join(repr(float(z)) for z in xy)}}};')
+            drv.append(f'    static const double ts[] = {{{", ".join(EVAL_T)}}};')
+            drv.append(f'    double out[{dim}];')
+            drv.append(f'    for (int i = 0; i < {len(EVAL_T)}; i++) {{')
+            drv.append(f'        {js["scheme"]}_R({", ".join(args)}, {dim}, out);')
+            drv.append('        printf("' + ' '.join(['%.17g'] * dim) + '\\n", ' + ', '.join(f'out[{j}]' for j in range(dim)) + ');')
+            drv += ['    }', '    return 0;', '}']
+            with open(os.path.join(tmp, 'main.c'), 'w') as fh:
+                fh.write('\n'.join(drv) + '\n')
+            r = subprocess.run([cc, '-std=c99', '-Wall', '-Wextra', '-Werror', '-O2', '-I', tmp, '-o', exe,
+                                os.path.join(tmp, 'main.c'), cfile, '-lm'], capture_output=True, text=True)
+            if r.returncode != 0:
+                ok(False, f'{name} {" ".join(extra)}: the generated C compiles', r.stderr.strip()[:300])
+                continue
+            rows = subprocess.run([exe], capture_output=True, text=True).stdout.split('\n')
+            err = 0
+            for row, ts in zip(rows, EVAL_T):
+                vals = [float(x) for x in row.split()]
+                for j in range(dim):
+                    exact = sum(sp.sympify(v).subs(subs).subs(t, sp.Rational(ts)) * pts[p][j]
+                                for p, v in w.items() if v != 0)
+                    ex = float(sp.N(exact, 30))
+                    err = max(err, abs(vals[j] - ex) / max(1.0, abs(ex)))
+            worst = max(worst, err)
+            ok(err < 1e-12, f'{name} {" ".join(extra)}: generated C = exact',
+               f'{len(EVAL_T)} values of t, max relative error {err:.1e}')
+    line('NOTE', 'emit-c', f'largest relative error over all example schemes {worst:.1e}')
+
+
 def print_expect(name):
     for p, w in sorted(example_weights()[name].items()):
         if w != 0:
@@ -1370,7 +1441,9 @@ def main():
     sec_2_3_4()
     sec_2_5()
     check_examples(root)
-    eval_check(root, example_weights())
+    W = example_weights()
+    eval_check(root, W)
+    emit_c_check(root, W)
     table()
     print()
     if NUMERIC:
