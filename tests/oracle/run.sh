@@ -13,7 +13,7 @@ export PC_BIN
 fail=0
 py=${PYTHON:-python3}
 if $py -c 'import sympy' 2>/dev/null; then
-    for s in tests/oracle/sympy/check_*.py; do
+    for s in tests/oracle/sympy/check_*.py tests/oracle/dolya_ch2.py; do
         echo "== $s"
         if $py "$s" > "$b/oracle_$(basename "$s").log" 2>&1; then
             tail -1 "$b/oracle_$(basename "$s").log"
