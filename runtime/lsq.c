@@ -33,6 +33,8 @@ void lsq_options_default(LsqOptions *o)
     o->ftol = 1e-15;
     o->gtol = 1e-12;
     o->lambda0 = 1e-3;
+    o->monitor = NULL;
+    o->monitor_ctx = NULL;
 }
 
 const char *lsq_stop_text(LsqStop s)
@@ -54,6 +56,8 @@ const char *lsq_stop_text(LsqStop s)
         return "the residuals cannot be evaluated at the start";
     case LSQ_STOP_SINGULAR:
         return "the Jacobian is singular";
+    case LSQ_STOP_CALLER:
+        return "stopped by the caller";
     default:
         return "not run";
     }
@@ -248,6 +252,8 @@ static LsqStop lm_step(double *u, int n, size_t m, LsqFn *fn, void *ctx,
                 return LSQ_STOP_ZERO;
             if (dF <= o->ftol * F0 && pred <= o->ftol * F0)
                 return LSQ_STOP_FTOL;
+            if (o->monitor && o->monitor(o->monitor_ctx, u, Ft))
+                return LSQ_STOP_CALLER;
             return LSQ_STOP_NONE;
         }
         if (!isfinite(Ft) && hn <= o->xtol * (o->xtol + un) * 1e3)

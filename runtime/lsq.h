@@ -27,15 +27,22 @@ enum {
  * too far (LM: more damping; Newton: a shorter step). */
 typedef int LsqFn(void *ctx, const double *u, double *r, double *J);
 
+/* Called after every accepted step with the new u and its cost; a
+ * non-zero return stops the solver (LSQ_STOP_CALLER): a multistart
+ * abandons a start that has joined a basin it knows. */
+typedef int LsqMonitor(void *ctx, const double *u, double cost);
+
 typedef struct LsqOptions {
-    int max_iter;   // iterations (Jacobian evaluations) at most
-    double xtol;    // stop when |du| <= xtol * (xtol + |u|)
-    double ftol;    // stop when an accepted step lowers the cost by less
-                    // than ftol * cost, predicted and actual (LM)
-    double gtol;    // stop when max_j |g_j| / (|J_j| |r|) <= gtol (LM: the
-                    // cosine of residual and Jacobian columns); Newton:
-                    // max |r_i| <= gtol
-    double lambda0; // initial damping, relative to max diag(J^T J)
+    int max_iter;        // iterations (Jacobian evaluations) at most
+    double xtol;         // stop when |du| <= xtol * (xtol + |u|)
+    double ftol;         // stop when an accepted step lowers the cost by less
+                         // than ftol * cost, predicted and actual (LM)
+    double gtol;         // stop when max_j |g_j| / (|J_j| |r|) <= gtol (LM: the
+                         // cosine of residual and Jacobian columns); Newton:
+                         // max |r_i| <= gtol
+    double lambda0;      // initial damping, relative to diag(J^T J)
+    LsqMonitor *monitor; // or NULL
+    void *monitor_ctx;
 } LsqOptions;
 
 /* why a solver stopped */
@@ -51,6 +58,7 @@ typedef enum LsqStop {
                        // converged to the tolerances
     LSQ_STOP_EVAL,     // r cannot be evaluated at the start
     LSQ_STOP_SINGULAR, // Newton: the Jacobian is singular
+    LSQ_STOP_CALLER,   // the monitor asked to stop
 } LsqStop;
 
 typedef struct LsqResult {
@@ -62,7 +70,8 @@ typedef struct LsqResult {
     int converged;   // 1 for GTOL, XTOL, FTOL, ZERO
 } LsqResult;
 
-/* max_iter 200, xtol 1e-12, ftol 1e-15, gtol 1e-12, lambda0 1e-3 */
+/* max_iter 200, xtol 1e-12, ftol 1e-15, gtol 1e-12, lambda0 1e-3, no
+ * monitor */
 void lsq_options_default(LsqOptions *o);
 
 /* Levenberg-Marquardt with Marquardt's scaling: each step solves

@@ -191,7 +191,8 @@ static void print_json(FILE *out, const FitArgs *a, Fit *f, const FitResult *r,
     fprintf(out, ", \"iterations\": %d, \"evaluations\": %d, \"start\": ",
             r->lsq.iterations, r->lsq.evaluations);
     json_string(out, r->start);
-    fprintf(out, ", \"starts\": %d, \"stop\": ", r->starts_run);
+    fprintf(out, ", \"starts\": %d, \"joined\": %d, \"stop\": ", r->starts_run,
+            r->starts_joined);
     json_string(out, lsq_stop_text(r->lsq.stop));
     fputs(", \"start_mse\": {\"chebyshev\": ", out);
     json_number(out, r->start_mse[0]);
@@ -217,9 +218,10 @@ static void print_text(FILE *out, const FitArgs *a, Fit *f, const FitResult *r,
     pc_fprintf(out, "\nMSE: %.6g\nmax error: %.6g at t = %.6g\n", r->mse,
                r->max_error, r->max_error_t);
     pc_fprintf(out,
-               "start: %s (%d starts; %d iterations, stopped: %s)\n"
+               "start: %s (%d starts, %d joined its basin; %d iterations, "
+               "stopped: %s)\n"
                "baseline: Lagrange at %d Chebyshev nodes, MSE %.6g\n",
-               r->start, r->starts_run, r->lsq.iterations,
+               r->start, r->starts_run, r->starts_joined, r->lsq.iterations,
                lsq_stop_text(r->lsq.stop), f->n, r->cheb_lagrange_mse);
     fputs("M = ", out);
     for (int k = 0; k < f->n; k++)

@@ -500,15 +500,42 @@ static void start_name(char *buf, size_t cap, int s)
         pc_snprintf(buf, cap, "random %d", s - 1);
 }
 
+/* the multistart's monitor: a start whose nodes come within JOIN of
+ * the best converged start's has joined its basin and is abandoned
+ * (starts that reach one optimum would only repeat its iterations) */
+#define FIT_JOIN 1e-3
+typedef struct Basin {
+    Fit *f;
+    int have;
+    double best[LSQ_MAX_UNKNOWNS + 2];
+} Basin;
+
+static int joined(void *ctx, const double *u, double cost)
+{
+    Basin *b = ctx;
+    double x[LSQ_MAX_UNKNOWNS + 2];
+    (void)cost;
+    if (!b->have)
+        return 0;
+    fit_nodes_of_u(b->f, u, x);
+    for (int k = 1; k < b->f->n - 1; k++)
+        if (fabs(x[k] - b->best[k]) > FIT_JOIN * (b->f->o.hi - b->f->o.lo))
+            return 0;
+    return 1;
+}
+
 int fit_run(Fit *f, FitResult *res)
 {
     int nu = f->nu, best = -1;
     double u[LSQ_MAX_UNKNOWNS], ubest[LSQ_MAX_UNKNOWNS];
     double *r = pc_xmalloc(sizeof *r * f->ns);
+    Basin basin = {.f = f};
     LsqOptions o;
     lsq_options_default(&o);
     o.max_iter = 3000;
     o.lambda0 = 1;
+    o.monitor = joined;
+    o.monitor_ctx = &basin;
     memset(res, 0, sizeof *res);
     res->nodes = pc_xmalloc(sizeof *res->nodes * (size_t)f->n);
     res->mse = INFINITY;
@@ -521,6 +548,10 @@ int fit_run(Fit *f, FitResult *res)
                                     : NAN;
         lsq_solve(u, nu, f->ns, fit_residuals_u, f, &o, &lr);
         res->starts_run++;
+        if (lr.stop == LSQ_STOP_CALLER) {
+            res->starts_joined++;
+            continue;
+        }
         double mse = 2 * lr.cost / (double)f->ns;
         /* the best: the lowest cost (ties: the earlier start) */
         if (isfinite(mse) && (best < 0 || mse < res->mse)) {
@@ -528,6 +559,10 @@ int fit_run(Fit *f, FitResult *res)
             res->mse = mse;
             res->lsq = lr;
             memcpy(ubest, u, sizeof *u * (size_t)nu);
+            if (lr.converged) {
+                fit_nodes_of_u(f, u, basin.best);
+                basin.have = 1;
+            }
         }
     }
     if (best >= 0) {

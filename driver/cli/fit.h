@@ -8,7 +8,10 @@
  *                lower both to Plans, tabulate the curve's weights phi_k
  *                at the samples t_i = i/m, check f on [lo, hi]
  *   fit_run      Levenberg-Marquardt (runtime/lsq.h) from the Chebyshev,
- *                uniform and seeded random starts; the best one wins
+ *                uniform and seeded random starts; the best one wins (a
+ *                start whose nodes come within 1e-3 (hi - lo) of the best
+ *                converged start's so far is abandoned: it has joined
+ *                that basin)
  *   fit_free
  *
  * The unknowns are the inner nodes' abscissas x_1 .. x_{N-2}, through
@@ -64,6 +67,7 @@ typedef struct FitResult {
     double max_error_t; // the t_i where it is reached
     char start[24];     // "chebyshev", "uniform", "random 3", ...
     int starts_run;
+    int starts_joined;        // abandoned on joining the best start's basin
     LsqResult lsq;            // the winning start's solver report
     double start_mse[2];      // MSE at the Chebyshev and uniform starts
     double cheb_lagrange_mse; // the baseline: Lagrange interpolation of f
