@@ -191,9 +191,9 @@ static int check_target(const Fit *f, const char *expr, FILE *err)
     }
     if (count)
         pc_fprintf(err,
-                   "pointcalc: fit: the target '%s' is undefined at x = %.17g: "
-                   "%s; %zu of %zu samples of [%.17g, %.17g] are, from x = "
-                   "%.17g to x = %.17g\n",
+                   "pointcalc: fit: the target '%s' is undefined at x = %.9g: "
+                   "%s; %zu of %zu samples of [%.9g, %.9g] are, from x = "
+                   "%.9g to x = %.9g\n",
                    expr, x[first], status_text(st[first]), count, n, f->o.lo,
                    f->o.hi, x[first], x[last]);
     free(st);
@@ -252,7 +252,6 @@ Fit *fit_new(const char *target, const FitOptions *o, FILE *err, int *rc)
     f->fx = pc_xmalloc(sizeof *f->fx * ne);
     f->fpx = pc_xmalloc(sizeof *f->fpx * ne);
     f->st = pc_xmalloc(ne);
-    f->dxdu = pc_xmalloc(sizeof *f->dxdu * n * n);
     f->jx = pc_xmalloc(sizeof *f->jx * f->ns * n);
     f->target = derive_target(target, err);
     if (!f->target || check_target(f, target, err) != 0 ||
@@ -276,7 +275,6 @@ void fit_free(Fit *f)
     free(f->fx);
     free(f->fpx);
     free(f->st);
-    free(f->dxdu);
     free(f->jx);
     free(f);
 }
@@ -397,19 +395,18 @@ int fit_residuals_u(void *ctx, const double *u, double *r, double *J)
         return -1;
     if (!J)
         return 0;
-    /* dx_k/du_j = L s_j ([j < k] - S_k), inner k and j = 1 .. n-2 */
-    for (int k = 1; k < n - 1; k++)
-        for (int j = 1; j < n - 1; j++)
-            f->dxdu[(k - 1) * nu + (j - 1)] =
-                L * s[j] * ((j < k ? 1.0 : 0.0) - S[k]);
+    /* dx_k/du_j = L s_j ([j < k] - S_k), inner k and j = 1 .. n-2, so
+     * row i of J = Jx dx/du is  L s_j (sum_{k > j} Jx_ik - sum_k Jx_ik S_k):
+     * a suffix sum, O(nu) a row */
     for (size_t i = 0; i < f->ns; i++) {
-        const double *jr = f->jx + i * (size_t)nu;
+        const double *jr = f->jx + i * (size_t)nu; // jr[k - 1]: inner k
         double *row = J + i * (size_t)nu;
-        for (int j = 0; j < nu; j++) {
-            double v = 0;
-            for (int k = 0; k < nu; k++)
-                v += jr[k] * f->dxdu[k * nu + j];
-            row[j] = v;
+        double w = 0, suffix = 0;
+        for (int k = 1; k < n - 1; k++)
+            w += jr[k - 1] * S[k];
+        for (int j = n - 2; j >= 1; j--) {
+            row[j - 1] = L * s[j] * (suffix - w);
+            suffix += jr[j - 1];
         }
     }
     return 0;

@@ -54,7 +54,7 @@ typedef struct Fit {
     double *coef; // n * n: coef[k*n + j] = the exact coefficient of t^j in
                   // phi_k (from the derived weights)
     /* scratch for the residuals */
-    double *x, *xs, *fx, *fpx, *dxdu;
+    double *x, *xs, *fx, *fpx;
     unsigned char *st;
     double *jx;
 } Fit;
