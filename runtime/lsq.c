@@ -299,7 +299,7 @@ int lsq_solve(double *u, int n, size_t m, LsqFn *fn, void *ctx,
             res.evaluations++;
             fn(ctx, u, w.r, w.J); /* evaluable: accepted before */
         }
-        res.iterations = it + 1;
+        res.iterations = it;
         normal_equations(w.A, w.g, w.J, w.r, m, n);
         double amax = 0;
         for (int j = 0; j < n; j++) {
@@ -429,7 +429,7 @@ int lsq_newton(double *u, int n, LsqFn *fn, void *ctx, const LsqOptions *o,
             res.evaluations++;
             fn(ctx, u, w.r, w.J);
         }
-        res.iterations = it + 1;
+        res.iterations = it;
         res.gnorm = max_abs(w.r, m);
         if (res.gnorm == 0)
             stop = LSQ_STOP_ZERO;

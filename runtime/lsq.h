@@ -65,7 +65,7 @@ typedef struct LsqResult {
     LsqStop stop;
     double cost;     // 1/2 |r|^2 at the returned u
     double gnorm;    // max |J^T r| at the returned u (Newton: max |r|)
-    int iterations;  // Jacobian evaluations
+    int iterations;  // steps taken (Jacobian evaluations but one)
     int evaluations; // callback calls
     int converged;   // 1 for GTOL, XTOL, FTOL, ZERO
 } LsqResult;

@@ -57,7 +57,8 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
     int bad = 0;
     if (strcmp(opt, "--target") && strcmp(opt, "--on") &&
         strcmp(opt, "--nodes") && strcmp(opt, "--samples") &&
-        strcmp(opt, "--starts") && strcmp(opt, "--format"))
+        strcmp(opt, "--starts") && strcmp(opt, "--max-iter") &&
+        strcmp(opt, "--format"))
         return 0;
     if (!v) {
         args_usage_error(err, a->usage, "%s needs a value", opt);
@@ -76,6 +77,8 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
         bad = parse_int(v, &a->o.samples);
     } else if (strcmp(opt, "--starts") == 0) {
         bad = parse_int(v, &a->o.starts);
+    } else if (strcmp(opt, "--max-iter") == 0) {
+        bad = parse_int(v, &a->o.max_iter) || a->o.max_iter < 1;
     } else if (strcmp(v, "text") == 0 || strcmp(v, "json") == 0) {
         a->format = strcmp(v, "json") == 0 ? FIT_JSON : FIT_TEXT;
     } else {
@@ -306,6 +309,8 @@ const char fit_help[] = FIT_USAGE
     "  --samples M         m (default 100)\n"
     "  --starts K          random starts after the two fixed ones (default "
     "8)\n"
+    "  --max-iter I        Levenberg-Marquardt iterations a start (default "
+    "3000)\n"
     "  --format text|json  text: nodes, MSE, max error, x(t) and y(t); json:\n"
     "                      \"nodes\", \"mse\", \"max_error\", \"iterations\", "
     "\"start\", ...\n"

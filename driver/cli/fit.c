@@ -225,6 +225,11 @@ static int check_options(const FitOptions *o, FILE *err)
                 o->nodes, LSQ_MAX_RESIDUALS - 1, o->samples);
         return -1;
     }
+    if (o->max_iter < 0) {
+        fprintf(err, "pointcalc: fit: --max-iter must be >= 1; found %d\n",
+                o->max_iter);
+        return -1;
+    }
     if (o->starts < 0 || o->starts > 1000) {
         fprintf(err, "pointcalc: fit: --starts must be 0 .. 1000; found %d\n",
                 o->starts);
@@ -529,7 +534,7 @@ int fit_run(Fit *f, FitResult *res)
     Basin basin = {.f = f};
     LsqOptions o;
     lsq_options_default(&o);
-    o.max_iter = 3000;
+    o.max_iter = f->o.max_iter > 0 ? f->o.max_iter : 3000;
     o.lambda0 = 1;
     o.monitor = joined;
     o.monitor_ctx = &basin;

@@ -33,7 +33,7 @@ CliCommand cli_fit; // cmd_fit.c: pointcalc fit --target EXPR ...
 #define FIT_USAGE                                                              \
     "usage: pointcalc fit --target 'EXPR' --on LO,HI --nodes N [--samples "    \
     "M]\n"                                                                     \
-    "                     [--starts K] [--format text|json]\n"
+    "                     [--starts K] [--max-iter I] [--format text|json]\n"
 extern const char fit_help[];
 
 typedef struct FitOptions {
@@ -41,6 +41,7 @@ typedef struct FitOptions {
     int nodes;     // N >= 3 (--nodes)
     int samples;   // m (--samples; default 100): t_i = i/m, i = 0..m
     int starts;    // seeded random starts after Chebyshev and uniform
+    int max_iter;  // iterations a start at most (--max-iter; 0: 3000)
 } FitOptions;
 
 typedef struct Fit {

@@ -31,7 +31,7 @@ static const char runge[] = "1/(1 + 25*x^2)";
 static Fit *new_fit(const char *target, double lo, double hi, int nodes,
                     int samples)
 {
-    FitOptions o = {lo, hi, nodes, samples, 8};
+    FitOptions o = {lo, hi, nodes, samples, 8, 0};
     int rc;
     Fit *f = fit_new(target, &o, stderr, &rc);
     assert_non_null(f);
@@ -306,6 +306,15 @@ static void test_fit_errors(void **state)
     ERR(2, "unknown or incomplete option '--foo'", "fit", "--foo");
     ERR(2, "one expression in x", "fit", "--target", "x\noutput y", "--on",
         "0,1", "--nodes", "3");
+    ERR(2, "bad value '0' for --max-iter", "fit", "--target", "x", "--on",
+        "0,1", "--nodes", "3", "--max-iter", "0");
+    ERR(2, "--samples must be 5 ..", "fit", "--target", "x", "--on", "0,1",
+        "--nodes", "5", "--samples", "4");
+    ERR(1,
+        "pointcalc: fit: did not converge: the iteration limit was reached "
+        "after 3 iterations (best start: ",
+        "fit", "--target", runge, "--on", "-1,1", "--nodes", "11", "--max-iter",
+        "3");
     ERR(2, "unknown format 'csv'", "fit", "--target", "x", "--on", "0,1",
         "--nodes", "3", "--format", "csv");
 }
