@@ -51,7 +51,7 @@ static const char *const reserved[] = {
     "signbit", "isnan", "isinf", "offsetof", "size_t", "ptrdiff_t",
     "max_align_t", "float_t", "double_t", "errno", "j0", "j1", "jn", "y0", "y1",
     "yn", "exp", "log", "pow", "sqrt", "sin", "cos", "tan", "fabs", "floor",
-    "ceil", "round", "gamma", "erf", "fma", "fmin", "fmax",
+    "ceil", "round", "gamma", "erf", "fma", "fmin", "fmax", "copysign",
     /* predefined outside strict ISO mode (gcc -std=gnu99) */
     "unix", "linux", "i386",
     /* names of the generated code */

@@ -68,11 +68,15 @@ static void instruction(const Ctx *C, int r, const char *indent)
 #undef PC_FUNCTION
         };
         if (f == PLAN_FN_SIGN) {
-            fputs("(double)((", out);
+            /* quiet comparisons only: gcc does not if-convert x > 0.0
+             * under the default -ftrapping-math, and the sample loop of a
+             * composite curve (a sign per knot) would stay scalar at -O2;
+             * copysign is a bit operation.  sign(+-0) = +-0 */
+            fputs("copysign((double)(", out);
             emit_operand(C, x->a);
-            fputs(" > 0.0) - (", out);
+            fputs(" != 0.0), ", out);
             emit_operand(C, x->a);
-            fputs(" < 0.0))", out);
+            fputs(")", out);
         } else if (f == PLAN_FN_ROOT && q == 3) {
             fputs("cbrt(", out);
             emit_operand(C, x->a);

@@ -292,17 +292,19 @@ static int cmp_knot(const void *x, const void *y)
 /* P in the signs sign(t - k_1) < ... < sign(t - k_m) of one param t
  * (abs(t - k)^3 = (t - k)^3 sign(t - k)), lowered piece by piece:
  *
- *   P = sum_j chi_j p_j(t - c_j),  chi_j = prod_{i <= j} (1 + s_i)/2
- *                                          prod_{i > j} (1 - s_i)/2
+ *   P = sum_j chi_j p_j(t - c_j),  chi_j = (s_{j-1} - s_j)/2
+ *                                  (s_0 = 1 and s_{m+1} = -1 beyond the ends)
  *
  * p_j is P on the j-th interval (its signs set to +-1, combined exactly),
- * written in powers of t - c_j, c_j the nearest knot.  chi_j is exactly 1
- * on its interval and 0 elsewhere (1/2 for the two pieces at a knot: P is
- * linear in each sign, so their mean is P at sign 0), so no two pieces
- * cancel.  Expanded, (6t^2 - 39t + 64)(t - 2)^3 |t - 2| and its three
- * companions of the C^2 square have coefficients up to 4320 cancelling
- * to about 0.01 at t = 3.9; piecewise the square is 1 - (t - 3)^3 (...)
- * in powers of t - 3.  The register, or -1 (P has no such signs, others
+ * written in powers of t - c_j, c_j the nearest knot.  The knots sorted,
+ * chi_j is exactly 1 on its interval and 0 elsewhere (1/2 for the two
+ * pieces at a knot: P is linear in each sign, so their mean is P at sign
+ * 0), so no two pieces cancel; it is prod_{i < j} (1 + s_i)/2 prod_{i >= j}
+ * (1 - s_i)/2 in one subtraction per piece instead of m products (the 1/2
+ * goes into p_j's coefficients).  Expanded, (6t^2 - 39t + 64)(t - 2)^3 |t - 2|
+ * and its three companions of the C^2 square have coefficients up to 4320
+ * cancelling to about 0.01 at t = 3.9; piecewise the square is 1 - (t - 3)^3
+ * (...) in powers of t - 3.  The register, or -1 (P has no such signs, others
  * too, or a shift is being lowered). */
 static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
 {
@@ -339,12 +341,10 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
     if (ok && m > 0) {
         for (slong i = 0; i < m; i++)
             kn[i].reg = kernel_reg(L, kn[i].var);
-        fmpq_t h, sc, mc;
-        fmpq_init(h);
+        fmpq_t sc, mc;
         fmpq_init(sc);
         fmpq_init(mc);
-        fmpq_set_si(h, 1, 2);
-        int half = const_fmpq(L, h), one = plan_const(L->p, 1);
+        int one = plan_const(L->p, 1);
         fmpz_t sv, d;
         fmpz_init(sv);
         fmpz_init(d);
@@ -378,6 +378,7 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
             }
             fmpz_mpoly_get_fmpz(d, Q->den, ctx);
             fmpq_div_fmpz(sc, scale, d);
+            fmpq_div_2exp(sc, sc, 1); // chi_j = (s_{j-1} - s_j)/2
             fmpq_neg(mc, cj);
             L->shift_var = t;
             L->shift_reg =
@@ -385,11 +386,10 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
             int q = horner(L, Q->num, sc);
             L->shift_var = -1;
             L->shift_reg = -1;
-            for (slong i = 0; i < m; i++) {
-                int f = i < j ? plan_add(L->p, one, kn[i].reg)
-                              : plan_sub(L->p, one, kn[i].reg);
-                q = plan_mul(L->p, q, plan_mul(L->p, f, half));
-            }
+            int chi2 = j == 0   ? plan_sub(L->p, one, kn[0].reg)
+                       : j == m ? plan_add(L->p, one, kn[m - 1].reg)
+                                : plan_sub(L->p, kn[j - 1].reg, kn[j].reg);
+            q = plan_mul(L->p, q, chi2);
             reg = reg < 0 ? q : plan_add(L->p, reg, q);
         }
         if (failed)
@@ -404,7 +404,6 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
         fmpz_clear(sv);
         fmpq_clear(mc);
         fmpq_clear(sc);
-        fmpq_clear(h);
     }
     for (slong i = 0; i < m; i++)
         fmpq_clear(kn[i].k);

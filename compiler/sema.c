@@ -98,12 +98,20 @@ int sema_is_builtin(const char *name)
     return 0;
 }
 
+/* the step blocks (ramp, step, rayr, rayl: docs/language.md "Step
+ * functions") are functions only in the call form: a scheme may still
+ * name a point or a definition `step` or `ramp` */
+static int is_soft_builtin(int b)
+{
+    return b == BI_RAMP || b == BI_STEP || b == BI_RAYR || b == BI_RAYL;
+}
+
 static int is_reserved(const char *name)
 {
     if (strcmp(name, "pi") == 0)
         return 1;
     for (int b = 0; b < BI_COUNT; b++)
-        if (strcmp(builtins[b].name, name) == 0)
+        if (!is_soft_builtin(b) && strcmp(builtins[b].name, name) == 0)
             return 1;
     return 0;
 }
@@ -498,6 +506,32 @@ static int check_call(Sema *S, Node *n)
     }
     case BI_COORD:
         return check_coord(S, n);
+    case BI_STEP: { /* step(t, a, w, m): m a whole number 0 .. 10 */
+        for (int i = 0; i < 3; i++)
+            if (expect(S, arg(n, i), 0,
+                       i == 0   ? "the argument of step()"
+                       : i == 1 ? "the start of step()"
+                                : "the width of step()") < 0)
+                ok = -1;
+        Node *m = arg(n, 3);
+        long long v = 0;
+        if (!whole_number(m, &v) || v < 0 || v > SEMA_MAX_STEP_ORDER) {
+            diag_error(S->diag, m->span,
+                       "expected the smoothness of step() as a whole number "
+                       "from 0 to %d (of literals and int constants): "
+                       "step(t, a, w, m) is C^m",
+                       SEMA_MAX_STEP_ORDER);
+            return -1;
+        }
+        if (m->kind != ND_NUM) { /* derive reads one literal */
+            char buf[24];
+            snprintf(buf, sizeof buf, "%lld", v);
+            m->kind = ND_NUM;
+            m->text = arena_strdup(S->arena, buf);
+            m->lhs = m->rhs = NULL;
+        }
+        return ok < 0 ? -1 : 0;
+    }
     default: { /* the scalar functions */
         char what[64];
         for (Node *a = n->args; a; a = a->next) {

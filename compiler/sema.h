@@ -13,6 +13,8 @@
 #define SEMA_MAX_DEPTH 2000
 /* the largest k of coord(P, k) */
 #define SEMA_MAX_COORD 1000000
+/* step(t, a, w, m): the largest smoothness m (a polynomial of degree 21) */
+#define SEMA_MAX_STEP_ORDER 10
 
 #include "base/arena.h"
 #include "base/diag.h"

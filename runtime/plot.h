@@ -96,11 +96,22 @@ typedef struct PlotCurve {
     unsigned char *cut; // cut[i] = 1: no segment between sample i-1 and i
     double *fac;        // n * nfac values of the denominator factors
     int nfac;
-    int *facreg; // registers of the pole-checked factors
+    int *facreg;   // registers of the pole-checked factors
+    double *knots; // the knots in the range (plot_knots), each a sample
+    size_t nknots;
 } PlotCurve;
 
+/* The knots of point output o in [lo, hi]: the zeros of the arguments of
+ * its sign kernels (abs(x) = x sign(x)) that are linear in the swept param,
+ * each the double where the argument is nearest 0, sorted, without
+ * repeats.  *knots receives them (malloc'ed, NULL when none: free() it);
+ * returns how many. */
+size_t plot_knots(const PlotEnv *env, int o, double lo, double hi,
+                  double **knots);
+
 /* Samples output o (a point output) uniformly with lim->initial segments
- * over [lo, hi]. */
+ * over [lo, hi], and at its knots (plot_knots: a corner is drawn sharp,
+ * never cut; refining keeps these samples). */
 void plot_curve_init(PlotCurve *c, const PlotEnv *env, int o, double lo,
                      double hi, const PlotView *view, const PlotLimits *lim);
 /* Refines against the figure's box (xmin, ymin, xmax, ymax: the tolerance

@@ -120,6 +120,111 @@ static void curve_alloc(PlotCurve *c, size_t n)
     c->fac = pc_xrealloc(c->fac, sizeof *c->fac * (n * (size_t)c->nfac + 1));
 }
 
+/* ---- knots ---------------------------------------------------------- */
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* the argument register a of a sign kernel at t (a jet run) */
+static double arg_at(const PlotEnv *env, const unsigned char *live,
+                     double (*r)[3], int a, double t, double *d1, double *d2)
+{
+    plot_jet_run(env, live, t, r);
+    if (d1)
+        *d1 = r[a][1];
+    if (d2)
+        *d2 = r[a][2];
+    return r[a][0];
+}
+
+/* The zero of the linear argument a (value v0 at t = 0, slope s): -v0/s,
+ * then the double nearest it whose value is nearest 0 (a Newton step and
+ * the neighbours). */
+static double knot_of(const PlotEnv *env, const unsigned char *live,
+                      double (*r)[3], int a, double v0, double s)
+{
+    double k = -v0 / s;
+    double v = arg_at(env, live, r, a, k, NULL, NULL);
+    if (v != 0 && isfinite(v)) {
+        double k2 = k - v / s, v2 = arg_at(env, live, r, a, k2, NULL, NULL);
+        if (fabs(v2) < fabs(v)) {
+            k = k2;
+            v = v2;
+        }
+    }
+    for (int side = 0; side < 2 && v != 0; side++) {
+        double kk = nextafter(k, side ? INFINITY : -INFINITY);
+        double vv = arg_at(env, live, r, a, kk, NULL, NULL);
+        if (fabs(vv) < fabs(v)) {
+            k = kk;
+            v = vv;
+        }
+    }
+    return k;
+}
+
+size_t plot_knots(const PlotEnv *env, int o, double lo, double hi,
+                  double **knots)
+{
+    const Plan *p = env->plan;
+    *knots = NULL;
+    unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
+    plan_live(p, o, live);
+    double(*r)[3] = pc_xmalloc(sizeof *r * (size_t)(p->nins + 1));
+    size_t n = 0, cap = 0;
+    double *k = NULL;
+    for (int i = 0; i < p->nins; i++) {
+        const PlanIns *x = &p->ins[i];
+        if (!live[i] || x->op != PLAN_FN || (x->b & 255) != PLAN_FN_SIGN ||
+            p->ins[x->a].uniform)
+            continue;
+        /* linear in the swept param: no second derivative at three
+         * points, the same slope, and the values on its line */
+        int a = x->a;
+        double s0, s1, s2, c0, c1, c2;
+        double v0 = arg_at(env, live, r, a, 0, &s0, &c0);
+        double v1 = arg_at(env, live, r, a, 1, &s1, &c1);
+        double m = mix(lo, hi, 0.5);
+        double v2 = arg_at(env, live, r, a, m, &s2, &c2);
+        if (!(isfinite(v0) && isfinite(v1) && isfinite(v2) && isfinite(s0)) ||
+            c0 != 0 || c1 != 0 || c2 != 0 || s0 == 0 || s0 != s1 || s0 != s2 ||
+            !(fabs(v1 - v0 - s0) <= 1e-9 * (fabs(v0) + fabs(v1) + fabs(s0))))
+            continue;
+        double t = knot_of(env, live, r, a, v0, s0);
+        if (!(t >= lo && t <= hi))
+            continue;
+        if (n == cap) {
+            cap = cap ? 2 * cap : 16;
+            k = pc_xrealloc(k, sizeof *k * cap);
+        }
+        k[n++] = t;
+    }
+    if (n > 1)
+        qsort(k, n, sizeof *k, cmp_double);
+    size_t u = 0;
+    for (size_t i = 0; i < n; i++)
+        if (u == 0 || k[i] != k[u - 1])
+            k[u++] = k[i];
+    free(r);
+    free(live);
+    if (u == 0) {
+        free(k);
+        k = NULL;
+    }
+    *knots = k;
+    return u;
+}
+
+/* 1 when t is one of c's knots */
+static int is_knot(const PlotCurve *c, double t)
+{
+    return c->nknots &&
+           bsearch(&t, c->knots, c->nknots, sizeof t, cmp_double) != NULL;
+}
+
 void plot_curve_init(PlotCurve *c, const PlotEnv *env, int o, double lo,
                      double hi, const PlotView *view, const PlotLimits *lim)
 {
@@ -131,11 +236,24 @@ void plot_curve_init(PlotCurve *c, const PlotEnv *env, int o, double lo,
     if (n0 + 1 > lim->max_samples && lim->max_samples >= 2)
         n0 = lim->max_samples - 1;
     size_t n = lo == hi ? 1 : n0 + 1;
-    curve_alloc(c, n);
-    for (size_t i = 0; i < n; i++)
-        c->t[i] = i == 0       ? lo
-                  : i == n - 1 ? hi
-                               : mix(lo, hi, (double)i / (double)n0);
+    if (lo < hi)
+        c->nknots = plot_knots(env, o, lo, hi, &c->knots);
+    /* the knots within the budget, each a sample (merged in order) */
+    size_t nk = c->nknots;
+    if (n + nk > lim->max_samples)
+        nk = lim->max_samples > n ? lim->max_samples - n : 0;
+    curve_alloc(c, n + nk);
+    size_t j = 0, q = 0;
+    for (size_t i = 0; i < n; i++) {
+        double t = i == 0       ? lo
+                   : i == n - 1 ? hi
+                                : mix(lo, hi, (double)i / (double)n0);
+        for (; q < nk && c->knots[q] <= t; q++)
+            if (c->knots[q] < t && (j == 0 || c->knots[q] > c->t[j - 1]))
+                c->t[j++] = c->knots[q];
+        c->t[j++] = t;
+    }
+    n = j;
     sampler_run(&S, c, n, c->t, c->x, c->y, c->ok, c->fac);
     memset(c->cut, 0, n);
     c->n = n;
@@ -151,6 +269,7 @@ void plot_curve_clear(PlotCurve *c)
     free(c->cut);
     free(c->fac);
     free(c->facreg);
+    free(c->knots);
     memset(c, 0, sizeof *c);
 }
 
@@ -327,7 +446,8 @@ static void drop_flat(PlotCurve *c, double tol)
     memset(keep, 1, n);
     size_t last = 0;
     for (size_t i = 1; i + 1 < n; i++) {
-        if (!c->ok[i] || c->cut[i] || c->cut[i + 1] || i - last > 64) {
+        if (!c->ok[i] || c->cut[i] || c->cut[i + 1] || i - last > 64 ||
+            is_knot(c, c->t[i])) {
             last = i;
             continue;
         }

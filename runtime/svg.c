@@ -13,6 +13,7 @@
 
 #include "base/mem.h"
 #include "base/numfmt.h"
+#include "runtime/eval.h"
 
 void plot_spec_default(PlotSpec *s)
 {
@@ -594,6 +595,76 @@ static void write_marks(const Fig *g, const PlotSpec *s, const double *mx,
     fputs("</g>\n", out);
 }
 
+/* point output o at t, projected (eval's numbers): 1 when drawable */
+static int curve_point(const PlotSpec *s, int o, double t, double *x, double *y)
+{
+    const PlotEnv *env = &s->env;
+    const Plan *p = env->plan;
+    double *pv = pc_xmalloc(sizeof *pv * (size_t)(p->nparams + 1));
+    const double **prm = pc_xmalloc(sizeof *prm * (size_t)(p->nparams + 1));
+    double *pos = pc_xmalloc(sizeof *pos * (size_t)env->dim);
+    for (int i = 0; i < p->nparams; i++) {
+        pv[i] = i == env->param ? t : env->params[i];
+        prm[i] = pv + i;
+    }
+    unsigned char st = 0;
+    plan_eval(p, o, 1, (const double *const *)prm, env->consts, env->points,
+              env->dim, pos, &st);
+    int ok = st == 0;
+    for (int c = 0; c < env->dim && ok; c++)
+        ok = isfinite(pos[c]);
+    if (ok)
+        plot_project(&s->view, pos, env->dim, x, y);
+    free(pos);
+    free(prm);
+    free(pv);
+    return ok && isfinite(*x) && isfinite(*y);
+}
+
+static void knot_mark(const Fig *g, double x, double y, const char *colour)
+{
+    double px, py;
+    px_of(g, x, y, &px, &py);
+    if (!(px >= 0 && px <= g->W && py >= 0 && py <= g->H))
+        return;
+    fputs("<circle class=\"knot\" cx=\"", g->out);
+    put_px(g->out, px);
+    fputs("\" cy=\"", g->out);
+    put_px(g->out, py);
+    fprintf(g->out, "\" r=\"5\" stroke=\"%s\"/>\n", colour);
+}
+
+/* A mark at each knot of the curves (plot_knots: where a sign kernel's
+ * linear argument is 0) on the curve's point there; at a jump (the two
+ * one-sided points more than a tenth of a pixel apart) one at each end
+ * instead. */
+static void write_knots(const Fig *g, const PlotSpec *s, const PlotCurve *cv)
+{
+    int any = 0;
+    for (int k = 0; k < s->ncurves; k++)
+        any |= cv[k].nknots > 0;
+    if (!any)
+        return;
+    fputs("<g class=\"knots\" fill=\"none\" stroke-width=\"1.5\">\n", g->out);
+    for (int k = 0; k < s->ncurves; k++) {
+        const char *colour = palette[k % NPALETTE];
+        for (size_t i = 0; i < cv[k].nknots; i++) {
+            double t = cv[k].knots[i], x, y, xl, yl, xr, yr;
+            int o = s->curves[k];
+            int ok = curve_point(s, o, t, &x, &y);
+            int okl = curve_point(s, o, nextafter(t, -INFINITY), &xl, &yl);
+            int okr = curve_point(s, o, nextafter(t, INFINITY), &xr, &yr);
+            if (okl && okr && hypot(xr - xl, yr - yl) * g->s > 0.1) {
+                knot_mark(g, xl, yl, colour);
+                knot_mark(g, xr, yr, colour);
+            } else if (ok) {
+                knot_mark(g, x, y, colour);
+            }
+        }
+    }
+    fputs("</g>\n", g->out);
+}
+
 /* the sampling limits of the figure's curves */
 static PlotLimits limits(const PlotSpec *s, int nc)
 {
@@ -742,6 +813,7 @@ int plot_svg(FILE *out, const PlotSpec *s, PlotStats *st)
         write_tangents(&g, s, &J);
     jet_clear(&J);
     fputs("</g>\n", out);
+    write_knots(&g, s, cv);
     write_marks(&g, s, mx, my);
     write_legend(out, s);
     fputs("</svg>\n", out);

@@ -31,6 +31,22 @@ static int rf_lead_sign(const RatFun x, const Ring *r)
     return s;
 }
 
+/* x divided by the positive rational that makes its numerator and its
+ * denominator primitive: sign(2t - 2) is sign(t - 1), sign((2t - 1)/2) is
+ * sign(2t - 1), so that one knot has one sign kernel */
+static void rf_make_primitive(RatFun x, const Ring *r)
+{
+    fmpz_t c;
+    fmpz_init(c);
+    _fmpz_vec_content(c, x->num->coeffs, x->num->length);
+    if (!fmpz_is_zero(c) && !fmpz_is_one(c))
+        fmpz_mpoly_scalar_divexact_fmpz(x->num, x->num, c, r->ctx);
+    _fmpz_vec_content(c, x->den->coeffs, x->den->length);
+    if (!fmpz_is_zero(c) && !fmpz_is_one(c))
+        fmpz_mpoly_scalar_divexact_fmpz(x->den, x->den, c, r->ctx);
+    fmpz_clear(c);
+}
+
 static int pi_times(Kernels *K, RatFun res, slong num, slong den)
 {
     int rc = kernels_intern(K, res, KF_PI, NULL, NULL, 0);
@@ -597,6 +613,8 @@ static int apply_general(Kernels *K, RatFun res, KernelFn f, RatFun a)
         rf_lead_sign(a, r) < 0 && (is_odd(f) || is_even(f) || f == KF_ACOS);
     if (neg)
         ratfun_neg(a, a, r);
+    if (f == KF_SIGN) /* sign(c x) = sign(x) for c > 0 */
+        rf_make_primitive(a, r);
     slong v;
     const Kernel *in = kernel_rf_is_var(a, &v, r) ? kernels_of_var(K, v) : NULL;
     if (f == KF_SIGN && abs(kernel_sign(K, a)) == 2) {

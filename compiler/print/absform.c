@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "base/mem.h"
+#include "base/strbuf.h"
+#include "compiler/algebra/poly_print.h"
 
 int absform_any(const Kernels *K)
 {
@@ -56,8 +58,9 @@ static int rewrite_one(fmpz_mpoly_t res, const fmpz_mpoly_t p, slong v,
     return ok;
 }
 
-slong absform_rewrite(fmpz_mpoly_t res, unsigned char *is_abs,
-                      const fmpz_mpoly_t p, const Kernels *K, const Ring *r)
+static slong rewrite_all(fmpz_mpoly_t res, unsigned char *is_abs,
+                         const fmpz_mpoly_t p, const Kernels *K, const Ring *r,
+                         int const_den)
 {
     slong n = 0;
     fmpz_mpoly_set(res, p, r->ctx);
@@ -67,7 +70,9 @@ slong absform_rewrite(fmpz_mpoly_t res, unsigned char *is_abs,
     fmpz_mpoly_init(t, r->ctx);
     for (slong i = 0; i < K->n; i++) {
         const Kernel *k = &K->k[i];
-        if (k->fn != KF_SIGN || !fmpz_mpoly_is_one(k->arg->den, r->ctx))
+        if (k->fn != KF_SIGN ||
+            !(const_den ? fmpz_mpoly_is_fmpz(k->arg->den, r->ctx)
+                        : fmpz_mpoly_is_one(k->arg->den, r->ctx)))
             continue;
         if (rewrite_one(t, res, k->var, k->arg->num, r)) {
             fmpz_mpoly_swap(res, t, r->ctx);
@@ -77,6 +82,27 @@ slong absform_rewrite(fmpz_mpoly_t res, unsigned char *is_abs,
     }
     fmpz_mpoly_clear(t, r->ctx);
     return n;
+}
+
+slong absform_rewrite(fmpz_mpoly_t res, unsigned char *is_abs,
+                      const fmpz_mpoly_t p, const Kernels *K, const Ring *r)
+{
+    return rewrite_all(res, is_abs, p, K, r, 0);
+}
+
+slong absform_rewrite_num(fmpz_mpoly_t res, unsigned char *is_abs,
+                          const fmpz_mpoly_t p, const Kernels *K, const Ring *r)
+{
+    return rewrite_all(res, is_abs, p, K, r, 1);
+}
+
+char *absform_abs_text(const Kernel *s, const Ring *r, int latex)
+{
+    if (fmpz_mpoly_is_one(s->arg->den, r->ctx))
+        return absform_arg_text(s, latex);
+    StrBuf b = {0};
+    poly_print(&b, s->arg->num, r, latex ? FMT_LATEX : FMT_TEXT);
+    return sb_take(&b);
 }
 
 char *absform_arg_text(const Kernel *s, int latex)

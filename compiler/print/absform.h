@@ -24,6 +24,19 @@
 slong absform_rewrite(fmpz_mpoly_t res, unsigned char *is_abs,
                       const fmpz_mpoly_t p, const Kernels *K, const Ring *r);
 
+/* the same, also for a sign kernel s = sign(N/d) whose argument has a
+ * number d > 0 for denominator (the kernels keep sign((2t - 1)/2) apart
+ * from sign(2t - 1)): sign(N/d) = sign(N), so x*s with N | x reads as
+ * |N| (times x/N), and its var stands for |N| (absform_abs_text) */
+slong absform_rewrite_num(fmpz_mpoly_t res, unsigned char *is_abs,
+                          const fmpz_mpoly_t p, const Kernels *K,
+                          const Ring *r);
+
+/* the text inside |.| of a var rewritten by absform_rewrite_num: the
+ * argument x ("t - 1"), or its numerator N ("2*t - 1") when x has a
+ * denominator (malloc'd) */
+char *absform_abs_text(const Kernel *s, const Ring *r, int latex);
+
 /* 1 when some kernel of K is a sign kernel (nothing to do otherwise) */
 int absform_any(const Kernels *K);
 

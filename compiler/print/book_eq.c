@@ -33,7 +33,7 @@
  * moved */
 static int sum_rotate(PSum *s)
 {
-    if (s->n == 0 || !s->t[0].neg)
+    if (s->n == 0 || !s->t[0].neg || s->keep_order)
         return 0;
     slong pos = 0, first = -1;
     for (slong i = 0; i < s->n; i++)
@@ -98,10 +98,13 @@ static int all_negative(const PSum *s)
 /* writes items / den: an all-minus numerator as -(...)/den */
 static void put_quotient(StrBuf *b, PSum *items, const PSum *den, const Ctx *c)
 {
-    int minus = all_negative(items);
+    /* and a sum in the order of its knots that starts with a minus:
+     * -(abs(t) - abs(t - 1) - ...)/2 */
+    int minus = all_negative(items) ||
+                (items->keep_order && items->n > 1 && items->t[0].neg);
     if (minus)
         for (slong i = 0; i < items->n; i++)
-            items->t[i].neg = 0;
+            items->t[i].neg ^= 1;
     else if (den)
         sum_rotate(items); /* (a*cos(phi) - c)/d, not (-c + a*cos(phi))/d */
     StrBuf n = {0};

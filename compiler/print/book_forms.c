@@ -18,6 +18,7 @@
 #include "compiler/print/book_int.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_vec.h>
@@ -500,6 +501,230 @@ static PSum *form_sin2(const fmpz_mpoly_t p, slong s, slong w, int depth,
     return sum;
 }
 
+/* ---- collected by the knots: c_k(t)*|t - t_k|^p -------------------------- */
+
+/* the knot of |x| (abs var v): x = c1*u + c0 of one variable u gives u and
+ * -c0/c1 (returns 1); 0 for any other x */
+static int knot_of(slong v, const Ctx *c, slong *u, fmpq_t k)
+{
+    const Ring *r = c->r;
+    const Kernel *kn = kernels_of_var(c->K, v);
+    const fmpz_mpoly_struct *x = kn->arg->num;
+    slong len = fmpz_mpoly_length(x, r->ctx);
+    if (!fmpz_mpoly_is_fmpz(kn->arg->den, r->ctx) || len < 1 || len > 2 ||
+        fmpz_mpoly_total_degree_si(x, r->ctx) != 1)
+        return 0;
+    *u = -1;
+    for (slong w = 0; w < r->nvars; w++) {
+        slong d = fmpz_mpoly_degree_si(x, w, r->ctx);
+        if (d > 0 && *u >= 0)
+            return 0;
+        if (d > 0)
+            *u = w;
+    }
+    /* degrevlex: the linear term first, the constant (if any) second */
+    if (len == 2)
+        fmpq_set_fmpz_frac(k, x->coeffs + 1, x->coeffs + 0);
+    else
+        fmpq_zero(k);
+    fmpq_neg(k, k);
+    return 1;
+}
+
+/* the order of the knots: of one variable by their place on its axis
+ * (|t| before |t - 1| before |t - 10|), then the others in the order of
+ * their kernels */
+static int knot_cmp(slong v, slong w, const Ctx *c)
+{
+    slong uv, uw;
+    fmpq_t kv, kw;
+    fmpq_init(kv);
+    fmpq_init(kw);
+    int sv = knot_of(v, c, &uv, kv), sw = knot_of(w, c, &uw, kw);
+    int cmp = 0;
+    if (sv != sw)
+        cmp = sv ? -1 : 1;
+    else if (sv && uv != uw)
+        cmp = uv < uw ? -1 : 1;
+    else if (sv)
+        cmp = fmpq_cmp(kv, kw);
+    if (cmp == 0 && v != w)
+        cmp = v < w ? -1 : 1;
+    fmpq_clear(kv);
+    fmpq_clear(kw);
+    return cmp;
+}
+
+typedef struct KnotGroup {
+    ulong *ex;         // the exponents of the abs vars (in knot order)
+    fmpz_mpoly_t coef; // free of them
+} KnotGroup;
+
+/* the free part first, then by the first knot used, its power, the rest */
+static int group_cmp(const KnotGroup *a, const KnotGroup *b, slong na)
+{
+    slong fa = 0, fb = 0;
+    while (fa < na && a->ex[fa] == 0)
+        fa++;
+    while (fb < na && b->ex[fb] == 0)
+        fb++;
+    if (fa != fb)
+        return fa == na ? -1 : fb == na ? 1 : fa < fb ? -1 : 1;
+    for (slong i = fa; i < na; i++)
+        if (a->ex[i] != b->ex[i])
+            return a->ex[i] < b->ex[i] ? -1 : 1;
+    return 0;
+}
+
+/* a sum whose first term is negative leads with its positive terms (2*t - 1,
+ * not -(1 - 2*t): the book's (2t - 1)(t - 2)|t - 2|) when that saves minus
+ * signs over negating it whole (-(64 - 39*t + 6*t^2) stays) */
+static void lead_positive(PSum *s)
+{
+    slong nneg = 0;
+    for (slong i = 0; i < s->n; i++)
+        nneg += s->t[i].neg;
+    if (s->n < 2 || !s->t[0].neg || nneg >= s->n - nneg + 1)
+        return;
+    PTerm *t = pc_xmalloc(sizeof(PTerm) * (size_t)s->n);
+    slong k = 0;
+    for (int pass = 0; pass < 2; pass++)
+        for (slong i = 0; i < s->n; i++)
+            if (s->t[i].neg == pass)
+                t[k++] = s->t[i];
+    memcpy(s->t, t, sizeof(PTerm) * (size_t)s->n);
+    free(t);
+}
+
+/* p, which uses |x| of some sign kernels (c->is_abs), collected by them as
+ * the composite-curve text writes its results: the part free of them,
+ * then sum_k c_k*|t - t_k|^p in the order of the knots, one term per knot
+ * (per product of |x|'s), its coefficient in its best form; a factor x of
+ * the coefficient is written as x beside its |x| ((2*t + 1)*(t - 1)*
+ * abs(t - 1)), unless only a negative number would be left.  NULL when p
+ * uses none. */
+static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    const Ring *r = c->r;
+    slong nv = r->nvars, na = 0;
+    slong *av = pc_xmalloc(sizeof(slong) * (size_t)(nv ? nv : 1));
+    for (slong v = 0; v < nv; v++)
+        if (c->is_abs[v] && fmpz_mpoly_degree_si(p, v, r->ctx) > 0) {
+            slong j = na++;
+            for (; j > 0 && knot_cmp(av[j - 1], v, c) > 0; j--)
+                av[j] = av[j - 1];
+            av[j] = v;
+        }
+    if (na == 0) {
+        free(av);
+        return NULL;
+    }
+    slong len = fmpz_mpoly_length(p, r->ctx), ng = 0;
+    KnotGroup *g = pc_xmalloc(sizeof(KnotGroup) * (size_t)len);
+    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)nv);
+    ulong *ex = pc_xmalloc(sizeof(ulong) * (size_t)na);
+    fmpz_t cf;
+    fmpz_init(cf);
+    for (slong k = 0; k < len; k++) {
+        fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
+        fmpz_mpoly_get_term_coeff_fmpz(cf, p, k, r->ctx);
+        for (slong i = 0; i < na; i++) {
+            ex[i] = e[av[i]];
+            e[av[i]] = 0;
+        }
+        slong j = 0;
+        while (j < ng && memcmp(g[j].ex, ex, sizeof(ulong) * (size_t)na))
+            j++;
+        if (j == ng) {
+            g[ng].ex = pc_xmalloc(sizeof(ulong) * (size_t)na);
+            memcpy(g[ng].ex, ex, sizeof(ulong) * (size_t)na);
+            fmpz_mpoly_init(g[ng].coef, r->ctx);
+            ng++;
+        }
+        fmpz_mpoly_push_term_fmpz_ui(g[j].coef, cf, e, r->ctx);
+    }
+    for (slong j = 0; j < ng; j++) {
+        fmpz_mpoly_sort_terms(g[j].coef, r->ctx);
+        fmpz_mpoly_combine_like_terms(g[j].coef, r->ctx);
+    }
+    for (slong i = 1; i < ng; i++) { /* insertion sort: a total order */
+        KnotGroup x = g[i];
+        slong j = i;
+        for (; j > 0 && group_cmp(&g[j - 1], &x, na) > 0; j--)
+            g[j] = g[j - 1];
+        g[j] = x;
+    }
+    PSum *s = book_sum_new(c);
+    Atom *xs = pc_xmalloc(sizeof(Atom) * (size_t)(na + 1));
+    fmpz_mpoly_t quo;
+    fmpz_mpoly_init(quo, r->ctx);
+    for (slong j = 0; j < ng; j++) {
+        int nx = 0;
+        slong one = -1, used = 0;
+        for (slong i = 0; i < na; i++)
+            if (g[j].ex[i]) {
+                one = av[i];
+                used++;
+            }
+        if (used == 1) {
+            const Kernel *kn = kernels_of_var(c->K, one);
+            if (fmpz_mpoly_divides(quo, g[j].coef, kn->arg->num, r->ctx) &&
+                !(fmpz_mpoly_is_fmpz(quo, r->ctx) &&
+                  fmpz_sgn(quo->coeffs) < 0)) {
+                fmpz_mpoly_swap(quo, g[j].coef, r->ctx);
+                xs[nx++] = (Atom){AT_KNOT, one, NULL, NULL, NULL, 1};
+            }
+        }
+        for (slong i = 0; i < na; i++)
+            if (g[j].ex[i])
+                xs[nx++] = (Atom){AT_VAR, av[i], NULL, NULL, NULL, g[j].ex[i]};
+        PSum *cs = book_render(g[j].coef, depth + 1, c);
+        if (nx == 0) { /* the free part first, its terms joining the sum:
+                        * (t - 3 + abs(t - 3))/2, the text's Q(t, 3) */
+            if (cs->n == 1 && cs->t[0].neg &&
+                fmpz_mpoly_length(g[j].coef, r->ctx) > 1) {
+                /* -2*(1 - t)*(1 + t) would put a minus in front of the
+                 * knots: 2*t^2 - 2 (the text's t^2 - 1 + ...) */
+                book_sum_free(cs, c);
+                cs = book_form_expanded(g[j].coef, c);
+            }
+            lead_positive(cs);
+            for (slong i = 0; i < cs->n; i++)
+                book_term_absorb(book_sum_push(s), &cs->t[i]);
+            book_sum_free(cs, c);
+            continue;
+        }
+        PTerm *t = book_sum_push(s);
+        if (cs->n == 1) {
+            book_term_absorb(t, &cs->t[0]);
+            book_sum_free(cs, c);
+        } else {
+            lead_positive(cs);
+            if (cs->t[0].neg) { /* every term negative */
+                book_sum_neg(cs, c);
+                t->neg ^= 1;
+            }
+            book_term_push(t, (Atom){AT_SUM, -1, cs, NULL, NULL, 1});
+        }
+        for (int i = 0; i < nx; i++)
+            book_term_push(t, xs[i]);
+    }
+    fmpz_mpoly_clear(quo, r->ctx);
+    free(xs);
+    for (slong j = 0; j < ng; j++) {
+        free(g[j].ex);
+        fmpz_mpoly_clear(g[j].coef, r->ctx);
+    }
+    fmpz_clear(cf);
+    free(g);
+    free(ex);
+    free(e);
+    free(av);
+    book_sum_finish(s, p, c);
+    s->keep_order = 1;
+    return s;
+}
+
 /* the length of s's text form (whatever the style): measured only when a
  * tie between two collected forms needs it */
 static size_t text_len(const PSum *s, const Ctx *c)
@@ -630,16 +855,22 @@ static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c);
 
 /* the atoms of s (and of its sums) that are vars marked in is_abs become
  * |x| */
-static void mark_abs(PSum *s, const unsigned char *is_abs)
+static void mark_abs(PSum *s, const unsigned char *is_abs, const Ctx *c)
 {
-    for (slong i = 0; i < s->n; i++)
+    for (slong i = 0; i < s->n; i++) {
+        int any = 0;
         for (slong j = 0; j < s->t[i].n; j++) {
             Atom *a = &s->t[i].a[j];
-            if (a->kind == AT_VAR && is_abs[a->var])
+            if (a->kind == AT_VAR && is_abs[a->var]) {
                 a->kind = AT_ABS;
-            else if (a->kind == AT_SUM)
-                mark_abs(a->sum, is_abs);
+                any = 1;
+            } else if (a->kind == AT_SUM) {
+                mark_abs(a->sum, is_abs, c);
+            }
         }
+        if (any) /* |x| goes last in its product (book_model.c) */
+            book_term_sort(&s->t[i], c);
+    }
 }
 
 /* p in its best form; a p with x*sign(x) in it is written through |x|
@@ -653,7 +884,7 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
     fmpz_mpoly_t q;
     fmpz_mpoly_init(q, r->ctx);
     PSum *s;
-    if (absform_rewrite(q, mask, p, c->K, r) > 0) {
+    if (absform_rewrite_num(q, mask, p, c->K, r) > 0) {
         Ctx a = *c;
         a.is_abs = mask;
         a.mode = 1;
@@ -661,7 +892,7 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
             a.mode = a.mode * 31 + mask[v];
         a.mode |= 1;
         s = render_memo(q, depth, &a);
-        mark_abs(s, mask);
+        mark_abs(s, mask, c);
     } else {
         s = render_memo(p, depth, c);
     }
@@ -702,6 +933,13 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     enum { R_FACTORED, R_EXPANDED, R_BERNSTEIN, R_POWERS };
     const Ring *r = c->r;
     slong len = fmpz_mpoly_length(p, r->ctx);
+    if (c->is_abs) { /* |x| in it: by the knots, as the text writes it */
+        PSum *k = form_knots(p, depth, c);
+        if (k) {
+            *c->work += len;
+            return k;
+        }
+    }
     PSum *best = book_form_expanded(p, c);
     if (len == 0 || fmpz_mpoly_is_fmpz(p, r->ctx))
         return best;

@@ -23,6 +23,8 @@ typedef enum AtomKind {
     AT_SUM,   // a parenthesised sum
     AT_POINT, // a point name, or a difference of two (point2)
     AT_ABS,   // |x| of the sign kernel var = sign(x) (absform.h)
+    AT_KNOT,  // x of the sign kernel var = sign(x), as its |x| writes it: the
+              // (t - 1) of the book's (2t + 1)(t - 1)|t - 1|
 } AtomKind;
 
 typedef struct PSum PSum;
@@ -48,6 +50,8 @@ struct PSum {
     PTerm *t;
     fmpz_mpoly_t poly; // what the sum is, up to sign (for the total order)
     int has_param;     // it involves a param
+    int keep_order;    // collected by the knots (book_forms.c): never rotated
+                       // (a leading minus is taken out whole instead)
 };
 
 typedef struct Ctx {

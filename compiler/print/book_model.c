@@ -85,6 +85,7 @@ PSum *book_sum_copy(const PSum *s, const Ctx *c)
     r->n = s->n;
     fmpz_mpoly_set(r->poly, s->poly, c->r->ctx);
     r->has_param = s->has_param;
+    r->keep_order = s->keep_order;
     return r;
 }
 
@@ -148,8 +149,9 @@ static int atom_class(const Ctx *c, const Atom *a)
                        * same place wherever it is written by its name
                        * (forms are shared by a scheme's outputs) */
         return a->var < c->nparams + c->nconsts ? 0 : 3;
-    case AT_ABS:
-        return 3;
+    case AT_KNOT:
+    case AT_ABS: /* last, as the book writes c_k(t)*(t - t_k)*|t - t_k| */
+        return 6;
     case AT_POINT:
         return a->point2 ? -1 : 1; /* (A - C)*kp*..., as the book */
     case AT_SUM:
@@ -163,11 +165,15 @@ static int atom_cmp(const Ctx *c, const Atom *a, const Atom *b)
     int ka = atom_class(c, a), kb = atom_class(c, b);
     if (ka != kb)
         return ka < kb ? -1 : 1;
-    if (a->kind == AT_VAR || a->kind == AT_BAR || a->kind == AT_ABS) {
+    if (a->kind == AT_VAR || a->kind == AT_BAR || a->kind == AT_ABS ||
+        a->kind == AT_KNOT) {
         if (a->var != b->var)
             return a->var < b->var ? -1 : 1;
-        if (a->kind != b->kind)
-            return a->kind < b->kind ? -1 : 1;
+        if (a->kind != b->kind) /* (t - 1)*abs(t - 1): the knot first */
+            return a->kind == AT_KNOT   ? -1
+                   : b->kind == AT_KNOT ? 1
+                   : a->kind < b->kind  ? -1
+                                        : 1;
         return 0;
     }
     if (a->kind == AT_SUM) {

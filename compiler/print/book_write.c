@@ -243,10 +243,24 @@ void book_put_atom(StrBuf *b, const Atom *a, const Ctx *c)
         sb_puts(b, close);
         break;
     case AT_ABS: {
-        char *x = absform_arg_text(kernels_of_var(c->K, a->var), c->latex);
+        char *x =
+            absform_abs_text(kernels_of_var(c->K, a->var), c->r, c->latex);
         sb_puts(b, c->latex ? "\\left|" : "abs(");
         sb_puts(b, x);
         sb_puts(b, c->latex ? "\\right|" : ")");
+        free(x);
+        break;
+    }
+    case AT_KNOT: { /* x of |x|, as |x| writes it: (t - 1), t */
+        const Kernel *k = kernels_of_var(c->K, a->var);
+        char *x = absform_abs_text(k, c->r, c->latex);
+        const fmpz_mpoly_struct *xn = k->arg->num;
+        int one = fmpz_mpoly_length(xn, c->r->ctx) == 1 &&
+                  fmpz_mpoly_total_degree_si(xn, c->r->ctx) == 1 &&
+                  fmpz_is_one(xn->coeffs);
+        sb_puts(b, one ? "" : open);
+        sb_puts(b, x);
+        sb_puts(b, one ? "" : close);
         free(x);
         break;
     }

@@ -3,7 +3,8 @@
  *
  * Every weight is format_weight's reduced, re-readable expression; names
  * are the scheme's identifiers, the scheme's name goes through
- * json_string (it may come from any file name).
+ * json_string (it may come from any file name).  An output that uses
+ * abs() or sign() of its param also carries its "knots" (knots_print.h).
  */
 #include "compiler/print/format_int.h"
 
@@ -12,6 +13,7 @@
 #include "base/json.h"
 #include "base/mem.h"
 #include "compiler/print/format.h"
+#include "compiler/print/knots_print.h"
 
 /* "key": ["A","B"] */
 static void json_names(FILE *out, const char *key, char *const *names, slong n)
@@ -80,6 +82,7 @@ static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
         fputs("}", out);
     }
     json_assumes(out, d, o);
+    knots_json(out, d, o - d->outputs); /* the knots: knots_print.h */
     fputs("}", out);
 }
 

@@ -1,7 +1,9 @@
 /*
  * cmd_derive.c - `pointcalc derive FILE [--format text|latex|json]
- * [--origin POINT] [--steps]`: the exact equations of the outputs
- * (format.h), after every step of the derivation with --steps (steps.h).
+ * [--origin POINT] [--steps] [--knots]`: the exact equations of the outputs
+ * (format.h), after every step of the derivation with --steps (steps.h),
+ * followed by the smoothness at every knot with --knots (knots_print.h;
+ * JSON always carries the knots).
  */
 #include "driver/cli/cli.h"
 
@@ -10,6 +12,7 @@
 
 #include "base/mem.h"
 #include "compiler/print/format.h"
+#include "compiler/print/knots_print.h"
 #include "compiler/print/steps.h"
 #include "driver/cli/args.h"
 
@@ -17,17 +20,22 @@ typedef struct DeriveArgs {
     FormatStyle style;
     const char *origin; // a base point's name, or NULL
     int steps;          // --steps
+    int knots;          // --knots
     int standalone;     // --standalone (LaTeX)
     int width;          // --width N (LaTeX), 0: the default
     const char *usage;
 } DeriveArgs;
 
-/* --format text|latex|json, --origin POINT, --steps */
+/* --format text|latex|json, --origin POINT, --steps, --knots */
 static int derive_option(void *ctx, int argc, char **argv, int i, FILE *err)
 {
     DeriveArgs *a = ctx;
     if (strcmp(argv[i], "--steps") == 0) {
         a->steps = 1;
+        return 1;
+    }
+    if (strcmp(argv[i], "--knots") == 0) {
+        a->knots = 1;
         return 1;
     }
     if (strcmp(argv[i], "--standalone") == 0) {
@@ -93,6 +101,10 @@ static void print_result(const DeriveArgs *a, const Derived *d, slong origin,
         format_derived_width(m, d, a->style, origin, a->width);
         if (a->standalone)
             format_latex_end(m);
+        if (a->knots && a->style == FMT_TEXT) { /* a blank line, the knots */
+            fputs("\n", m);
+            knots_print(m, d);
+        }
     }
     pc_xclose_memstream(m);
     fwrite(text, 1, len, out);
@@ -101,7 +113,7 @@ static void print_result(const DeriveArgs *a, const Derived *d, slong origin,
 
 int cli_derive(int argc, char **argv, FILE *out, FILE *err)
 {
-    DeriveArgs a = {FMT_TEXT, NULL, 0, 0, 0, help_usage("derive")};
+    DeriveArgs a = {FMT_TEXT, NULL, 0, 0, 0, 0, help_usage("derive")};
     BudgetOptions bo;
     const char *file;
     int rc =
@@ -112,6 +124,11 @@ int cli_derive(int argc, char **argv, FILE *out, FILE *err)
         return args_usage_error(err, a.usage,
                                 "%s is for LaTeX: expected --format latex",
                                 a.standalone ? "--standalone" : "--width");
+    if (a.knots && a.style == FMT_LATEX)
+        return args_usage_error(err, a.usage,
+                                "--knots prints text: use --format text, "
+                                "or --format json (which always carries "
+                                "the knots)");
     Derived *d = cli_derive_file_steps(file, &bo, a.steps, err, &rc);
     if (!d)
         return rc;

@@ -11,7 +11,8 @@
 
 const char cli_usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
-    "                        [--steps] [--standalone] [--width N]\n"
+    "                        [--steps] [--knots] [--standalone] [--width "
+    "N]\n"
     "       pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix NAME]\n"
     "                        [--output NAME[,NAME...]]\n"
     "       pointcalc eval   FILE --at A=x,y[,z...] ... [--set k=SPEC ...]\n"
@@ -53,7 +54,8 @@ const char cli_usage[] =
 #define DERIVE_USAGE                                                           \
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin "       \
     "POINT]\n"                                                                 \
-    "                        [--steps] [--standalone] [--width N]\n"
+    "                        [--steps] [--knots] [--standalone] [--width "     \
+    "N]\n"
 
 #define EMIT_C_USAGE                                                           \
     "usage: pointcalc emit-c FILE [-o OUT.c] [--header OUT.h] [--prefix "      \
@@ -97,6 +99,13 @@ static const char derive_help[] = DERIVE_USAGE
     "                      equation, each meet's S/V-theorem determinant and "
     "line\n"
     "                      parameters (JSON: a \"steps\" array)\n"
+    "  --knots             then, for every knot of abs() and sign() of the "
+    "param, the\n"
+    "                      continuity C^k, the geometric order G^k and the "
+    "exact jump\n"
+    "                      of the first discontinuous derivative "
+    "(docs/composite.md;\n"
+    "                      JSON always has them, as \"knots\")\n"
     "  --standalone        LaTeX: a whole document (article, amsmath) for "
     "pdflatex\n"
     "  --width N           LaTeX: equations wider than N columns of source "
