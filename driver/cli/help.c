@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "driver/cli/args.h"
+#include "driver/cli/fit.h"
 
 const char cli_usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
@@ -20,7 +21,10 @@ const char cli_usage[] =
     "       pointcalc plot   FILE --at A=x,y[,z...] ... [--output NAME,...] "
     "[-o OUT.svg]\n"
     "                        [--at-param t=VALUE] ...   (pointcalc help plot)\n"
-    "       pointcalc help [derive|emit-c|eval|plot] | CMD --help | --version\n"
+    "       pointcalc fit    --target 'EXPR' --on LO,HI --nodes N  (pointcalc "
+    "help fit)\n"
+    "       pointcalc help [derive|emit-c|eval|plot|fit] | CMD --help | "
+    "--version\n"
     "\n"
     "\n"
     "Every command also takes --max-seconds S and --max-memory SIZE (the\n"
@@ -199,6 +203,7 @@ static const HelpEntry entries[] = {
     {"emit-c", EMIT_C_USAGE, emit_c_help},
     {"eval", EVAL_USAGE, eval_help},
     {"plot", PLOT_USAGE, plot_help},
+    {"fit", FIT_USAGE, fit_help},
     {"help", HELP_USAGE, help_help},
 };
 

@@ -22,6 +22,7 @@
 #include "base/mem.h"
 #include "driver/cli/args.h"
 #include "driver/cli/cli.h"
+#include "driver/cli/fit.h"
 
 #define PC_VERSION "0.1.0"
 
@@ -32,7 +33,7 @@ typedef struct Command {
 
 static const Command commands[] = {
     {"derive", cli_derive}, {"emit-c", cli_emit_c}, {"eval", cli_eval},
-    {"help", cli_help},     {"plot", cli_plot},
+    {"help", cli_help},     {"plot", cli_plot},     {"fit", cli_fit},
 };
 
 static const Command *find_command(const char *name)
