@@ -53,7 +53,7 @@ typedef struct Deriver {
     const Source *src;
     double deadline; // CLOCK_MONOTONIC seconds; 0: no time budget
     double max_seconds;
-    int keep_abs; // DeriveOptions.keep_abs
+    int keep_abs;       // DeriveOptions.keep_abs
     int expired;        // the time budget ran out (reported once)
     FILE *verbose;      // progress per definition, or NULL
     slong ucol0;        // unknown k is point column ucol0 + k while unknown
