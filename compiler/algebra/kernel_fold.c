@@ -371,8 +371,35 @@ static int apply_trig_pi12(Kernels *K, RatFun res, KernelFn f, const RatFun a,
     return decided;
 }
 
+/* c = the coefficient of the term pi alone in arg (over a number
+ * denominator): arg = x + c*pi where x has no term pi alone, as in
+ * pi*t + pi (c = 1); 0 when arg has no such term or a denominator that is
+ * not a number */
+static int pi_term_coeff(const Kernels *K, slong pi, const RatFun a, fmpq_t c)
+{
+    const Ring *r = K->r;
+    if (!fmpz_mpoly_is_fmpz(a->den, r->ctx))
+        return 0;
+    fmpz_mpoly_t m;
+    fmpz_t b, num;
+    fmpz_mpoly_init(m, r->ctx);
+    fmpz_init(b);
+    fmpz_init(num);
+    fmpz_mpoly_gen(m, K->k[pi].var, r->ctx);
+    fmpz_mpoly_get_coeff_fmpz_monomial(num, a->num, m, r->ctx);
+    fmpz_mpoly_get_fmpz(b, a->den, r->ctx);
+    int found = !fmpz_is_zero(num);
+    if (found)
+        fmpq_set_fmpz_frac(c, num, b);
+    fmpz_clear(num);
+    fmpz_clear(b);
+    fmpz_mpoly_clear(m, r->ctx);
+    return found;
+}
+
 /* sin, cos of x + c*pi with 2c an integer: +-sin(x), +-cos(x); 1 and *rc
- * set when decided */
+ * set when decided.  c is d(arg)/d(pi) where that is a number, else the
+ * coefficient of the term pi alone (sin(pi*t + pi) = -sin(pi*t)). */
 static int apply_trig_shift(Kernels *K, RatFun res, KernelFn f, const RatFun a,
                             int *rc)
 {
@@ -389,7 +416,12 @@ static int apply_trig_shift(Kernels *K, RatFun res, KernelFn f, const RatFun a,
         ratfun_derivative(c, a, K->k[pi].var, r);
         fmpz_t k2;
         fmpz_init(k2);
-        if (ratfun_get_fmpq(cq, c, r)) {
+        int have = ratfun_get_fmpq(cq, c, r);
+        if (!have && pi_term_coeff(K, pi, a, cq)) {
+            have = 1;
+            ratfun_set_fmpq(c, cq, r);
+        }
+        if (have) {
             fmpz_mul_ui(k2, fmpq_numref(cq), 2);
             if (fmpz_divisible(k2, fmpq_denref(cq))) {
                 fmpz_divexact(k2, k2, fmpq_denref(cq));

@@ -289,6 +289,37 @@ static int exact_weights(const Derived *d, int o, const fmpq *vals, fmpq *w,
     return pole;
 }
 
+/* the size of the terms of weight x at vals, |num|(|vals|)/|den(vals)|:
+ * where the terms of a weight cancel (1 + cos(pi*u) at u = 1), double
+ * evaluation is exact only to this scale, not to the tiny value itself */
+static double term_scale(const RatFunStruct *x, const fmpq *vals, int nv,
+                         const Ring *r)
+{
+    RatFun a, b;
+    ratfun_init(a, r);
+    ratfun_init(b, r);
+    fmpz_mpoly_set(a->num, x->num, r->ctx);
+    for (slong i = 0; i < a->num->length; i++)
+        fmpz_abs(a->num->coeffs + i, a->num->coeffs + i);
+    fmpz_mpoly_set(b->num, x->den, r->ctx);
+    fmpq *av = _fmpq_vec_init(nv);
+    for (int i = 0; i < nv; i++)
+        fmpq_abs(av + i, vals + i);
+    fmpq_t n, d;
+    fmpq_init(n);
+    fmpq_init(d);
+    double sc = 0;
+    if (ratfun_evaluate_fmpq(n, a, av, r) == RATFUN_OK &&
+        ratfun_evaluate_fmpq(d, b, vals, r) == RATFUN_OK && !fmpq_is_zero(d))
+        sc = fabs(fmpq_get_d(n) / fmpq_get_d(d));
+    fmpq_clear(n);
+    fmpq_clear(d);
+    _fmpq_vec_clear(av, nv);
+    ratfun_clear(a, r);
+    ratfun_clear(b, r);
+    return sc;
+}
+
 /* r = x exactly, for x a multiple of 2^-10 */
 static void dyadic(fmpq_t r, double x)
 {
@@ -388,7 +419,10 @@ static void check_derived(const Derived *d, const Plan *p, const Compiled *c)
                         dyadic(t, coord);
                         fmpq_mul(t, t, w + k);
                         fmpq_add(sum, sum, t);
-                        sc += fabs(fmpq_get_d(w + k) * coord);
+                        const RatFunStruct *x = po->kind == KIND_SCALAR
+                                                    ? d->outputs[o].scalar
+                                                    : &d->outputs[o].w[k];
+                        sc += term_scale(x, vals, nv, &d->ring) * fabs(coord);
                     }
                     exact[s * ncol + cc] = fmpq_get_d(sum);
                     scale[s * ncol + cc] = sc;
