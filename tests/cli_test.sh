@@ -171,6 +171,18 @@ check "memory budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the memo
 # unlocated, and leaves nothing on stdout: the five-point conic derives in
 # under 64 KiB of counted memory and prints in about 290 KiB (its form
 # search factors), so 128K runs out while printing
+# JSON keeps abs() inside function arguments too (issue 19: a printed
+# result is never x*sign(x)), and cos(pi*t + pi) is -cos(pi*t)
+printf 'param t\nx = sin(pi*abs(t - 1)/4)\ny = cos(pi*t + pi) + cos(pi*t)\noutput x, y\n' >"$tmp/absarg.pcs"
+"$PCB" derive "$tmp/absarg.pcs" --format json >"$tmp/out" 2>"$tmp/err"
+check "json: abs inside sin" python3 -c "
+import json, sys
+d = json.load(open(sys.argv[1]))
+v = {o['name']: o['value'] for o in d['outputs']}
+assert v['x'] == 'sin(pi*abs(t - 1)/4)', v['x']
+assert v['y'] == '0', v['y']
+" "$tmp/out"
+
 # --keep-abs: a param's range simplifies no abs (issue 19), and the output
 # then rests on no range: eval at t = -1 is a number, not nan
 printf 'point A, B\nparam t in [0, 4]\nR = A + (B - A)*(1 + abs(t) - abs(t - 1))/2\n' >"$tmp/ka.pcs"

@@ -205,8 +205,48 @@ static int is_den_one(const RatFun w, const Ring *r)
     return fmpz_mpoly_is_one(w->den, r->ctx);
 }
 
+static int poly_has(const fmpz_mpoly_t p, slong var, const Ring *r)
+{
+    return fmpz_mpoly_degree_si(p, var, r->ctx) > 0;
+}
+
+/* 1 when kernel k is a function of one argument whose argument uses a
+ * sign kernel, directly or inside another function: its name then shows
+ * x*sign(x) that format_weight_k writes as abs(x) */
+static int arg_has_sign(const Kernels *K, const Kernel *k, int depth)
+{
+    switch (k->fn) {
+    case KF_SQRT:
+    case KF_SIN:
+    case KF_COS:
+    case KF_SINH:
+    case KF_COSH:
+    case KF_EXP:
+    case KF_LN:
+    case KF_ASIN:
+    case KF_ACOS:
+    case KF_ATAN:
+        break;
+    default:
+        return 0;
+    }
+    const Ring *r = K->r;
+    if (depth > 64) /* kernels nest as deep as sema lets an expression */
+        return 0;
+    for (slong i = 0; i < K->n; i++) {
+        const Kernel *a = &K->k[i];
+        if ((poly_has(k->arg->num, a->var, r) ||
+             poly_has(k->arg->den, a->var, r)) &&
+            (a->fn == KF_SIGN || arg_has_sign(K, a, depth + 1)))
+            return 1;
+    }
+    return 0;
+}
+
 /* w's num and den with x*sign(x) read as |x| (absform.h), in a copy of
- * r whose names of those sign kernels are abs(x) */
+ * r whose names of those sign kernels are abs(x), and whose names of
+ * functions of such arguments are written again with abs:
+ * sin(pi*abs(t - 1)/4), not sin((t*pi*sign(t - 1) - pi*sign(t - 1))/4) */
 char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
 {
     if (!absform_any(K))
@@ -218,6 +258,19 @@ char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
     fmpz_mpoly_init(x->den, r->ctx);
     slong n = absform_rewrite(x->num, mask, w->num, K, r);
     n += absform_rewrite(x->den, mask, w->den, K, r);
+    if (n == 0) {
+        fmpz_mpoly_set(x->num, w->num, r->ctx);
+        fmpz_mpoly_set(x->den, w->den, r->ctx);
+    }
+    for (slong i = 0; i < K->n; i++) { /* 2: a function named again */
+        const Kernel *k = &K->k[i];
+        if (!mask[k->var] &&
+            (poly_has(x->num, k->var, r) || poly_has(x->den, k->var, r)) &&
+            arg_has_sign(K, k, 0)) {
+            mask[k->var] = 2;
+            n++;
+        }
+    }
     char *res;
     if (n == 0) {
         res = format_weight(w, r);
@@ -226,16 +279,21 @@ char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
         const char **names = pc_xmalloc(sizeof(char *) * nv);
         for (slong v = 0; v < r->nvars; v++) {
             names[v] = r->names[v];
-            if (mask[v]) {
-                char *a = absform_arg_text(kernels_of_var(K, v), 0);
-                size_t la = strlen(a);
-                char *t = pc_xmalloc(la + 6);
-                memcpy(t, "abs(", 4);
-                memcpy(t + 4, a, la);
-                memcpy(t + 4 + la, ")", 2);
-                free(a);
-                names[v] = t;
-            }
+            const Kernel *k = mask[v] ? kernels_of_var(K, v) : NULL;
+            char *a = !k             ? NULL
+                      : mask[v] == 1 ? absform_arg_text(k, 0)
+                                     : format_weight_k(k->arg, r, K);
+            if (!a)
+                continue;
+            const char *f = mask[v] == 1 ? "abs" : kernel_fn_names[k->fn];
+            size_t lf = strlen(f), la = strlen(a);
+            char *t = pc_xmalloc(lf + la + 3);
+            memcpy(t, f, lf);
+            t[lf] = '(';
+            memcpy(t + lf + 1, a, la);
+            memcpy(t + lf + 1 + la, ")", 2);
+            free(a);
+            names[v] = t;
         }
         ra.names = names;
         res = format_weight(x, &ra);
