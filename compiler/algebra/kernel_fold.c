@@ -371,6 +371,65 @@ static int apply_trig_pi12(Kernels *K, RatFun res, KernelFn f, const RatFun a,
     return decided;
 }
 
+/* sin, cos at any other rational multiple c*pi: reduced to c in
+ * [0, 1/2] by the period and the symmetries (sin(7*pi/5) = -sin(2*pi/5),
+ * cos(3*pi/5) = -cos(2*pi/5)), so that equal values are one kernel and
+ * sums such as sin(pi/5) + sin(9*pi/5) cancel; 1 and *rc set when the
+ * multiple was not already reduced */
+static int apply_trig_reduce(Kernels *K, RatFun res, KernelFn f, const RatFun a,
+                             int *rc)
+{
+    const Ring *r = K->r;
+    fmpq_t c, c2, h;
+    fmpq_init(c);
+    fmpq_init(c2);
+    fmpq_init(h);
+    int decided = 0, neg = 0;
+    if (is_pi_multiple(K, a, c)) {
+        fmpz_t q;
+        fmpz_init(q);
+        /* c2 = c mod 2, in [0, 2) */
+        fmpz_mul_ui(q, fmpq_denref(c), 2);
+        fmpz_fdiv_q(q, fmpq_numref(c), q);
+        fmpq_set_fmpz_frac(c2, q, (fmpz[]){1});
+        fmpq_mul_si(c2, c2, 2);
+        fmpq_sub(c2, c, c2);
+        fmpz_clear(q);
+        fmpq_set_si(h, 1, 1);
+        if (f == KF_SIN && fmpq_cmp(c2, h) >= 0) { /* sin(x + pi) = -sin x */
+            fmpq_sub(c2, c2, h);
+            neg = 1;
+        } else if (f == KF_COS && fmpq_cmp(c2, h) > 0) { /* cos(2pi - x) */
+            fmpq_set_si(h, 2, 1);
+            fmpq_sub(c2, h, c2);
+        }
+        fmpq_set_si(h, 1, 2);
+        if (fmpq_cmp(c2, h) > 0) { /* sin(pi - x) = sin x, cos = -cos x */
+            fmpq_set_si(h, 1, 1);
+            fmpq_sub(c2, h, c2);
+            neg ^= f == KF_COS;
+        }
+        if (neg || !fmpq_equal(c, c2)) {
+            RatFun b, cc;
+            ratfun_init(b, r);
+            ratfun_init(cc, r);
+            ratfun_gen(b, K->k[kernels_find(K, KF_PI, NULL, NULL, 0)].var, r);
+            ratfun_set_fmpq(cc, c2, r);
+            ratfun_mul(b, b, cc, r);
+            ratfun_clear(cc, r);
+            *rc = kernel_apply(K, res, f, b, NULL);
+            if (*rc == 0 && neg)
+                ratfun_neg(res, res, r);
+            ratfun_clear(b, r);
+            decided = 1;
+        }
+    }
+    fmpq_clear(h);
+    fmpq_clear(c2);
+    fmpq_clear(c);
+    return decided;
+}
+
 /* c = the coefficient of the term pi alone in arg (over a number
  * denominator): arg = x + c*pi where x has no term pi alone, as in
  * pi*t + pi (c = 1); 0 when arg has no such term or a denominator that is
@@ -694,6 +753,7 @@ int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,
         rc = apply_atan2(K, res, a, y);
     else if (!apply_number(K, res, f, a, &rc) &&
              !(trig && apply_trig_pi12(K, res, f, a, &rc)) &&
+             !(trig && apply_trig_reduce(K, res, f, a, &rc)) &&
              !(trig && apply_trig_shift(K, res, f, a, &rc)) &&
              !(trig && apply_trig_sum(K, res, f, a, &rc)))
         rc = apply_general(K, res, f, a);
