@@ -576,24 +576,20 @@ static int group_cmp(const KnotGroup *a, const KnotGroup *b, slong na)
     return 0;
 }
 
-/* a sum whose first term is negative leads with its positive terms (2*t - 1,
- * not -(1 - 2*t): the book's (2t - 1)(t - 2)|t - 2|) when that saves minus
- * signs over negating it whole (-(64 - 39*t + 6*t^2) stays) */
+/* a sum in ascending powers whose first term is negative is written in
+ * descending powers when that leads with a positive term: 2*t - 1, not
+ * -1 + 2*t (the book's (2t - 1)(t - 2)|t - 2|), t - 3 + abs(t - 3), and the
+ * spline's 120*t^3 - 720*t^2 + 2078*t - 2166, not the positive terms first
+ * (2078*t + 120*t^3 - 2166 - 720*t^2); -(64 - 39*t + 6*t^2) stays */
 static void lead_positive(PSum *s)
 {
-    slong nneg = 0;
-    for (slong i = 0; i < s->n; i++)
-        nneg += s->t[i].neg;
-    if (s->n < 2 || !s->t[0].neg || nneg >= s->n - nneg + 1)
+    if (s->n < 2 || !s->t[0].neg || s->t[s->n - 1].neg)
         return;
-    PTerm *t = pc_xmalloc(sizeof(PTerm) * (size_t)s->n);
-    slong k = 0;
-    for (int pass = 0; pass < 2; pass++)
-        for (slong i = 0; i < s->n; i++)
-            if (s->t[i].neg == pass)
-                t[k++] = s->t[i];
-    memcpy(s->t, t, sizeof(PTerm) * (size_t)s->n);
-    free(t);
+    for (slong i = 0, j = s->n - 1; i < j; i++, j--) {
+        PTerm t = s->t[i];
+        s->t[i] = s->t[j];
+        s->t[j] = t;
+    }
 }
 
 /* p, which uses |x| of some sign kernels (c->is_abs), collected by them as

@@ -324,6 +324,15 @@ static void test_printing(void **state)
                    "x = ((10 - 15*t + 6*t^2)*abs(t)^3 - (1 + 3*t + "
                    "6*t^2)*abs(t - 1)^3 - (64 - 39*t + 6*t^2)*abs(t - 2)^3 + "
                    "(19 - 21*t + 6*t^2)*abs(t - 3)^3)/2\n");
+    /* 2.3.4: the clamped spline's x(t) = (60t^3 - 360t^2 + 1039t -
+     * 1083)/7 - 43/7 |t-1|^3 + 43/7 |t-3|^3 (docs/errata.md D9): a free
+     * part that would start with a minus is written in descending powers,
+     * not with its positive terms first (1039*t - 360*t^2 + 60*t^3 - ...) */
+    expect_printed("param t\nx = (60*t^3 - 360*t^2 + 1039*t - 1083)/7 - "
+                   "43*abs(t - 1)^3/7 + 43*abs(t - 3)^3/7\n",
+                   FMT_TEXT,
+                   "x = (60*t^3 - 360*t^2 + 1039*t - 1083 - 43*abs(t - 1)^3 + "
+                   "43*abs(t - 3)^3)/7\n");
     /* 2.2 ex. 1: x = P(t,0,1) - P(t,2,1) = 1/2 (|t| - |t-1| - |t-2| +
      * |t-3|) */
     expect_printed("param t\nx = ramp(t, 0, 1) - ramp(t, 2, 1)\n", FMT_TEXT,
