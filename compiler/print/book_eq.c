@@ -52,9 +52,48 @@ static int sum_rotate(PSum *s)
     return 1;
 }
 
+static int all_negative(const PSum *s)
+{
+    for (slong i = 0; i < s->n; i++)
+        if (!s->t[i].neg)
+            return 0;
+    return s->n > 0;
+}
+
+/* 1 when term t has an |x| (or the x written beside it) */
+static int term_has_abs(const PTerm *t, const Ctx *c)
+{
+    for (slong i = 0; i < t->n; i++)
+        if (t->a[i].kind == AT_KNOT || t->a[i].kind == AT_ABS ||
+            (t->a[i].kind == AT_VAR && c->is_abs && c->is_abs[t->a[i].var]))
+            return 1;
+    return 0;
+}
+
+/* a knot-collected sum whose free part (its terms without |x|, first) is
+ * all negative, followed by a positive term: the free part moved to the
+ * end, abs(t - 1) + abs(t - 3) - 2, not -(2 - abs(t - 1) - abs(t - 3));
+ * a free part with positive terms stays whole (the sum is negated
+ * instead); 1 when moved */
+static int free_part_last(PSum *s, const Ctx *c)
+{
+    slong k = 0;
+    while (k < s->n && s->t[k].neg && !term_has_abs(&s->t[k], c))
+        k++;
+    if (k == 0 || k == s->n || s->t[k].neg || !term_has_abs(&s->t[k], c))
+        return 0;
+    PTerm *head = pc_xmalloc(sizeof(PTerm) * (size_t)k);
+    memcpy(head, s->t, sizeof(PTerm) * (size_t)k);
+    memmove(s->t, s->t + k, sizeof(PTerm) * (size_t)(s->n - k));
+    memcpy(s->t + s->n - k, head, sizeof(PTerm) * (size_t)k);
+    free(head);
+    return 1;
+}
+
 static int sum_lead(PSum *s, const Ctx *c)
 {
-    if (s->n == 0 || !s->t[0].neg || sum_rotate(s))
+    if (s->n == 0 || !s->t[0].neg || sum_rotate(s) ||
+        (s->keep_order && free_part_last(s, c)))
         return 0;
     book_sum_neg(s, c);
     return 1;
@@ -87,21 +126,14 @@ static PSum *render_den(const fmpz_mpoly_t den, const Ctx *c, int *flip)
     return d;
 }
 
-static int all_negative(const PSum *s)
-{
-    for (slong i = 0; i < s->n; i++)
-        if (!s->t[i].neg)
-            return 0;
-    return s->n > 0;
-}
-
 /* writes items / den: an all-minus numerator as -(...)/den */
 static void put_quotient(StrBuf *b, PSum *items, const PSum *den, const Ctx *c)
 {
     /* and a sum in the order of its knots that starts with a minus:
-     * -(abs(t) - abs(t - 1) - ...)/2 */
-    int minus = all_negative(items) ||
-                (items->keep_order && items->n > 1 && items->t[0].neg);
+     * -(abs(t) - abs(t - 1) - ...)/2, unless the minus is its free part's */
+    int minus =
+        all_negative(items) || (items->keep_order && items->n > 1 &&
+                                items->t[0].neg && !free_part_last(items, c));
     if (minus)
         for (slong i = 0; i < items->n; i++)
             items->t[i].neg ^= 1;

@@ -333,6 +333,17 @@ static void test_printing(void **state)
                    FMT_TEXT,
                    "x = (60*t^3 - 360*t^2 + 1039*t - 1083 - 43*abs(t - 1)^3 + "
                    "43*abs(t - 3)^3)/7\n");
+    /* a scalar keeps its free part first, as the text writes x(t) = -2 +
+     * t - |t + 1| + |t - 1|; in a point's weight a negative free part goes
+     * last rather than a minus in front of the whole (the square's O
+     * weight on t in [0, 4]) */
+    expect_printed("param t\nx = abs(t - 1) + abs(t - 3) - 2\n", FMT_TEXT,
+                   "x = -2 + abs(t - 1) + abs(t - 3)\n");
+    expect_printed("point O, A\nparam t\nR = O + (A - O)*(3 - abs(t - 1) - "
+                   "abs(t - 3))\n",
+                   FMT_TEXT,
+                   "R = O*(abs(t - 1) + abs(t - 3) - 2) + A*(3 - abs(t - 1) "
+                   "- abs(t - 3))\n");
     /* 2.2 ex. 1: x = P(t,0,1) - P(t,2,1) = 1/2 (|t| - |t-1| - |t-2| +
      * |t-3|) */
     expect_printed("param t\nx = ramp(t, 0, 1) - ramp(t, 2, 1)\n", FMT_TEXT,
