@@ -771,6 +771,13 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
         case ST_OUTPUT:
             st->names = refer_names(&E, st->names);
             break;
+        case ST_FIT: /* its names may be members: fit M[2] to f ... */
+            st->names = refer_names(&E, st->names);
+            ex_rewrite(&E, &st->lo);
+            ex_rewrite(&E, &st->hi);
+            if (st->expr)
+                ex_rewrite(&E, &st->expr);
+            break;
         }
     }
     free(E.ints);

@@ -757,6 +757,71 @@ static void check_solve(Sema *S, Stmt *st)
         }
 }
 
+/* a number written with literals and + - * / only (a fit's interval) */
+static int constant_number(const Node *n)
+{
+    switch (n->kind) {
+    case ND_NUM:
+        return 1;
+    case ND_NEG:
+        return constant_number(n->lhs);
+    case ND_ADD:
+    case ND_SUB:
+    case ND_MUL:
+    case ND_DIV:
+        return constant_number(n->lhs) && constant_number(n->rhs);
+    default:
+        return 0;
+    }
+}
+
+/* `fit X to f on [lo, hi] [samples m]` (docs/fit.md): X an earlier point
+ * definition (the curve), f an earlier scalar one (the target), lo and hi
+ * numbers, m a whole number >= 1; derive ignores the statement */
+static void check_fit(Sema *S, Stmt *st)
+{
+    static const char *const role[2] = {"a point definition (the curve)",
+                                        "a scalar definition (the target)"};
+    int i = 0;
+    long long m;
+    for (Name *nm = st->names; nm; nm = nm->next, i++) {
+        Sym *s = lookup(S, nm->text);
+        if (i > 1) {
+            diag_error(S->diag, nm->span,
+                       "fit names one curve and one target; expected 'fit X "
+                       "to f', found more names");
+            break;
+        }
+        if (!s)
+            diag_error(S->diag, nm->span,
+                       "undefined name '%s' in fit; expected %s defined "
+                       "before it",
+                       nm->text, role[i]);
+        else if (s->kind != SYM_DEF || (!s->bad && s->is_point != (i == 0)))
+            diag_error(S->diag, nm->span, "'%s' is %s; expected %s in fit",
+                       nm->text,
+                       s->kind != SYM_DEF ? sym_kind_word(s->kind)
+                       : s->is_point      ? "a point definition"
+                                          : "a scalar definition",
+                       role[i]);
+    }
+    if (i < 2 && st->names)
+        diag_error(S->diag, st->span,
+                   "fit names one curve and one target; expected 'fit X "
+                   "to f'");
+    if (!constant_number(st->lo))
+        diag_error(S->diag, st->lo->span,
+                   "expected a number as the lower end of the fit's "
+                   "interval");
+    else if (!constant_number(st->hi))
+        diag_error(S->diag, st->hi->span,
+                   "expected a number as the upper end of the fit's "
+                   "interval");
+    if (st->expr && (!whole_number(st->expr, &m) || m < 1))
+        diag_error(S->diag, st->expr->span,
+                   "expected a whole number >= 1 of samples");
+}
+
 /* The `output` list (output_stmt, or NULL: the last definition): each a
  * definition or a solved unknown, listed once.  Outputs are resolved last:
  * they may name definitions that follow. */
@@ -883,6 +948,9 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
             push(&S, &I->defs, &I->ndefs, &S.cap_defs, s);
             break;
         }
+        case ST_FIT:
+            check_fit(&S, st);
+            break;
         case ST_OUTPUT:
             if (output_stmt) {
                 diag_error(diag, st->span,

@@ -92,7 +92,9 @@ struct Name {
     X(ST_DEF, "def")         /* NAME = EXPR */                                 \
     X(ST_FUNC, "function")   /* def NAME(a, b) = EXPR: a user function */      \
     X(ST_SOLVE, "solve")     /* solve EQ, ... for X, ... */                    \
-    X(ST_OUTPUT, "output")   /* output NAME, ... */
+    X(ST_OUTPUT, "output")   /* output NAME, ... */                            \
+    X(ST_FIT, "fit") /* fit X to f on [lo, hi] [samples m]: names X, f;      \
+                        lo, hi; expr m or NULL (docs/fit.md) */
 
 typedef enum StmtKind {
 #define X(k, s) k,
@@ -122,8 +124,10 @@ struct Stmt {
     Name *names;          // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...),
                           // ST_FUNC: the parameters
     Name *name;           // ST_SCHEME, ST_DEF, ST_FUNC: the defined name
-    Node *expr;           // ST_DEF, ST_FUNC (the body)
-    Node *lo, *hi;        // ST_PARAM range (both NULL when absent); ST_CONST:
+    Node *expr;           // ST_DEF, ST_FUNC (the body); ST_FIT: samples
+                          // (NULL: the default)
+    Node *lo, *hi;        // ST_PARAM range (both NULL when absent); ST_FIT:
+                          // the interval; ST_CONST:
                           // its bounds (`const e in (0, 1)`, `const a > 0`: lo
                           // only, `const k < 1`: hi only)
     int lo_open, hi_open; // ST_PARAM, ST_CONST: an end that is excluded

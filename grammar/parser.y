@@ -101,6 +101,25 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
     s->names = names;
     return s;
 }
+
+/* `fit X to f on [lo, hi]`: fit, to and on are keywords only here; the
+ * first of them that is not the word expected is reported */
+static Stmt *stmt_fit(Parser *p, const char *const *kw, const Span *kws,
+                      Name *x, Name *f, Span span)
+{
+    static const char *const want[3] = {"fit", "to", "on"};
+    for (int i = 0; i < 3; i++)
+        if (strcmp(kw[i], want[i]) != 0) {
+            diag_error(p->diag, kws[i],
+                       "unexpected '%s'; expected 'fit X to f on [LO, HI]' "
+                       "(a curve fitted to a function, docs/fit.md)",
+                       kw[i]);
+            return NULL;
+        }
+    Stmt *s = stmt_names(p, ST_FIT, x, span);
+    x->next = f;
+    return s;
+}
 }
 
 %token <const char *> IDENT "identifier"
@@ -115,7 +134,7 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
 %precedence UMINUS
 %right '^'
 
-%type <Node *> expr args
+%type <Node *> expr args fit_samples
 %type <Name *> names name params
 %type <Stmt *> stmt
 %type <int> lbr rbr
@@ -199,9 +218,30 @@ stmt:
                           $$->names = $4;
                           $$->expr = $7;
                       } }
+| IDENT name IDENT name IDENT '[' expr ',' expr ']' fit_samples
+                    /* `fit X to f on [-1, 1] samples 100` (docs/fit.md) */
+                    { const char *kw[3] = {$1, $3, $5};
+                      Span kws[3] = {@1, @3, @5};
+                      $$ = stmt_fit(p, kw, kws, $2, $4, @$);
+                      if ($$) {
+                          $$->lo = $7;
+                          $$->hi = $9;
+                          $$->expr = $11;
+                      } }
 | SOLVE             { p->seqs = NULL; p->snames = NULL; }
   solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;
                       p->seqs = NULL; p->snames = NULL; }
+;
+
+/* a fit's optional `samples M` */
+fit_samples:
+  %empty            { $$ = NULL; }
+| IDENT expr        { $$ = $2;
+                      if (strcmp($1, "samples") != 0)
+                          diag_error(p->diag, @1,
+                                     "unexpected '%s'; expected 'samples M' "
+                                     "or the end of the fit statement",
+                                     $1); }
 ;
 
 /* the ends of an interval: '[' and ']' include them, '(' and ')' do not */
