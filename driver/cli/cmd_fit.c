@@ -10,6 +10,7 @@
  * A fit that does not converge is an error (exit 1) that says what was
  * reached; nothing is written to stdout then.
  */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -23,6 +24,8 @@ typedef enum FitFormat { FIT_TEXT, FIT_JSON } FitFormat;
 
 typedef struct FitArgs {
     const char *target;
+    const char *file; // the scheme form: pointcalc fit FILE
+    const char *data; // --data FILE.csv
     int has_on, has_nodes;
     FitOptions o;
     FitFormat format;
@@ -58,13 +61,15 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
     if (strcmp(opt, "--target") && strcmp(opt, "--on") &&
         strcmp(opt, "--nodes") && strcmp(opt, "--samples") &&
         strcmp(opt, "--starts") && strcmp(opt, "--max-iter") &&
-        strcmp(opt, "--format"))
+        strcmp(opt, "--format") && strcmp(opt, "--data"))
         return 0;
     if (!v) {
         args_usage_error(err, a->usage, "%s needs a value", opt);
         return -1;
     }
-    if (strcmp(opt, "--target") == 0) {
+    if (strcmp(opt, "--data") == 0) {
+        a->data = v;
+    } else if (strcmp(opt, "--target") == 0) {
         a->target = v;
         bad = v[strcspn(v, "\n\r")] != '\0' || !v[strspn(v, " \t")];
     } else if (strcmp(opt, "--on") == 0) {
@@ -107,16 +112,31 @@ static int parse_args(FitArgs *a, BudgetOptions *b, int argc, char **argv,
             used = fit_option(a, argc, argv, i, err);
         if (used < 0)
             return 2;
+        if (used == 0 && argv[i][0] != '-' && !a->file) {
+            a->file = argv[i];
+            continue;
+        }
         if (used == 0)
             return args_usage_error(
                 err, a->usage, "unknown or incomplete option '%s'", argv[i]);
         i += used - 1;
     }
-    if (!a->target || !a->has_on || !a->has_nodes)
+    if (a->file && (a->target || a->has_on || a->has_nodes))
+        return args_usage_error(err, a->usage,
+                                "a scheme FILE says its curve, target and "
+                                "interval: no --target, --on or --nodes");
+    if (a->file)
+        return 0;
+    if (a->target && a->data)
+        return args_usage_error(err, a->usage,
+                                "--target and --data: expected one target");
+    if ((!a->target && !a->data) || (!a->has_on && !a->data) ||
+        !a->has_nodes)
         return args_usage_error(err, a->usage, "fit needs %s",
-                                !a->target   ? "--target 'EXPR'"
-                                : !a->has_on ? "--on LO,HI"
-                                             : "--nodes N");
+                                !a->target && !a->data
+                                    ? "FILE, --target 'EXPR' or --data FILE"
+                                : !a->has_nodes ? "--nodes N"
+                                                : "--on LO,HI");
     return 0;
 }
 
@@ -173,15 +193,19 @@ static void node_values(Fit *f, const FitResult *r, double *y)
     free(res);
 }
 
-static void print_json(FILE *out, const FitArgs *a, Fit *f, const FitResult *r,
+static void print_json(FILE *out, const FitInfo *in, Fit *f, const FitResult *r,
                        const double *y, const double *cx, const double *cy)
 {
     fputs("{\"target\": ", out);
-    json_string(out, a->target);
+    json_string(out, in->target);
+    if (in->curve) {
+        fputs(", \"curve\": ", out);
+        json_string(out, in->curve);
+    }
     fputs(", \"on\": ", out);
-    double on[2] = {a->o.lo, a->o.hi};
+    double on[2] = {f->o.lo, f->o.hi};
     json_array(out, on, 2);
-    fprintf(out, ", \"samples\": %d, \"nodes\": ", a->o.samples);
+    fprintf(out, ", \"samples\": %d, \"nodes\": ", f->o.samples);
     json_array(out, r->nodes, f->n);
     fputs(", \"values\": ", out);
     json_array(out, y, f->n);
@@ -203,18 +227,25 @@ static void print_json(FILE *out, const FitArgs *a, Fit *f, const FitResult *r,
     json_number(out, r->start_mse[1]);
     fputs("}, \"chebyshev_lagrange_mse\": ", out);
     json_number(out, r->cheb_lagrange_mse);
-    fputs(", \"x_coefficients\": ", out);
-    json_array(out, cx, f->n);
-    fputs(", \"y_coefficients\": ", out);
-    json_array(out, cy, f->n);
+    if (f->coef) {
+        fputs(", \"x_coefficients\": ", out);
+        json_array(out, cx, f->n);
+        fputs(", \"y_coefficients\": ", out);
+        json_array(out, cy, f->n);
+    } else if (in->point_eq) {
+        fputs(", \"point_equation\": ", out);
+        json_string(out, in->point_eq);
+    }
     fputs("}\n", out);
 }
 
-static void print_text(FILE *out, const FitArgs *a, Fit *f, const FitResult *r,
+static void print_text(FILE *out, const FitInfo *in, Fit *f, const FitResult *r,
                        const double *y, const double *cx, const double *cy)
 {
+    if (in->curve)
+        fprintf(out, "fit %s to %s\n", in->curve, in->target);
     pc_fprintf(out, "target: %s on [%.17g, %.17g], %d nodes, m = %d\n",
-               a->target, a->o.lo, a->o.hi, f->n, a->o.samples);
+               in->target, f->o.lo, f->o.hi, f->n, f->o.samples);
     fputs("nodes:", out);
     for (int k = 0; k < f->n; k++)
         pc_fprintf(out, "%s %.9g", k ? "," : "", r->nodes[k]);
@@ -232,6 +263,12 @@ static void print_text(FILE *out, const FitArgs *a, Fit *f, const FitResult *r,
     fputs(", M_k = (x_k, f(x_k)):\n", out);
     for (int k = 0; k < f->n; k++)
         pc_fprintf(out, "  M_%d = (%.9g, %.9g)\n", k + 1, r->nodes[k], y[k]);
+    if (!f->coef) {
+        fprintf(out, "x(t), y(t): the weights are not polynomials in t; "
+                     "the curve:\n%s",
+                in->point_eq ? in->point_eq : "?\n");
+        return;
+    }
     fputs("x(t) = ", out);
     print_poly(out, cx, f->n);
     fputs("\ny(t) = ", out);
@@ -258,37 +295,77 @@ static void not_converged(FILE *err, const Fit *f, const FitResult *r)
     fputc('\n', err);
 }
 
+/* where the reports go */
+typedef struct FitOut {
+    FILE *out, *err;
+    FitFormat format;
+} FitOut;
+
+/* runs f and prints what it found (a FitReport) */
+static int run_and_print(void *ctx, Fit *f, const FitInfo *info)
+{
+    const FitOut *o = ctx;
+    FitResult r;
+    int rc = fit_run(f, &r);
+    if (rc) {
+        not_converged(o->err, f, &r);
+    } else {
+        double *y = pc_xmalloc(sizeof *y * (size_t)f->n * 3);
+        double *cx = y + f->n, *cy = cx + f->n;
+        node_values(f, &r, y);
+        if (f->coef) {
+            poly_of(cx, f, r.nodes);
+            poly_of(cy, f, y);
+        }
+        if (o->format == FIT_JSON)
+            print_json(o->out, info, f, &r, y, cx, cy);
+        else
+            print_text(o->out, info, f, &r, y, cx, cy);
+        free(y);
+    }
+    fit_result_clear(&r);
+    return rc;
+}
+
 int cli_fit(int argc, char **argv, FILE *out, FILE *err)
 {
-    FitArgs a = {.o = {.samples = 100, .starts = 8},
+    FitArgs a = {.o = {.samples = 100, .starts = 8, .lo = NAN, .hi = NAN},
                  .format = FIT_TEXT,
                  .usage = help_usage("fit")};
     BudgetOptions b;
     int rc = parse_args(&a, &b, argc, argv, err);
     if (rc)
         return rc;
+    FitOut fo = {out, err, a.format};
     budget_arm(b.max_seconds, b.max_memory);
-    Fit *f = fit_new(a.target, &a.o, err, &rc);
+    if (a.file) {
+        rc = fit_scheme_run(a.file, a.data, &a.o, run_and_print, &fo, err);
+        budget_disarm();
+        return rc;
+    }
+    Fit *f = NULL;
+    if (a.data) {
+        FitTarget t;
+        double *phi = NULL, *coef = NULL;
+        rc = 1;
+        if (fit_target_data(&t, a.data, &a.o, err) == 0 &&
+            (rc = fit_check_options(&a.o, err) ? 2 : 1) == 1 &&
+            fit_lagrange_curve(a.o.nodes, (size_t)a.o.samples + 1, &phi,
+                               &coef, err) == 0)
+            f = fit_new_from(&a.o, &t, phi, coef, 1, err, &rc);
+        else {
+            fit_spline_free(t.spline);
+            free(phi);
+            free(coef);
+        }
+    } else {
+        f = fit_new(a.target, &a.o, err, &rc);
+    }
     budget_disarm();
     if (!f)
         return rc;
-    FitResult r;
-    rc = fit_run(f, &r);
-    if (rc) {
-        not_converged(err, f, &r);
-    } else {
-        double *y = pc_xmalloc(sizeof *y * (size_t)f->n * 3);
-        double *cx = y + f->n, *cy = cx + f->n;
-        node_values(f, &r, y);
-        poly_of(cx, f, r.nodes);
-        poly_of(cy, f, y);
-        if (a.format == FIT_JSON)
-            print_json(out, &a, f, &r, y, cx, cy);
-        else
-            print_text(out, &a, f, &r, y, cx, cy);
-        free(y);
-    }
-    fit_result_clear(&r);
+    FitInfo info = {.target = a.data ? a.data : a.target};
+    rc = run_and_print(&fo, f, &info);
     fit_free(f);
     return rc;
 }

@@ -39,12 +39,16 @@ static const char curve_text[] =
     "solve subst(X, t, (i-1)/n) = M[i] for i in 2..n for C[2..n]\n"
     "output X\n";
 
-/* the exact coefficients of each phi_k from the derived weights: coef[k*n
- * + j] = that of t^j.  -1 when a weight is not a polynomial in t. */
-static int curve_coefficients(double *coef, const Derived *d, int n)
+/* the exact coefficients of each phi_k, weights of output `out` in ring
+ * variable var: coef[k*n + j] = that of t^j.  -1 when a weight is not a
+ * polynomial in that variable alone of degree < n. */
+int fit_curve_coefficients(double *coef, const Derived *d, int out, slong var,
+                           int n)
 {
-    const DerivedOutput *X = &d->outputs[0];
+    const DerivedOutput *X = &d->outputs[out];
     const fmpz_mpoly_ctx_struct *ctx = d->ring.ctx;
+    slong nv = ctx->minfo->nvars;
+    ulong *ex = pc_xmalloc(sizeof *ex * (size_t)(nv ? nv : 1));
     int rc = 0;
     fmpz_t c, den;
     fmpq_t q;
@@ -61,8 +65,11 @@ static int curve_coefficients(double *coef, const Derived *d, int n)
         }
         fmpz_mpoly_get_fmpz(den, w->den, ctx);
         for (slong e = 0; e < fmpz_mpoly_length(w->num, ctx); e++) {
-            ulong j = fmpz_mpoly_get_term_var_exp_ui(w->num, e, 0, ctx);
-            if (j >= (ulong)n || fmpz_mpoly_total_degree_si(w->num, ctx) >= n) {
+            fmpz_mpoly_get_term_exp_ui(ex, w->num, e, ctx);
+            ulong j = ex[var], other = 0;
+            for (slong v = 0; v < nv; v++)
+                other += v == var ? 0 : ex[v];
+            if (j >= (ulong)n || other) {
                 rc = -1;
                 break;
             }
@@ -74,16 +81,20 @@ static int curve_coefficients(double *coef, const Derived *d, int n)
     fmpq_clear(q);
     fmpz_clear(den);
     fmpz_clear(c);
+    free(ex);
     return rc;
 }
 
-/* phi[i*n + k] = phi_k(t_i): the curve's plan evaluated with base point
- * M_k at the k-th unit vector of R^n */
-static int curve_table(double *phi, const Plan *p, size_t ns, int n)
+/* phi[i*n + k] = phi_k(t_i), t_i = i/(ns - 1): output out of p evaluated
+ * with base point M_k at the k-th unit vector of R^n, t its param `param`
+ * of nparams (the others 0) */
+int fit_curve_table(double *phi, const Plan *p, int out, int param,
+                    int nparams, size_t ns, int n)
 {
-    double *t = pc_xmalloc(sizeof *t * ns);
+    double *t = pc_xcalloc(ns * 2, sizeof *t);
     double *unit = pc_xcalloc((size_t)n * (size_t)n, sizeof *unit);
     const double **pts = pc_xmalloc(sizeof *pts * (size_t)n);
+    const double **params = pc_xmalloc(sizeof *params * (size_t)nparams);
     unsigned char *st = pc_xmalloc(ns);
     for (size_t i = 0; i < ns; i++)
         t[i] = (double)i / (double)(ns - 1);
@@ -91,37 +102,40 @@ static int curve_table(double *phi, const Plan *p, size_t ns, int n)
         unit[k * n + k] = 1;
         pts[k] = unit + k * n;
     }
-    const double *params[1] = {t};
-    size_t bad = plan_eval(p, 0, ns, params, NULL, pts, n, phi, st);
+    for (int j = 0; j < nparams; j++)
+        params[j] = j == param ? t : t + ns;
+    size_t bad = plan_eval(p, out, ns, params, NULL, pts, n, phi, st);
     free(st);
+    free(params);
     free(pts);
     free(unit);
     free(t);
     return bad ? -1 : 0;
 }
 
-/* the interpolation curve through N nodes, derived: its coefficients and
- * the table of its weights */
-static int derive_curve(Fit *f, FILE *err)
+int fit_lagrange_curve(int n, size_t ns, double **phi, double **coef,
+                       FILE *err)
 {
     char def[32];
     const char *defs[1] = {def};
-    pc_snprintf(def, sizeof def, "n=%d", f->n - 1);
+    pc_snprintf(def, sizeof def, "n=%d", n - 1);
     DeriveOptions opt = {
         .max_seconds = BUDGET_DEFAULT_SECONDS, .defines = defs, .ndefines = 1};
     Derived *d = derive_source_ex("<fit curve>", curve_text,
                                   sizeof curve_text - 1, err, NULL, &opt);
     Plan *p = d ? lower_derived(d, err) : NULL;
-    int rc = p && d->noutputs == 1 && d->npoints == f->n ? 0 : -1;
+    int rc = p && d->noutputs == 1 && d->npoints == n ? 0 : -1;
+    *phi = pc_xmalloc(sizeof **phi * ns * (size_t)n);
+    *coef = pc_xmalloc(sizeof **coef * (size_t)n * (size_t)n);
     if (rc == 0)
-        rc = curve_coefficients(f->coef, d, f->n);
+        rc = fit_curve_coefficients(*coef, d, 0, 0, n);
     if (rc == 0)
-        rc = curve_table(f->phi, p, f->ns, f->n);
+        rc = fit_curve_table(*phi, p, 0, 0, 1, ns, n);
     if (rc != 0)
         fprintf(err,
                 "pointcalc: fit: the derived curve through %d nodes is "
                 "not an interpolation polynomial curve\n",
-                f->n);
+                n);
     plan_free(p);
     derived_free(d);
     return rc;
@@ -165,9 +179,23 @@ static const char *status_text(unsigned char st)
 
 enum { CHECK_SAMPLES = 2001 };
 
+/* f (o = 0) or f' (o = 1) at x[0..n-1] into v, statuses into st */
+static void target_at(const Fit *f, int o, size_t n, const double *x,
+                      double *v, unsigned char *st)
+{
+    const FitTarget *t = &f->tg;
+    if (t->spline) {
+        fit_spline_eval(t->spline, o, n, x, v, st);
+        return;
+    }
+    f->tpar[t->param] = x;
+    plan_eval(t->plan, o ? t->fp_out : t->f_out, n, f->tpar, NULL, NULL, 0, v,
+              st);
+}
+
 /* f on CHECK_SAMPLES points of [lo, hi], ends included: defined and
  * finite everywhere, else an error that says where */
-static int check_target(const Fit *f, const char *expr, FILE *err)
+static int check_target(const Fit *f, FILE *err)
 {
     size_t n = CHECK_SAMPLES;
     double *x = pc_xmalloc(sizeof *x * n), *v = pc_xmalloc(sizeof *v * n);
@@ -176,8 +204,7 @@ static int check_target(const Fit *f, const char *expr, FILE *err)
         x[i] = i + 1 == n ? f->o.hi
                           : f->o.lo + (f->o.hi - f->o.lo) * (double)i /
                                           (double)(n - 1);
-    const double *params[1] = {x};
-    plan_eval(f->target, 0, n, params, NULL, NULL, 0, v, st);
+    target_at(f, 0, n, x, v, st);
     size_t first = n, last = 0, count = 0;
     for (size_t i = 0; i < n; i++) {
         if (st[i] == PLAN_STATUS_OK && isfinite(v[i]))
@@ -194,15 +221,16 @@ static int check_target(const Fit *f, const char *expr, FILE *err)
                    "pointcalc: fit: the target '%s' is undefined at x = %.9g: "
                    "%s; %zu of %zu samples of [%.9g, %.9g] are, from x = "
                    "%.9g to x = %.9g\n",
-                   expr, x[first], status_text(st[first]), count, n, f->o.lo,
-                   f->o.hi, x[first], x[last]);
+                   f->tg.label, x[first],
+                   f->tg.spline ? "outside the data" : status_text(st[first]),
+                   count, n, f->o.lo, f->o.hi, x[first], x[last]);
     free(st);
     free(v);
     free(x);
     return count ? -1 : 0;
 }
 
-static int check_options(const FitOptions *o, FILE *err)
+int fit_check_options(const FitOptions *o, FILE *err)
 {
     if (!(o->lo < o->hi) || !isfinite(o->lo) || !isfinite(o->hi)) {
         pc_fprintf(err,
@@ -238,29 +266,48 @@ static int check_options(const FitOptions *o, FILE *err)
     return 0;
 }
 
-Fit *fit_new(const char *target, const FitOptions *o, FILE *err, int *rc)
+static void target_clear(FitTarget *t)
+{
+    plan_free(t->plan);
+    fit_spline_free(t->spline);
+    t->plan = NULL;
+    t->spline = NULL;
+}
+
+Fit *fit_new_from(const FitOptions *o, FitTarget *t, double *phi, double *coef,
+                  int ends_exact, FILE *err, int *rc)
 {
     *rc = 2;
-    if (check_options(o, err) != 0)
+    if (fit_check_options(o, err) != 0) {
+        target_clear(t);
+        free(phi);
+        free(coef);
         return NULL;
+    }
     *rc = 1;
     Fit *f = pc_xcalloc(1, sizeof *f);
     f->o = *o;
     f->n = o->nodes;
     f->nu = o->nodes - 2;
     f->ns = (size_t)o->samples + 1;
+    f->tg = *t;
+    f->phi = phi;
+    f->coef = coef;
+    f->ends_exact = ends_exact;
     size_t n = (size_t)f->n, ne = f->ns + n;
-    f->phi = pc_xmalloc(sizeof *f->phi * f->ns * n);
-    f->coef = pc_xmalloc(sizeof *f->coef * n * n);
+    size_t nz = ne > CHECK_SAMPLES ? ne : CHECK_SAMPLES;
+    int np = t->plan ? t->nparams : 0;
+    f->tpar = pc_xcalloc((size_t)(np ? np : 1), sizeof *f->tpar);
+    f->tzero = pc_xcalloc(np > 1 ? nz : 1, sizeof *f->tzero);
+    for (int j = 0; j < np; j++)
+        f->tpar[j] = f->tzero;
     f->x = pc_xmalloc(sizeof *f->x * n);
     f->xs = pc_xmalloc(sizeof *f->xs * ne);
     f->fx = pc_xmalloc(sizeof *f->fx * ne);
     f->fpx = pc_xmalloc(sizeof *f->fpx * ne);
     f->st = pc_xmalloc(ne);
     f->jx = pc_xmalloc(sizeof *f->jx * f->ns * n);
-    f->target = derive_target(target, err);
-    if (!f->target || check_target(f, target, err) != 0 ||
-        derive_curve(f, err) != 0) {
+    if (check_target(f, err) != 0) {
         fit_free(f);
         return NULL;
     }
@@ -268,11 +315,33 @@ Fit *fit_new(const char *target, const FitOptions *o, FILE *err, int *rc)
     return f;
 }
 
+Fit *fit_new(const char *target, const FitOptions *o, FILE *err, int *rc)
+{
+    *rc = 2;
+    if (fit_check_options(o, err) != 0)
+        return NULL;
+    *rc = 1;
+    FitTarget t = {.nparams = 1, .fp_out = 1, .label = target};
+    double *phi = NULL, *coef = NULL;
+    t.plan = derive_target(target, err);
+    if (!t.plan ||
+        fit_lagrange_curve(o->nodes, (size_t)o->samples + 1, &phi, &coef,
+                           err) != 0) {
+        target_clear(&t);
+        free(phi);
+        free(coef);
+        return NULL;
+    }
+    return fit_new_from(o, &t, phi, coef, 1, err, rc);
+}
+
 void fit_free(Fit *f)
 {
     if (!f)
         return;
-    plan_free(f->target);
+    target_clear(&f->tg);
+    free(f->tpar);
+    free(f->tzero);
     free(f->phi);
     free(f->coef);
     free(f->x);
@@ -289,14 +358,12 @@ void fit_free(Fit *f)
 static int target_eval(Fit *f, int o, double *v)
 {
     size_t ne = f->ns + (size_t)f->n;
-    const double *params[1] = {f->xs};
-    plan_eval(f->target, o, ne, params, NULL, NULL, 0, v, f->st);
+    target_at(f, o, ne, f->xs, v, f->st);
     for (size_t i = 0; i < ne; i++)
         if (f->st[i] != PLAN_STATUS_OK || !isfinite(v[i]))
             return -1;
     return 0;
 }
-
 int fit_residuals_x(Fit *f, const double *xin, double *r, double *J)
 {
     int n = f->n, nu = f->nu;
@@ -311,8 +378,10 @@ int fit_residuals_x(Fit *f, const double *xin, double *r, double *J)
         f->xs[i] = s;
     }
     /* the ends are exact: no rounding may take x(t) outside [lo, hi] */
-    f->xs[0] = f->o.lo;
-    f->xs[f->ns - 1] = f->o.hi;
+    if (f->ends_exact) {
+        f->xs[0] = f->o.lo;
+        f->xs[f->ns - 1] = f->o.hi;
+    }
     memcpy(f->xs + f->ns, f->x, sizeof *f->x * (size_t)n);
     if (target_eval(f, 0, f->fx) != 0)
         return -1;
@@ -329,8 +398,10 @@ int fit_residuals_x(Fit *f, const double *xin, double *r, double *J)
     /* f' at the ends of the interval is never needed (phi_j(0) = phi_j(1)
      * = 0 for the inner nodes j, and only the inner nodes' f'(x_j) enter):
      * sqrt(1 - x^2) has none there */
-    f->xs[0] = f->xs[1];
-    f->xs[f->ns - 1] = f->xs[f->ns - 2];
+    if (f->ends_exact) {
+        f->xs[0] = f->xs[1];
+        f->xs[f->ns - 1] = f->xs[f->ns - 2];
+    }
     f->xs[f->ns] = f->xs[f->ns + 1];
     f->xs[f->ns + (size_t)n - 1] = f->xs[f->ns + (size_t)n - 2];
     if (target_eval(f, 1, f->fpx) != 0)
@@ -339,7 +410,7 @@ int fit_residuals_x(Fit *f, const double *xin, double *r, double *J)
     for (size_t i = 0; i < f->ns; i++) {
         const double *ph = f->phi + i * (size_t)n;
         double *row = J + i * (size_t)nu;
-        int end = i == 0 || i + 1 == f->ns;
+        int end = f->ends_exact && (i == 0 || i + 1 == f->ns);
         for (int j = 1; j <= nu; j++)
             row[j - 1] = end ? 0 : ph[j] * (f->fpx[i] - fpk[j]);
     }

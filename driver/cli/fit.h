@@ -44,16 +44,46 @@ typedef struct FitOptions {
     int max_iter;  // iterations a start at most (--max-iter; 0: 3000)
 } FitOptions;
 
+/* a target given as data (fit_data.c): the natural cubic spline through
+ * n points (x increasing); m its second derivatives at them */
+typedef struct FitSpline {
+    int n;
+    double *x, *y, *m;
+} FitSpline;
+
+/* Reads FILE.csv (x,y rows, an optional header line, x increasing, at
+ * least 3 rows) into its spline; NULL after reporting to err. */
+FitSpline *fit_spline_read(const char *path, FILE *err);
+void fit_spline_free(FitSpline *s);
+/* s (o = 0) or s' (o = 1) at x[0..n-1] into v, st[i] = 0, or 3 where x[i]
+ * lies outside the data; returns the count of those */
+size_t fit_spline_eval(const FitSpline *s, int o, size_t n, const double *x,
+                       double *v, unsigned char *st);
+
+/* what f is: a Plan's outputs f_out (f) and fp_out (f') of its param
+ * `param` (of nparams; the others 0), or a spline (plan NULL) */
+typedef struct FitTarget {
+    Plan *plan;
+    int f_out, fp_out, param, nparams;
+    FitSpline *spline;
+    const char *label; // for messages: the expression, "f", "FILE.csv"
+} FitTarget;
+
 typedef struct Fit {
     FitOptions o;
     int n;        // N nodes
     int nu;       // N - 2 unknowns
     size_t ns;    // m + 1 samples
-    Plan *target; // outputs f and fp of param x
+    FitTarget tg; // f and f' (owned)
     double *phi;  // ns * n: phi[i*n + k] = phi_k(t_i), from the derived
                   // curve's plan
     double *coef; // n * n: coef[k*n + j] = the exact coefficient of t^j in
-                  // phi_k (from the derived weights)
+                  // phi_k (from the derived weights), or NULL: the
+                  // weights are not polynomials
+    int ends_exact; // phi_1 = 1 at t = 0 and phi_N = 1 at t = 1: x(0) and
+                    // x(1) are set to LO and HI exactly
+    const double **tpar; // scratch: the params of the target's plan
+    double *tzero;       // ... the zeros of those that are not x
     /* scratch for the residuals */
     double *x, *xs, *fx, *fpx;
     unsigned char *st;
@@ -79,6 +109,40 @@ typedef struct FitResult {
 /* Derives and checks; NULL after reporting to err (*rc = 1: the target
  * has an error or is undefined on the interval; 2: bad options). */
 Fit *fit_new(const char *target, const FitOptions *o, FILE *err, int *rc);
+/* The same with the target t (taken over: freed with the fit, also on
+ * failure) and the curve's table phi (ns * N, taken over), its
+ * coefficients coef (N * N, taken over, or NULL) and ends_exact: what
+ * the scheme form (fit_scheme.c) and --data give. */
+Fit *fit_new_from(const FitOptions *o, FitTarget *t, double *phi, double *coef,
+                  int ends_exact, FILE *err, int *rc);
+/* o's values in range, else -1 after reporting */
+int fit_check_options(const FitOptions *o, FILE *err);
+/* --data: t's spline read from csv; o->lo, o->hi NaN take the data's ends */
+int fit_target_data(FitTarget *t, const char *csv, FitOptions *o, FILE *err);
+/* the interpolation curve through N nodes (the families scheme): its
+ * table and coefficients for fit_new_from */
+int fit_lagrange_curve(int n, size_t ns, double **phi, double **coef,
+                       FILE *err);
+/* the pieces of fit_lagrange_curve, for the scheme form: the exact
+ * coefficients of output out's weights in ring variable var (-1: not
+ * polynomials in it alone of degree < n), and its table */
+int fit_curve_coefficients(double *coef, const Derived *d, int out, slong var,
+                           int n);
+int fit_curve_table(double *phi, const Plan *p, int out, int param,
+                    int nparams, size_t ns, int n);
+/* The scheme form (fit_scheme.c): `pointcalc fit FILE` derives the
+ * scheme and, for each of its fit statements in order, builds the Fit
+ * (samples, starts and max_iter of o unless the statement says; with
+ * data, f is that CSV's spline) and calls report.  Returns 0, or the
+ * first non-zero of report and the errors (1: in the scheme or its fit
+ * statements, located; 2: usage). */
+typedef struct FitInfo {
+    const char *curve, *target; // the names of X and f (as written)
+    const char *point_eq; // when f->coef is NULL: X's point equation
+} FitInfo;
+typedef int (*FitReport)(void *ctx, Fit *f, const FitInfo *info);
+int fit_scheme_run(const char *path, const char *data, const FitOptions *o,
+                   FitReport report, void *ctx, FILE *err);
 void fit_free(Fit *f);
 
 /* Runs the starts; returns 0 when the best start converged, 1 when not

@@ -1,0 +1,417 @@
+/*
+ * fit_scheme.c - `pointcalc fit FILE`: the fit statements of a scheme
+ * (`fit X to f on [LO, HI] [samples M]`, docs/fit.md).
+ *
+ *   FILE -> parse, expand, sema (the statements, their names and kinds)
+ *        -> per fit: the scheme again with its outputs replaced by
+ *           X, f, diff(f, p) and diff(X, p) for every param p -> Derived
+ *        -> x = the one param f depends on, t the one X depends on
+ *        -> phi_k(t_i) from X's Plan at unit vectors; the check that X
+ *           interpolates its base points (grid + Gauss-Newton)
+ *        -> fit_new_from (fit.c) -> report (cmd_fit.c runs and prints)
+ *
+ * The nodes are the scheme's base points in declaration order; the first
+ * and the last are LO and HI.  The replaced outputs are blanked in place,
+ * so every diagnostic keeps its line and column.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/mem.h"
+#include "base/numfmt.h"
+#include "compiler/expand.h"
+#include "compiler/print/book.h"
+#include "compiler/sema.h"
+#include "driver/cli/fit.h"
+#include "runtime/eval.h"
+#include "grammar/parse.h"
+
+enum { FIT_GRID = 1001, FIT_NEWTON = 50 };
+#define FIT_INTERP_TOL 1e-9
+
+/* one fit statement, read off the checked AST */
+typedef struct FitStmt {
+    Span span;
+    Span xs, fs; // the names X and f as written
+    double lo, hi;
+    int samples; // 0: the default
+} FitStmt;
+
+/* the value of a constant number (sema checked its shape) */
+static double const_value(const Node *n)
+{
+    switch (n->kind) {
+    case ND_NUM:
+        return pc_strtod(n->text, NULL);
+    case ND_NEG:
+        return -const_value(n->lhs);
+    case ND_ADD:
+        return const_value(n->lhs) + const_value(n->rhs);
+    case ND_SUB:
+        return const_value(n->lhs) - const_value(n->rhs);
+    case ND_MUL:
+        return const_value(n->lhs) * const_value(n->rhs);
+    default:
+        return const_value(n->lhs) / const_value(n->rhs);
+    }
+}
+
+typedef struct FitFront {
+    char *text; // the file (owned)
+    size_t len;
+    FitStmt *fits;
+    int nfits;
+    char **params; // the params' names (owned)
+    int nparams, nconsts;
+    Span *outputs; // the output statements, to blank
+    int noutputs;
+} FitFront;
+
+static void front_clear(FitFront *F)
+{
+    for (int j = 0; j < F->nparams; j++)
+        free(F->params[j]);
+    free(F->params);
+    free(F->fits);
+    free(F->outputs);
+    free(F->text);
+}
+
+static char *read_text(const char *path, size_t *len, FILE *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        fprintf(err, "%s: error: cannot open the file\n", path);
+        return NULL;
+    }
+    size_t cap = 4096, n = 0, got;
+    char *s = pc_xmalloc(cap);
+    while ((got = fread(s + n, 1, cap - n, f)) > 0) {
+        n += got;
+        if (n == cap && cap < DERIVE_MAX_SOURCE)
+            s = pc_xrealloc(s, cap *= 2);
+        else if (n == cap)
+            break;
+    }
+    fclose(f);
+    *len = n;
+    return s;
+}
+
+/* the statements of the scheme's checked AST into F */
+static void collect(FitFront *F, const Scheme *sc, const SemaInfo *I)
+{
+    for (const Stmt *st = sc->stmts; st; st = st->next) {
+        if (st->kind == ST_OUTPUT) {
+            F->outputs = pc_xrealloc(F->outputs, sizeof *F->outputs *
+                                                     (size_t)(F->noutputs + 1));
+            F->outputs[F->noutputs++] = st->span;
+        }
+        if (st->kind != ST_FIT)
+            continue;
+        F->fits = pc_xrealloc(F->fits, sizeof *F->fits * (size_t)(F->nfits + 1));
+        FitStmt *s = &F->fits[F->nfits++];
+        s->span = st->span;
+        s->xs = st->names->span;
+        s->fs = st->names->next->span;
+        s->lo = const_value(st->lo);
+        s->hi = const_value(st->hi);
+        s->samples = st->expr ? (int)const_value(st->expr) : 0;
+    }
+    F->nparams = I->nparams;
+    F->nconsts = I->nconsts;
+    F->params = pc_xcalloc((size_t)(I->nparams ? I->nparams : 1),
+                           sizeof *F->params);
+    for (int j = 0; j < I->nparams; j++)
+        F->params[j] = pc_xasprintf("%s", I->params[j]->name);
+}
+
+/* parse, expand and check the scheme; 0 or 1 after reporting */
+static int front(FitFront *F, const char *path, FILE *err)
+{
+    Arena arena;
+    Source src;
+    Diag diag;
+    memset(F, 0, sizeof *F);
+    F->text = read_text(path, &F->len, err);
+    if (!F->text)
+        return 1;
+    arena_init(&arena);
+    source_init(&src, path, F->text, F->len);
+    diag_init(&diag, &src, err);
+    diag_hold(&diag);
+    Scheme *sc = parse_scheme(&src, &arena, &diag);
+    char used = 0;
+    if (diag.nerrors == 0)
+        expand_scheme(sc, &arena, &diag, NULL, 0, &used);
+    SemaInfo *I = diag.nerrors == 0 ? sema_check(sc, &arena, &diag) : NULL;
+    if (diag.nerrors == 0)
+        collect(F, sc, I);
+    int rc = diag.nerrors ? 1 : 0;
+    diag_flush(&diag);
+    source_clear(&src);
+    arena_reset(&arena);
+    return rc;
+}
+
+/* the scheme with its outputs blanked and X, f and their derivatives by
+ * every param appended as the outputs */
+static char *fit_text(const FitFront *F, const FitStmt *s, size_t *len)
+{
+    char *t = pc_xmalloc(F->len + 1);
+    memcpy(t, F->text, F->len);
+    t[F->len] = '\0';
+    for (int i = 0; i < F->noutputs; i++)
+        for (int b = F->outputs[i].start; b < F->outputs[i].end; b++)
+            if (t[b] != '\n')
+                t[b] = ' ';
+    int xl = s->xs.end - s->xs.start, fl = s->fs.end - s->fs.start;
+    const char *X = F->text + s->xs.start, *f = F->text + s->fs.start;
+    char *all = pc_xasprintf("%s\n", t);
+    free(t);
+    for (int j = 0; j < F->nparams; j++) {
+        char *next = pc_xasprintf(
+            "%s__fit_f%d = diff(%.*s, %s)\n__fit_x%d = diff(%.*s, %s)\n", all,
+            j, fl, f, F->params[j], j, xl, X, F->params[j]);
+        free(all);
+        all = next;
+    }
+    char *next = pc_xasprintf("%soutput %.*s, %.*s", all, xl, X, fl, f);
+    free(all);
+    all = next;
+    for (int w = 0; w < 2; w++)
+        for (int j = 0; j < F->nparams; j++) {
+            next = pc_xasprintf("%s, __fit_%c%d", all, w ? 'x' : 'f', j);
+            free(all);
+            all = next;
+        }
+    next = pc_xasprintf("%s\n", all);
+    free(all);
+    *len = strlen(next);
+    return next;
+}
+
+static int output_is_zero(const Derived *d, const DerivedOutput *o)
+{
+    if (o->kind == KIND_SCALAR)
+        return ratfun_is_zero(o->scalar, &d->ring);
+    for (slong i = 0; i < o->eq->len; i++)
+        if (!ratfun_is_zero(&o->w[i], &d->ring))
+            return 0;
+    return 1;
+}
+
+/* the one param output `first + j` (j = 0..np-1) is non-zero for: what
+ * the value of X or f depends on; -1 none, -2 several */
+static int the_param(const Derived *d, int first, int np)
+{
+    int found = -1;
+    for (int j = 0; j < np; j++)
+        if (!output_is_zero(d, &d->outputs[first + j]))
+            found = found == -1 ? j : -2;
+    return found;
+}
+
+/* the weights of output out (n of them) at one t into w */
+static void weights_at(const Plan *p, int out, int param, int np, int n,
+                       double t, double *w)
+{
+    double *unit = pc_xcalloc((size_t)n * (size_t)n, sizeof *unit);
+    const double **pts = pc_xmalloc(sizeof *pts * (size_t)n);
+    const double **params = pc_xmalloc(sizeof *params * (size_t)np);
+    double zero = 0;
+    unsigned char st;
+    for (int k = 0; k < n; k++) {
+        unit[k * n + k] = 1;
+        pts[k] = unit + k * n;
+    }
+    for (int j = 0; j < np; j++)
+        params[j] = j == param ? &t : &zero;
+    plan_eval(p, out, 1, params, NULL, pts, n, w, &st);
+    free(params);
+    free(pts);
+    free(unit);
+}
+
+/* the t in [0, 1] where base point k's weight is 1 and the others 0:
+ * the grid's best, then Gauss-Newton on the n residuals; returns the
+ * largest residual left, tk the t */
+static double node_t(const Plan *p, const double *grid, int k, int xout,
+                     int dout, int param, int np, int n, double *tk)
+{
+    double best = INFINITY, t = 0, w[LSQ_MAX_UNKNOWNS + 2],
+                  dw[LSQ_MAX_UNKNOWNS + 2], res = 0;
+    for (int i = 0; i < FIT_GRID; i++) {
+        double s = 0;
+        for (int j = 0; j < n; j++) {
+            double r = grid[i * n + j] - (j == k);
+            s += r * r;
+        }
+        if (s < best) {
+            best = s;
+            t = (double)i / (FIT_GRID - 1);
+        }
+    }
+    for (int it = 0; it <= FIT_NEWTON; it++) {
+        weights_at(p, xout, param, np, n, t, w);
+        weights_at(p, dout, param, np, n, t, dw);
+        double num = 0, den = 0;
+        res = 0;
+        for (int j = 0; j < n; j++) {
+            double r = w[j] - (j == k);
+            num += r * dw[j];
+            den += dw[j] * dw[j];
+            res = fmax(res, fabs(r));
+        }
+        if (res <= 1e-15 || den == 0 || it == FIT_NEWTON)
+            break;
+        t = fmin(1, fmax(0, t - num / den));
+    }
+    *tk = t;
+    return res;
+}
+
+/* X interpolates its base points: else an error at the fit naming the
+ * first node that fails; *ends: node 1 at t = 0, node N at t = 1 */
+static int check_interpolation(const Derived *d, const Plan *p,
+                               const FitStmt *s, int param, int np, int *ends,
+                               FILE *err)
+{
+    int n = (int)d->npoints, dout = 2 + np + param, rc = 0;
+    double *grid = pc_xmalloc(sizeof *grid * FIT_GRID * (size_t)n);
+    double t0 = 0, t1 = 0;
+    fit_curve_table(grid, p, 0, param, np, FIT_GRID, n);
+    for (int k = 0; k < n && rc == 0; k++) {
+        double tk, res = node_t(p, grid, k, 0, dout, param, np, n, &tk);
+        if (k == 0)
+            t0 = tk;
+        if (k == n - 1)
+            t1 = tk;
+        if (res > FIT_INTERP_TOL) {
+            derived_error(d, err, s->span,
+                          "'%s' is not an interpolation curve through its "
+                          "nodes: no t in [0, 1] gives weight 1 to the base "
+                          "point %s and 0 to the others (closest: t = %.6g, "
+                          "off by %.3g)",
+                          d->outputs[0].name, d->points[k], tk, res);
+            rc = 1;
+        }
+    }
+    *ends = fabs(t0) <= FIT_INTERP_TOL && fabs(t1 - 1) <= FIT_INTERP_TOL;
+    free(grid);
+    return rc;
+}
+
+/* the curve's param and the target's, checked; -1 after reporting */
+static int find_params(const Derived *d, const FitFront *F, const FitStmt *s,
+                       int *xp, int *fp, FILE *err)
+{
+    int np = F->nparams;
+    const char *X = d->outputs[0].name, *f = d->outputs[1].name;
+    *fp = the_param(d, 2, np);
+    *xp = the_param(d, 2 + np, np);
+    if (F->nconsts > 0)
+        derived_error(d, err, s->span,
+                      "fit needs numbers: the scheme declares constants; "
+                      "expected a scheme without 'const'");
+    else if (*xp < 0)
+        derived_error(d, err, s->span,
+                      "the curve '%s' depends on %s; expected a point "
+                      "definition in one param",
+                      X, *xp == -1 ? "no param" : "more than one param");
+    else if (*fp < 0)
+        derived_error(d, err, s->span,
+                      "the target '%s' depends on %s; expected a scalar "
+                      "definition in one param (x)",
+                      f, *fp == -1 ? "no param" : "more than one param");
+    else if (d->npoints < 3 || d->npoints > LSQ_MAX_UNKNOWNS + 2)
+        derived_error(d, err, s->span,
+                      "the curve '%s' has %ld nodes (base points); a fit "
+                      "needs 3 .. %d",
+                      X, (long)d->npoints, LSQ_MAX_UNKNOWNS + 2);
+    else
+        return 0;
+    return -1;
+}
+
+/* one fit statement: derive, check, build the Fit, report */
+static int run_one(const FitFront *F, const FitStmt *s, const char *path,
+                   const char *data, const FitOptions *o, FitReport report,
+                   void *ctx, FILE *err)
+{
+    size_t len;
+    char *text = fit_text(F, s, &len);
+    DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS};
+    Derived *d = derive_source_ex(path, text, len, err, NULL, &opt);
+    free(text);
+    Plan *p = d ? lower_derived(d, err) : NULL;
+    int xp, fp, ends = 0, rc = 1, np = F->nparams;
+    if (!p || find_params(d, F, s, &xp, &fp, err) != 0 ||
+        check_interpolation(d, p, s, xp, np, &ends, err) != 0) {
+        plan_free(p);
+        derived_free(d);
+        return 1;
+    }
+    FitOptions fo = *o;
+    fo.lo = s->lo;
+    fo.hi = s->hi;
+    fo.nodes = (int)d->npoints;
+    if (s->samples)
+        fo.samples = s->samples;
+    size_t ns = (size_t)fo.samples + 1, n = (size_t)fo.nodes;
+    double *phi = NULL, *coef = pc_xmalloc(sizeof *coef * n * n);
+    char *eq = NULL;
+    if (fo.samples >= fo.nodes && fo.samples < LSQ_MAX_RESIDUALS) {
+        phi = pc_xmalloc(sizeof *phi * ns * n);
+        fit_curve_table(phi, p, 0, xp, np, ns, fo.nodes);
+    }
+    if (fit_curve_coefficients(coef, d, 0, xp, fo.nodes) != 0) {
+        BookOptions bo = {.origin = -1};
+        free(coef);
+        coef = NULL;
+        eq = book_output(d, &d->outputs[0], &bo);
+    }
+    FitTarget t = {.plan = p, .f_out = 1, .fp_out = 2 + fp, .param = fp,
+                   .nparams = np, .label = d->outputs[1].name};
+    if (data) {
+        plan_free(p);
+        t.plan = NULL;
+        if (fit_target_data(&t, data, &fo, err) != 0) {
+            free(phi);
+            free(coef);
+            free(eq);
+            derived_free(d);
+            return 1;
+        }
+    }
+    Fit *f = fit_new_from(&fo, &t, phi, coef, ends, err, &rc);
+    if (f) {
+        FitInfo info = {.curve = d->outputs[0].name,
+                        .target = data ? data : d->outputs[1].name,
+                        .point_eq = eq};
+        rc = report(ctx, f, &info);
+    }
+    fit_free(f);
+    free(eq);
+    derived_free(d);
+    return rc;
+}
+
+int fit_scheme_run(const char *path, const char *data, const FitOptions *o,
+                   FitReport report, void *ctx, FILE *err)
+{
+    FitFront F;
+    int rc = front(&F, path, err);
+    if (rc == 0 && F.nfits == 0) {
+        fprintf(err,
+                "%s: error: the scheme has no fit statement; expected 'fit "
+                "X to f on [LO, HI]' (docs/fit.md)\n",
+                path);
+        rc = 1;
+    }
+    for (int i = 0; i < F.nfits && rc == 0; i++)
+        rc = run_one(&F, &F.fits[i], path, data, o, report, ctx, err);
+    front_clear(&F);
+    return rc;
+}
