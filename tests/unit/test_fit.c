@@ -262,6 +262,106 @@ static void test_fit_cli_json_and_text(void **state)
     free(err);
 }
 
+
+/* the scheme form: examples/fit_runge6.pcs gives the --target form's
+ * 6-node Runge fit to 6 digits */
+static void test_fit_scheme_runge6(void **state)
+{
+    (void)state;
+    char *out, *err;
+    int rc = RUN("fit", "examples/fit_runge6.pcs");
+    assert_int_equal(rc, 0);
+    assert_string_equal(err, "");
+    assert_non_null(strstr(out, "fit X to f\n"));
+    assert_non_null(strstr(out, "nodes: -1, -0.233198"));
+    assert_non_null(strstr(out, ", -0.06054045"));
+    assert_non_null(strstr(out, ", 0.06054045"));
+    assert_non_null(strstr(out, ", 0.233198"));
+    assert_non_null(strstr(out, "MSE: 2.83922e-05\n"));
+    assert_non_null(strstr(out, "x(t) = 22.886"));
+    free(out);
+    free(err);
+}
+
+/* a CSV of Runge's function at 201 points: its natural spline as the
+ * target gives the function's nodes to 1e-4; the spline is exact on a
+ * line and interpolates its rows */
+static void test_fit_data_spline(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/pc_fit_runge_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fputs("x,y\n", f);
+    for (int i = 0; i <= 200; i++) {
+        double x = -1 + 2.0 * i / 200;
+        fprintf(f, "%.17g,%.17g\n", x, 1 / (1 + 25 * x * x));
+    }
+    fclose(f);
+    FitOptions o = {NAN, NAN, 6, 100, 8, 0};
+    FitTarget t;
+    double *phi, *coef;
+    int rc;
+    assert_int_equal(fit_target_data(&t, path, &o, stderr), 0);
+    assert_true(o.lo == -1 && o.hi == 1);
+    assert_int_equal(fit_lagrange_curve(6, 101, &phi, &coef, stderr), 0);
+    Fit *fd_fit = fit_new_from(&o, &t, phi, coef, 1, stderr, &rc);
+    assert_non_null(fd_fit);
+    FitResult r, rf;
+    assert_int_equal(fit_run(fd_fit, &r), 0);
+    Fit *ff = new_fit(runge, -1, 1, 6, 100);
+    assert_int_equal(fit_run(ff, &rf), 0);
+    for (int k = 0; k < 6; k++)
+        assert_true(fabs(r.nodes[k] - rf.nodes[k]) < 1e-4);
+    assert_true(fabs(r.mse - rf.mse) < 1e-3 * rf.mse);
+    fit_result_clear(&r);
+    fit_result_clear(&rf);
+    fit_free(ff);
+    fit_free(fd_fit);
+    /* an interval beyond the data is an error */
+    o.lo = -2;
+    FILE *quiet = fopen("/dev/null", "w");
+    assert_int_equal(fit_target_data(&t, path, &o, quiet), -1);
+    fclose(quiet);
+    remove(path);
+    FitSpline line = {4, (double[]){0, 1, 3, 4}, (double[]){1, 3, 7, 9},
+                      (double[]){0, 0, 0, 0}};
+    double xs[3] = {0.5, 2, 4}, v[3];
+    unsigned char st[3];
+    assert_int_equal(fit_spline_eval(&line, 0, 3, xs, v, st), 0);
+    assert_true(fabs(v[0] - 2) < 1e-15 && fabs(v[1] - 5) < 1e-15 &&
+                fabs(v[2] - 9) < 1e-15);
+    assert_int_equal(fit_spline_eval(&line, 1, 3, xs, v, st), 0);
+    assert_true(fabs(v[0] - 2) < 1e-15 && fabs(v[2] - 2) < 1e-15);
+    xs[0] = 4.5;
+    assert_int_equal(fit_spline_eval(&line, 0, 1, xs, v, st), 1);
+}
+
+/* the scheme form's errors: located at the fit statement */
+static void test_fit_scheme_errors(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/pc_fit_scheme_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fputs("point A, B, C\nparam t in [0, 1]\nX = bezier(t, A, B, C)\n"
+          "param x\nf = sin(x)\nfit X to f on [0, 1]\n",
+          f);
+    fclose(f);
+    char *out, *err;
+    int rc = RUN("fit", path);
+    assert_int_equal(rc, 1);
+    assert_string_equal(out, "");
+    assert_non_null(strstr(err, ":6:1: error: 'X' is not an interpolation "
+                                "curve through its nodes: no t in [0, 1] "
+                                "gives weight 1 to the base point B"));
+    free(out);
+    free(err);
+    remove(path);
+}
+
 static void expect_error(int want_rc, const char *text, int argc,
                          const char **argv)
 {
@@ -330,6 +430,9 @@ int main(void)
         cmocka_unit_test(test_fit_beats_table_5_1),
         cmocka_unit_test(test_fit_cli_json_and_text),
         cmocka_unit_test(test_fit_errors),
+        cmocka_unit_test(test_fit_scheme_runge6),
+        cmocka_unit_test(test_fit_data_spline),
+        cmocka_unit_test(test_fit_scheme_errors),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     flint_cleanup_master();
