@@ -846,5 +846,32 @@ check "long line: cut after 160 bytes" test "$(sed -n 2p "$tmp/many.err")" = "M 
 check "long line: the caret under the span" test "$(sed -n 3p "$tmp/many.err")" = "                ^"
 check "long line: cut on both sides" test "$(grep -m1 -A1 ':2:63: error' "$tmp/many.err" | tail -1)" = "...= along(A, B, $(python3 -c "print('a+'*73)")..."
 
+# pointcalc fit FILE (issue 20): the scheme's fit statement, as --target
+"$PC" fit examples/fit_runge6.pcs --format json >"$tmp/fit.json" 2>"$tmp/fit.err"
+check "fit FILE: exit 0" test $? -eq 0
+check "fit FILE: nodes and MSE to 6 digits" python3 -c "
+import json
+d=json.load(open('$tmp/fit.json'))
+n=d['nodes']
+assert d['curve']=='X' and d['target']=='f', d
+assert [float('%.6g' % v) for v in n]==[-1, -0.233198, -0.0605405, 0.0605405, 0.233198, 1], n
+assert float('%.6g' % d['mse'])==2.83922e-05, d['mse']
+"
+python3 -c "
+print('x,y')
+for i in range(201):
+    x=-1+2*i/200; print('%.17g,%.17g' % (x, 1/(1+25*x*x)))" >"$tmp/runge.csv"
+"$PC" fit --data "$tmp/runge.csv" --nodes 6 --format json >"$tmp/fitd.json"
+check "fit --data: the function's nodes to 1e-4" python3 -c "
+import json
+d=json.load(open('$tmp/fitd.json'))
+want=[-1, -0.233198, -0.0605405, 0.0605405, 0.233198, 1]
+assert all(abs(a-b) < 1e-4 for a, b in zip(d['nodes'], want)), d['nodes']
+"
+printf 'point A, B\nparam t\nX = along(A, B, t)\nfit X to X on [0, 1]\n' >"$tmp/fitbad.pcs"
+"$PC" fit "$tmp/fitbad.pcs" >"$tmp/fitbad.out" 2>"$tmp/fitbad.err"
+check "fit FILE: a kind error exits 1" test $? -eq 1
+check "fit FILE: located" grep -q "fitbad.pcs:4:10: error: 'X' is a point definition; expected a scalar definition (the target) in fit" "$tmp/fitbad.err"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
