@@ -93,7 +93,7 @@ struct Name {
     X(ST_FUNC, "function")   /* def NAME(a, b) = EXPR: a user function */      \
     X(ST_SOLVE, "solve")     /* solve EQ, ... for X, ... */                    \
     X(ST_OUTPUT, "output")   /* output NAME, ... */                            \
-    X(ST_FIT, "fit") /* fit X to f on [lo, hi] [samples m]: names X, f;      \
+    X(ST_FIT, "fit") /* fit X to f on [lo, hi] [samples m]: names X, f;        \
                         lo, hi; expr m or NULL (docs/fit.md) */
 
 typedef enum StmtKind {

@@ -130,8 +130,7 @@ static int parse_args(FitArgs *a, BudgetOptions *b, int argc, char **argv,
     if (a->target && a->data)
         return args_usage_error(err, a->usage,
                                 "--target and --data: expected one target");
-    if ((!a->target && !a->data) || (!a->has_on && !a->data) ||
-        !a->has_nodes)
+    if ((!a->target && !a->data) || (!a->has_on && !a->data) || !a->has_nodes)
         return args_usage_error(err, a->usage, "fit needs %s",
                                 !a->target && !a->data
                                     ? "FILE, --target 'EXPR' or --data FILE"
@@ -264,8 +263,9 @@ static void print_text(FILE *out, const FitInfo *in, Fit *f, const FitResult *r,
     for (int k = 0; k < f->n; k++)
         pc_fprintf(out, "  M_%d = (%.9g, %.9g)\n", k + 1, r->nodes[k], y[k]);
     if (!f->coef) {
-        fprintf(out, "x(t), y(t): the weights are not polynomials in t; "
-                     "the curve:\n%s",
+        fprintf(out,
+                "x(t), y(t): the weights are not polynomials in t; "
+                "the curve:\n%s",
                 in->point_eq ? in->point_eq : "?\n");
         return;
     }
@@ -350,8 +350,8 @@ int cli_fit(int argc, char **argv, FILE *out, FILE *err)
         rc = 1;
         if (fit_target_data(&t, a.data, &a.o, err) == 0 &&
             (rc = fit_check_options(&a.o, err) ? 2 : 1) == 1 &&
-            fit_lagrange_curve(a.o.nodes, (size_t)a.o.samples + 1, &phi,
-                               &coef, err) == 0)
+            fit_lagrange_curve(a.o.nodes, (size_t)a.o.samples + 1, &phi, &coef,
+                               err) == 0)
             f = fit_new_from(&a.o, &t, phi, coef, 1, err, &rc);
         else {
             fit_spline_free(t.spline);

@@ -88,8 +88,8 @@ int fit_curve_coefficients(double *coef, const Derived *d, int out, slong var,
 /* phi[i*n + k] = phi_k(t_i), t_i = i/(ns - 1): output out of p evaluated
  * with base point M_k at the k-th unit vector of R^n, t its param `param`
  * of nparams (the others 0) */
-int fit_curve_table(double *phi, const Plan *p, int out, int param,
-                    int nparams, size_t ns, int n)
+int fit_curve_table(double *phi, const Plan *p, int out, int param, int nparams,
+                    size_t ns, int n)
 {
     double *t = pc_xcalloc(ns * 2, sizeof *t);
     double *unit = pc_xcalloc((size_t)n * (size_t)n, sizeof *unit);
@@ -113,8 +113,7 @@ int fit_curve_table(double *phi, const Plan *p, int out, int param,
     return bad ? -1 : 0;
 }
 
-int fit_lagrange_curve(int n, size_t ns, double **phi, double **coef,
-                       FILE *err)
+int fit_lagrange_curve(int n, size_t ns, double **phi, double **coef, FILE *err)
 {
     char def[32];
     const char *defs[1] = {def};
@@ -180,8 +179,8 @@ static const char *status_text(unsigned char st)
 enum { CHECK_SAMPLES = 2001 };
 
 /* f (o = 0) or f' (o = 1) at x[0..n-1] into v, statuses into st */
-static void target_at(const Fit *f, int o, size_t n, const double *x,
-                      double *v, unsigned char *st)
+static void target_at(const Fit *f, int o, size_t n, const double *x, double *v,
+                      unsigned char *st)
 {
     const FitTarget *t = &f->tg;
     if (t->spline) {
@@ -324,9 +323,8 @@ Fit *fit_new(const char *target, const FitOptions *o, FILE *err, int *rc)
     FitTarget t = {.nparams = 1, .fp_out = 1, .label = target};
     double *phi = NULL, *coef = NULL;
     t.plan = derive_target(target, err);
-    if (!t.plan ||
-        fit_lagrange_curve(o->nodes, (size_t)o->samples + 1, &phi, &coef,
-                           err) != 0) {
+    if (!t.plan || fit_lagrange_curve(o->nodes, (size_t)o->samples + 1, &phi,
+                                      &coef, err) != 0) {
         target_clear(&t);
         free(phi);
         free(coef);

@@ -51,9 +51,8 @@ typedef struct FitSpline {
     double *x, *y, *m;
 } FitSpline;
 
-/* Reads FILE.csv (x,y rows, an optional header line, x increasing, at
- * least 3 rows) into its spline; NULL after reporting to err. */
-FitSpline *fit_spline_read(const char *path, FILE *err);
+/* (fit_data.c) fit_target_data reads FILE.csv (x,y rows, an optional
+ * header line, x increasing, at least 3 rows) into a spline */
 void fit_spline_free(FitSpline *s);
 /* s (o = 0) or s' (o = 1) at x[0..n-1] into v, st[i] = 0, or 3 where x[i]
  * lies outside the data; returns the count of those */
@@ -71,15 +70,15 @@ typedef struct FitTarget {
 
 typedef struct Fit {
     FitOptions o;
-    int n;        // N nodes
-    int nu;       // N - 2 unknowns
-    size_t ns;    // m + 1 samples
-    FitTarget tg; // f and f' (owned)
-    double *phi;  // ns * n: phi[i*n + k] = phi_k(t_i), from the derived
-                  // curve's plan
-    double *coef; // n * n: coef[k*n + j] = the exact coefficient of t^j in
-                  // phi_k (from the derived weights), or NULL: the
-                  // weights are not polynomials
+    int n;          // N nodes
+    int nu;         // N - 2 unknowns
+    size_t ns;      // m + 1 samples
+    FitTarget tg;   // f and f' (owned)
+    double *phi;    // ns * n: phi[i*n + k] = phi_k(t_i), from the derived
+                    // curve's plan
+    double *coef;   // n * n: coef[k*n + j] = the exact coefficient of t^j in
+                    // phi_k (from the derived weights), or NULL: the
+                    // weights are not polynomials
     int ends_exact; // phi_1 = 1 at t = 0 and phi_N = 1 at t = 1: x(0) and
                     // x(1) are set to LO and HI exactly
     const double **tpar; // scratch: the params of the target's plan
@@ -128,8 +127,8 @@ int fit_lagrange_curve(int n, size_t ns, double **phi, double **coef,
  * polynomials in it alone of degree < n), and its table */
 int fit_curve_coefficients(double *coef, const Derived *d, int out, slong var,
                            int n);
-int fit_curve_table(double *phi, const Plan *p, int out, int param,
-                    int nparams, size_t ns, int n);
+int fit_curve_table(double *phi, const Plan *p, int out, int param, int nparams,
+                    size_t ns, int n);
 /* The scheme form (fit_scheme.c): `pointcalc fit FILE` derives the
  * scheme and, for each of its fit statements in order, builds the Fit
  * (samples, starts and max_iter of o unless the statement says; with
@@ -138,7 +137,7 @@ int fit_curve_table(double *phi, const Plan *p, int out, int param,
  * statements, located; 2: usage). */
 typedef struct FitInfo {
     const char *curve, *target; // the names of X and f (as written)
-    const char *point_eq; // when f->coef is NULL: X's point equation
+    const char *point_eq;       // when f->coef is NULL: X's point equation
 } FitInfo;
 typedef int (*FitReport)(void *ctx, Fit *f, const FitInfo *info);
 int fit_scheme_run(const char *path, const char *data, const FitOptions *o,

@@ -42,8 +42,8 @@ static void spline_solve(FitSpline *s)
     s->m[0] = s->m[n - 1] = 0;
     for (int i = 1; i < n - 1; i++) {
         double h0 = s->x[i] - s->x[i - 1], h1 = s->x[i + 1] - s->x[i];
-        double d = 6 * ((s->y[i + 1] - s->y[i]) / h1 -
-                        (s->y[i] - s->y[i - 1]) / h0);
+        double d =
+            6 * ((s->y[i + 1] - s->y[i]) / h1 - (s->y[i] - s->y[i - 1]) / h0);
         double b = 2 * (h0 + h1) - h0 * c[i - 1];
         c[i] = h1 / b;
         s->m[i] = (d - h0 * s->m[i - 1]) / b;
@@ -82,8 +82,7 @@ static int read_rows(FitSpline *s, FILE *f, const char *path, FILE *err)
                               "expected a row 'x,y' of two numbers");
         }
         if (s->n > 0 && !(x > s->x[s->n - 1]))
-            return data_error(err, path, no,
-                              "x must increase from row to row");
+            return data_error(err, path, no, "x must increase from row to row");
         if (s->n == FIT_DATA_MAX_ROWS)
             return data_error(err, path, no, "too many rows");
         if (s->n == cap) {
@@ -100,7 +99,8 @@ static int read_rows(FitSpline *s, FILE *f, const char *path, FILE *err)
     return 0;
 }
 
-FitSpline *fit_spline_read(const char *path, FILE *err)
+/* FILE.csv into its spline; NULL after reporting to err */
+static FitSpline *fit_spline_read(const char *path, FILE *err)
 {
     FILE *f = fopen(path, "r");
     if (!f) {

@@ -24,8 +24,8 @@
 #include "compiler/print/book.h"
 #include "compiler/sema.h"
 #include "driver/cli/fit.h"
-#include "runtime/eval.h"
 #include "grammar/parse.h"
+#include "runtime/eval.h"
 
 enum { FIT_GRID = 1001, FIT_NEWTON = 50 };
 #define FIT_INTERP_TOL 1e-9
@@ -110,7 +110,8 @@ static void collect(FitFront *F, const Scheme *sc, const SemaInfo *I)
         }
         if (st->kind != ST_FIT)
             continue;
-        F->fits = pc_xrealloc(F->fits, sizeof *F->fits * (size_t)(F->nfits + 1));
+        F->fits =
+            pc_xrealloc(F->fits, sizeof *F->fits * (size_t)(F->nfits + 1));
         FitStmt *s = &F->fits[F->nfits++];
         s->span = st->span;
         s->xs = st->names->span;
@@ -121,8 +122,8 @@ static void collect(FitFront *F, const Scheme *sc, const SemaInfo *I)
     }
     F->nparams = I->nparams;
     F->nconsts = I->nconsts;
-    F->params = pc_xcalloc((size_t)(I->nparams ? I->nparams : 1),
-                           sizeof *F->params);
+    F->params =
+        pc_xcalloc((size_t)(I->nparams ? I->nparams : 1), sizeof *F->params);
     for (int j = 0; j < I->nparams; j++)
         F->params[j] = pc_xasprintf("%s", I->params[j]->name);
 }
@@ -241,7 +242,7 @@ static double node_t(const Plan *p, const double *grid, int k, int xout,
                      int dout, int param, int np, int n, double *tk)
 {
     double best = INFINITY, t = 0, w[LSQ_MAX_UNKNOWNS + 2],
-                  dw[LSQ_MAX_UNKNOWNS + 2], res = 0;
+           dw[LSQ_MAX_UNKNOWNS + 2], res = 0;
     for (int i = 0; i < FIT_GRID; i++) {
         double s = 0;
         for (int j = 0; j < n; j++) {
@@ -372,8 +373,12 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
         coef = NULL;
         eq = book_output(d, &d->outputs[0], &bo);
     }
-    FitTarget t = {.plan = p, .f_out = 1, .fp_out = 2 + fp, .param = fp,
-                   .nparams = np, .label = d->outputs[1].name};
+    FitTarget t = {.plan = p,
+                   .f_out = 1,
+                   .fp_out = 2 + fp,
+                   .param = fp,
+                   .nparams = np,
+                   .label = d->outputs[1].name};
     if (data) {
         plan_free(p);
         t.plan = NULL;

@@ -262,7 +262,6 @@ static void test_fit_cli_json_and_text(void **state)
     free(err);
 }
 
-
 /* the scheme form: examples/fit_runge6.pcs gives the --target form's
  * 6-node Runge fit to 6 digits */
 static void test_fit_scheme_runge6(void **state)
