@@ -33,6 +33,8 @@ CliCommand cli_fit; // cmd_fit.c: pointcalc fit --target EXPR ...
 #define FIT_USAGE                                                              \
     "usage: pointcalc fit --target 'EXPR' --on LO,HI --nodes N [--samples "    \
     "M]\n"                                                                     \
+    "       pointcalc fit --data FILE.csv [--on LO,HI] --nodes N [...]\n"      \
+    "       pointcalc fit SCHEME.pcs [--data FILE.csv] [--samples M] [...]\n"  \
     "                     [--starts K] [--max-iter I] [--format text|json]\n"
 extern const char fit_help[];
 

@@ -304,6 +304,17 @@ static int check_interpolation(const Derived *d, const Plan *p,
     return rc;
 }
 
+static void interval_error(const Derived *d, FILE *err, const FitStmt *s)
+{
+    char lo[32], hi[32];
+    pc_snprintf(lo, sizeof lo, "%.17g", s->lo);
+    pc_snprintf(hi, sizeof hi, "%.17g", s->hi);
+    derived_error(d, err, s->span,
+                  "the fit's interval [%s, %s] is empty; expected [LO, HI] "
+                  "with LO < HI",
+                  lo, hi);
+}
+
 /* the curve's param and the target's, checked; -1 after reporting */
 static int find_params(const Derived *d, const FitFront *F, const FitStmt *s,
                        int *xp, int *fp, FILE *err)
@@ -326,6 +337,14 @@ static int find_params(const Derived *d, const FitFront *F, const FitStmt *s,
                       "the target '%s' depends on %s; expected a scalar "
                       "definition in one param (x)",
                       f, *fp == -1 ? "no param" : "more than one param");
+    else if (!(s->lo < s->hi) || !isfinite(s->lo) || !isfinite(s->hi))
+        interval_error(d, err, s);
+    else if (s->samples &&
+             (s->samples < d->npoints || s->samples >= LSQ_MAX_RESIDUALS))
+        derived_error(d, err, s->span,
+                      "expected %ld .. %d samples (at least the number of "
+                      "nodes); found %d",
+                      (long)d->npoints, LSQ_MAX_RESIDUALS - 1, s->samples);
     else if (d->npoints < 3 || d->npoints > LSQ_MAX_UNKNOWNS + 2)
         derived_error(d, err, s->span,
                       "the curve '%s' has %ld nodes (base points); a fit "
