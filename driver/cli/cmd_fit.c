@@ -1,6 +1,8 @@
 /*
  * cmd_fit.c - `pointcalc fit --target 'EXPR' --on LO,HI --nodes N
- * [--samples M] [--starts K] [--format text|json]`: the interpolation
+ * [--samples M] [--starts K] [--format text|json]`, `pointcalc fit
+ * --data FILE.csv ...` and `pointcalc fit SCHEME.pcs` (its fit
+ * statements, fit_scheme.c): the interpolation
  * curve through N nodes on the target whose inner nodes' abscissas give
  * the least mean squared deviation (monograph chapter 5, docs/fit.md).
  *

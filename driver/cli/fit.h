@@ -13,6 +13,9 @@
  *                converged start's so far is abandoned: it has joined
  *                that basin)
  *   fit_free
+ *   fit_new_from  the same from a given target (a Plan's outputs or a
+ *                CSV's spline, fit_data.c) and curve table: the scheme
+ *                form `pointcalc fit FILE` (fit_scheme.c) and --data
  *
  * The unknowns are the inner nodes' abscissas x_1 .. x_{N-2}, through
  * log-gaps (fit_residuals_u): the N-1 gaps x_{k+1} - x_k are (hi - lo)
