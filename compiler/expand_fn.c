@@ -14,13 +14,13 @@
  * text.  A function may call only the functions defined before it, so no
  * expansion recurses; the node budget of expand.c bounds the copies.
  */
-#include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <flint/fmpq.h>
 
 #include "base/mem.h"
+#include "compiler/algebra/ratfun.h"
 #include "compiler/expand.h"
 #include "compiler/expand_int.h"
 #include "compiler/sema.h"
@@ -384,50 +384,6 @@ int ex_eval_int_compr(Expander *E, const Node *n, slong *out)
 /* ---- knots ----------------------------------------------------------------
  */
 
-/* q = the number a knot's literal text denotes (12, 0.5, 1e-3) */
-static int literal_value(fmpq_t q, const char *s)
-{
-    fmpz_t m, p;
-    slong frac = 0, ex = 0;
-    int seen_dot = 0;
-    fmpz_init(m);
-    fmpz_init(p);
-    for (; *s && *s != 'e' && *s != 'E'; s++) {
-        if (*s == '.') {
-            seen_dot = 1;
-            continue;
-        }
-        if (!isdigit((unsigned char)*s) || frac > 1000)
-            goto fail;
-        fmpz_mul_ui(m, m, 10);
-        fmpz_add_ui(m, m, (ulong)(*s - '0'));
-        frac += seen_dot;
-    }
-    if (*s) {
-        char *end;
-        long e = strtol(s + 1, &end, 10);
-        if (*end || e > 1000 || e < -1000)
-            goto fail;
-        ex = e;
-    }
-    ex -= frac;
-    fmpz_set_ui(p, 10);
-    fmpz_pow_ui(p, p, (ulong)(ex < 0 ? -ex : ex));
-    if (ex < 0)
-        fmpq_set_fmpz_frac(q, m, p);
-    else {
-        fmpz_mul(m, m, p);
-        fmpq_set_fmpz(q, m);
-    }
-    fmpz_clear(m);
-    fmpz_clear(p);
-    return 0;
-fail:
-    fmpz_clear(m);
-    fmpz_clear(p);
-    return -1;
-}
-
 /* q = the value of a knot made of numbers, ints and indices with + - * /;
  * -1 (nothing reported) for any other knot: its order is not checked */
 static int knot_value(Expander *E, const Node *n, fmpq_t q)
@@ -438,7 +394,7 @@ static int knot_value(Expander *E, const Node *n, fmpq_t q)
         return -1;
     switch (n->kind) {
     case ND_NUM:
-        return literal_value(q, n->text);
+        return ratfun_literal_fmpq(q, n->text);
     case ND_NAME: {
         const Binding *bd = ex_find_binding(E, n->text);
         const IntSym *is = ex_find_int(E, n->text);

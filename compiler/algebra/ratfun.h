@@ -141,6 +141,11 @@ double ratfun_log2_bits_compose(const RatFun x, slong var, const RatFun s,
  * RATFUN_EDIVZERO or RATFUN_EOVERFLOW; res is untouched on failure.  Numbers
  * follow the language's lexer: 12, 0.3, .5, 1e-3, 2.5E+2 (all exact). */
 int ratfun_set_str(RatFun res, const char *s, const Ring *r);
+/* q = the number literal text ("0.3" is 3/10, "1e-3" 1/1000, exactly), of
+ * the lexer's form digits[.digits][e[+-]digits]; -1 (q untouched) when
+ * its exponent is beyond +-1000.  The one reader of a scheme's numbers:
+ * derive, and expand's knots. */
+int ratfun_literal_fmpq(fmpq_t q, const char *text);
 /* Text "num" or "(num)/(den)" (parentheses only where needed) with '*' for
  * every product, expanded polynomials as fmpz_mpoly_get_str_pretty writes
  * them.  Re-readable by ratfun_set_str.  Caller frees with flint_free. */

@@ -8,7 +8,10 @@
  */
 #include "compiler/algebra/ratfun.h"
 
+#include <stdlib.h>
 #include <string.h>
+
+#include "base/mem.h"
 
 /* Recursive descent over
  *   expr   = ['+'|'-'] term (('+'|'-') term)*     (sign handled in unary)
@@ -279,4 +282,48 @@ int ratfun_set_str(RatFun res, const char *s, const Ring *r)
         ratfun_swap(res, t, r);
     ratfun_clear(t, r);
     return st;
+}
+
+/* (ratfun.h) */
+int ratfun_literal_fmpq(fmpq_t q, const char *text)
+{
+    size_t n = strlen(text);
+    char *digits = pc_xmalloc(n + 2);
+    size_t k = 0;
+    long frac = 0, exp10 = 0;
+    int in_frac = 0;
+    const char *c = text;
+    for (; *c && *c != 'e' && *c != 'E'; c++) {
+        if (*c == '.') {
+            in_frac = 1;
+            continue;
+        }
+        digits[k++] = *c;
+        frac += in_frac;
+    }
+    if (k == 0)
+        digits[k++] = '0';
+    digits[k] = '\0';
+    if (*c == 'e' || *c == 'E') {
+        exp10 = strtol(c + 1, NULL, 10);
+        if (exp10 > 1000 || exp10 < -1000) {
+            free(digits);
+            return -1;
+        }
+    }
+    fmpz_set_str(fmpq_numref(q), digits, 10);
+    fmpz_one(fmpq_denref(q));
+    free(digits);
+    long e = exp10 - frac;
+    fmpz_t p;
+    fmpz_init(p);
+    fmpz_set_ui(p, 10);
+    fmpz_pow_ui(p, p, (ulong)(e < 0 ? -e : e));
+    if (e < 0)
+        fmpz_set(fmpq_denref(q), p);
+    else
+        fmpz_mul(fmpq_numref(q), fmpq_numref(q), p);
+    fmpz_clear(p);
+    fmpq_canonicalise(q);
+    return 0;
 }

@@ -82,7 +82,6 @@ int derive_out_of_time(Deriver *D, const Node *n);
 void derive_value_init(Value *v, const Ring *r);
 void derive_value_clear(Value *v, const Ring *r);
 void derive_value_set(Value *res, const Value *x, const Ring *r);
-int derive_number_to_fmpq(fmpq_t q, const char *text);
 double derive_scalar_bits(const PointEq p, const RatFun s, const Ring *r);
 double derive_pair_bits(const PointEq p, const PointEq q, const Ring *r);
 int derive_too_big(Deriver *D, double log2_bits, const Node *n);

@@ -596,7 +596,7 @@ static int eval_node(Deriver *D, Value *res, const Node *n)
     case ND_NUM: {
         fmpq_t q;
         fmpq_init(q);
-        int st = derive_number_to_fmpq(q, n->text);
+        int st = ratfun_literal_fmpq(q, n->text);
         if (st == 0)
             ratfun_set_fmpq(res->s, q, r);
         else
