@@ -19,5 +19,9 @@
 #include "compiler/derive.h"
 
 void format_json(FILE *out, const Derived *d);
+/* "key": "WEIGHT", w as derive's JSON writes every weight (format_weight_k:
+ * abs kept); the outputs' terms and the knots' values and jumps */
+void format_json_weight(FILE *out, const char *key, const RatFun w,
+                        const Derived *d);
 
 #endif

@@ -26,8 +26,7 @@ static void json_names(FILE *out, const char *key, char *const *names, slong n)
     fputs("]", out);
 }
 
-/* "key": "WEIGHT" with w's reduced form */
-static void json_weight(FILE *out, const char *key, const RatFun w,
+void format_json_weight(FILE *out, const char *key, const RatFun w,
                         const Derived *d)
 {
     char *s = format_weight_k(w, &d->ring, d->kernels);
@@ -72,12 +71,13 @@ static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
     json_string(out, o->name);
     fprintf(out, ", \"kind\": \"%s\", ", kind_name(o->kind));
     if (o->kind == KIND_SCALAR) {
-        json_weight(out, "value", o->scalar, d);
+        format_json_weight(out, "value", o->scalar, d);
     } else {
         fputs("\"terms\": {", out);
         for (slong k = 0; k < o->eq->len; k++) {
             fputs(k ? ", " : "", out);
-            json_weight(out, d->points[o->eq->terms[k].point], &o->w[k], d);
+            format_json_weight(out, d->points[o->eq->terms[k].point], &o->w[k],
+                               d);
         }
         fputs("}", out);
     }

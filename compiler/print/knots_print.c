@@ -18,6 +18,7 @@
 #include "base/mem.h"
 #include "base/strbuf.h"
 #include "compiler/print/format.h"
+#include "compiler/print/format_int.h"
 
 /* The jump of knot k of output o as a combination of base points, "6*B -
  * 6/5*O": each term a number times the point where the weight is a number,
@@ -131,22 +132,11 @@ void knots_print(FILE *out, const Derived *d)
     }
 }
 
-/* "key": "exact" */
-static void json_rf(FILE *out, const char *key, const RatFun w,
-                    const Derived *d)
-{
-    char *s = format_weight_k(w, &d->ring, d->kernels);
-    json_string(out, key);
-    fputs(": ", out);
-    json_string(out, s);
-    free(s);
-}
-
 static void json_knot(FILE *out, const Derived *d, const DerivedOutput *o,
                       const Knot *k)
 {
     fputs("{", out);
-    json_rf(out, "t", k->t, d);
+    format_json_weight(out, "t", k->t, d);
     if (k->continuity >= 0 || k->analysed)
         fprintf(out, ", \"continuity\": %d", k->continuity);
     else
@@ -167,7 +157,7 @@ static void json_knot(FILE *out, const Derived *d, const DerivedOutput *o,
         fputs(", \"jump\": null", out);
     } else if (o->kind == KIND_SCALAR) {
         fputs(", ", out);
-        json_rf(out, "jump", k->jump, d);
+        format_json_weight(out, "jump", k->jump, d);
     } else {
         fputs(", \"jump\": {", out);
         int first = 1;
@@ -175,7 +165,8 @@ static void json_knot(FILE *out, const Derived *d, const DerivedOutput *o,
             if (ratfun_is_zero(k->jump + i, &d->ring))
                 continue;
             fputs(first ? "" : ", ", out);
-            json_rf(out, d->points[o->eq->terms[i].point], k->jump + i, d);
+            format_json_weight(out, d->points[o->eq->terms[i].point],
+                               k->jump + i, d);
             first = 0;
         }
         char *v = knots_jump_text(d, o, k);
