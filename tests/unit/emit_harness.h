@@ -4,8 +4,9 @@
  * into a temporary directory, compiling them with the contract's flags
  * (warnings are errors) into a shared object, loading it, and removing it
  * all again; the fixed-arity wrappers wb_O of the batch functions; the
- * exact value of a double.  Include after <cmocka.h>, <flint/fmpq.h> and
- * runtime/plan.h.
+ * exact value of a double; the generated text itself (harness_emit).
+ * Include after <cmocka.h>, <flint/fmpq.h>, runtime/plan.h and
+ * codegen/emit_c.h.
  */
 #ifndef PC_TEST_EMIT_HARNESS_H
 #define PC_TEST_EMIT_HARNESS_H
@@ -28,6 +29,21 @@ static void write_file(const char *path, const char *text)
     assert_non_null(f);
     fputs(text, f);
     fclose(f);
+}
+
+/* the generated C of p (header: its header) for scheme file name file,
+ * as emit-c writes it with --prefix pcx; the caller frees it */
+static inline char *harness_emit(const Plan *p, int header, const char *file)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    if (header)
+        emit_c_header(m, p, "pcx", file);
+    else
+        emit_c(m, p, "pcx", file);
+    fclose(m);
+    return text;
 }
 
 /* gen.c, gen.h and wrap.c in a new /tmp/pc_TAG_XXXXXX, compiled and

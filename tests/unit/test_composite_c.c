@@ -333,19 +333,6 @@ enum { NCASES = sizeof cases / sizeof *cases };
 
 /* ---- compiling --------------------------------------------------------- */
 
-static char *emit_to_string(const Plan *p, int header)
-{
-    char *text = NULL;
-    size_t len = 0;
-    FILE *m = open_memstream(&text, &len);
-    if (header)
-        emit_c_header(m, p, "pcx", "composite.pcs");
-    else
-        emit_c(m, p, "pcx", "composite.pcs");
-    fclose(m);
-    return text;
-}
-
 /* w1_O(t, pts, dim, out) and wb_O(n, t, pts, dim, out): the one param t,
  * no consts */
 static char *wrapper(const Plan *p)
@@ -417,7 +404,7 @@ static Plan *plan_of(const Case *c, char **text)
     derived_free(d);
     assert_non_null(p);
     if (text)
-        *text = emit_to_string(p, 0);
+        *text = harness_emit(p, 0, "composite.pcs");
     return p;
 }
 
@@ -470,7 +457,7 @@ static void check_case(int ci)
     char *src;
     Plan *p = plan_of(c, &src);
     check_branch_free(src);
-    char *hdr = emit_to_string(p, 1), *wrap = wrapper(p);
+    char *hdr = harness_emit(p, 1, "composite.pcs"), *wrap = wrapper(p);
     Compiled cc;
     harness_compile(&cc, "comp", src, hdr, wrap);
     free(src);

@@ -65,19 +65,6 @@ static int total_checks;
 
 /* ---- compiling generated code ------------------------------------------ */
 
-static char *emit_to_string(const Plan *p, int header)
-{
-    char *text = NULL;
-    size_t len = 0;
-    FILE *m = open_memstream(&text, &len);
-    if (header)
-        emit_c_header(m, p, "pcx", "test.pcs");
-    else
-        emit_c(m, p, "pcx", "test.pcs");
-    fclose(m);
-    return text;
-}
-
 /* wrapper: w1_O and wb_O with fixed arity call the generated pcx_NAME_* */
 static char *wrapper(const Plan *p)
 {
@@ -118,7 +105,8 @@ static char *wrapper(const Plan *p)
 
 static void compile_plan(Compiled *c, const Plan *p)
 {
-    char *src = emit_to_string(p, 0), *hdr = emit_to_string(p, 1);
+    char *src = harness_emit(p, 0, "test.pcs"),
+         *hdr = harness_emit(p, 1, "test.pcs");
     char *wrap = wrapper(p);
     harness_compile(c, "emit", src, hdr, wrap);
     free(src);
@@ -794,7 +782,8 @@ static void test_emit_c_is_deterministic(void **state)
     Derived *d =
         derive_source("d.pcs", desargues, strlen(desargues), stderr, NULL);
     Plan *p1 = lower_derived(d, stderr), *p2 = lower_derived(d, stderr);
-    char *a = emit_to_string(p1, 0), *b = emit_to_string(p2, 0);
+    char *a = harness_emit(p1, 0, "test.pcs"),
+         *b = harness_emit(p2, 0, "test.pcs");
     assert_string_equal(a, b);
     /* every temporary names its scheme line */
     assert_non_null(strstr(a, "/* line 11"));
