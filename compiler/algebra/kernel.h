@@ -167,6 +167,13 @@ int kernel_bounds(const Kernels *K, const RatFun x, fmpq_t lo, int *lo_open,
 /* the kernel of ring variable var, or NULL (a param, a const ...) */
 const Kernel *kernels_of_var(const Kernels *K, slong var);
 
+/* res = a kernel made again from new arguments: x (and y for KF_ATAN2)
+ * reduced, then f applied to them, the real q-th root for KF_ROOT; what
+ * every substitution does to a kernel whose argument it changes
+ * (kernel_compose, subst of coordinates, the knots' one-sided forms).  x
+ * and y are changed. */
+int kernel_remake(Kernels *K, RatFun res, KernelFn f, slong q, RatFun x,
+                  RatFun y);
 /* res = f(x) (res = atan2(x, y) for KF_ATAN2; y NULL otherwise), reduced.
  * KF_PI ignores x. */
 int kernel_apply(Kernels *K, RatFun res, KernelFn f, const RatFun x,

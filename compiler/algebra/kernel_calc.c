@@ -303,6 +303,19 @@ static int compose_img(Kernels *K, RatFun res, const RatFun x,
     return rc;
 }
 
+int kernel_remake(Kernels *K, RatFun res, KernelFn f, slong q, RatFun x,
+                  RatFun y)
+{
+    int rc = kernel_reduce(K, x);
+    if (rc == 0 && f == KF_ATAN2)
+        rc = kernel_reduce(K, y);
+    if (rc != 0)
+        return rc;
+    if (f == KF_ROOT)
+        return kernel_pow_q(K, res, x, 1, q);
+    return kernel_apply(K, res, f, x, f == KF_ATAN2 ? y : NULL);
+}
+
 /* the images of var := s and of every kernel depending on var; NULL
  * entries stay */
 static int build_images(Kernels *K, RatFunStruct **img, slong var,
@@ -324,15 +337,10 @@ static int build_images(Kernels *K, RatFunStruct **img, slong var,
         rc = compose_img(K, a, K->k[i].arg, img);
         if (rc == 0 && fn == KF_ATAN2)
             rc = compose_img(K, b, K->k[i].arg2, img);
-        if (rc == 0)
-            rc = kernel_reduce(K, a);
         if (rc != 0)
             break;
         RatFunStruct *v = ratfun_vec_init(1, r);
-        if (fn == KF_ROOT)
-            rc = kernel_pow_q(K, v, a, 1, q);
-        else
-            rc = kernel_apply(K, v, fn, a, fn == KF_ATAN2 ? b : NULL);
+        rc = kernel_remake(K, v, fn, q, a, b);
         img[kv] = v;
     }
     ratfun_clear(b, r);
@@ -449,16 +457,11 @@ static int coord_images(Kernels *K, RatFunStruct **img, const RatFun x,
         rc = compose_img(K, a, k->arg, img);
         if (rc == 0 && fn == KF_ATAN2)
             rc = compose_img(K, b, k->arg2, img);
-        if (rc == 0)
-            rc = kernel_reduce(K, a);
         if (rc != 0)
             break;
         RatFunStruct *v = ratfun_vec_init(1, r);
         img[kv] = v;
-        if (fn == KF_ROOT)
-            rc = kernel_pow_q(K, v, a, 1, q);
-        else
-            rc = kernel_apply(K, v, fn, a, fn == KF_ATAN2 ? b : NULL);
+        rc = kernel_remake(K, v, fn, q, a, b);
     }
     ratfun_clear(b, r);
     ratfun_clear(a, r);

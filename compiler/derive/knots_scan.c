@@ -412,19 +412,12 @@ static int subst_vars(Scan *S, RatFun res, const RatFunStruct *x, slong nsub,
         rc = compose_images(S, a, k->arg, img, nv);
         if (rc == 0 && fn == KF_ATAN2)
             rc = compose_images(S, b, k->arg2, img, nv);
-        if (rc == 0)
-            rc = kernel_reduce(K, a);
-        if (rc == 0 && fn == KF_ATAN2)
-            rc = kernel_reduce(K, b);
         if (rc != 0)
             break;
-        /* (k may move from here on: kernel_apply can add kernels) */
+        /* (k may move from here on: kernel_remake can add kernels) */
         RatFunStruct *v = ratfun_vec_init(1, r);
         img[kv] = v;
-        if (fn == KF_ROOT)
-            rc = kernel_pow_q(K, v, a, 1, q);
-        else
-            rc = kernel_apply(K, v, fn, a, fn == KF_ATAN2 ? b : NULL);
+        rc = kernel_remake(K, v, fn, q, a, b);
     }
     if (rc == 0)
         rc = compose_images(S, res, x, img, nv);
