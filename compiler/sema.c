@@ -272,6 +272,19 @@ static int check_flat(Sema *S, Node *n, int allow_plane)
 /* *v = the value of n, a whole-number expression: literals (int
  * constants and comprehension variables are literals after expand.c),
  * unary minus, + - *; 0 when it is not one or leaves [-2^40, 2^40] */
+/* n, a whole-number expression of value v, made the literal v: derive
+ * reads the coordinate of coord() and the smoothness of step() as one */
+static void fold_literal(Sema *S, Node *n, long long v)
+{
+    if (n->kind == ND_NUM)
+        return;
+    char buf[24];
+    snprintf(buf, sizeof buf, "%lld", v);
+    n->kind = ND_NUM;
+    n->text = arena_strdup(S->arena, buf);
+    n->lhs = n->rhs = NULL;
+}
+
 static int whole_number(const Node *n, long long *v)
 {
     const long long lim = 1LL << 40;
@@ -326,13 +339,7 @@ static int check_coord(Sema *S, Node *n)
                    SEMA_MAX_COORD);
         return -1;
     }
-    if (k->kind != ND_NUM) { /* coord(P[i], i + 1) in a comprehension */
-        char buf[24];
-        snprintf(buf, sizeof buf, "%lld", v);
-        k->kind = ND_NUM;
-        k->text = arena_strdup(S->arena, buf);
-        k->lhs = k->rhs = NULL;
-    }
+    fold_literal(S, k, v); /* coord(P[i], i + 1) in a comprehension */
     return ok < 0 ? -1 : 0;
 }
 
@@ -523,13 +530,7 @@ static int check_call(Sema *S, Node *n)
                        SEMA_MAX_STEP_ORDER);
             return -1;
         }
-        if (m->kind != ND_NUM) { /* derive reads one literal */
-            char buf[24];
-            snprintf(buf, sizeof buf, "%lld", v);
-            m->kind = ND_NUM;
-            m->text = arena_strdup(S->arena, buf);
-            m->lhs = m->rhs = NULL;
-        }
+        fold_literal(S, m, v); /* derive reads one literal */
         return ok < 0 ? -1 : 0;
     }
     default: { /* the scalar functions */
