@@ -611,54 +611,39 @@ static Node *seg_at(Expander *E, const JoinArg *g, Node *arg, Span sp)
     return call1(E, g->seg->name, arg, sp);
 }
 
-/* the blending function on [a, a + w]: ramp or the C^m step */
-static Node *blend(Expander *E, Node *m, Node *t, Node *a, Node *w, Span sp)
+/* a call of a step built-in (ramp, step, rayr, rayl: their formulas live
+ * in compiler/derive/functions.c) with the arguments args[0..n) */
+static Node *builtin_call(Expander *E, const char *name, Node **args, int n,
+                          Span sp)
 {
-    if (!t || !a || !w)
-        return NULL;
-    if (!m) { /* (w + |t - a| - |t - a - w|)/(2 w) */
-        Node *w2 = use(E, w), *t2 = use(E, t), *a2 = use(E, a), *w3 = use(E, w);
-        if (!w2 || !t2 || !a2 || !w3)
+    for (int i = 0; i < n; i++)
+        if (!args[i])
             return NULL;
-        Node *d1 = call1(E, "abs", bin(E, ND_SUB, t, a, sp), sp);
-        Node *d2 = call1(
-            E, "abs", bin(E, ND_SUB, bin(E, ND_SUB, t2, a2, sp), w2, sp), sp);
-        return bin(E, ND_DIV, bin(E, ND_SUB, bin(E, ND_ADD, w, d1, sp), d2, sp),
-                   bin(E, ND_MUL, num(E, "2", sp), w3, sp), sp);
-    }
-    Node *mm = use(E, m);
-    if (!mm)
-        return NULL;
-    /* the C^m step of the step built-in */
-    t->next = a;
-    a->next = w;
-    w->next = mm;
-    return ast_new_call(E->a, "step", sp, t, sp);
+    for (int i = 0; i + 1 < n; i++)
+        args[i]->next = args[i + 1];
+    return ast_new_call(E->a, name, sp, args[0], sp);
 }
 
-/* rayl(t, a) = min(t - a, 0) (upper 0) or rayr = max(t - a, 0), times
- * ((-1)^m) (t - a)^m for a C^m join */
+/* the blending function on [a, a + w]: ramp(t, a, w) (Theorem 1), or the
+ * C^m step(t, a, w, m) (Theorem 2) */
+static Node *blend(Expander *E, Node *m, Node *t, Node *a, Node *w, Span sp)
+{
+    Node *args[4] = {t, a, w, m ? use(E, m) : NULL};
+    return builtin_call(E, m ? "step" : "ramp", args, m ? 4 : 3, sp);
+}
+
+/* rayl(t, a) = min(t - a, 0) before the first knot, rayr(t, a) = max(t - a,
+ * 0) after the last (Theorem 3); times (a - t)^m = (-1)^m (t - a)^m or
+ * (t - a)^m for a C^m join (the text's remark after Theorem 3) */
 static Node *ray(Expander *E, Node *m, Node *t, Node *a, int right, Span sp)
 {
-    Node *t2 = use(E, t), *a2 = use(E, a);
-    if (!t2 || !a2)
-        return NULL;
-    Node *d = bin(E, ND_SUB, t, a, sp);
-    Node *r = bin(E, ND_DIV,
-                  bin(E, right ? ND_ADD : ND_SUB, d,
-                      call1(E, "abs", bin(E, ND_SUB, t2, a2, sp), sp), sp),
-                  num(E, "2", sp), sp);
-    if (!m)
+    Node *t2 = m ? use(E, t) : NULL, *a2 = m ? use(E, a) : NULL;
+    Node *args[2] = {t, a};
+    Node *r = builtin_call(E, right ? "rayr" : "rayl", args, 2, sp);
+    if (!m || !r)
         return r;
-    Node *mm = use(E, m), *t3 = use(E, t), *a3 = use(E, a);
-    if (!mm || !t3 || !a3)
-        return NULL;
-    /* (t - a)^m on the right, (a - t)^m = (-1)^m (t - a)^m on the left */
-    Node *p =
-        bin(E, ND_POW,
-            right ? bin(E, ND_SUB, t3, a3, sp) : bin(E, ND_SUB, a3, t3, sp), mm,
-            sp);
-    return bin(E, ND_MUL, p, r, sp);
+    Node *d = right ? bin(E, ND_SUB, t2, a2, sp) : bin(E, ND_SUB, a2, t2, sp);
+    return bin(E, ND_MUL, bin(E, ND_POW, d, use(E, m), sp), r, sp);
 }
 
 /* the joints: g_k(hi_k) = g_{k+1}(lo_{k+1}) at every inner knot, checked

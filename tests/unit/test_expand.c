@@ -686,9 +686,21 @@ static void test_piecewise_and_join(void **state)
      * g(a)) with the ramp P(t, 0, 2 - 0) */
     expands_to("param t\ndef g(u) = u^2\nx = join(t, 0, g[1..3], 2)\n",
                "(param t)\n(function g u (^ u 2))\n"
-               "(def x (+ (^ 1 2) (- (^ (+ 1 (* (- 3 1) (/ (- (+ (- 2 0) "
-               "(abs (- t 0))) (abs (- (- t 0) (- 2 0)))) (* 2 (- 2 0))))) 2) "
-               "(^ 1 2))))\n");
+               "(def x (+ (^ 1 2) (- (^ (+ 1 (* (- 3 1) (ramp t 0 (- 2 0)))) "
+               "2) (^ 1 2))))\n");
+    /* Theorem 3's infinite branches: g0(b0 + rayl(t, t0)) and g(a +
+     * rayr(t, tn)) - g(a); smoothjoin's step and its rays times (t0 -
+     * t)^m, (t - tn)^m */
+    expands_to("param t\ndef g(u) = u\n"
+               "x = join(t, g[-inf..0], 1, g[0..inf])\n",
+               "(param t)\n(function g u u)\n"
+               "(def x (+ (+ 0 (rayl t 1)) (- (+ 0 (rayr t 1)) 0)))\n");
+    expands_to("param t\ndef g(u) = u\n"
+               "x = smoothjoin(2, t, g[-inf..0], 0, g[0..1], 1, g[1..inf])\n",
+               "(param t)\n(function g u u)\n"
+               "(def x (+ (+ 0 (* (^ (- 0 t) 2) (rayl t 0))) "
+               "(+ (- (+ 0 (* (- 1 0) (step t 0 (- 1 0) 2))) 0) "
+               "(- (+ 1 (* (^ (- t 1) 2) (rayr t 1))) 1))))\n");
 }
 
 static void test_function_errors(void **state)
