@@ -8,6 +8,7 @@
 
 #include "driver/cli/args.h"
 #include "driver/cli/fit.h"
+#include "driver/cli/natural.h"
 
 const char cli_usage[] =
     "usage: pointcalc derive FILE [--format text|latex|json] [--origin POINT]\n"
@@ -23,7 +24,12 @@ const char cli_usage[] =
     "                        [--at-param t=VALUE] ...   (pointcalc help plot)\n"
     "       pointcalc fit    --target 'EXPR' --on LO,HI --nodes N  (pointcalc "
     "help fit)\n"
-    "       pointcalc help [derive|emit-c|eval|plot|fit] | CMD --help | "
+    "       pointcalc natural --from X,Y,PHI [--through X,Y[,PHI]]... --to "
+    "X,Y,PHI\n"
+    "                        [--law linear|quadratic|cubic]  (pointcalc help "
+    "natural)\n"
+    "       pointcalc help [derive|emit-c|eval|plot|fit|natural] | CMD --help "
+    "| "
     "--version\n"
     "\n"
     "\n"
@@ -204,6 +210,7 @@ static const HelpEntry entries[] = {
     {"eval", EVAL_USAGE, eval_help},
     {"plot", PLOT_USAGE, plot_help},
     {"fit", FIT_USAGE, fit_help},
+    {"natural", NATURAL_USAGE, natural_help},
     {"help", HELP_USAGE, help_help},
 };
 

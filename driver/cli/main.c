@@ -23,6 +23,7 @@
 #include "driver/cli/args.h"
 #include "driver/cli/cli.h"
 #include "driver/cli/fit.h"
+#include "driver/cli/natural.h"
 
 #define PC_VERSION "0.1.0"
 
@@ -32,8 +33,9 @@ typedef struct Command {
 } Command;
 
 static const Command commands[] = {
-    {"derive", cli_derive}, {"emit-c", cli_emit_c}, {"eval", cli_eval},
-    {"help", cli_help},     {"plot", cli_plot},     {"fit", cli_fit},
+    {"derive", cli_derive},   {"emit-c", cli_emit_c}, {"eval", cli_eval},
+    {"help", cli_help},       {"plot", cli_plot},     {"fit", cli_fit},
+    {"natural", cli_natural},
 };
 
 static const Command *find_command(const char *name)
