@@ -131,6 +131,8 @@ check: tests
 	  echo "== tests/latex_test.sh"; \
 	  tests/latex_test.sh $(B)/pointcalc || fail=1; \
 	  tests/plot_test.sh $(B)/pointcalc || fail=1; \
+	  echo "== tests/natural_test.sh"; \
+	  tests/natural_test.sh $(B)/pointcalc || fail=1; \
 	  echo "== $(B)/examples/api_example"; \
 	  $(B)/examples/api_example > $(B)/examples/api_example.out && \
 	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.out && \
@@ -169,6 +171,8 @@ valgrind: tests
 	    tests/cli_test.sh $(B)/pointcalc-vg || fail=1; \
 	  echo "== valgrind tests/plot_test.sh"; \
 	  tests/plot_test.sh $(B)/pointcalc-vg || fail=1; \
+	  echo "== valgrind tests/natural_test.sh"; \
+	  tests/natural_test.sh $(B)/pointcalc-vg || fail=1; \
 	  echo "== valgrind $(B)/examples/api_example"; \
 	  $(VALGRIND) $(B)/examples/api_example > $(B)/examples/api_example.vg.out && \
 	    grep -qx 'M(0.50) = (0.25, 0.25, 0.25)' $(B)/examples/api_example.vg.out \

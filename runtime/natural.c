@@ -186,6 +186,21 @@ static double table_fill(NatTable *t, const double *ph, int deg)
     return tail;
 }
 
+/* drops the top coefficients that are below 1e-16 of the length in every
+ * panel: fewer steps of Clenshaw's recurrence */
+static void trim(NatTable *t)
+{
+    double eps = 1e-16 * fmax(t->seg.length, 1e-300);
+    while (t->ncoef > 2) {
+        int j = t->ncoef - 1;
+        for (int q = 0; q < t->npanels; q++)
+            if (fabs(t->cx[(size_t)q * NCHEB + j]) > eps ||
+                fabs(t->cy[(size_t)q * NCHEB + j]) > eps)
+                return;
+        t->ncoef--;
+    }
+}
+
 int nat_table_build(NatTable *t, const NatSegment *seg)
 {
     memset(t, 0, sizeof *t);
@@ -195,8 +210,9 @@ int nat_table_build(NatTable *t, const NatSegment *seg)
         return -1;
     double ph[NAT_MAX_DEGREE + 2];
     int deg = phase_coef(seg, ph);
-    /* at most 1.5 radians of turning a panel to start with */
-    double n0 = ceil(rate_bound(ph, deg, 0, S) * S / 1.5);
+    /* at most half a radian of turning a panel to start with: the
+     * coefficients then fall below 1e-16 of S by about the 12th */
+    double n0 = ceil(rate_bound(ph, deg, 0, S) * S / 0.5);
     int n = !(n0 >= 1) ? 1 : n0 > NAT_MAX_PANELS ? NAT_MAX_PANELS : (int)n0;
     t->ncoef = NCHEB;
     for (;; n *= 2) {
@@ -205,8 +221,10 @@ int nat_table_build(NatTable *t, const NatSegment *seg)
         t->cx = pc_xrealloc(t->cx, sizeof(double) * NCHEB * (size_t)n);
         t->cy = pc_xrealloc(t->cy, sizeof(double) * NCHEB * (size_t)n);
         double tail = table_fill(t, ph, deg);
-        if (tail <= 1e-15 * fmax(S, 1e-300))
+        if (tail <= 1e-15 * fmax(S, 1e-300)) {
+            trim(t);
             return 0;
+        }
         if (n * 2 > NAT_MAX_PANELS)
             return -1;
     }
@@ -231,7 +249,7 @@ void nat_table_eval(const NatTable *t, double s, double *x, double *y)
     const double *cx = t->cx + (size_t)q * NCHEB,
                  *cy = t->cy + (size_t)q * NCHEB;
     double bx1 = 0, bx2 = 0, by1 = 0, by2 = 0;
-    for (int j = NCHEB - 1; j >= 1; j--) {
+    for (int j = t->ncoef - 1; j >= 1; j--) {
         double bx = z2 * bx1 - bx2 + cx[j], by = z2 * by1 - by2 + cy[j];
         bx2 = bx1, bx1 = bx, by2 = by1, by1 = by;
     }

@@ -19,3 +19,10 @@ mkdir -p "$DIR"
     --at A=0,0 --at B=6,0 --at C=2,4 --set k=0.7 \
     --output M --at-param u=0.3 --aux T1,K,T,P,Q,N \
     --size 720 -o "$DIR/conic_engineering_discriminant.svg"
+
+# The natural-parametrization article (docs/natural.md): figures 3 and 4
+# (clothoid families), a composite G1 curve (figures 5-8) and the G2 / G3
+# two-segment curves of sections 3-4 with their curvature combs
+for f in natural_fig3 natural_fig4 natural_composite natural_g2 natural_g3; do
+    PC="$PC" sh "examples/$f.sh" "$DIR" >/dev/null
+done

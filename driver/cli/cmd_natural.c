@@ -275,19 +275,37 @@ static const char *law_name(NatLaw l)
                                 : "linear";
 }
 
-static void print_poly(FILE *out, const double *c, int deg, const char *var)
+/* c[0] + c[1] s + ... with %.10g coefficients; a term below 1e-13 of
+ * the polynomial's size on [0, S] is rounding (a circle's k1 of 1e-17)
+ * and not written (the JSON has every coefficient as computed) */
+static void print_poly(FILE *out, const double *c, int deg, const char *var,
+                       double S)
 {
+    double size = 0, sj = 1;
+    for (int j = 0; j <= deg; j++, sj *= S)
+        size += fabs(c[j]) * sj;
     int any = 0;
-    for (int j = 0; j <= deg; j++) {
-        if (c[j] == 0 && (any || j < deg))
-            continue;
+    sj = 1;
+    for (int j = 0; j <= deg; j++, sj *= S) {
         double v = c[j];
-        pc_fprintf(out, any ? (v < 0 ? " - %.10g" : " + %.10g") : "%.10g",
-                   any ? fabs(v) : v);
+        if (fabs(v) * sj <= 1e-13 * size || v == 0)
+            continue;
+        if (any)
+            pc_fprintf(out, v < 0 ? " - %.10g" : " + %.10g", fabs(v));
+        else
+            pc_fprintf(out, "%.10g", v);
         if (j)
             fprintf(out, j == 1 ? "*%s" : "*%s^%d", var, j);
         any = 1;
     }
+    if (!any)
+        fputc('0', out);
+}
+
+/* never "-0" */
+static double nz(double v)
+{
+    return v == 0 ? 0.0 : v;
 }
 
 static void print_text(FILE *out, const NatArgs *a, const NatCli *k)
@@ -308,11 +326,12 @@ static void print_text(FILE *out, const NatArgs *a, const NatCli *k)
         pc_fprintf(
             out,
             "segment %d: (%.10g, %.10g) at %.10g -> (%.10g, %.10g) at %.10g\n",
-            i + 1, p->x, p->y, p->th, p[1].x, p[1].y, p[1].th);
+            i + 1, nz(p->x), nz(p->y), nz(p->th), nz(p[1].x), nz(p[1].y),
+            nz(p[1].th));
         fputs("  k(s)   = ", out);
-        print_poly(out, g->k, g->degree, "s");
+        print_poly(out, g->k, g->degree, "s", g->length);
         fputs("\n  phi(s) = ", out);
-        print_poly(out, ph, g->degree + 1, "s");
+        print_poly(out, ph, g->degree + 1, "s", g->length);
         pc_fprintf(out, "\n  S = %.15g\n", g->length);
     }
     for (int i = 0; i + 1 < c->nseg; i++)

@@ -200,8 +200,9 @@ static void c_array(FILE *out, const char *name, const char *what,
 static void c_tables(FILE *out, const NatCurve *c, const char *name)
 {
     int ns = c->nseg;
-    double *start = pc_xcalloc((size_t)ns * 4 + 1, sizeof *start);
+    double *start = pc_xcalloc((size_t)ns * 5 + 1, sizeof *start);
     double *scale = start + ns + 1, *off = scale + ns, *np = off + ns;
+    double *nc = np + ns;
     double *cx = NULL, *cy = NULL;
     size_t total = 0;
     int ncoef = NAT_CHEB_DEGREE + 1;
@@ -210,6 +211,7 @@ static void c_tables(FILE *out, const NatCurve *c, const char *name)
         nat_table_build(&t, &c->seg[i]);
         start[i + 1] = start[i] + c->seg[i].length;
         scale[i] = t.scale, off[i] = (double)total, np[i] = t.npanels;
+        nc[i] = t.ncoef;
         size_t m = (size_t)t.npanels * (size_t)ncoef;
         cx = pc_xrealloc(cx, sizeof *cx * (total + m));
         cy = pc_xrealloc(cy, sizeof *cy * (total + m));
@@ -222,6 +224,7 @@ static void c_tables(FILE *out, const NatCurve *c, const char *name)
     c_array(out, name, "scale", scale, (size_t)ns);
     c_array(out, name, "offset", off, (size_t)ns);
     c_array(out, name, "panels", np, (size_t)ns);
+    c_array(out, name, "ncoef", nc, (size_t)ns);
     c_array(out, name, "cx", cx, total);
     c_array(out, name, "cy", cy, total);
     free(start);
@@ -243,7 +246,7 @@ static const char c_body[] =
     "    const double *cy = $_cy + (long)$_offset[g] + q * $_NCOEF;\n"
     "    double z = 2 * (u - q) - 1, z2 = 2 * z;\n"
     "    double bx1 = 0, bx2 = 0, by1 = 0, by2 = 0;\n"
-    "    for (int j = $_NCOEF - 1; j >= 1; j--) {\n"
+    "    for (int j = (int)$_ncoef[g] - 1; j >= 1; j--) {\n"
     "        double bx = z2 * bx1 - bx2 + cx[j], by = z2 * by1 - by2 + cy[j];\n"
     "        bx2 = bx1, bx1 = bx, by2 = by1, by1 = by;\n    }\n"
     "    p[0] = z * bx1 - bx2 + cx[0];\n"
