@@ -6,6 +6,8 @@
  *   pc_compile                         equations -> numeric plan
  *   pc_eval                            plan -> coordinates, n samples
  *   pc_emit_c                          equations -> C source (as emit-c)
+ *   pc_natural_fit / pc_natural_point  curves in natural parametrization
+ *                                      (as `pointcalc natural`)
  *
  * Link with build/libpointcalc.a -lflint -lgmp -lm.  Nothing is ever
  * printed: diagnostics come back as text.  Strings returned by the library
@@ -136,6 +138,40 @@ int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
  * NULL on failure (a bad prefix, two outputs that make the same C function
  * name, or as pc_compile), with *diagnostics as for pc_compile.  free() it. */
 char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics);
+
+/* ---- curves in natural parametrization (docs/natural.md) ------------- */
+
+/* a segment: k(s) = k[0] + k[1] s + ... + k[degree] s^degree over arc
+ * length s in [0, length], from (x0, y0) at tangent angle phi0 */
+typedef struct pc_natural_segment {
+    double x0, y0, phi0;
+    double k[4];
+    int degree;
+    double length;
+} pc_natural_segment;
+
+enum {
+    PC_NATURAL_LINEAR = 1,    // clothoids, G1 joints
+    PC_NATURAL_QUADRATIC = 2, // the later segments quadratic: G2 joints
+    PC_NATURAL_CUBIC = 3,     // the later segments cubic: G3 joints
+    PC_ENOFIT = -2,           // a segment could not be fitted
+};
+
+/* The composite curve through n >= 2 points, pts[3 i], pts[3 i + 1] and
+ * pts[3 i + 2] = x, y and tangent angle (radians) of point i, as
+ * `pointcalc natural` fits it: the first segment the clothoid, every later
+ * one of `law`.  has_angle: NULL when every angle is given, else n flags (0:
+ * the chord rule gives point i's angle).  out receives the n - 1 segments.
+ * Returns PC_OK; PC_EINVAL for n < 2 or above 10000, a bad law, a value
+ * that is not finite or two equal consecutive points; PC_ENOFIT when a
+ * segment cannot be fitted (*bad, if not NULL, receives its index).  Pure:
+ * no allocation that outlives the call, safe from any thread. */
+int pc_natural_fit(const double *pts, const unsigned char *has_angle, int n,
+                   int law, pc_natural_segment *out, int *bad);
+
+/* The point of segment g at arc length s (xy[0], xy[1]; Gauss-Legendre
+ * quadrature to about 1e-15 of the length). */
+void pc_natural_point(const pc_natural_segment *g, double s, double xy[2]);
 
 /* Releases FLINT's global caches; call once before exit for a clean
  * valgrind report. */

@@ -7,6 +7,7 @@
  */
 #include "libpointcalc.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +20,7 @@
 #include "compiler/derive.h"
 #include "driver/cli/budget.h"
 #include "runtime/eval.h"
+#include "runtime/natural.h"
 
 struct pc_scheme {
     Derived *d; // owned
@@ -342,4 +344,59 @@ void pc_cleanup(void)
 void pc_thread_cleanup(void)
 {
     flint_cleanup();
+}
+
+/* ---- curves in natural parametrization ---------------------------------- */
+
+static NatSegment nat_of(const pc_natural_segment *g)
+{
+    NatSegment s = {g->x0, g->y0, g->phi0, {0}, g->degree, g->length};
+    for (int j = 0; j <= g->degree && j <= NAT_MAX_DEGREE; j++)
+        s.k[j] = g->k[j];
+    return s;
+}
+
+int pc_natural_fit(const double *pts, const unsigned char *has_angle, int n,
+                   int law, pc_natural_segment *out, int *bad)
+{
+    if (bad)
+        *bad = -1;
+    if (!pts || !out || n < 2 || n > NAT_MAX_POINTS ||
+        law < PC_NATURAL_LINEAR || law > PC_NATURAL_CUBIC)
+        return PC_EINVAL;
+    NatPoint *p = pc_xcalloc((size_t)n, sizeof *p);
+    int rc = PC_OK;
+    for (int i = 0; i < n && rc == PC_OK; i++) {
+        p[i] = (NatPoint){pts[3 * i], pts[3 * i + 1], pts[3 * i + 2],
+                          has_angle ? has_angle[i] != 0 : 1};
+        if (!isfinite(p[i].x) || !isfinite(p[i].y) ||
+            (p[i].has_th && !isfinite(p[i].th)) ||
+            (i > 0 && p[i].x == p[i - 1].x && p[i].y == p[i - 1].y))
+            rc = PC_EINVAL;
+    }
+    NatCurve c;
+    int which;
+    if (rc == PC_OK &&
+        nat_composite(p, n, (NatLaw)law, 0, 0, 0, &c, &which) != 0) {
+        rc = PC_ENOFIT;
+        if (bad)
+            *bad = which;
+    }
+    if (rc == PC_OK)
+        for (int i = 0; i < n - 1; i++) {
+            const NatSegment *g = &c.seg[i];
+            out[i] = (pc_natural_segment){g->x0, g->y0,     g->phi0,
+                                          {0},   g->degree, g->length};
+            memcpy(out[i].k, g->k, sizeof g->k);
+        }
+    if (rc != PC_EINVAL)
+        nat_curve_free(&c);
+    free(p);
+    return rc;
+}
+
+void pc_natural_point(const pc_natural_segment *g, double s, double xy[2])
+{
+    NatSegment seg = nat_of(g);
+    nat_point(&seg, s, &xy[0], &xy[1]);
 }

@@ -237,6 +237,46 @@ static void law_coef(const LawCtx *L, const double *u, NatSegment *seg)
     }
 }
 
+/* from the clothoid's (c0, d0), where u is a solution, to (c1, d1) in
+ * steps that double after a success and halve after a failure */
+static int continuation(LawCtx *L, double c0, double d0, double c1, double d1,
+                        double *u)
+{
+    double lam = 0, dl = 1;
+    while (lam < 1) {
+        double next = fmin(1, lam + dl), v[2] = {u[0], u[1]};
+        L->c = c0 + next * (c1 - c0);
+        L->d = d0 + next * (d1 - d0);
+        if (law_newton(L, v) == 0) {
+            lam = next, u[0] = v[0], u[1] = v[1];
+            dl *= 2;
+        } else if ((dl /= 2) < 1.0 / 256)
+            return -1;
+    }
+    return 0;
+}
+
+/* When the continuation meets a fold: Newton at the target values from a
+ * grid of starts (lengths 1 to 4 clothoid lengths, beta of either sign up
+ * to 10 times the turning's scale); the shortest solution wins. */
+static int multistart(LawCtx *L, double c1, double d1, double S0, double *u)
+{
+    L->c = c1, L->d = d1;
+    static const double sm[] = {1, 1.3, 1.7, 2.2, 3, 4};
+    static const double bm[] = {0, 1, -1, 3, -3, 10, -10};
+    double scale = 1 + fabs(L->D) + fabs(L->c) * S0 + fabs(L->d) * S0;
+    double best = INFINITY;
+    for (size_t i = 0; i < sizeof sm / sizeof sm[0]; i++)
+        for (size_t j = 0; j < sizeof bm / sizeof bm[0]; j++) {
+            double v[2] = {bm[j] * scale, sm[i] * S0};
+            if (law_newton(L, v) == 0 && v[1] < best) {
+                best = v[1];
+                u[0] = v[0], u[1] = v[1];
+            }
+        }
+    return isfinite(best) ? 0 : -1;
+}
+
 int nat_fit_law(NatLaw law, double x0, double y0, double th0, double x1,
                 double y1, double th1, double kstart, double dkstart,
                 NatSegment *seg, NatStats *st)
@@ -257,17 +297,9 @@ int nat_fit_law(NatLaw law, double x0, double y0, double th0, double x1,
     double c0 = law == NAT_QUADRATIC ? cl.k[0] : cl.k[1], d0 = cl.k[0];
     double c1 = law == NAT_QUADRATIC ? kstart : dkstart, d1 = kstart;
     double u[2] = {law == NAT_QUADRATIC ? cl.k[1] * S0 * S0 : 0, S0};
-    double lam = 0, dl = 1;
-    while (lam < 1) {
-        double next = fmin(1, lam + dl), v[2] = {u[0], u[1]};
-        L.c = c0 + next * (c1 - c0);
-        L.d = d0 + next * (d1 - d0);
-        if (law_newton(&L, v) == 0) {
-            lam = next, u[0] = v[0], u[1] = v[1];
-            dl *= 2;
-        } else if ((dl /= 2) < 1.0 / 256)
-            return -1;
-    }
+    if (continuation(&L, c0, d0, c1, d1, u) != 0 &&
+        multistart(&L, c1, d1, S0, u) != 0)
+        return -1;
     L.c = c1, L.d = d1;
     memset(seg, 0, sizeof *seg);
     seg->x0 = x0, seg->y0 = y0, seg->phi0 = th0;

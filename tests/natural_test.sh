@@ -177,13 +177,22 @@ usage "a FILE" "natural takes no FILE, found 'x.pcs'" x.pcs
 usage "emit two" "--emit-c writes one curve; this command line has 2" \
     --from 0,0,0 --to 1,0,0 --from 0,0,0 --to 2,0,0 --emit-c "$tmp/x.c"
 
-# a fit that fails: exit 1, the segment named, nothing on stdout (the cubic
-# law with a start curvature against the turning: it would have to loop)
-"$PC" natural --from 0,0,-1.20838 --to 1,0,0.390253 --law cubic --k0 -0.792412 \
-    --dk0 -0.520567 >"$tmp/f.out" 2>"$tmp/f.err"
+# a fit that fails: exit 1, the segment named, nothing on stdout (a
+# zigzag: the cubic law from the G3 joint at (1, 1) cannot reach (2, -1))
+"$PC" natural --from 0,0,0 --through 1,1 --through 2,-1 --through 3,1 --to 4,0,0 \
+    --law cubic >"$tmp/f.out" 2>"$tmp/f.err"
 check "no solution: exit 1" test $? -eq 1
 check "no solution: nothing on stdout" test ! -s "$tmp/f.out"
-check "no solution: says which" grep -q "^pointcalc: natural: curve 1, segment 1: Newton did not converge" "$tmp/f.err"
+check "no solution: says which" grep -q "^pointcalc: natural: curve 1, segment 2: no cubic segment reaches point 3 from the start values the joint gives" "$tmp/f.err"
+# a start curvature against the turning: found by the multistart (a loop)
+"$PC" natural --from 0,0,-1.20838 --to 1,0,0.390253 --law cubic --k0 -0.792412 \
+    --dk0 -0.520567 --format json >"$tmp/loop.json"
+check "against the turning: solved" python3 -c "
+import json
+d = json.load(open('$tmp/loop.json'))
+g = d['segments'][0]
+assert g['k'][0] == -0.792412 and g['k'][1] == -0.520567 and d['error'] < 1e-12
+"
 
 echo "natural_test: $pass passed, $fail failed"
 test $fail -eq 0

@@ -408,16 +408,23 @@ static int fit_all(NatArgs *a, FILE *err)
         int rc = a->hj ? composite_hj(k, &bad)
                        : nat_composite(k->pts, k->npts, a->law, a->has_k0,
                                        a->k0, a->dk0, &k->curve, &bad);
+        if (rc && a->hj) {
+            pc_fprintf(err,
+                       "pointcalc: natural: curve %d, segment %d: Hooke-Jeeves "
+                       "did not reach the end point within 1e-12 of the chord "
+                       "in 200000 integrals\n",
+                       c + 1, bad + 1);
+            return 1;
+        }
         if (rc) {
             pc_fprintf(err,
-                       "pointcalc: natural: curve %d, segment %d: %s "
-                       "(end-point error %.3g after %d %s)\n",
-                       c + 1, bad + 1,
-                       a->hj ? "Hooke-Jeeves did not reach the end point "
-                               "within 1e-12 of the chord in 200000 integrals"
-                             : "Newton did not converge",
-                       k->curve.stats.error, k->curve.stats.iterations,
-                       a->hj ? "pattern moves" : "steps");
+                       "pointcalc: natural: curve %d, segment %d: no %s "
+                       "segment reaches point %d from the start values the "
+                       "joint gives (Newton by continuation from the "
+                       "clothoid and from 42 starts, %d steps); try --law "
+                       "linear, or other points\n",
+                       c + 1, bad + 1, law_name(a->law), bad + 2,
+                       k->curve.stats.iterations);
             return 1;
         }
     }

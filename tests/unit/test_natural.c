@@ -15,6 +15,7 @@
 
 #include <cmocka.h>
 
+#include "libpointcalc.h"
 #include "runtime/natural.h"
 
 static uint64_t rng_state = 0x2545f4914f6cdd1dULL;
@@ -310,6 +311,54 @@ static void test_composite_joints(void **state)
     }
 }
 
+/* the C library's entry points: the circle through five points, the
+ * chord rule by flags, the errors */
+static void test_api(void **state)
+{
+    (void)state;
+    double pts[15];
+    unsigned char given[5] = {0, 0, 0, 0, 0};
+    for (int i = 0; i < 5; i++) {
+        double a = 0.3 + 0.4 * i;
+        pts[3 * i] = 2 * cos(a), pts[3 * i + 1] = 2 * sin(a),
+                pts[3 * i + 2] = 99;
+    }
+    pc_natural_segment seg[4];
+    int bad = 7;
+    assert_int_equal(pc_natural_fit(pts, given, 5, PC_NATURAL_CUBIC, seg, &bad),
+                     PC_OK);
+    assert_int_equal(bad, -1);
+    for (int i = 0; i < 4; i++) { // a circle: every law's k is 1/2
+        assert_true(fabs(seg[i].k[0] - 0.5) < 1e-12);
+        assert_true(fabs(seg[i].length - 0.8) < 1e-12);
+        double xy[2];
+        pc_natural_point(&seg[i], seg[i].length, xy);
+        assert_true(hypot(xy[0] - pts[3 * i + 3], xy[1] - pts[3 * i + 4]) <
+                    1e-12);
+    }
+    assert_int_equal(seg[0].degree, 1);
+    assert_int_equal(seg[1].degree, 3);
+    /* every angle given (has_angle NULL): 99 is taken as it is */
+    assert_int_equal(pc_natural_fit(pts, NULL, 2, PC_NATURAL_LINEAR, seg, NULL),
+                     PC_OK);
+    assert_true(fabs(remainder(seg[0].phi0 - 99, 2 * NAT_PI)) < 1e-12);
+    assert_int_equal(pc_natural_fit(pts, NULL, 1, PC_NATURAL_LINEAR, seg, NULL),
+                     PC_EINVAL);
+    assert_int_equal(pc_natural_fit(pts, NULL, 3, 4, seg, NULL), PC_EINVAL);
+    double same[6] = {1, 1, 0, 1, 1, 0.5};
+    assert_int_equal(
+        pc_natural_fit(same, NULL, 2, PC_NATURAL_LINEAR, seg, NULL), PC_EINVAL);
+    double nan6[6] = {0, 0, 0, NAN, 1, 0};
+    assert_int_equal(
+        pc_natural_fit(nan6, NULL, 2, PC_NATURAL_LINEAR, seg, NULL), PC_EINVAL);
+    /* a zigzag the cubic law cannot follow from the G3 joint */
+    double zig[15] = {0, 0, 0, 1, 1, 0, 2, -1, 0, 3, 1, 0, 4, 0, 0};
+    unsigned char ends[5] = {1, 0, 0, 0, 1};
+    assert_int_equal(pc_natural_fit(zig, ends, 5, PC_NATURAL_CUBIC, seg, &bad),
+                     PC_ENOFIT);
+    assert_int_equal(bad, 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -325,6 +374,7 @@ int main(void)
         cmocka_unit_test(test_table),
         cmocka_unit_test(test_chord_rule),
         cmocka_unit_test(test_composite_joints),
+        cmocka_unit_test(test_api),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
