@@ -225,5 +225,42 @@ else
     echo "skip: render check (rsvg-convert or python3 not installed; apt-get install librsvg2-bin)"
 fi
 
+# ---- fit --plot (issue 20): f, the curve and its nodes --------------------
+if "$PC" fit --target '1/(1 + 25*x^2)' --on -1,1 --nodes 6 --format json \
+    --plot "$T/fit.svg" >"$T/fit.json" 2>"$T/err" && wellformed "$T/fit.svg" &&
+    [ -n "$PY" ] && "$PY" - "$T/fit.svg" "$T/fit.json" <<'EOF'
+import json, re, sys, xml.dom.minidom as X
+doc = X.parse(sys.argv[1]); fit = json.load(open(sys.argv[2]))
+lines = {l.getAttribute('class'): l.getAttribute('points') for l in doc.getElementsByTagName('polyline')}
+circ = [(float(c.getAttribute('cx')), float(c.getAttribute('cy'))) for c in doc.getElementsByTagName('circle')]
+assert sorted(lines) == ['curve', 'target'], lines.keys()
+pts = lambda s: [tuple(map(float, p.split(','))) for p in s.split()]
+tg, cv = pts(lines['target']), pts(lines['curve'])
+assert len(tg) == 601 and len(cv) == 401 and len(circ) == 6
+# pixels per unit and the origin from the target's ends (x = -1 and 1, f = 1/26)
+k = (tg[-1][0] - tg[0][0]) / 2
+x0, y0 = tg[0][0] + k, tg[0][1] + k / 26
+# every node at its abscissa and on f; the curve from the first node to the last
+for (cx, cy), xn in zip(circ, fit['nodes']):
+    assert abs(cx - (x0 + k * xn)) < 0.02, (cx, xn)
+    assert abs(cy - (y0 - k / (1 + 25 * xn * xn))) < 0.02, (cy, xn)
+assert max(abs(cv[0][0] - circ[0][0]), abs(cv[-1][1] - circ[-1][1])) < 0.02
+# the curve lies within its max error (JSON) of f: 0.02 of a unit is > 5 px
+for (px, py) in cv:
+    x = (px - x0) / k
+    assert abs((y0 - py) / k - 1 / (1 + 25 * x * x)) < fit['max_error'] + 0.02, (px, py)
+EOF
+then ok "fit --plot: f, the curve and the nodes where the JSON says"; else bad "fit --plot: $(cat "$T/err")"; fi
+printf 'point A, B, C\nparam t in [0, 1]\nX = A*(1-t)*(1-2*t) + 4*B*t*(1-t) + C*t*(2*t-1)\nparam x\nf = x^2\ng = 1 - x^2\nfit X to f on [0, 1]\nfit X to g on [-1, 1]\n' >"$T/two.pcs"
+if "$PC" fit "$T/two.pcs" --plot "$T/two.svg" >/dev/null 2>"$T/err" &&
+    wellformed "$T/two.svg" && wellformed "$T/two-2.svg"; then
+    ok "fit --plot: a scheme's second fit goes to FILE-2.svg"
+else
+    bad "fit --plot, two fits: $(cat "$T/err")"
+fi
+"$PC" fit --target 'x^2' --on 0,1 --nodes 3 --plot "$T/no/such/dir.svg" >"$T/out" 2>"$T/err"
+rc=$?
+[ $rc -eq 1 ] && [ ! -s "$T/out" ] && grep -q 'dir.svg' "$T/err" && ok "fit --plot: an unwritable picture is exit 1, nothing on stdout" || bad "fit --plot unwritable: rc=$rc"
+
 [ $fail -eq 0 ] && echo "plot_test: all ok" || echo "plot_test: FAILED"
 exit $fail

@@ -26,3 +26,7 @@ mkdir -p "$DIR"
 for f in natural_fig3 natural_fig4 natural_composite natural_g2 natural_g3; do
     PC="$PC" sh "examples/$f.sh" "$DIR" >/dev/null
 done
+
+# Monograph 5.2: Runge's function and the 6-node optimal curve (docs/fit.md)
+"$PC" fit --target '1/(1 + 25*x^2)' --on -1,1 --nodes 6 \
+    --plot "$DIR/fit_runge6.svg" >/dev/null

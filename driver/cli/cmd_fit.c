@@ -28,6 +28,7 @@ typedef struct FitArgs {
     const char *target;
     const char *file; // the scheme form: pointcalc fit FILE
     const char *data; // --data FILE.csv
+    const char *plot; // --plot FILE.svg
     int has_on, has_nodes;
     FitOptions o;
     FitFormat format;
@@ -63,7 +64,8 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
     if (strcmp(opt, "--target") && strcmp(opt, "--on") &&
         strcmp(opt, "--nodes") && strcmp(opt, "--samples") &&
         strcmp(opt, "--starts") && strcmp(opt, "--max-iter") &&
-        strcmp(opt, "--format") && strcmp(opt, "--data"))
+        strcmp(opt, "--format") && strcmp(opt, "--data") &&
+        strcmp(opt, "--plot"))
         return 0;
     if (!v) {
         args_usage_error(err, a->usage, "%s needs a value", opt);
@@ -71,6 +73,8 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
     }
     if (strcmp(opt, "--data") == 0) {
         a->data = v;
+    } else if (strcmp(opt, "--plot") == 0) {
+        a->plot = v;
     } else if (strcmp(opt, "--target") == 0) {
         a->target = v;
         bad = v[strcspn(v, "\n\r")] != '\0' || !v[strspn(v, " \t")];
@@ -301,13 +305,27 @@ static void not_converged(FILE *err, const Fit *f, const FitResult *r)
 typedef struct FitOut {
     FILE *out, *err;
     FitFormat format;
+    const char *plot; // --plot FILE.svg: the first fit's picture; the k-th
+    int nfit;         // (k >= 2) goes to FILE-k.svg
 } FitOut;
+
+/* the picture's path of the current fit */
+static char *plot_path(const FitOut *o)
+{
+    if (o->nfit <= 1)
+        return pc_xstrdup(o->plot);
+    size_t n = strlen(o->plot);
+    int svg = n >= 4 && strcmp(o->plot + n - 4, ".svg") == 0;
+    return pc_xasprintf("%.*s-%d%s", (int)(svg ? n - 4 : n), o->plot, o->nfit,
+                        svg ? ".svg" : "");
+}
 
 /* runs f and prints what it found (a FitReport) */
 static int run_and_print(void *ctx, Fit *f, const FitInfo *info)
 {
-    const FitOut *o = ctx;
+    FitOut *o = ctx;
     FitResult r;
+    o->nfit++;
     int rc = fit_run(f, &r);
     if (rc) {
         not_converged(o->err, f, &r);
@@ -319,9 +337,14 @@ static int run_and_print(void *ctx, Fit *f, const FitInfo *info)
             poly_of(cx, f, r.nodes);
             poly_of(cy, f, y);
         }
-        if (o->format == FIT_JSON)
+        if (o->plot) { // before stdout: a picture that fails is exit 1
+            char *path = plot_path(o);
+            rc = fit_plot_svg(path, f, &r, y, cx, cy, o->err);
+            free(path);
+        }
+        if (rc == 0 && o->format == FIT_JSON)
             print_json(o->out, info, f, &r, y, cx, cy);
-        else
+        else if (rc == 0)
             print_text(o->out, info, f, &r, y, cx, cy);
         free(y);
     }
@@ -338,7 +361,7 @@ int cli_fit(int argc, char **argv, FILE *out, FILE *err)
     int rc = parse_args(&a, &b, argc, argv, err);
     if (rc)
         return rc;
-    FitOut fo = {out, err, a.format};
+    FitOut fo = {out, err, a.format, a.plot, 0};
     budget_arm(b.max_seconds, b.max_memory);
     if (a.file) {
         rc = fit_scheme_run(a.file, a.data, &a.o, run_and_print, &fo, err);
@@ -398,6 +421,9 @@ const char fit_help[] = FIT_USAGE
     "8)\n"
     "  --max-iter I        Levenberg-Marquardt iterations a start (default "
     "3000)\n"
+    "  --plot FILE.svg     the picture: f, the curve and its nodes (a "
+    "scheme's\n"
+    "                      second fit statement to FILE-2.svg, and so on)\n"
     "  --format text|json  text: nodes, MSE, max error, x(t) and y(t); json:\n"
     "                      \"nodes\", \"mse\", \"max_error\", \"iterations\", "
     "\"start\", ...\n"

@@ -178,9 +178,8 @@ static const char *status_text(unsigned char st)
 
 enum { CHECK_SAMPLES = 2001 };
 
-/* f (o = 0) or f' (o = 1) at x[0..n-1] into v, statuses into st */
-static void target_at(const Fit *f, int o, size_t n, const double *x, double *v,
-                      unsigned char *st)
+void fit_target_at(const Fit *f, int o, size_t n, const double *x, double *v,
+                   unsigned char *st)
 {
     const FitTarget *t = &f->tg;
     if (t->spline) {
@@ -203,7 +202,7 @@ static int check_target(const Fit *f, FILE *err)
         x[i] = i + 1 == n ? f->o.hi
                           : f->o.lo + (f->o.hi - f->o.lo) * (double)i /
                                           (double)(n - 1);
-    target_at(f, 0, n, x, v, st);
+    fit_target_at(f, 0, n, x, v, st);
     size_t first = n, last = 0, count = 0;
     for (size_t i = 0; i < n; i++) {
         if (st[i] == PLAN_STATUS_OK && isfinite(v[i]))
@@ -356,7 +355,7 @@ void fit_free(Fit *f)
 static int target_eval(Fit *f, int o, double *v)
 {
     size_t ne = f->ns + (size_t)f->n;
-    target_at(f, o, ne, f->xs, v, f->st);
+    fit_target_at(f, o, ne, f->xs, v, f->st);
     for (size_t i = 0; i < ne; i++)
         if (f->st[i] != PLAN_STATUS_OK || !isfinite(v[i]))
             return -1;

@@ -38,7 +38,8 @@ CliCommand cli_fit; // cmd_fit.c: pointcalc fit --target EXPR ...
     "M]\n"                                                                     \
     "       pointcalc fit --data FILE.csv [--on LO,HI] --nodes N [...]\n"      \
     "       pointcalc fit SCHEME.pcs [--data FILE.csv] [--samples M] [...]\n"  \
-    "                     [--starts K] [--max-iter I] [--format text|json]\n"
+    "                     [--starts K] [--max-iter I] [--format text|json]\n"  \
+    "                     [--plot FILE.svg]\n"
 extern const char fit_help[];
 
 typedef struct FitOptions {
@@ -160,6 +161,18 @@ void fit_result_clear(FitResult *r);
  * is undefined at a sample. */
 int fit_residuals_x(Fit *f, const double *xin, double *r, double *J);
 int fit_residuals_u(void *f, const double *u, double *r, double *J);
+/* f (o = 0) or f' (o = 1) at x[0..n-1] into v, statuses (PlanStatus)
+ * into st */
+void fit_target_at(const Fit *f, int o, size_t n, const double *x, double *v,
+                   unsigned char *st);
+
+/* (fit_plot.c) the picture of a fit: f over [lo, hi], the curve x(t),
+ * y(t) (from its exact coefficients when it has them, else at the m + 1
+ * samples) and the nodes (x_k, y_k); 0, or 1 after a message on err */
+int fit_plot_svg(const char *path, const Fit *f, const FitResult *r,
+                 const double *y, const double *cx, const double *cy,
+                 FILE *err);
+
 /* the nodes (n values) of log-gaps u, and back */
 void fit_nodes_of_u(const Fit *f, const double *u, double *x);
 void fit_u_of_nodes(const Fit *f, const double *x, double *u);

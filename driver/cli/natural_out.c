@@ -15,6 +15,7 @@
 #include "base/numfmt.h"
 #include "driver/cli/natural.h"
 #include "driver/cli/outfile.h"
+#include "driver/cli/svgfig.h"
 
 void natural_samples_json(FILE *out, const NatCurve *c, int n)
 {
@@ -45,82 +46,65 @@ void natural_samples_json(FILE *out, const NatCurve *c, int n)
 
 /* ---- the picture --------------------------------------------------------- */
 
-enum { SVG_W = 720, SVG_SEG_SAMPLES = 200, SVG_TEETH = 60 };
+enum { SVG_SEG_SAMPLES = 200, SVG_TEETH = 60 };
 
-typedef struct Frame {
-    double x0, y0, x1, y1, k; // the box and pixels per unit
-    FILE *out;
-} Frame;
+static const char natural_style[] =
+    ".curve { fill: none; stroke: #1f4e9c; stroke-width: 2 }\n"
+    ".comb, .tooth { fill: none; stroke: #c0504d; stroke-width: 0.7 }\n"
+    ".tangent { fill: none; stroke: #555; stroke-width: 1 }\n"
+    ".point { fill: white; stroke: #000; stroke-width: 1.2 }\n";
 
-static void px(const Frame *f, double x, double y)
+static void draw_curve(SvgFig *f, const NatCurve *c)
 {
-    pc_fprintf(f->out, "%.2f,%.2f", 20 + (x - f->x0) * f->k,
-               20 + (f->y1 - y) * f->k);
-}
-
-static void grow(double *b, double x, double y)
-{
-    b[0] = fmin(b[0], x), b[1] = fmin(b[1], y);
-    b[2] = fmax(b[2], x), b[3] = fmax(b[3], y);
-}
-
-static void draw_curve(const Frame *f, const NatCurve *c)
-{
-    fputs("<polyline class=\"curve\" points=\"", f->out);
+    svgfig_line_begin(f, "curve");
     for (int i = 0; i < c->nseg; i++) {
         NatTable t;
         nat_table_build(&t, &c->seg[i]);
         for (int j = i ? 1 : 0; j <= SVG_SEG_SAMPLES; j++) {
             double x, y;
             nat_table_eval(&t, c->seg[i].length * j / SVG_SEG_SAMPLES, &x, &y);
-            px(f, x, y);
-            fputc(' ', f->out);
+            svgfig_line_to(f, x, y);
         }
         nat_table_free(&t);
     }
-    fputs("\"/>\n", f->out);
+    svgfig_line_end(f);
 }
 
-static void draw_comb(const Frame *f, const NatCurve *c, double scale)
+/* the comb: the normal scaled by -k (drawn on the convex side), its
+ * outline and its teeth */
+static void draw_comb(SvgFig *f, const NatCurve *c, double scale)
 {
     for (int i = 0; i < c->nseg; i++) {
         const NatSegment *g = &c->seg[i];
         NatTable t;
         nat_table_build(&t, g);
-        fputs("<polyline class=\"comb\" points=\"", f->out);
+        double tip[SVG_TEETH + 1][4];
         for (int j = 0; j <= SVG_TEETH; j++) {
-            double s = g->length * j / SVG_TEETH, x, y, ph = nat_phi(g, s);
+            double s = g->length * j / SVG_TEETH, ph = nat_phi(g, s);
             double k = -nat_kappa(g, s) * scale;
-            nat_table_eval(&t, s, &x, &y);
-            px(f, x - k * sin(ph), y + k * cos(ph));
-            fputc(' ', f->out);
+            nat_table_eval(&t, s, &tip[j][0], &tip[j][1]);
+            tip[j][2] = tip[j][0] - k * sin(ph);
+            tip[j][3] = tip[j][1] + k * cos(ph);
         }
-        fputs("\"/>\n", f->out);
-        for (int j = 0; j <= SVG_TEETH; j++) {
-            double s = g->length * j / SVG_TEETH, x, y, ph = nat_phi(g, s);
-            double k = -nat_kappa(g, s) * scale;
-            nat_table_eval(&t, s, &x, &y);
-            fputs("<polyline class=\"tooth\" points=\"", f->out);
-            px(f, x, y);
-            fputc(' ', f->out);
-            px(f, x - k * sin(ph), y + k * cos(ph));
-            fputs("\"/>\n", f->out);
-        }
+        svgfig_line_begin(f, "comb");
+        for (int j = 0; j <= SVG_TEETH; j++)
+            svgfig_line_to(f, tip[j][2], tip[j][3]);
+        svgfig_line_end(f);
+        for (int j = 0; j <= SVG_TEETH; j++)
+            svgfig_segment(f, "tooth", tip[j][0], tip[j][1], tip[j][2],
+                           tip[j][3]);
         nat_table_free(&t);
     }
 }
 
-static void draw_points(const Frame *f, const NatCli *k, double len)
+static void draw_points(SvgFig *f, const NatCli *k, double len)
 {
     for (int i = 0; i < k->npts; i++) {
         const NatPoint *p = &k->pts[i];
-        fputs("<polyline class=\"tangent\" points=\"", f->out);
-        px(f, p->x - len * cos(p->th), p->y - len * sin(p->th));
-        fputc(' ', f->out);
-        px(f, p->x + len * cos(p->th), p->y + len * sin(p->th));
-        fputs("\"/>\n<circle class=\"point\" r=\"4\" cx=\"", f->out);
-        pc_fprintf(f->out, "%.2f\" cy=\"%.2f\"/>\n", 20 + (p->x - f->x0) * f->k,
-                   20 + (f->y1 - p->y) * f->k);
+        double dx = len * cos(p->th), dy = len * sin(p->th);
+        svgfig_segment(f, "tangent", p->x - dx, p->y - dy, p->x + dx,
+                       p->y + dy);
+        svgfig_circle(f, "point", p->x, p->y, 4);
     }
 }
 
@@ -140,46 +124,28 @@ int natural_svg(const char *path, const NatCli *curves, int n, int comb,
     double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY}, km = 0;
     for (int c = 0; c < n; c++) {
         for (int i = 0; i < curves[c].npts; i++)
-            grow(b, curves[c].pts[i].x, curves[c].pts[i].y);
+            svgfig_grow(b, curves[c].pts[i].x, curves[c].pts[i].y);
         for (int i = 0; i < curves[c].curve.nseg; i++)
             for (int j = 0; j <= 16; j++) {
+                const NatSegment *g = &curves[c].curve.seg[i];
                 double x, y;
-                nat_point(&curves[c].curve.seg[i],
-                          curves[c].curve.seg[i].length * j / 16, &x, &y);
-                grow(b, x, y);
+                nat_point(g, g->length * j / 16, &x, &y);
+                svgfig_grow(b, x, y);
             }
         km = fmax(km, max_kappa(&curves[c].curve));
     }
     double diag = hypot(b[2] - b[0], b[3] - b[1]), pad = 0.12 * diag;
     double scale = km > 0 ? 0.15 * diag / km : 0;
-    b[0] -= pad, b[1] -= pad, b[2] += pad, b[3] += pad;
-    char *text = NULL;
-    size_t len = 0;
-    Frame f = {b[0], b[1], b[2], b[3], (SVG_W - 40) / fmax(b[2] - b[0], 1e-300),
-               NULL};
-    f.out = pc_xopen_memstream(&text, &len);
-    int h = (int)ceil((b[3] - b[1]) * f.k) + 40;
-    pc_fprintf(
-        f.out,
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%d\" "
-        "viewBox=\"0 0 %d %d\">\n<style>\n"
-        ".curve { fill: none; stroke: #1f4e9c; stroke-width: 2 }\n"
-        ".comb, .tooth { fill: none; stroke: #c0504d; stroke-width: 0.7 }\n"
-        ".tangent { fill: none; stroke: #555; stroke-width: 1 }\n"
-        ".point { fill: white; stroke: #000; stroke-width: 1.2 }\n"
-        "</style>\n<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n",
-        SVG_W, h, SVG_W, h);
+    double box[4] = {b[0] - pad, b[1] - pad, b[2] + pad, b[3] + pad};
+    SvgFig f;
+    svgfig_begin(&f, box, natural_style);
     for (int c = 0; c < n; c++) {
         if (comb && scale > 0)
             draw_comb(&f, &curves[c].curve, scale);
         draw_curve(&f, &curves[c].curve);
         draw_points(&f, &curves[c], 0.06 * diag);
     }
-    fputs("</svg>\n", f.out);
-    pc_xclose_memstream(f.out);
-    int rc = outfile_write(path, text, len, NULL, err);
-    free(text);
-    return rc;
+    return svgfig_end(&f, path, err);
 }
 
 /* ---- the C --------------------------------------------------------------- */
