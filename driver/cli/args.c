@@ -33,11 +33,12 @@ const char *args_value(int argc, char **argv, int i)
     return i + 1 < argc ? argv[i + 1] : NULL;
 }
 
-int args_parse(int argc, char **argv, const char *usage, BudgetOptions *b,
-               const char **file, ArgsOption *opt, void *ctx, FILE *err)
+int args_scan(int argc, char **argv, const char *usage, BudgetOptions *b,
+              const char **file, ArgsOption *opt, void *ctx, FILE *err)
 {
     budget_options_default(b);
-    *file = NULL;
+    if (file)
+        *file = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         int used = budget_parse_option(b, argc, argv, i, err);
@@ -50,15 +51,25 @@ int args_parse(int argc, char **argv, const char *usage, BudgetOptions *b,
         else if (a[0] == '-' && a[1] != '\0')
             return args_usage_error(err, usage,
                                     "unknown or incomplete option '%s'", a);
+        else if (!file)
+            return args_usage_error(err, usage, "%s takes no FILE, found '%s'",
+                                    argv[0], a);
         else if (*file)
             return args_usage_error(err, usage, "%s takes one FILE, found '%s'",
                                     argv[0], a);
         else
             *file = a;
     }
-    if (!*file)
-        return args_usage_error(err, usage, "%s needs a scheme FILE", argv[0]);
     return 0;
+}
+
+int args_parse(int argc, char **argv, const char *usage, BudgetOptions *b,
+               const char **file, ArgsOption *opt, void *ctx, FILE *err)
+{
+    int rc = args_scan(argc, argv, usage, b, file, opt, ctx, err);
+    if (rc == 0 && !*file)
+        return args_usage_error(err, usage, "%s needs a scheme FILE", argv[0]);
+    return rc;
 }
 
 /* ---- --output NAME[,NAME...] ------------------------------------------ */

@@ -53,6 +53,10 @@ typedef int ArgsOption(void *ctx, int argc, char **argv, int i, FILE *err);
 /* Parses argv[1..]: budget options into *b (defaults first), the
  * command's options through opt (may be NULL), one FILE into *file.
  * Returns 0, or 2 after reporting a usage error. */
+/* args_parse's loop alone: the FILE is optional (*file NULL when none),
+ * and with file NULL the command takes none (natural). */
+int args_scan(int argc, char **argv, const char *usage, BudgetOptions *b,
+              const char **file, ArgsOption *opt, void *ctx, FILE *err);
 int args_parse(int argc, char **argv, const char *usage, BudgetOptions *b,
                const char **file, ArgsOption *opt, void *ctx, FILE *err);
 

@@ -108,25 +108,18 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
     return 2;
 }
 
+static int fit_option_cb(void *ctx, int argc, char **argv, int i, FILE *err)
+{
+    return fit_option(ctx, argc, argv, i, err);
+}
+
 static int parse_args(FitArgs *a, BudgetOptions *b, int argc, char **argv,
                       FILE *err)
 {
-    budget_options_default(b);
-    for (int i = 1; i < argc; i++) {
-        int used = budget_parse_option(b, argc, argv, i, err);
-        if (used == 0)
-            used = fit_option(a, argc, argv, i, err);
-        if (used < 0)
-            return 2;
-        if (used == 0 && argv[i][0] != '-' && !a->file) {
-            a->file = argv[i];
-            continue;
-        }
-        if (used == 0)
-            return args_usage_error(
-                err, a->usage, "unknown or incomplete option '%s'", argv[i]);
-        i += used - 1;
-    }
+    int rc =
+        args_scan(argc, argv, a->usage, b, &a->file, fit_option_cb, a, err);
+    if (rc)
+        return rc;
     if (a->file && (a->target || a->has_on || a->has_nodes))
         return args_usage_error(err, a->usage,
                                 "a scheme FILE says its curve, target and "

@@ -171,27 +171,6 @@ static int natural_option(void *ctx, int argc, char **argv, int i, FILE *err)
     return 2;
 }
 
-static int parse_args(NatArgs *a, BudgetOptions *b, int argc, char **argv,
-                      FILE *err)
-{
-    budget_options_default(b);
-    for (int i = 1; i < argc; i++) {
-        int used = budget_parse_option(b, argc, argv, i, err);
-        if (used == 0)
-            used = natural_option(a, argc, argv, i, err);
-        if (used < 0)
-            return 2;
-        if (used == 0)
-            return args_usage_error(err, a->usage,
-                                    argv[i][0] == '-'
-                                        ? "unknown or incomplete option '%s'"
-                                        : "natural takes no FILE, found '%s'",
-                                    argv[i]);
-        i += used - 1;
-    }
-    return 0;
-}
-
 static int check_args(NatArgs *a, FILE *err)
 {
     if (!a->ncurves)
@@ -437,7 +416,7 @@ int cli_natural(int argc, char **argv, FILE *out, FILE *err)
                  .usage = help_usage("natural"),
                  .name = "natural_curve"};
     BudgetOptions b;
-    int rc = parse_args(&a, &b, argc, argv, err);
+    int rc = args_scan(argc, argv, a.usage, &b, NULL, natural_option, &a, err);
     if (!rc)
         rc = check_args(&a, err);
     if (!rc) {
