@@ -120,13 +120,16 @@ cat >"$tmp/main.c" <<'EOF'
 #include <stdlib.h>
 void curve(double s, double p[2]);
 void curve_batch(const double *s, double *p, long n);
+void curve_angle_curvature(double s, double a[2]);
 int main(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++) {
-        double p[2], q[2], s = strtod(argv[i], NULL);
+        double p[2], q[2], a[2], s = strtod(argv[i], NULL);
         curve(s, p);
         curve_batch(&s, q, 1);
-        printf("%.17g %.17g %d\n", p[0], p[1], p[0] == q[0] && p[1] == q[1]);
+        curve_angle_curvature(s, a);
+        printf("%.17g %.17g %d %.17g %.17g\n", p[0], p[1],
+               p[0] == q[0] && p[1] == q[1], a[0], a[1]);
     }
     return 0;
 }
@@ -138,14 +141,16 @@ import json, subprocess
 d = json.load(open('$tmp/nc.json'))
 start, args, want = 0.0, [], []
 for g, rows in zip(d['segments'], d['samples']):
-    for r in rows:
-        args.append(repr(start + r[0])); want.append((r[1], r[2]))
+    for r in rows[:-1] if g is not d['segments'][-1] else rows:
+        args.append(repr(start + r[0])); want.append((r[1], r[2], r[3], r[4]))
     start += g['length']
 out = subprocess.run(['$tmp/nc'] + args, capture_output=True, text=True).stdout.split('\n')
-for line, (x, y) in zip(out, want):
-    px, py, same = line.split()
+assert len(out) == len(want) + 1
+for line, (x, y, phi, k) in zip(out, want):
+    px, py, same, pphi, pk = line.split()
     assert same == '1'
     assert abs(float(px) - x) < 1e-13 and abs(float(py) - y) < 1e-13, (line, x, y)
+    assert abs(float(pphi) - phi) < 1e-13 and abs(float(pk) - k) < 1e-12, (line, phi, k)
 "
 
 # usage errors: exit 2, the message, nothing on stdout

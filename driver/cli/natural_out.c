@@ -186,6 +186,14 @@ static void c_tables(FILE *out, const NatCurve *c, const char *name)
         total += m;
         nat_table_free(&t);
     }
+    double *law = pc_xcalloc((size_t)ns * 5, sizeof *law);
+    for (int i = 0; i < ns; i++) { // phi0, then k0 .. k3
+        law[5 * i] = c->seg[i].phi0;
+        for (int j = 0; j <= c->seg[i].degree; j++)
+            law[5 * i + 1 + j] = c->seg[i].k[j];
+    }
+    c_array(out, name, "law", law, (size_t)ns * 5);
+    free(law);
     c_array(out, name, "start", start, (size_t)ns + 1);
     c_array(out, name, "scale", scale, (size_t)ns);
     c_array(out, name, "offset", off, (size_t)ns);
@@ -200,10 +208,14 @@ static void c_tables(FILE *out, const NatCurve *c, const char *name)
 
 /* the evaluator: $ is the name, # the segments' count */
 static const char c_body[] =
-    "\n/* the point at arc length s (clamped to the curve) */\n"
-    "void $(double s, double p[2])\n{\n"
+    "\n/* the segment of arc length s */\n"
+    "static int $_segment(double s)\n{\n"
     "    int g = 0;\n"
     "    while (g + 1 < # && s >= $_start[g + 1])\n        g++;\n"
+    "    return g;\n}\n\n"
+    "/* the point at arc length s (clamped to the curve) */\n"
+    "void $(double s, double p[2])\n{\n"
+    "    int g = $_segment(s);\n"
     "    double u = (s - $_start[g]) * $_scale[g];\n"
     "    int n = (int)$_panels[g], q = u > 0 ? (int)u : 0;\n"
     "    if (!(u > 0))\n        u = 0;\n"
@@ -217,6 +229,16 @@ static const char c_body[] =
     "        bx2 = bx1, bx1 = bx, by2 = by1, by1 = by;\n    }\n"
     "    p[0] = z * bx1 - bx2 + cx[0];\n"
     "    p[1] = z * by1 - by2 + cy[0];\n}\n\n"
+    "/* the tangent angle a[0] and the curvature a[1] at arc length s (the\n"
+    " * exact polynomials; s clamped to the curve) */\n"
+    "void $_angle_curvature(double s, double a[2])\n{\n"
+    "    int g = $_segment(s);\n"
+    "    const double *k = $_law + 5 * g;\n"
+    "    double v = s - $_start[g], len = $_start[g + 1] - $_start[g];\n"
+    "    v = v < 0 ? 0 : v > len ? len : v;\n"
+    "    a[0] = k[0] + v * (k[1] + v * (k[2] / 2 + v * (k[3] / 3 + v * k[4] / "
+    "4)));\n"
+    "    a[1] = k[1] + v * (k[2] + v * (k[3] + v * k[4]));\n}\n\n"
     "/* n points: p[2 i], p[2 i + 1] at s[i] */\n"
     "void $_batch(const double *s, double *p, long n)\n{\n"
     "    for (long i = 0; i < n; i++)\n        $(s[i], p + 2 * i);\n}\n";
