@@ -873,5 +873,32 @@ printf 'point A, B\nparam t\nX = along(A, B, t)\nfit X to X on [0, 1]\n' >"$tmp/
 check "fit FILE: a kind error exits 1" test $? -eq 1
 check "fit FILE: located" grep -q "fitbad.pcs:4:10: error: 'X' is a point definition; expected a scalar definition (the target) in fit" "$tmp/fitbad.err"
 
+# the scheme form with consts (--set) and ints (-D): Runge's function as
+# 1/(1 + a x^2) with a = 25 gives --target's nodes
+printf 'int n = 4\npoint M[1..n+1]\nparam t in [0, 1]\nunknown C[2..n]\nX = bezier(t, M[1], C[2..n], M[n+1])\nsolve subst(X, t, (i-1)/n) = M[i] for i in 2..n for C[2..n]\nparam x\nconst a\nf = 1/(1 + a*x^2)\nfit X to f on [-1, 1]\n' >"$tmp/fitc.pcs"
+"$PC" fit --target '1/(1 + 25*x^2)' --on -1,1 --nodes 5 --format json >"$tmp/fit5.json"
+"$PC" fit "$tmp/fitc.pcs" --set a=25 --format json >"$tmp/fitc5.json"
+check "fit FILE --set: exit 0" test $? -eq 0
+"$PC" fit "$tmp/fitc.pcs" --set a=25 -D n=5 --format json >"$tmp/fitc6.json"
+check "fit FILE --set, -D: the --target nodes" python3 -c "
+import json
+a = json.load(open('$tmp/fit5.json'))['nodes']
+b = json.load(open('$tmp/fitc5.json'))['nodes']
+c = json.load(open('$tmp/fitc6.json'))['nodes']
+assert len(b) == 5 and all(abs(x - y) < 1e-8 for x, y in zip(a, b)), (a, b)
+assert len(c) == 6 and abs(c[4] - 0.233198) < 1e-6, c
+"
+"$PC" fit "$tmp/fitc.pcs" >"$tmp/fitc.out" 2>"$tmp/fitc.err"
+check "fit FILE, a const without --set: exit 1" test $? -eq 1
+check "fit FILE, a const without --set: located" grep -q "fitc.pcs:10:1: error: fit needs numbers: the const 'a' has no value; expected --set a=VALUE" "$tmp/fitc.err"
+"$PC" fit "$tmp/fitc.pcs" --set b=1 >"$tmp/fitc.out" 2>"$tmp/fitc.err"
+check "fit FILE --set of no const: exit 2" test $? -eq 2
+check "fit FILE --set of no const: message" grep -qx "pointcalc: --set b: the scheme has no const 'b'" "$tmp/fitc.err"
+"$PC" fit "$tmp/fitc.pcs" --set a=25 -D m=3 >"$tmp/fitc.out" 2>"$tmp/fitc.err"
+check "fit FILE -D of no int: exit 2" test $? -eq 2
+check "fit FILE -D of no int: nothing on stdout" test ! -s "$tmp/fitc.out"
+"$PC" fit --target 'x^2' --on 0,1 --nodes 3 --set a=1 >/dev/null 2>"$tmp/fitc.err"
+check "fit --target --set: exit 2" test $? -eq 2
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

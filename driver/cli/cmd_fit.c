@@ -26,9 +26,11 @@ typedef enum FitFormat { FIT_TEXT, FIT_JSON } FitFormat;
 
 typedef struct FitArgs {
     const char *target;
-    const char *file; // the scheme form: pointcalc fit FILE
-    const char *data; // --data FILE.csv
-    const char *plot; // --plot FILE.svg
+    const char *file;                     // the scheme form: pointcalc fit FILE
+    const char *data;                     // --data FILE.csv
+    const char *plot;                     // --plot FILE.svg
+    const char *sets[BUDGET_MAX_DEFINES]; // --set NAME=VALUE (scheme form)
+    int nsets;
     int has_on, has_nodes;
     FitOptions o;
     FitFormat format;
@@ -65,7 +67,7 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
         strcmp(opt, "--nodes") && strcmp(opt, "--samples") &&
         strcmp(opt, "--starts") && strcmp(opt, "--max-iter") &&
         strcmp(opt, "--format") && strcmp(opt, "--data") &&
-        strcmp(opt, "--plot"))
+        strcmp(opt, "--plot") && strcmp(opt, "--set"))
         return 0;
     if (!v) {
         args_usage_error(err, a->usage, "%s needs a value", opt);
@@ -75,6 +77,19 @@ static int fit_option(FitArgs *a, int argc, char **argv, int i, FILE *err)
         a->data = v;
     } else if (strcmp(opt, "--plot") == 0) {
         a->plot = v;
+    } else if (strcmp(opt, "--set") == 0) {
+        const char *eq = strchr(v, '=');
+        char *end = NULL;
+        double val = eq ? pc_strtod(eq + 1, &end) : 0;
+        if (!eq || eq == v || !end || end == eq + 1 || *end || !isfinite(val) ||
+            a->nsets == BUDGET_MAX_DEFINES) {
+            args_usage_error(err, a->usage,
+                             "bad value '%s' for --set (expected NAME=NUMBER, "
+                             "at most %d)",
+                             v, BUDGET_MAX_DEFINES);
+            return -1;
+        }
+        a->sets[a->nsets++] = v;
     } else if (strcmp(opt, "--target") == 0) {
         a->target = v;
         bad = v[strcspn(v, "\n\r")] != '\0' || !v[strspn(v, " \t")];
@@ -124,8 +139,17 @@ static int parse_args(FitArgs *a, BudgetOptions *b, int argc, char **argv,
         return args_usage_error(err, a->usage,
                                 "a scheme FILE says its curve, target and "
                                 "interval: no --target, --on or --nodes");
-    if (a->file)
+    if (a->file) {
+        a->o.sets = a->sets;
+        a->o.nsets = a->nsets;
+        a->o.defines = b->defines;
+        a->o.ndefines = b->ndefines;
         return 0;
+    }
+    if (a->nsets || b->ndefines)
+        return args_usage_error(err, a->usage,
+                                "--set and -D give a scheme FILE's consts and "
+                                "ints; the --target form has none");
     if (a->target && a->data)
         return args_usage_error(err, a->usage,
                                 "--target and --data: expected one target");
@@ -414,6 +438,8 @@ const char fit_help[] = FIT_USAGE
     "8)\n"
     "  --max-iter I        Levenberg-Marquardt iterations a start (default "
     "3000)\n"
+    "  --set NAME=VALUE    a value for the scheme's const NAME (repeatable;\n"
+    "                      every const needs one); -D NAME=INT sets an int\n"
     "  --plot FILE.svg     the picture: f, the curve and its nodes (a "
     "scheme's\n"
     "                      second fit statement to FILE-2.svg, and so on)\n"

@@ -88,8 +88,8 @@ int fit_curve_coefficients(double *coef, const Derived *d, int out, slong var,
 /* phi[i*n + k] = phi_k(t_i), t_i = i/(ns - 1): output out of p evaluated
  * with base point M_k at the k-th unit vector of R^n, t its param `param`
  * of nparams (the others 0) */
-int fit_curve_table(double *phi, const Plan *p, int out, int param, int nparams,
-                    size_t ns, int n)
+int fit_curve_table(double *phi, const Plan *p, const double *consts, int out,
+                    int param, int nparams, size_t ns, int n)
 {
     double *t = pc_xcalloc(ns * 2, sizeof *t);
     double *unit = pc_xcalloc((size_t)n * (size_t)n, sizeof *unit);
@@ -104,7 +104,7 @@ int fit_curve_table(double *phi, const Plan *p, int out, int param, int nparams,
     }
     for (int j = 0; j < nparams; j++)
         params[j] = j == param ? t : t + ns;
-    size_t bad = plan_eval(p, out, ns, params, NULL, pts, n, phi, st);
+    size_t bad = plan_eval(p, out, ns, params, consts, pts, n, phi, st);
     free(st);
     free(params);
     free(pts);
@@ -129,7 +129,7 @@ int fit_lagrange_curve(int n, size_t ns, double **phi, double **coef, FILE *err)
     if (rc == 0)
         rc = fit_curve_coefficients(*coef, d, 0, 0, n);
     if (rc == 0)
-        rc = fit_curve_table(*phi, p, 0, 0, 1, ns, n);
+        rc = fit_curve_table(*phi, p, NULL, 0, 0, 1, ns, n);
     if (rc != 0)
         fprintf(err,
                 "pointcalc: fit: the derived curve through %d nodes is "
@@ -187,8 +187,8 @@ void fit_target_at(const Fit *f, int o, size_t n, const double *x, double *v,
         return;
     }
     f->tpar[t->param] = x;
-    plan_eval(t->plan, o ? t->fp_out : t->f_out, n, f->tpar, NULL, NULL, 0, v,
-              st);
+    plan_eval(t->plan, o ? t->fp_out : t->f_out, n, f->tpar, t->consts, NULL, 0,
+              v, st);
 }
 
 /* f on CHECK_SAMPLES points of [lo, hi], ends included: defined and
@@ -268,6 +268,8 @@ static void target_clear(FitTarget *t)
 {
     plan_free(t->plan);
     fit_spline_free(t->spline);
+    free(t->consts);
+    t->consts = NULL;
     t->plan = NULL;
     t->spline = NULL;
 }

@@ -48,6 +48,12 @@ typedef struct FitOptions {
     int samples;   // m (--samples; default 100): t_i = i/m, i = 0..m
     int starts;    // seeded random starts after Chebyshev and uniform
     int max_iter;  // iterations a start at most (--max-iter; 0: 3000)
+    /* the scheme form only: --set NAME=VALUE for its consts, -D NAME=INT
+     * for its ints (argv's strings) */
+    const char *const *sets;
+    int nsets;
+    const char *const *defines;
+    int ndefines;
 } FitOptions;
 
 /* a target given as data (fit_data.c): the natural cubic spline through
@@ -69,6 +75,7 @@ size_t fit_spline_eval(const FitSpline *s, int o, size_t n, const double *x,
  * `param` (of nparams; the others 0), or a spline (plan NULL) */
 typedef struct FitTarget {
     Plan *plan;
+    double *consts; // the values of the plan's consts (owned), or NULL
     int f_out, fp_out, param, nparams;
     FitSpline *spline;
     const char *label; // for messages: the expression, "f", "FILE.csv"
@@ -133,8 +140,8 @@ int fit_lagrange_curve(int n, size_t ns, double **phi, double **coef,
  * polynomials in it alone of degree < n), and its table */
 int fit_curve_coefficients(double *coef, const Derived *d, int out, slong var,
                            int n);
-int fit_curve_table(double *phi, const Plan *p, int out, int param, int nparams,
-                    size_t ns, int n);
+int fit_curve_table(double *phi, const Plan *p, const double *consts, int out,
+                    int param, int nparams, size_t ns, int n);
 /* The scheme form (fit_scheme.c): `pointcalc fit FILE` derives the
  * scheme and, for each of its fit statements in order, builds the Fit
  * (samples, starts and max_iter of o unless the statement says; with

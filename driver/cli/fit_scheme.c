@@ -129,7 +129,7 @@ static void collect(FitFront *F, const Scheme *sc, const SemaInfo *I)
 }
 
 /* parse, expand and check the scheme; 0 or 1 after reporting */
-static int front(FitFront *F, const char *path, FILE *err)
+static int front(FitFront *F, const char *path, const FitOptions *o, FILE *err)
 {
     Arena arena;
     Source src;
@@ -143,9 +143,11 @@ static int front(FitFront *F, const char *path, FILE *err)
     diag_init(&diag, &src, err);
     diag_hold(&diag);
     Scheme *sc = parse_scheme(&src, &arena, &diag);
-    char used = 0;
+    /* an unused define is reported by the derivation (run_one) */
+    char *used = pc_xcalloc((size_t)o->ndefines + 1, 1);
     if (diag.nerrors == 0)
-        expand_scheme(sc, &arena, &diag, NULL, 0, &used);
+        expand_scheme(sc, &arena, &diag, o->defines, o->ndefines, used);
+    free(used);
     SemaInfo *I = diag.nerrors == 0 ? sema_check(sc, &arena, &diag) : NULL;
     if (diag.nerrors == 0)
         collect(F, sc, I);
@@ -215,8 +217,8 @@ static int the_param(const Derived *d, int first, int np)
 }
 
 /* the weights of output out (n of them) at one t into w */
-static void weights_at(const Plan *p, int out, int param, int np, int n,
-                       double t, double *w)
+static void weights_at(const Plan *p, const double *consts, int out, int param,
+                       int np, int n, double t, double *w)
 {
     double *unit = pc_xcalloc((size_t)n * (size_t)n, sizeof *unit);
     const double **pts = pc_xmalloc(sizeof *pts * (size_t)n);
@@ -229,7 +231,7 @@ static void weights_at(const Plan *p, int out, int param, int np, int n,
     }
     for (int j = 0; j < np; j++)
         params[j] = j == param ? &t : &zero;
-    plan_eval(p, out, 1, params, NULL, pts, n, w, &st);
+    plan_eval(p, out, 1, params, consts, pts, n, w, &st);
     free(params);
     free(pts);
     free(unit);
@@ -238,8 +240,9 @@ static void weights_at(const Plan *p, int out, int param, int np, int n,
 /* the t in [0, 1] where base point k's weight is 1 and the others 0:
  * the grid's best, then Gauss-Newton on the n residuals; returns the
  * largest residual left, tk the t */
-static double node_t(const Plan *p, const double *grid, int k, int xout,
-                     int dout, int param, int np, int n, double *tk)
+static double node_t(const Plan *p, const double *consts, const double *grid,
+                     int k, int xout, int dout, int param, int np, int n,
+                     double *tk)
 {
     double best = INFINITY, t = 0, w[LSQ_MAX_UNKNOWNS + 2],
            dw[LSQ_MAX_UNKNOWNS + 2], res = 0;
@@ -255,8 +258,8 @@ static double node_t(const Plan *p, const double *grid, int k, int xout,
         }
     }
     for (int it = 0; it <= FIT_NEWTON; it++) {
-        weights_at(p, xout, param, np, n, t, w);
-        weights_at(p, dout, param, np, n, t, dw);
+        weights_at(p, consts, xout, param, np, n, t, w);
+        weights_at(p, consts, dout, param, np, n, t, dw);
         double num = 0, den = 0;
         res = 0;
         for (int j = 0; j < n; j++) {
@@ -276,15 +279,15 @@ static double node_t(const Plan *p, const double *grid, int k, int xout,
 /* X interpolates its base points: else an error at the fit naming the
  * first node that fails; *ends: node 1 at t = 0, node N at t = 1 */
 static int check_interpolation(const Derived *d, const Plan *p,
-                               const FitStmt *s, int param, int np, int *ends,
-                               FILE *err)
+                               const double *consts, const FitStmt *s,
+                               int param, int np, int *ends, FILE *err)
 {
     int n = (int)d->npoints, dout = 2 + np + param, rc = 0;
     double *grid = pc_xmalloc(sizeof *grid * FIT_GRID * (size_t)n);
     double t0 = 0, t1 = 0;
-    fit_curve_table(grid, p, 0, param, np, FIT_GRID, n);
+    fit_curve_table(grid, p, consts, 0, param, np, FIT_GRID, n);
     for (int k = 0; k < n && rc == 0; k++) {
-        double tk, res = node_t(p, grid, k, 0, dout, param, np, n, &tk);
+        double tk, res = node_t(p, consts, grid, k, 0, dout, param, np, n, &tk);
         if (k == 0)
             t0 = tk;
         if (k == n - 1)
@@ -323,11 +326,7 @@ static int find_params(const Derived *d, const FitFront *F, const FitStmt *s,
     const char *X = d->outputs[0].name, *f = d->outputs[1].name;
     *fp = the_param(d, 2, np);
     *xp = the_param(d, 2 + np, np);
-    if (F->nconsts > 0)
-        derived_error(d, err, s->span,
-                      "fit needs numbers: the scheme declares constants; "
-                      "expected a scheme without 'const'");
-    else if (*xp < 0)
+    if (*xp < 0)
         derived_error(d, err, s->span,
                       "the curve '%s' depends on %s; expected a point "
                       "definition in one param",
@@ -355,6 +354,50 @@ static int find_params(const Derived *d, const FitFront *F, const FitStmt *s,
     return -1;
 }
 
+/* the values of p's consts from --set NAME=VALUE into *out (NULL when
+ * there are none); -1 after an error at the fit naming a const with no
+ * value */
+static int const_values(const Derived *d, const Plan *p, const FitStmt *s,
+                        const FitOptions *o, double **out, FILE *err)
+{
+    *out = NULL;
+    for (int i = 0; i < o->nsets; i++) {
+        size_t nl = strcspn(o->sets[i], "=");
+        int known = 0;
+        for (int c = 0; c < p->nconsts; c++)
+            known |= strlen(p->consts[c]) == nl &&
+                     strncmp(o->sets[i], p->consts[c], nl) == 0;
+        if (!known) {
+            fprintf(err,
+                    "pointcalc: --set %.*s: the scheme has no const '%.*s'\n",
+                    (int)nl, o->sets[i], (int)nl, o->sets[i]);
+            return -2;
+        }
+    }
+    if (p->nconsts == 0)
+        return 0;
+    double *v = pc_xcalloc((size_t)p->nconsts, sizeof *v);
+    for (int c = 0; c < p->nconsts; c++) {
+        const char *val = NULL;
+        size_t nl = strlen(p->consts[c]);
+        for (int i = 0; i < o->nsets; i++)
+            if (strncmp(o->sets[i], p->consts[c], nl) == 0 &&
+                o->sets[i][nl] == '=')
+                val = o->sets[i] + nl + 1;
+        if (!val) {
+            derived_error(d, err, s->span,
+                          "fit needs numbers: the const '%s' has no value; "
+                          "expected --set %s=VALUE",
+                          p->consts[c], p->consts[c]);
+            free(v);
+            return -1;
+        }
+        v[c] = pc_strtod(val, NULL);
+    }
+    *out = v;
+    return 0;
+}
+
 /* one fit statement: derive, check, build the Fit, report */
 static int run_one(const FitFront *F, const FitStmt *s, const char *path,
                    const char *data, const FitOptions *o, FitReport report,
@@ -362,16 +405,29 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
 {
     size_t len;
     char *text = fit_text(F, s, &len);
-    DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS};
+    int bad_define = 0;
+    DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS,
+                         .defines = o->defines,
+                         .ndefines = o->ndefines,
+                         .bad_define = &bad_define};
     Derived *d = derive_source_ex(path, text, len, err, NULL, &opt);
     free(text);
+    if (bad_define) { // a usage error, as for derive
+        derived_free(d);
+        return 2;
+    }
     Plan *p = d ? lower_derived(d, err) : NULL;
     int xp, fp, ends = 0, rc = 1, np = F->nparams;
-    if (!p || find_params(d, F, s, &xp, &fp, err) != 0 ||
-        check_interpolation(d, p, s, xp, np, &ends, err) != 0) {
+    double *consts = NULL;
+    int cv = p ? const_values(d, p, s, o, &consts, err) : 0;
+    if (cv == -2)
+        rc = 2;
+    if (!p || cv != 0 || find_params(d, F, s, &xp, &fp, err) != 0 ||
+        check_interpolation(d, p, consts, s, xp, np, &ends, err) != 0) {
+        free(consts);
         plan_free(p);
         derived_free(d);
-        return 1;
+        return rc;
     }
     FitOptions fo = *o;
     fo.lo = s->lo;
@@ -384,7 +440,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
     char *eq = NULL;
     if (fo.samples >= fo.nodes && fo.samples < LSQ_MAX_RESIDUALS) {
         phi = pc_xmalloc(sizeof *phi * ns * n);
-        fit_curve_table(phi, p, 0, xp, np, ns, fo.nodes);
+        fit_curve_table(phi, p, consts, 0, xp, np, ns, fo.nodes);
     }
     if (fit_curve_coefficients(coef, d, 0, xp, fo.nodes) != 0) {
         BookOptions bo = {.origin = -1};
@@ -393,6 +449,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
         eq = book_output(d, &d->outputs[0], &bo);
     }
     FitTarget t = {.plan = p,
+                   .consts = consts,
                    .f_out = 1,
                    .fp_out = 2 + fp,
                    .param = fp,
@@ -426,7 +483,7 @@ int fit_scheme_run(const char *path, const char *data, const FitOptions *o,
                    FitReport report, void *ctx, FILE *err)
 {
     FitFront F;
-    int rc = front(&F, path, err);
+    int rc = front(&F, path, o, err);
     if (rc == 0 && F.nfits == 0) {
         fprintf(err,
                 "%s: error: the scheme has no fit statement; expected 'fit "
