@@ -162,8 +162,11 @@ enum {
  * `pointcalc natural` fits it: the first segment the clothoid, every later
  * one of `law`.  has_angle: NULL when every angle is given, else n flags (0:
  * the chord rule gives point i's angle).  out receives the n - 1 segments.
- * Returns PC_OK; PC_EINVAL for n < 2 or above 10000, a bad law, a value
- * that is not finite or two equal consecutive points; PC_ENOFIT when a
+ * Angles are directions: reduced to (-pi, pi] (the fit chooses the
+ * winding).  Returns PC_OK; PC_EINVAL for n < 2 or above 10000, a bad
+ * law, a value that is not finite, a coordinate beyond 1e100 or two
+ * consecutive points closer than 1e-100 (where the law's coefficients
+ * leave double precision); PC_ENOFIT when a
  * segment cannot be fitted (*bad, if not NULL, receives its index).  Pure:
  * no allocation that outlives the call, safe from any thread. */
 int pc_natural_fit(const double *pts, const unsigned char *has_angle, int n,

@@ -369,8 +369,11 @@ int pc_natural_fit(const double *pts, const unsigned char *has_angle, int n,
     for (int i = 0; i < n && rc == PC_OK; i++) {
         p[i] = (NatPoint){pts[3 * i], pts[3 * i + 1], pts[3 * i + 2],
                           has_angle ? has_angle[i] != 0 : 1};
-        if (!isfinite(p[i].x) || !isfinite(p[i].y) ||
+        if (!(fabs(p[i].x) <= NAT_MAX_COORD) ||
+            !(fabs(p[i].y) <= NAT_MAX_COORD) ||
             (p[i].has_th && !isfinite(p[i].th)) ||
+            (i > 0 &&
+             hypot(p[i].x - p[i - 1].x, p[i].y - p[i - 1].y) < NAT_MIN_CHORD) ||
             (i > 0 && p[i].x == p[i - 1].x && p[i].y == p[i - 1].y))
             rc = PC_EINVAL;
     }

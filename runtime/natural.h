@@ -47,6 +47,10 @@ enum {
 };
 #define NAT_PHASE_PER_PANEL 8.0
 #define NAT_PI 3.14159265358979323846
+/* the scales the command line and the library accept: |x|, |y| up to
+ * NAT_MAX_COORD, consecutive points NAT_MIN_CHORD apart at least */
+#define NAT_MAX_COORD 1e100
+#define NAT_MIN_CHORD 1e-100
 
 typedef enum NatLaw {
     NAT_LINEAR = 1,

@@ -75,6 +75,18 @@ static void end_error(const NatSegment *g, double x1, double y1, NatStats *st)
     st->error = hypot(x - x1, y - y1);
 }
 
+/* a fitted segment is an answer only when its coefficients are numbers
+ * and its end point is where it should be (within 1e-9 of the chord):
+ * at scales beyond double precision (a chord of 1e-200: k1 ~ 1e400) the
+ * coefficients overflow or vanish, which must fail, not print */
+static int settled(const NatSegment *g, double r, const NatStats *st)
+{
+    for (int j = 0; j <= g->degree; j++)
+        if (!isfinite(g->k[j]))
+            return -1;
+    return isfinite(g->length) && st->error <= 1e-9 * r ? 0 : -1;
+}
+
 /* Newton on g(A); returns 0 with *A the root, *X = int cos psi there */
 static int solve_A(double p0, double p1, double *A, double *X, NatStats *st)
 {
@@ -127,7 +139,7 @@ int nat_fit_g1(double x0, double y0, double th0, double x1, double y1,
     seg->k[0] = (p1 - p0 - A) / L;
     seg->k[1] = 2 * A / (L * L);
     end_error(seg, x1, y1, st);
-    return 0;
+    return settled(seg, r, st);
 }
 
 /* ---- quadratic and cubic laws ------------------------------------------- */
@@ -305,5 +317,5 @@ int nat_fit_law(NatLaw law, double x0, double y0, double th0, double x1,
     seg->x0 = x0, seg->y0 = y0, seg->phi0 = th0;
     law_coef(&L, u, seg);
     end_error(seg, x1, y1, st);
-    return 0;
+    return settled(seg, hypot(L.ex, L.ey), st);
 }

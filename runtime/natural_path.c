@@ -146,6 +146,8 @@ int nat_composite(NatPoint *pts, int n, NatLaw law, int has_kstart,
     if (n < 2 || n > NAT_MAX_POINTS)
         return -1;
     nat_chord_angles(pts, n);
+    for (int i = 0; i < n; i++) // directions: the winding is the fit's
+        pts[i].th = reduce_angle(pts[i].th);
     c->nseg = n - 1;
     c->seg = pc_xcalloc((size_t)n, sizeof *c->seg);
     c->joint = pc_xcalloc((size_t)n, sizeof *c->joint);

@@ -178,6 +178,9 @@ usage "hj cubic" "--method hooke-jeeves is the article's search for the linear l
     --from 0,0,0 --to 1,0,0 --law cubic --method hooke-jeeves
 usage "bad law" "unknown law 'spline'; expected linear, quadratic or cubic" \
     --from 0,0,0 --to 1,0,0 --law spline
+usage "scale" "point 1 of curve 1: coordinates up to 1e100 and points at least 1e-100 apart" \
+    --from 0,0,0.3 --to 1e-300,0,0.5
+usage "huge" "point 2 of curve 1: coordinates up to 1e100" --from 0,0,0 --to 1e300,0,0
 usage "a FILE" "natural takes no FILE, found 'x.pcs'" x.pcs
 usage "emit two" "--emit-c writes one curve; this command line has 2" \
     --from 0,0,0 --to 1,0,0 --from 0,0,0 --to 2,0,0 --emit-c "$tmp/x.c"

@@ -205,8 +205,20 @@ static int check_args(NatArgs *a, FILE *err)
             err, a->usage,
             "--emit-c writes one curve; this command line has %d", a->ncurves);
     for (int c = 0; c < a->ncurves; c++)
-        for (int i = 0; i + 1 < a->curves[c].npts; i++) {
+        for (int i = 0; i < a->curves[c].npts; i++) {
             const NatPoint *p = &a->curves[c].pts[i];
+            if (fabs(p->x) > NAT_MAX_COORD || fabs(p->y) > NAT_MAX_COORD ||
+                (i + 1 < a->curves[c].npts &&
+                 hypot(p->x - p[1].x, p->y - p[1].y) < NAT_MIN_CHORD &&
+                 (p->x != p[1].x || p->y != p[1].y)))
+                return args_usage_error(
+                    err, a->usage,
+                    "point %d of curve %d: coordinates up to 1e100 and "
+                    "points at least 1e-100 apart (beyond, the curvature "
+                    "law's coefficients leave double precision)",
+                    i + 1, c + 1);
+            if (i + 1 == a->curves[c].npts)
+                continue;
             if (p->x == p[1].x && p->y == p[1].y)
                 return args_usage_error(
                     err, a->usage,

@@ -172,6 +172,16 @@ static void test_g1_known(void **state)
         assert_true(fabs(g.length - 2 * a * R) < 1e-12);
     }
     assert_int_equal(nat_fit_g1(1, 1, 0, 1, 1, 0, &g, NULL), -1);
+    /* beyond double range: k1 ~ 1/chord^2 overflows; a failure, not an
+     * infinite coefficient with a NaN end-point error */
+    assert_int_equal(nat_fit_g1(0, 0, 0.3, 1e-300, 0, 0.5, &g, NULL), -1);
+    assert_int_equal(nat_fit_g1(0, 0, 0.3, 1e300, 0, 0.5, &g, NULL), -1);
+    /* an angle's winding is not the fit's: 7 is 7 - 2 pi */
+    NatSegment h;
+    assert_int_equal(nat_fit_g1(0, 0, 7, 1, 0, 0, &g, NULL), 0);
+    assert_int_equal(nat_fit_g1(0, 0, 7 - 2 * NAT_PI, 1, 0, 0, &h, NULL), 0);
+    assert_true(fabs(g.length - h.length) < 1e-14 &&
+                fabs(g.k[1] - h.k[1]) < 1e-12);
 }
 
 /* the quadratic and cubic laws keep the start curvature (and its
