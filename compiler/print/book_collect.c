@@ -89,11 +89,13 @@ static void coeffs_clear(Coeffs *k, const Ctx *c)
     free(k->e);
 }
 
-/* s, being built, has more leaves than limit: it cannot win (book_render
- * keeps a form with fewer leaves, and a term never has fewer than one) */
-static int beyond(PSum **s, slong limit, const Ctx *c)
+/* s, being built, with more leaves to come (at least more), would have
+ * more leaves than limit: it cannot win (book_render keeps a form with
+ * fewer leaves, and a term never has fewer than one); s is freed */
+static int beyond(PSum **s, slong more, slong limit, const Ctx *c)
 {
-    if (book_sum_leaves(*s) <= limit)
+    slong have = (*s)->n ? book_sum_leaves(*s) : 0;
+    if (have + more <= limit)
         return 0;
     book_sum_free(*s, c);
     *s = NULL;
@@ -106,12 +108,13 @@ PSum *book_form_powers(const fmpz_mpoly_t p, slong x, int depth, slong limit,
     Coeffs k;
     coeffs_init(&k, p, x, c);
     PSum *s = book_sum_new(c);
-    for (slong j = 0; j < k.n; j++) {
+    /* each nonzero coefficient makes at least one term */
+    for (slong j = 0; j < k.n && !beyond(&s, k.n - j, limit, c); j++) {
         Atom xa = {AT_VAR, x, NULL, NULL, NULL, k.e[j]};
         push_collected(s, k.a + j, &xa, 1, depth, c);
-        if (beyond(&s, limit, c))
-            break;
     }
+    if (s)
+        beyond(&s, 0, limit, c);
     coeffs_clear(&k, c);
     if (s)
         book_sum_finish(s, p, c);
@@ -157,7 +160,7 @@ static PSum *bernstein(const Coeffs *k, ulong n, const Basis *B, int depth,
         Atom xs[2] = {{AT_VAR, B->u, NULL, NULL, NULL, B->scale * kk},
                       {B->vkind, B->v, NULL, NULL, NULL, B->scale * (n - kk)}};
         push_collected(s, bk, xs, 2, depth, c);
-        beyond(&s, limit, c);
+        beyond(&s, 0, limit, c);
     }
     fmpz_mpoly_clear(tmp, r->ctx);
     fmpz_mpoly_clear(bk, r->ctx);

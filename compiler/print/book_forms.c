@@ -402,15 +402,31 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return s;
 }
 
+/* a hash of p (its length and coefficients: equal polynomials may pack
+ * their exponents differently), the depth and the mode */
+static ulong memo_key(const fmpz_mpoly_t p, slong len, int depth, const Ctx *c)
+{
+    ulong h = (ulong)len * 0x9E3779B97F4A7C15u ^ (ulong)depth ^ c->mode << 8;
+    for (slong i = 0; i < len; i++) {
+        const fmpz *x = p->coeffs + i;
+        ulong w = !COEFF_IS_MPZ(*x) ? (ulong)*x
+                                    : (ulong)mpz_get_ui(COEFF_TO_PTR(*x)) ^
+                                          (ulong)mpz_sgn(COEFF_TO_PTR(*x));
+        h = (h ^ w) * 0x100000001B3u;
+    }
+    return h;
+}
+
 static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     Memo *m = c->memo;
     slong len = fmpz_mpoly_length(p, c->r->ctx);
     if (len < 2 || !m)
         return render_new(p, depth, c);
+    ulong key = memo_key(p, len, depth, c);
     for (slong i = 0; i < m->n; i++)
-        if (m->e[i].depth == depth && m->e[i].mode == c->mode &&
-            fmpz_mpoly_length(m->e[i].poly, c->r->ctx) == len &&
+        if (m->e[i].key == key && m->e[i].depth == depth &&
+            m->e[i].mode == c->mode &&
             fmpz_mpoly_equal(m->e[i].poly, p, c->r->ctx))
             return book_sum_copy(m->e[i].sum, c);
     PSum *s = render_new(p, depth, c);
@@ -422,6 +438,7 @@ static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
         MemoEntry *e = &m->e[m->n++];
         fmpz_mpoly_init(e->poly, c->r->ctx);
         fmpz_mpoly_set(e->poly, p, c->r->ctx);
+        e->key = key;
         e->depth = depth;
         e->mode = c->mode;
         e->sum = book_sum_copy(s, c);

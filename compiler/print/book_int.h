@@ -78,6 +78,7 @@ typedef struct Ctx {
  * factors come up in every collection */
 typedef struct MemoEntry {
     fmpz_mpoly_t poly;
+    ulong key; // memo_key of poly: most entries are passed over by it
     int depth;
     ulong mode; // Ctx.mode it was rendered in
     struct PSum *sum;
