@@ -11,6 +11,11 @@
  *
  * Goals (issue #2): Desargues arc <= 0.3 ms, five-point conic <= 2 ms,
  * every example <= 5 ms.
+ *
+ * Then derive alone and derive + text / LaTeX / JSON for the interpolation
+ * curve at n = 4 ... 96 and the examples of issue 24 (goals: each <= 2x
+ * derive alone; five-point conic + text <= 0.2 ms, n = 48 <= 75 ms);
+ * PC_BENCH_NO_WHOLE=1 skips them.
  */
 #include <dirent.h>
 #include <stdio.h>
@@ -24,6 +29,71 @@
 
 #include "compiler/derive.h"
 #include "compiler/print/format.h"
+
+/* median ms of deriving text (with -D define, or none) and then, for
+ * style >= 0, printing the result in that style (derive + print, what a
+ * user waits for); the runs fill about budget_ms, at least 7 */
+static double time_derive_print(const char *path, const char *text, size_t len,
+                                const char *define, int style, double budget_ms,
+                                FILE *sink)
+{
+    const char *defs[1] = {define};
+    DeriveOptions opt = {
+        .max_seconds = 600, .defines = defs, .ndefines = define ? 1 : 0};
+    double t[2001];
+    int runs = 0;
+    double spent = 0;
+    while (runs < 2001 && (runs < 7 || spent < budget_ms)) {
+        double s = bench_now_ms();
+        Derived *d = derive_source_ex(path, text, len, NULL, NULL, &opt);
+        if (!d)
+            return -1;
+        if (style >= 0)
+            format_derived(sink, d, (FormatStyle)style, -1);
+        t[runs] = bench_now_ms() - s;
+        spent += t[runs++];
+        derived_free(d);
+    }
+    qsort(t, (size_t)runs, sizeof(double), bench_cmp_double);
+    return t[runs / 2];
+}
+
+/* derive alone, + text, + LaTeX, + JSON (issue 24: each <= 2x derive
+ * alone) for the interpolation curve at n = 4 ... 96 and the book's
+ * examples named in issue 24, the styles interleaved run by run */
+static void bench_whole(const char *dir, FILE *sink)
+{
+    static const char *const ex[] = {"desargues_arc", "conic_five_points",
+                                     "double_contact", "space_cubic"};
+    static const char *const ns[] = {"n=4",  "n=8",  "n=12",
+                                     "n=24", "n=48", "n=96"};
+    printf("\nderive + print (in-process medians, ms; ratio to derive "
+           "alone)\n%-24s %10s %10s %6s %10s %6s %10s %6s\n",
+           "scheme", "derive", "+text", "x", "+latex", "x", "+json", "x");
+    for (int i = 0; i < 4 + 6; i++) {
+        char path[1024], label[64];
+        const char *def = i < 4 ? NULL : ns[i - 4];
+        snprintf(path, sizeof path, "%s/%s.pcs", dir,
+                 i < 4 ? ex[i] : "interpolation_bezier");
+        snprintf(label, sizeof label, "%s%s%s", i < 4 ? ex[i] : "interp",
+                 def ? " " : "", def ? def : "");
+        FILE *f = fopen(path, "rb");
+        if (!f)
+            continue;
+        char *buf = malloc(1 << 20);
+        size_t len = fread(buf, 1, (1 << 20) - 1, f);
+        fclose(f);
+        double budget = i >= 8 ? 2000 : 300, m[4] = {0, 0, 0, 0};
+        static const int styles[4] = {-1, FMT_TEXT, FMT_LATEX, FMT_JSON};
+        for (int st = 0; st < 4; st++)
+            m[st] = time_derive_print(path, buf, len, def, styles[st], budget,
+                                      sink);
+        printf("%-24s %10.4f %10.4f %6.2f %10.4f %6.2f %10.4f %6.2f\n", label,
+               m[0], m[1], m[1] / m[0], m[2], m[2] / m[0], m[3], m[3] / m[0]);
+        fflush(stdout);
+        free(buf);
+    }
+}
 
 static int cmp_str(const void *a, const void *b)
 {
@@ -108,6 +178,8 @@ int main(int argc, char **argv)
         free(buf);
         free(names[i]);
     }
+    if (!getenv("PC_BENCH_NO_WHOLE"))
+        bench_whole(dir, sink);
     fclose(sink);
     flint_cleanup_master();
     return bad;

@@ -168,7 +168,8 @@ check "time budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the time b
 check "memory budget: exit 1" test $? -eq 1
 check "memory budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the memory budget of 20 MiB ran out while deriving this; raise it with --max-memory" "$tmp/err"
 # a budget that runs out after the derivation says which phase it was in,
-# unlocated, and leaves nothing on stdout: the five-point conic derives in
+# located at the output being printed (the printer marks it), and leaves
+# nothing on stdout: the five-point conic derives in
 # under 64 KiB of counted memory and prints in about 290 KiB (its form
 # search factors), so 128K runs out while printing
 # JSON keeps abs() inside function arguments too (issue 19: a printed
@@ -198,7 +199,75 @@ check "--keep-abs: eval inside the range" grep -q '^0.5,1$' "$tmp/out"
 "$PCB" derive examples/conic_five_points.pcs --max-memory 128K >"$tmp/out" 2>"$tmp/err"
 check "memory budget while printing: exit 1" test $? -eq 1
 check "memory budget while printing: nothing on stdout" test ! -s "$tmp/out"
-check "memory budget while printing: the phase named" grep -qx "pointcalc: error: the memory budget of 131072 bytes ran out while printing the result; raise it with --max-memory" "$tmp/err"
+check "memory budget while printing: the phase named, at the output" grep -qx "examples/conic_five_points.pcs:42:1: error: the memory budget of 131072 bytes ran out while printing the result; raise it with --max-memory" "$tmp/err"
+
+# ---- printing under the budget (issue 23 item 1) -------------------------
+# the printer runs under the derivation's time budget (it was disarmed
+# before printing), and its form search counts degree: each of these
+# printed for seconds to hours before.
+elapsed_ms() { # the wall time of a command, in ms (its output to $tmp/out)
+    local t0 t1
+    t0=$(date +%s%N)
+    "$@" >"$tmp/out" 2>"$tmp/err"
+    echo $? >"$tmp/rc"
+    t1=$(date +%s%N)
+    echo $(((t1 - t0) / 1000000))
+}
+lim=2000 # ms: --max-seconds 1 and a second
+[ -n "${PC_VALGRIND:-}" ] && lim=60000
+# a = t^1000, a^30 = t^30000: along(A, B, x) = A*(1 - x) + B*x
+printf 'point A, B\nparam t\na = t^1000\nM = along(A, B, a^30)\n' >"$tmp/deg.pcs"
+ms=$(elapsed_ms "$PCB" derive "$tmp/deg.pcs" --max-seconds 1)
+check "t^30000: printed, exit 0" test "$(cat "$tmp/rc")" -eq 0
+check "t^30000: A*(1 - x) + B*x" grep -qx 'M = A\*(1 - t^30000) + B\*t^30000' "$tmp/out"
+check "t^30000: within the budget and a second ($ms ms)" test "$ms" -lt "$lim"
+for fmt in latex json; do
+    ms=$(elapsed_ms "$PCB" derive "$tmp/deg.pcs" --max-seconds 1 --format $fmt)
+    check "t^30000 $fmt: within the budget ($ms ms)" test "$(cat "$tmp/rc")" -eq 0 -a "$ms" -lt "$lim"
+done
+# 30 outputs along(A, B, x) of x = (t^1000 - i)/(t^997 + t + i): over the
+# denominator d = t^997 + t + i, A*(d - (t^1000 - i)) + B*(t^1000 - i)
+{ printf 'point A, B\nparam t\n'
+  for i in $(seq 1 30); do
+      printf 'M%d = along(A, B, (t^1000 - %d)/(t^997 + t + %d))\n' "$i" "$i" "$i"
+  done
+  printf 'output M1'; for i in $(seq 2 30); do printf ', M%d' "$i"; done
+  printf '\n'; } >"$tmp/deg30.pcs"
+for i in $(seq 1 30); do
+    printf 'M%d = (A*(%d + t + t^997 - t^1000) + B*(t^1000 - %d))/(%d + t + t^997)\n' \
+        "$i" $((2 * i)) "$i" "$i"
+done >"$tmp/deg30.want"
+ms=$(elapsed_ms "$PCB" derive "$tmp/deg30.pcs" --max-seconds 1)
+check "30 outputs of degree 1000: exit 0" test "$(cat "$tmp/rc")" -eq 0
+check "30 outputs of degree 1000: each A*(d - n) + B*n over d" cmp -s "$tmp/out" "$tmp/deg30.want"
+check "30 outputs of degree 1000: within the budget ($ms ms)" test "$ms" -lt "$lim"
+# 1999 nested along(A, X, t): X_k = A*(1 - t) + X_(k-1)*t, X_0 = B, so
+# X_1999 = A*(1 - t^1999) + B*t^1999
+python3 -c "
+e = 'B'
+for i in range(1999):
+    e = 'along(A, %s, t)' % e
+print('point A, B\nparam t\nM = ' + e)" >"$tmp/nest.pcs"
+ms=$(elapsed_ms "$PCB" derive "$tmp/nest.pcs" --max-seconds 2)
+check "1999 nested along: exit 0" test "$(cat "$tmp/rc")" -eq 0
+check "1999 nested along: A*(1 - t^1999) + B*t^1999" grep -qx 'M = A\*(1 - t^1999) + B\*t^1999' "$tmp/out"
+check "1999 nested along: within the budget ($ms ms)" test "$ms" -lt $((lim + 1000))
+# a printing that outlasts the budget: 600 products of two bivariate
+# polynomials derive in milliseconds (one multiplication each) and print
+# for seconds (a factoring each); the timer stops the printing, located at
+# the output being printed, exit 1, nothing on stdout
+{ printf 'param t, u\n'
+  for i in $(seq 1 600); do
+      printf 's%d = (t^9 + u^7 + t^2*u^3 + t*u + %d)*(t^7*u^4 + u^9 + t^3*u + t + %d)\n' "$i" "$i" $((2 * i + 1))
+  done
+  printf 'output s1'; for i in $(seq 2 600); do printf ', s%d' "$i"; done
+  printf '\n'; } >"$tmp/slowprint.pcs"
+tp=1
+[ -n "${PC_VALGRIND:-}" ] && tp=5
+ms=$(elapsed_ms "$PCB" derive "$tmp/slowprint.pcs" --max-seconds $tp)
+check "time budget while printing: exit 1" test "$(cat "$tmp/rc")" -eq 1
+check "time budget while printing: nothing on stdout" test ! -s "$tmp/out"
+check "time budget while printing: the phase named, at an output" grep -Eqx ".*slowprint.pcs:[0-9]+:1: error: the time budget of $tp s ran out while printing the result; raise it with --max-seconds" "$tmp/err"
 "$PCB" emit-c "$tmp/chain.pcs" --max-seconds 0.2 >"$tmp/out" 2>"$tmp/err"
 check "emit-c time budget" test $? -eq 1 -a ! -s "$tmp/out"
 "$PCB" eval "$tmp/chain.pcs" --max-memory 20M --at A=0,0 --at B=1,0 --at C=0,1 \

@@ -531,8 +531,7 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
 {
     *work = 0;
     c->work = work;
-    memo->e = NULL;
-    memo->n = memo->alloc = 0;
+    memset(memo, 0, sizeof *memo);
     c->memo = opt->memo ? opt->memo : memo; /* shared by a scheme's outputs */
     c->r = &d->ring;
     c->nparams = d->nparams;

@@ -8,10 +8,9 @@
  * MAX_DEPTH levels, within a work budget per output (RENDER_WORK),
  * remembered in the memo.
  *
- * Factoring is most of the printing time: polyfactor.h's proofs of
- * irreducibility skip FLINT's factoring where they can (factor_known),
- * the rest runs in a ring of only the variables used, and deep inside a
- * form only a cheap partial factoring is tried (form_factored_cheap).
+ * The factored forms are book_factor.c's, the collected ones
+ * book_collect.c's (each given up once it has more leaves than the best
+ * so far, so a form that cannot win costs little at any degree).
  * In the printer: polynomials in, models (book_model.c) out, for
  * book_write.c and book_eq.c.
  */
@@ -84,421 +83,6 @@ PSum *book_form_expanded(const fmpz_mpoly_t p, const Ctx *c)
     free(e);
     book_sum_finish(s, p, c);
     return s;
-}
-
-/* is p = s*(1 - x) for a param or const x and a sign s?  returns x or -1 */
-static slong bar_var(const fmpz_mpoly_t p, const Ctx *c, int *sign)
-{
-    const Ring *r = c->r;
-    if (fmpz_mpoly_length(p, r->ctx) != 2 ||
-        fmpz_mpoly_total_degree_si(p, r->ctx) != 1)
-        return -1;
-    for (slong v = 0; v < c->nparams + c->nconsts && v < r->nvars; v++) {
-        if (fmpz_mpoly_degree_si(p, v, r->ctx) != 1)
-            continue;
-        fmpz_mpoly_t q;
-        fmpz_mpoly_init(q, r->ctx);
-        fmpz_mpoly_gen(q, v, r->ctx);
-        fmpz_mpoly_neg(q, q, r->ctx);
-        fmpz_mpoly_add_si(q, q, 1, r->ctx);
-        int s = fmpz_mpoly_equal(p, q, r->ctx) ? 1 : 0;
-        if (!s) {
-            fmpz_mpoly_neg(q, q, r->ctx);
-            s = fmpz_mpoly_equal(p, q, r->ctx) ? -1 : 0;
-        }
-        fmpz_mpoly_clear(q, r->ctx);
-        if (s) {
-            *sign = s;
-            return v;
-        }
-    }
-    return -1;
-}
-
-/* p as one factor raised to e, appended to t: an atom x, 1 - x, or a
- * parenthesised sum with its first term positive (the sign goes to t) */
-static void push_factor(PTerm *t, const fmpz_mpoly_t p, ulong e, int depth,
-                        const Ctx *c)
-{
-    const Ring *r = c->r;
-    int sign = 1;
-    slong v = bar_var(p, c, &sign);
-    if (v >= 0) {
-        if (sign < 0 && (e & 1))
-            t->neg ^= 1;
-        book_term_push(t, (Atom){AT_BAR, v, NULL, NULL, NULL, e});
-        return;
-    }
-    PSum *s = book_render(p, depth, c);
-    if (s->n == 1) {
-        /* a monomial (or a constant): its pieces, to the power e */
-        PTerm *u = &s->t[0];
-        if (u->neg && (e & 1))
-            t->neg ^= 1;
-        fmpz_t pw;
-        fmpz_init(pw);
-        fmpz_pow_ui(pw, u->coeff, e);
-        fmpz_mul(t->coeff, t->coeff, pw);
-        fmpz_clear(pw);
-        for (slong i = 0; i < u->n; i++) {
-            Atom a = u->a[i];
-            a.exp *= e;
-            book_term_push(t, a);
-        }
-        free(u->a);
-        u->a = NULL;
-        u->n = 0;
-        book_sum_free(s, c);
-        return;
-    }
-    if (s->t[0].neg) {
-        book_sum_neg(s, c);
-        if (e & 1)
-            t->neg ^= 1;
-    }
-    (void)r;
-    book_term_push(t, (Atom){AT_SUM, -1, s, NULL, NULL, e});
-}
-
-/* the proofs above, for the unit tests (book.h) */
-int book_test_surely_irreducible(const fmpz_mpoly_t p, const Ring *r)
-{
-    return polyfactor_surely_irreducible(p, r);
-}
-
-int book_test_irreducible_mod_small_prime(const fmpz_poly_t u)
-{
-    return polyfactor_irreducible_mod_small_prime(u);
-}
-
-int book_test_quadratic_irreducible(const fmpz_poly_t u)
-{
-    return polyfactor_quadratic_irreducible(u);
-}
-
-/* FLINT's factorisation of p (ring_factor), or what form_factored makes
- * of it, when p is a constant times a monomial times powers of x - 1 (x a
- * param or const) times a polynomial q that polyfactor_surely_irreducible
- * proves irreducible (or 1), without FLINT's factoring (most of the
- * printing time).  FLINT's factoring first takes out the integer content (with
- * the sign of p's leading term), then the powers of the variables in their
- * order (fmpz_mpoly_factor_content), then splits the rest:
- *   - without the powers of x - 1, the rest, q, stays whole, in both of
- *     ring_factor's ways: the same factors in the same order;
- *   - with them, when ring_factor factors fully (ring_factor_affordable):
- *     the same factors, up to their order after the monomials; an order
- *     form_factored does not see, as a power of x - 1 is an atom (\bar{x})
- *     and only q is rendered (the squarefree way might keep a product of
- *     them whole: not taken).
- * 0: no such proof (f untouched). */
-static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
-                        const Ctx *c)
-{
-    const Ring *r = c->r;
-    enum { SQUAREFREE_MAX_TERMS = 4096 }; /* ring_factor's: beyond, it fails */
-    slong len = fmpz_mpoly_length(p, r->ctx), nv = r->ctx->minfo->nvars;
-    if (len < 2 || len > SQUAREFREE_MAX_TERMS ||
-        !fmpz_mpoly_degrees_fit_si(p, r->ctx))
-        return 0;
-    fmpz_t g;
-    fmpz_init(g);
-    _fmpz_vec_content(g, p->coeffs, len);
-    if (fmpz_sgn(p->coeffs + 0) < 0)
-        fmpz_neg(g, g);
-    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)nv);
-    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)nv);
-    for (slong k = 0; k < len; k++) {
-        fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
-        for (slong v = 0; v < nv; v++)
-            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
-    }
-    fmpz_mpoly_t q;
-    fmpz_mpoly_init(q, r->ctx);
-    fmpz_t cq;
-    fmpz_init(cq);
-    for (slong k = 0; k < len; k++) {
-        fmpz_mpoly_get_term_exp_ui(e, p, k, r->ctx);
-        for (slong v = 0; v < nv; v++)
-            e[v] -= lo[v];
-        fmpz_divexact(cq, p->coeffs + k, g);
-        fmpz_mpoly_push_term_fmpz_ui(q, cq, e, r->ctx);
-    }
-    /* (the same order: dividing by a monomial keeps degrevlex's) */
-    /* powers of x - 1, when FLINT factors fully */
-    ulong *bars = pc_xcalloc((size_t)nv, sizeof(ulong));
-    int nbars = 0;
-    if (ring_factor_affordable(p, r)) {
-        fmpz_mpoly_t bar, quo;
-        fmpz_mpoly_init(bar, r->ctx);
-        fmpz_mpoly_init(quo, r->ctx);
-        for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
-            fmpz_mpoly_gen(bar, v, r->ctx);
-            fmpz_mpoly_sub_ui(bar, bar, 1, r->ctx);
-            while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
-                   polyfactor_vanishes_at_ones(q, r) &&
-                   fmpz_mpoly_divides(quo, q, bar, r->ctx)) {
-                fmpz_mpoly_swap(q, quo, r->ctx);
-                bars[v]++;
-            }
-            nbars += bars[v] > 0;
-        }
-        fmpz_mpoly_clear(quo, r->ctx);
-        fmpz_mpoly_clear(bar, r->ctx);
-    }
-    /* q: 1 (only with powers of x - 1: p is not linear), or irreducible */
-    int unit = fmpz_mpoly_is_one(q, r->ctx);
-    int ok = unit ? nbars > 0 : polyfactor_surely_irreducible(q, r);
-    if (ok) {
-        slong n = 1 + nbars;
-        for (slong v = 0; v < nv; v++)
-            n += lo[v] > 0;
-        fmpz_mpoly_factor_fit_length(f, n, r->ctx);
-        fmpz_swap(f->constant, g);
-        f->num = 0;
-        for (slong v = 0; v < nv; v++)
-            if (lo[v] > 0) {
-                fmpz_mpoly_gen(f->poly + f->num, v, r->ctx);
-                fmpz_set_ui(f->exp + f->num, lo[v]);
-                f->num++;
-            }
-        for (slong v = 0; v < nv; v++)
-            if (bars[v] > 0) {
-                fmpz_mpoly_gen(f->poly + f->num, v, r->ctx);
-                fmpz_mpoly_sub_ui(f->poly + f->num, f->poly + f->num, 1,
-                                  r->ctx);
-                fmpz_set_ui(f->exp + f->num, bars[v]);
-                f->num++;
-            }
-        if (!unit) {
-            fmpz_mpoly_swap(f->poly + f->num, q, r->ctx);
-            fmpz_one(f->exp + f->num);
-            f->num++;
-        }
-    }
-    free(bars);
-    fmpz_clear(cq);
-    fmpz_mpoly_clear(q, r->ctx);
-    free(e);
-    free(lo);
-    fmpz_clear(g);
-    return ok;
-}
-
-static PSum *form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
-{
-    const Ring *r = c->r;
-    if (fmpz_mpoly_total_degree_si(p, r->ctx) <= 1) {
-        /* linear: irreducible but for its integer content */
-        fmpz_t g;
-        fmpz_init(g);
-        _fmpz_vec_content(g, p->coeffs, fmpz_mpoly_length(p, r->ctx));
-        PSum *s = NULL;
-        if (!fmpz_is_one(g)) {
-            fmpz_mpoly_t q;
-            fmpz_mpoly_init(q, r->ctx);
-            fmpz_mpoly_scalar_divexact_fmpz(q, p, g, r->ctx);
-            s = book_sum_new(c);
-            PTerm *t = book_sum_push(s);
-            fmpz_set(t->coeff, g);
-            push_factor(t, q, 1, depth + 1, c);
-            book_sum_finish(s, p, c);
-            fmpz_mpoly_clear(q, r->ctx);
-        }
-        fmpz_clear(g);
-        return s;
-    }
-    fmpz_mpoly_factor_t f;
-    fmpz_mpoly_factor_init(f, r->ctx);
-    if (!factor_known(f, p, c) && !polyfactor_compact(f, p, r)) {
-        fmpz_mpoly_factor_clear(f, r->ctx);
-        return NULL;
-    }
-    /* trivial: p itself, irreducible and primitive */
-    if (f->num == 0 ||
-        (f->num == 1 && fmpz_is_pm1(f->constant) && fmpz_is_one(f->exp))) {
-        fmpz_mpoly_factor_clear(f, r->ctx);
-        return NULL;
-    }
-    PSum *s = book_sum_new(c);
-    PTerm *t = book_sum_push(s);
-    t->neg = fmpz_sgn(f->constant) < 0;
-    fmpz_abs(t->coeff, f->constant);
-    for (slong i = 0; i < f->num; i++)
-        push_factor(t, f->poly + i, fmpz_get_ui(f->exp + i), depth + 1, c);
-    fmpz_mpoly_factor_clear(f, r->ctx);
-    book_sum_finish(s, p, c);
-    return s;
-}
-
-/* appends coefficient k (a polynomial free of x) times the atoms of x to
- * s: the coefficient's best form, merged when it is one term */
-static void push_collected(PSum *s, const fmpz_mpoly_t coef, Atom *xs, int nx,
-                           int depth, const Ctx *c)
-{
-    PSum *cs = book_render(coef, depth + 1, c);
-    int bare = 1;
-    for (int i = 0; i < nx; i++)
-        bare &= xs[i].exp == 0;
-    if (bare && cs->n > 1) {
-        /* x^0: the coefficient's terms join the sum */
-        for (slong i = 0; i < cs->n; i++) {
-            PTerm *t = book_sum_push(s);
-            book_term_absorb(t, &cs->t[i]);
-        }
-        book_sum_free(cs, c);
-        return;
-    }
-    PTerm *t = book_sum_push(s);
-    if (cs->n == 1) {
-        book_term_absorb(t, &cs->t[0]);
-        book_sum_free(cs, c);
-    } else {
-        if (cs->t[0].neg) {
-            book_sum_neg(cs, c);
-            t->neg ^= 1;
-        }
-        book_term_push(t, (Atom){AT_SUM, -1, cs, NULL, NULL, 1});
-    }
-    for (int i = 0; i < nx; i++)
-        if (xs[i].exp)
-            book_term_push(t, xs[i]);
-}
-
-/* the coefficients a[0..n] of p in powers of x (caller clears) */
-static fmpz_mpoly_struct *coeffs_in(const fmpz_mpoly_t p, slong x, slong n,
-                                    const Ctx *c)
-{
-    fmpz_mpoly_struct *a =
-        pc_xmalloc(sizeof(fmpz_mpoly_struct) * (size_t)(n + 1));
-    for (slong i = 0; i <= n; i++) {
-        fmpz_mpoly_init(a + i, c->r->ctx);
-        fmpz_mpoly_get_coeff_vars_ui(a + i, p, &x, (ulong *)&i, 1, c->r->ctx);
-    }
-    return a;
-}
-
-static void coeffs_clear(fmpz_mpoly_struct *a, slong n, const Ctx *c)
-{
-    for (slong i = 0; i <= n; i++)
-        fmpz_mpoly_clear(a + i, c->r->ctx);
-    free(a);
-}
-
-/* p = sum_k c_k x^k, ascending */
-static PSum *form_powers(const fmpz_mpoly_t p, slong x, int depth, const Ctx *c)
-{
-    slong n = fmpz_mpoly_degree_si(p, x, c->r->ctx);
-    fmpz_mpoly_struct *a = coeffs_in(p, x, n, c);
-    PSum *s = book_sum_new(c);
-    for (slong k = 0; k <= n; k++) {
-        if (fmpz_mpoly_is_zero(a + k, c->r->ctx))
-            continue;
-        Atom xa = {AT_VAR, x, NULL, NULL, NULL, (ulong)k};
-        push_collected(s, a + k, &xa, 1, depth, c);
-    }
-    coeffs_clear(a, n, c);
-    book_sum_finish(s, p, c);
-    return s;
-}
-
-/* bk = sum_{i <= k} a[stride*i] C(n - i, k - i): the k-th Bernstein
- * coefficient (without binomials) of the polynomial whose coefficients are
- * a[0], a[stride], ... (tmp and bin: scratch) */
-static void bernstein_coeff(fmpz_mpoly_t bk, const fmpz_mpoly_struct *a,
-                            slong stride, slong n, slong k, fmpz_mpoly_t tmp,
-                            fmpz_t bin, const Ring *r)
-{
-    fmpz_mpoly_zero(bk, r->ctx);
-    for (slong i = 0; i <= k; i++) {
-        fmpz_bin_uiui(bin, (ulong)(n - i), (ulong)(k - i));
-        fmpz_mpoly_scalar_mul_fmpz(tmp, a + stride * i, bin, r->ctx);
-        fmpz_mpoly_add(bk, bk, tmp, r->ctx);
-    }
-}
-
-/* p = sum_k b_k x^k (1 - x)^(n-k), n = deg_x p: the Bernstein basis of
- * the param x (without binomials), b_k = sum_{i<=k} a_i C(n-i, k-i) */
-static PSum *form_bernstein(const fmpz_mpoly_t p, slong x, int depth,
-                            const Ctx *c)
-{
-    const Ring *r = c->r;
-    slong n = fmpz_mpoly_degree_si(p, x, r->ctx);
-    fmpz_mpoly_struct *a = coeffs_in(p, x, n, c);
-    PSum *s = book_sum_new(c);
-    fmpz_mpoly_t bk, tmp;
-    fmpz_mpoly_init(bk, r->ctx);
-    fmpz_mpoly_init(tmp, r->ctx);
-    fmpz_t bin;
-    fmpz_init(bin);
-    for (slong k = 0; k <= n; k++) {
-        bernstein_coeff(bk, a, 1, n, k, tmp, bin, r);
-        if (fmpz_mpoly_is_zero(bk, r->ctx))
-            continue;
-        Atom xs[2] = {{AT_VAR, x, NULL, NULL, NULL, (ulong)k},
-                      {AT_BAR, x, NULL, NULL, NULL, (ulong)(n - k)}};
-        push_collected(s, bk, xs, 2, depth, c);
-    }
-    fmpz_clear(bin);
-    fmpz_mpoly_clear(tmp, r->ctx);
-    fmpz_mpoly_clear(bk, r->ctx);
-    coeffs_clear(a, n, c);
-    book_sum_finish(s, p, c);
-    return s;
-}
-
-/* the cos kernel of the same argument as sin kernel var v (its companion:
- * cos^2 = 1 - sin^2), or -1 */
-slong book_cos_companion(slong v, const Ctx *c)
-{
-    const Kernel *k = kernels_of_var(c->K, v);
-    if (!k || k->fn != KF_SIN)
-        return -1;
-    for (slong i = 0; i < c->K->n; i++) {
-        const Kernel *w = &c->K->k[i];
-        if (w->fn == KF_COS && ratfun_equal(w->arg, k->arg, c->r))
-            return w->var;
-    }
-    return -1;
-}
-
-/* p (even in s = sin(x), free of w = cos(x)) as a polynomial in y = s^2,
- * in the basis y^k (1 - y)^(n-k) with 1 - y = cos(x)^2: the book's
- * a^2*sin(phi)^2 + b^2*cos(phi)^2 for the normal form's b^2 - b^2*sin(phi)^2
- * + a^2*sin(phi)^2 (form_bernstein in y); NULL when p is not such */
-static PSum *form_sin2(const fmpz_mpoly_t p, slong s, slong w, int depth,
-                       const Ctx *c)
-{
-    const Ring *r = c->r;
-    slong n2 = fmpz_mpoly_degree_si(p, s, r->ctx);
-    if (n2 < 2 || (n2 & 1) || fmpz_mpoly_degree_si(p, w, r->ctx) > 0)
-        return NULL;
-    fmpz_mpoly_struct *a = coeffs_in(p, s, n2, c);
-    for (slong i = 1; i <= n2; i += 2)
-        if (!fmpz_mpoly_is_zero(a + i, r->ctx)) {
-            coeffs_clear(a, n2, c);
-            return NULL;
-        }
-    slong n = n2 / 2;
-    PSum *sum = book_sum_new(c);
-    fmpz_mpoly_t bk, tmp;
-    fmpz_mpoly_init(bk, r->ctx);
-    fmpz_mpoly_init(tmp, r->ctx);
-    fmpz_t bin;
-    fmpz_init(bin);
-    for (slong k = 0; k <= n; k++) {
-        bernstein_coeff(bk, a, 2, n, k, tmp, bin, r);
-        if (fmpz_mpoly_is_zero(bk, r->ctx))
-            continue;
-        Atom xs[2] = {{AT_VAR, s, NULL, NULL, NULL, (ulong)(2 * k)},
-                      {AT_VAR, w, NULL, NULL, NULL, (ulong)(2 * (n - k))}};
-        push_collected(sum, bk, xs, 2, depth, c);
-    }
-    fmpz_clear(bin);
-    fmpz_mpoly_clear(tmp, r->ctx);
-    fmpz_mpoly_clear(bk, r->ctx);
-    coeffs_clear(a, n2, c);
-    book_sum_finish(sum, p, c);
-    return sum;
 }
 
 /* ---- collected by the knots: c_k(t)*|t - t_k|^p -------------------------- */
@@ -767,85 +351,6 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c);
 
 enum { MEMO_MAX = 1024 };
 
-/* A partial factoring without FLINT's (deep inside a form, where full
- * factoring would cost more than it shows): the integer content, the
- * monomial content, powers of 1 - x of params and consts, and a perfect
- * square.  NULL when none of these is there. */
-static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
-{
-    const Ring *r = c->r;
-    slong nv = r->nvars;
-    fmpz_mpoly_t q, m, bar, quo;
-    fmpz_mpoly_init(q, r->ctx);
-    fmpz_mpoly_init(m, r->ctx);
-    fmpz_mpoly_init(bar, r->ctx);
-    fmpz_mpoly_init(quo, r->ctx);
-    PSum *s = book_sum_new(c);
-    PTerm *t = book_sum_push(s);
-    int found = 0;
-    /* integer content, with the sign of the first (ascending) term */
-    _fmpz_vec_content(t->coeff, p->coeffs, fmpz_mpoly_length(p, r->ctx));
-    fmpz_mpoly_scalar_divexact_fmpz(q, p, t->coeff, r->ctx);
-    found |= !fmpz_is_one(t->coeff);
-    /* the monomial content */
-    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
-    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
-    for (slong k = 0; k < fmpz_mpoly_length(q, r->ctx); k++) {
-        fmpz_mpoly_get_term_exp_ui(e, q, k, r->ctx);
-        for (slong v = 0; v < nv; v++)
-            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
-    }
-    for (slong v = 0; v < nv; v++)
-        if (lo[v]) {
-            fmpz_mpoly_gen(m, v, r->ctx);
-            fmpz_mpoly_pow_ui(m, m, lo[v], r->ctx);
-            fmpz_mpoly_divides(q, q, m, r->ctx);
-            book_term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, lo[v]});
-            found = 1;
-        }
-    /* (1 - x)^k */
-    for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
-        ulong k = 0;
-        fmpz_mpoly_gen(bar, v, r->ctx);
-        fmpz_mpoly_neg(bar, bar, r->ctx);
-        fmpz_mpoly_add_si(bar, bar, 1, r->ctx);
-        while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
-               fmpz_mpoly_length(q, r->ctx) > 1 &&
-               polyfactor_vanishes_at_ones(q, r) &&
-               fmpz_mpoly_divides(quo, q, bar, r->ctx)) {
-            fmpz_mpoly_swap(q, quo, r->ctx);
-            k++;
-        }
-        if (k) {
-            book_term_push(t, (Atom){AT_BAR, v, NULL, NULL, NULL, k});
-            found = 1;
-        }
-    }
-    free(lo);
-    free(e);
-    if (fmpz_mpoly_is_fmpz(q, r->ctx)) {
-        /* what is left is a unit: its sign */
-        if (fmpz_sgn(q->coeffs) < 0)
-            t->neg ^= 1;
-    } else if (fmpz_mpoly_length(q, r->ctx) > 1 &&
-               fmpz_mpoly_sqrt(m, q, r->ctx)) {
-        push_factor(t, m, 2, depth + 1, c);
-        found = 1;
-    } else if (found) {
-        push_factor(t, q, 1, depth + 1, c);
-    }
-    fmpz_mpoly_clear(q, r->ctx);
-    fmpz_mpoly_clear(m, r->ctx);
-    fmpz_mpoly_clear(bar, r->ctx);
-    fmpz_mpoly_clear(quo, r->ctx);
-    if (!found) {
-        book_sum_free(s, c);
-        return NULL;
-    }
-    book_sum_finish(s, p, c);
-    return s;
-}
-
 /* p in its best form (see book.h), remembered per output */
 static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c);
 
@@ -897,15 +402,31 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return s;
 }
 
+/* a hash of p (its length and coefficients: equal polynomials may pack
+ * their exponents differently), the depth and the mode */
+static ulong memo_key(const fmpz_mpoly_t p, slong len, int depth, const Ctx *c)
+{
+    ulong h = (ulong)len * 0x9E3779B97F4A7C15u ^ (ulong)depth ^ c->mode << 8;
+    for (slong i = 0; i < len; i++) {
+        const fmpz *x = p->coeffs + i;
+        ulong w = !COEFF_IS_MPZ(*x) ? (ulong)*x
+                                    : (ulong)mpz_get_ui(COEFF_TO_PTR(*x)) ^
+                                          (ulong)mpz_sgn(COEFF_TO_PTR(*x));
+        h = (h ^ w) * 0x100000001B3u;
+    }
+    return h;
+}
+
 static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     Memo *m = c->memo;
     slong len = fmpz_mpoly_length(p, c->r->ctx);
     if (len < 2 || !m)
         return render_new(p, depth, c);
+    ulong key = memo_key(p, len, depth, c);
     for (slong i = 0; i < m->n; i++)
-        if (m->e[i].depth == depth && m->e[i].mode == c->mode &&
-            fmpz_mpoly_length(m->e[i].poly, c->r->ctx) == len &&
+        if (m->e[i].key == key && m->e[i].depth == depth &&
+            m->e[i].mode == c->mode &&
             fmpz_mpoly_equal(m->e[i].poly, p, c->r->ctx))
             return book_sum_copy(m->e[i].sum, c);
     PSum *s = render_new(p, depth, c);
@@ -917,6 +438,7 @@ static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
         MemoEntry *e = &m->e[m->n++];
         fmpz_mpoly_init(e->poly, c->r->ctx);
         fmpz_mpoly_set(e->poly, p, c->r->ctx);
+        e->key = key;
         e->depth = depth;
         e->mode = c->mode;
         e->sum = book_sum_copy(s, c);
@@ -948,11 +470,11 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
         (depth == 0 ||
          (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED))) {
         *c->work += FACTOR_WORK + 20 * len;
-        keep_better(&best, &rank, &blen, form_factored(p, depth, c), R_FACTORED,
-                    c);
+        keep_better(&best, &rank, &blen, book_form_factored(p, depth, c),
+                    R_FACTORED, c);
     } else if (depth >= CHEAP_FACTOR_DEPTH) {
         *c->work += 4 * len;
-        keep_better(&best, &rank, &blen, form_factored_cheap(p, depth, c),
+        keep_better(&best, &rank, &blen, book_form_factored_cheap(p, depth, c),
                     R_FACTORED, c);
     }
     if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
@@ -962,14 +484,19 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
             continue;
         *c->work += 2 * len;
         if (book_is_param(c, v))
-            keep_better(&best, &rank, &blen, form_bernstein(p, v, depth, c),
-                        R_BERNSTEIN, c);
+            keep_better(
+                &best, &rank, &blen,
+                book_form_bernstein(p, v, depth, book_sum_leaves(best), c),
+                R_BERNSTEIN, c);
         slong w = c->K ? book_cos_companion(v, c) : -1;
         if (w >= 0)
-            keep_better(&best, &rank, &blen, form_sin2(p, v, w, depth, c),
-                        R_BERNSTEIN, c);
-        keep_better(&best, &rank, &blen, form_powers(p, v, depth, c), R_POWERS,
-                    c);
+            keep_better(
+                &best, &rank, &blen,
+                book_form_sin2(p, v, w, depth, book_sum_leaves(best), c),
+                R_BERNSTEIN, c);
+        keep_better(&best, &rank, &blen,
+                    book_form_powers(p, v, depth, book_sum_leaves(best), c),
+                    R_POWERS, c);
     }
     return best;
 }

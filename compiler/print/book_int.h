@@ -1,9 +1,11 @@
 /*
  * book_int.h - private to the book printer (book.h), shared by its files:
  * book_model.c (the model of a printed polynomial), book_write.c (the
- * model as text or LaTeX), book_forms.c (the forms of a polynomial),
- * book_unroot.c (un-rationalised alternatives) and book_eq.c (equations
- * and whole outputs).  Nothing outside compiler/print/book_*.c includes it.
+ * model as text or LaTeX), book_forms.c (the forms of a polynomial, the
+ * choice among them), book_factor.c (the factored forms), book_collect.c
+ * (the collected forms), book_unroot.c (un-rationalised alternatives) and
+ * book_eq.c (equations and whole outputs).  Nothing outside
+ * compiler/print/book_*.c includes it.
  */
 #ifndef PC_BOOK_INT_H
 #define PC_BOOK_INT_H
@@ -76,6 +78,7 @@ typedef struct Ctx {
  * factors come up in every collection */
 typedef struct MemoEntry {
     fmpz_mpoly_t poly;
+    ulong key; // memo_key of poly: most entries are passed over by it
     int depth;
     ulong mode; // Ctx.mode it was rendered in
     struct PSum *sum;
@@ -84,7 +87,10 @@ typedef struct MemoEntry {
 typedef struct Memo {
     MemoEntry *e;
     slong n, alloc;
-} Memo; /* = BookMemo (book.h) */
+    fmpz_mpoly_struct *fac; // irreducible factors (not monomials, positive
+    slong nfac, facalloc;   // leading coefficient) of the polynomials
+                            // factored fully so far (book_factor.c)
+} Memo;                     /* = BookMemo (book.h) */
 
 enum {
     MAX_DEPTH = 2,          // levels of collection (factors and coefficients)
@@ -142,10 +148,38 @@ size_t book_sum_text_len(const PSum *s, const Ctx *c); // in c's style
 
 /* p expanded, ascending (the reverse of FLINT's degrevlex) */
 PSum *book_form_expanded(const fmpz_mpoly_t p, const Ctx *c);
-/* the cos kernel var of the same argument as sin kernel var v, or -1 */
-slong book_cos_companion(slong v, const Ctx *c);
 /* p in its best form at depth (0: the top level) */
 PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+/* ---- book_factor.c: the factored forms ----------------------------------- */
+
+/* p factored (FLINT's factoring, or what proves it), NULL when p is
+ * irreducible and primitive; its factors are remembered in c->memo and
+ * divided out of the polynomials factored after it */
+PSum *book_form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c);
+/* deep inside a form: the integer and monomial content, powers of 1 - x
+ * and a perfect square, without FLINT's factoring; NULL when none is there */
+PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c);
+
+/* ---- book_collect.c: the collected forms --------------------------------- */
+
+/* Each is NULL when it has more leaves than limit (it could not win), or
+ * when it does not apply. */
+/* p = sum_k c_k x^k, ascending */
+PSum *book_form_powers(const fmpz_mpoly_t p, slong x, int depth, slong limit,
+                       const Ctx *c);
+/* p = sum_k b_k x^k (1 - x)^(n-k), n = deg_x p: the Bernstein basis of
+ * the param x (without binomials) */
+PSum *book_form_bernstein(const fmpz_mpoly_t p, slong x, int depth, slong limit,
+                          const Ctx *c);
+/* the cos kernel var of the same argument as sin kernel var v, or -1 */
+slong book_cos_companion(slong v, const Ctx *c);
+/* p (even in s = sin(x), free of w = cos(x)) as a polynomial in y = s^2,
+ * in the basis y^k (1 - y)^(n-k) with 1 - y = cos(x)^2: the book's
+ * a^2*sin(phi)^2 + b^2*cos(phi)^2 for the normal form's b^2 - b^2*sin(phi)^2
+ * + a^2*sin(phi)^2; NULL when p is not such */
+PSum *book_form_sin2(const fmpz_mpoly_t p, slong s, slong w, int depth,
+                     slong limit, const Ctx *c);
 
 /* ---- book_unroot.c: roots where the user put them ------------------------ */
 

@@ -98,6 +98,11 @@ void book_memo_clear(Memo *m, const Ctx *c)
     free(m->e);
     m->e = NULL;
     m->n = m->alloc = 0;
+    for (slong i = 0; i < m->nfac; i++)
+        fmpz_mpoly_clear(m->fac + i, c->r->ctx);
+    free(m->fac);
+    m->fac = NULL;
+    m->nfac = m->facalloc = 0;
 }
 
 /* appends an atom; no path multiplies two powers of one variable (the

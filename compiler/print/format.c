@@ -16,6 +16,7 @@
 
 #include <flint/fmpz_mpoly_factor.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "base/strbuf.h"
 #include "compiler/print/absform.h"
@@ -330,6 +331,22 @@ char *format_output_rhs(const Derived *d, const DerivedOutput *o,
     return book_rhs(d, o, &opt);
 }
 
+void format_mark_output(Source *src, const Derived *d, slong i)
+{
+    if (i < 0) {
+        budget_statement(NULL, (Span){0, 0});
+        if (src->text)
+            source_clear(src);
+        src->text = NULL;
+        return;
+    }
+    if (!d->text)
+        return;
+    if (!src->text)
+        source_init(src, d->filename, d->text, d->len);
+    budget_statement(src, d->outputs[i].span);
+}
+
 void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)
 {
     format_derived_width(out, d, st, origin, 0);
@@ -371,10 +388,13 @@ void format_derived_width(FILE *out, const Derived *d, FormatStyle st,
         return;
     }
     BookOptions opt = {st == FMT_LATEX, width, origin, book_memo_new()};
+    Source src = {0};
     for (slong i = 0; i < d->noutputs; i++) {
+        format_mark_output(&src, d, i);
         char *line = book_output(d, &d->outputs[i], &opt);
         fputs(line, out);
         free(line);
     }
+    format_mark_output(&src, d, -1);
     book_memo_free(opt.memo, d);
 }

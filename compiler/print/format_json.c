@@ -97,9 +97,12 @@ void format_json(FILE *out, const Derived *d)
     fputs(", ", out);
     json_names(out, "consts", d->consts, d->nconsts);
     fputs(",\n \"outputs\": [", out);
+    Source src = {0};
     for (slong i = 0; i < d->noutputs; i++) {
+        format_mark_output(&src, d, i);
         fputs(i ? ",\n  " : "", out);
         json_output(out, d, &d->outputs[i]);
     }
+    format_mark_output(&src, d, -1);
     fputs("]}\n", out);
 }

@@ -121,9 +121,9 @@ static void put_fd(void *ctx, const char *s, size_t n)
     pc_write_all(*(const int *)ctx, s, n);
 }
 
-/* "HEAD PHASE TAIL": located at the marked statement while deriving, a
- * plain message in the phases after it (budget_phase) or with no
- * statement marked */
+/* "HEAD PHASE TAIL": located at the marked statement (while deriving, or
+ * the output being printed: the printer marks it), a plain message in the
+ * other phases (budget_phase) or with no statement marked */
 static void report(const char *head, const char *tail)
 {
     static const int fd = 2;
@@ -132,8 +132,6 @@ static void report(const char *head, const char *tail)
     Span span;
     budget_where(&src, &span);
     const char *phase = budget_phase_now();
-    if (phase)
-        src = NULL;
     if (src != NULL)
         diag_put_location(&k, src, span, "error");
     else

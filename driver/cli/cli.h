@@ -32,10 +32,11 @@ CliCommand cli_plot;   // cmd_plot.c: the curves and the construction as SVG
 /* The pipeline every command starts with (pipeline.c).
  *
  * cli_derive_file_steps: parse -> expand -> sema -> derive, under the budget b
- * (armed for the derivation, disarmed after).  NULL when the scheme has an
- * error (reported to err; *rc = 1) or a -D names no int of it (*rc = 2).
- * cli_plan_file: the same, then lower to a numeric Plan (also under the
- * budget); NULL with *rc = 1 when an output cannot be lowered.  With
+ * (armed for the derivation and left armed, in the phase "printing the
+ * result": the caller prints under it, then calls budget_disarm).  NULL when
+ * the scheme has an error (reported to err; *rc = 1) or a -D names no int of it
+ * (*rc = 2). cli_plan_file: the same, then lower to a numeric Plan (also under
+ * the budget); NULL with *rc = 1 when an output cannot be lowered.  With
  * derived not NULL, the derivation is handed over there (the caller
  * frees it) when a Plan is returned. */
 /* keep_steps: also record the steps (derive --steps) */

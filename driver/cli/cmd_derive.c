@@ -140,6 +140,7 @@ int cli_derive(int argc, char **argv, FILE *out, FILE *err)
                               a.origin);
     else
         print_result(&a, d, origin, out);
+    budget_disarm(); /* printed within the budget of the derivation */
     derived_free(d);
     return rc;
 }

@@ -44,8 +44,8 @@ const char cli_usage[] =
 
 #define COMMON_HELP                                                            \
     "\nOptions of every command:\n"                                            \
-    "  --max-seconds S     wall-clock budget of the derivation (default 60; "  \
-    "0: none)\n"                                                               \
+    "  --max-seconds S     wall-clock budget of the derivation (and of\n"      \
+    "                      derive's printing; default 60; 0: none)\n"          \
     "  --max-memory SIZE   memory budget of the exact arithmetic, bytes or "   \
     "K, M, G\n"                                                                \
     "                      (default 2G; 0: none)\n"                            \

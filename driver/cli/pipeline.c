@@ -13,8 +13,9 @@ Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
     opt.keep_steps = keep_steps;
     budget_arm(b->max_seconds, b->max_memory);
     Derived *d = derive_file_ex(file, err, NULL, &opt);
-    budget_disarm(); /* the derivation is budgeted, not the output */
-    budget_phase("printing the result"); /* for the memory budget */
+    /* the budget stays armed for the printing (the caller disarms it):
+     * the time and memory of the whole command are bounded */
+    budget_phase("printing the result");
     *rc = d ? 0 : bad_define ? 2 : 1;
     return d;
 }

@@ -129,6 +129,32 @@ static void test_factor_order(void **state)
     free(y);
 }
 
+/* factors met before in a scheme are divided out first (book_factor.c,
+ * factor_by_known): with them, a polynomial prints as it does alone
+ * (FLINT's factoring of the whole), powers, signs and content included */
+static void test_factors_shared(void **state)
+{
+    (void)state;
+    static const char s1[] = "s1 = (2 + t)*(3 + t)*(5 + t^2)\n";
+    static const char s2[] = "s2 = (3 + t)*(5 + t^2)*(7 + t + t^3)\n";
+    static const char s3[] = "s3 = -4*(3 + t)^2*(2 - t)*(5 + t^2)*(1 + t^3)\n";
+    char src[512], alone[512];
+    snprintf(src, sizeof src, "param t\n%s%s%soutput s1, s2, s3\n", s1, s2, s3);
+    char *all = printed_ex(src, FMT_TEXT, 0, -1);
+    /* s2 with s1's factors divided out: the rest is irreducible */
+    assert_non_null(strstr(all, "s2 = (3 + t)*(5 + t^2)*(7 + t + t^3)\n"));
+    snprintf(alone, sizeof alone, "param t\n%s", s3);
+    char *a3 = printed_ex(alone, FMT_TEXT, 0, -1);
+    assert_non_null(strstr(all, a3));
+    /* 1 + t^3 = (1 + t)(1 - t + t^2), found by FLINT after the known
+     * factors are divided out */
+    assert_non_null(strstr(a3, "(1 + t)"));
+    assert_non_null(strstr(a3, "(1 - t + t^2)"));
+    assert_non_null(strstr(a3, "(3 + t)^2"));
+    free(a3);
+    free(all);
+}
+
 /* factors found without FLINT's factoring (book.c, factor_known: an
  * integer, a monomial, powers of 1 - x, one irreducible rest) print as
  * FLINT's would: the same rules as above */
@@ -855,6 +881,7 @@ int main(void)
         cmocka_unit_test(test_sign_and_basis_of_the_conic),
         cmocka_unit_test(test_collected_by_a_const),
         cmocka_unit_test(test_factor_order),
+        cmocka_unit_test(test_factors_shared),
         cmocka_unit_test(test_minus_outside),
         cmocka_unit_test(test_vector_differences),
         cmocka_unit_test(test_latex_names),
