@@ -1,9 +1,13 @@
 /*
  * mem.c - the one out-of-memory policy (mem.h).
  *
- * A reserve of 64 KiB is given back just before the handler runs, so that
- * it can still report.
+ * Every allocation of the tree is counted: pc_xmalloc & co., the arena's
+ * blocks (which come from pc_xmalloc), memory streams (a cookie stream
+ * over a counted buffer) and, after mem_use_for_gmp_flint, GMP's and
+ * FLINT's, all against one budget.  A reserve of 64 KiB is given back
+ * just before the handler runs, so that it can still report.
  */
+#define _GNU_SOURCE /* fopencookie */
 #include "base/mem.h"
 
 #include <gmp.h>
@@ -49,75 +53,6 @@ static _Noreturn void pc_out_of_memory(MemFailure why)
         _exit(1);
     }
     _exit(1);
-}
-
-void *pc_xmalloc(size_t n)
-{
-    void *p = malloc(n ? n : 1);
-    if (p == NULL)
-        pc_out_of_memory(MEM_SYSTEM);
-    return p;
-}
-
-void *pc_xcalloc(size_t n, size_t size)
-{
-    void *p = calloc(n ? n : 1, size ? size : 1);
-    if (p == NULL)
-        pc_out_of_memory(MEM_SYSTEM);
-    return p;
-}
-
-void *pc_xrealloc(void *p, size_t n)
-{
-    void *q = realloc(p, n ? n : 1);
-    if (q == NULL)
-        pc_out_of_memory(MEM_SYSTEM);
-    return q;
-}
-
-char *pc_xstrndup(const char *s, size_t n)
-{
-    char *d = pc_xmalloc(n + 1);
-    memcpy(d, s, n);
-    d[n] = '\0';
-    return d;
-}
-
-char *pc_xstrdup(const char *s)
-{
-    return pc_xstrndup(s, strlen(s));
-}
-
-char *pc_xasprintf(const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        abort(); // an invalid format: a bug of the caller
-    char *r = pc_xmalloc((size_t)n + 1);
-    va_start(ap, fmt);
-    vsnprintf(r, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-    return r;
-}
-
-FILE *pc_xopen_memstream(char **buf, size_t *len)
-{
-    FILE *f = open_memstream(buf, len);
-    if (!f)
-        pc_out_of_memory(MEM_SYSTEM);
-    return f;
-}
-
-void pc_xclose_memstream(FILE *f)
-{
-    /* a memory stream's only failure: growing its buffer (a write that
-     * failed sets the error flag, flushed by fclose) */
-    int bad = ferror(f);
-    if (fclose(f) != 0 || bad)
-        pc_out_of_memory(MEM_SYSTEM);
 }
 
 /* ---- counted allocators for GMP and FLINT -------------------------------- */
@@ -215,6 +150,134 @@ static void gmp_free(void *q, size_t n)
 {
     (void)n;
     c_free(q);
+}
+
+/* ---- the tree's allocators: the same counted blocks ---------------------- */
+
+void *pc_xmalloc(size_t n)
+{
+    return c_alloc(n);
+}
+
+void *pc_xcalloc(size_t n, size_t size)
+{
+    return c_calloc(n, size);
+}
+
+void *pc_xrealloc(void *p, size_t n)
+{
+    return c_realloc(p, n);
+}
+
+void *pc_xaligned_alloc(size_t align, size_t n)
+{
+    charge(n);
+    void *p = NULL;
+    if (posix_memalign(&p, align, n ? n : 1) != 0)
+        pc_out_of_memory(MEM_SYSTEM);
+    count((long long)malloc_usable_size(p) - (long long)n);
+    return p;
+}
+
+void pc_free(void *p)
+{
+    c_free(p);
+}
+
+void *mem_disown(void *p)
+{
+    if (p != NULL)
+        count(-(long long)malloc_usable_size(p));
+    return p;
+}
+
+char *pc_xstrndup(const char *s, size_t n)
+{
+    char *d = pc_xmalloc(n + 1);
+    memcpy(d, s, n);
+    d[n] = '\0';
+    return d;
+}
+
+char *pc_xstrdup(const char *s)
+{
+    return pc_xstrndup(s, strlen(s));
+}
+
+char *pc_xasprintf(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        abort(); // an invalid format: a bug of the caller
+    char *r = pc_xmalloc((size_t)n + 1);
+    va_start(ap, fmt);
+    vsnprintf(r, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    return r;
+}
+
+/* ---- memory streams over a counted buffer -------------------------------- */
+
+/* open_memstream's contract (*buf and *len follow every write, *buf is
+ * NUL-terminated and the caller's to pc_free after fclose), but the buffer
+ * grows through pc_xrealloc: a text is counted against the budget while it
+ * is written, not after (open_memstream's buffer is libc's, uncounted) */
+typedef struct MemStream {
+    char **buf;
+    size_t *len, cap;
+} MemStream;
+
+static ssize_t ms_write(void *cookie, const char *s, size_t n)
+{
+    MemStream *m = cookie;
+    size_t len = *m->len;
+    if (n > (size_t)-1 / 2 - len)
+        pc_out_of_memory(MEM_SYSTEM);
+    if (len + n + 1 > m->cap) {
+        size_t cap = m->cap ? m->cap : 256;
+        while (cap < len + n + 1)
+            cap *= 2;
+        *m->buf = pc_xrealloc(*m->buf, cap);
+        m->cap = cap;
+    }
+    memcpy(*m->buf + len, s, n);
+    (*m->buf)[len + n] = '\0';
+    *m->len = len + n;
+    return (ssize_t)n;
+}
+
+static int ms_close(void *cookie)
+{
+    pc_free(cookie);
+    return 0;
+}
+
+FILE *pc_xopen_memstream(char **buf, size_t *len)
+{
+    MemStream *m = pc_xmalloc(sizeof *m);
+    m->buf = buf;
+    m->len = len;
+    m->cap = 16;
+    *buf = pc_xmalloc(m->cap);
+    **buf = '\0';
+    *len = 0;
+    cookie_io_functions_t io = {NULL, ms_write, NULL, ms_close};
+    FILE *f = fopencookie(m, "w", io);
+    if (!f)
+        pc_out_of_memory(MEM_SYSTEM);
+    return f;
+}
+
+void pc_xclose_memstream(FILE *f)
+{
+    /* a memory stream's only failure: growing its buffer (a write that
+     * failed sets the error flag, flushed by fclose) */
+    int bad = ferror(f);
+    if (fclose(f) != 0 || bad)
+        pc_out_of_memory(MEM_SYSTEM);
 }
 
 static void use_for_gmp_flint(void)

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "compiler/expand_int.h"
 #include "compiler/sema.h"
@@ -736,6 +737,7 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
         used[k] = 0;
     for (Stmt *st = s->stmts; st && !E.over; st = st->next) {
         E.stmt = st;
+        budget_statement(diag->src, st->span); /* blamed if out of memory */
         switch (st->kind) {
         case ST_SCHEME:
             break;
@@ -780,11 +782,11 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
             break;
         }
     }
-    free(E.ints);
-    free(E.fams);
-    free(E.funcs);
-    free(E.binds);
-    free(E.names);
-    free(E.spans);
+    pc_free(E.ints);
+    pc_free(E.fams);
+    pc_free(E.funcs);
+    pc_free(E.binds);
+    pc_free(E.names);
+    pc_free(E.spans);
     return diag->nerrors - errors0;
 }

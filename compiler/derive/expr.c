@@ -396,7 +396,7 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
             construct_bezier(res->p, s, (const PointEq *)pts, npts, r);
         for (slong i = 0; i < npts; i++)
             pteq_clear(pts[i], r);
-        free(pts);
+        pc_free(pts);
         ratfun_clear(s, r);
         res->is_point = 1;
         return st;

@@ -39,7 +39,7 @@ static slong term_degree(const fmpz_mpoly_t p, slong k, const Ctx *c)
     slong d = 0;
     for (slong v = 0; v < r->nvars; v++)
         d += (slong)e[v];
-    free(e);
+    pc_free(e);
     return d;
 }
 
@@ -81,7 +81,7 @@ PSum *book_form_expanded(const fmpz_mpoly_t p, const Ctx *c)
             if (e[v])
                 book_term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, e[v]});
     }
-    free(e);
+    pc_free(e);
     book_sum_finish(s, p, c);
     return s;
 }
@@ -145,7 +145,7 @@ static void push_factor(PTerm *t, const fmpz_mpoly_t p, ulong e, int depth,
             a.exp *= e;
             book_term_push(t, a);
         }
-        free(u->a);
+        pc_free(u->a);
         u->a = NULL;
         u->n = 0;
         book_sum_free(s, c);
@@ -275,11 +275,11 @@ static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
             f->num++;
         }
     }
-    free(bars);
+    pc_free(bars);
     fmpz_clear(cq);
     fmpz_mpoly_clear(q, r->ctx);
-    free(e);
-    free(lo);
+    pc_free(e);
+    pc_free(lo);
     fmpz_clear(g);
     return ok;
 }
@@ -381,7 +381,7 @@ static void coeffs_clear(fmpz_mpoly_struct *a, slong n, const Ctx *c)
 {
     for (slong i = 0; i <= n; i++)
         fmpz_mpoly_clear(a + i, c->r->ctx);
-    free(a);
+    pc_free(a);
 }
 
 /* p = sum_k c_k x^k, ascending */
@@ -612,7 +612,7 @@ static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
             av[j] = v;
         }
     if (na == 0) {
-        free(av);
+        pc_free(av);
         return NULL;
     }
     slong len = fmpz_mpoly_length(p, r->ctx), ng = 0;
@@ -706,16 +706,16 @@ static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
             book_term_push(t, xs[i]);
     }
     fmpz_mpoly_clear(quo, r->ctx);
-    free(xs);
+    pc_free(xs);
     for (slong j = 0; j < ng; j++) {
-        free(g[j].ex);
+        pc_free(g[j].ex);
         fmpz_mpoly_clear(g[j].coef, r->ctx);
     }
     fmpz_clear(cf);
-    free(g);
-    free(ex);
-    free(e);
-    free(av);
+    pc_free(g);
+    pc_free(ex);
+    pc_free(e);
+    pc_free(av);
     book_sum_finish(s, p, c);
     s->keep_order = 1;
     return s;
@@ -821,8 +821,8 @@ static PSum *form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
             found = 1;
         }
     }
-    free(lo);
-    free(e);
+    pc_free(lo);
+    pc_free(e);
     if (fmpz_mpoly_is_fmpz(q, r->ctx)) {
         /* what is left is a unit: its sign */
         if (fmpz_sgn(q->coeffs) < 0)
@@ -893,7 +893,7 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
         s = render_memo(p, depth, c);
     }
     fmpz_mpoly_clear(q, r->ctx);
-    free(mask);
+    pc_free(mask);
     return s;
 }
 

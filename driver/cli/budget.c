@@ -121,9 +121,10 @@ static void put_fd(void *ctx, const char *s, size_t n)
     pc_write_all(*(const int *)ctx, s, n);
 }
 
-/* "HEAD PHASE TAIL": located at the marked statement while deriving, a
- * plain message in the phases after it (budget_phase) or with no
- * statement marked */
+/* "HEAD PHASE TAIL", located at what the pipeline marked
+ * (base/budget.h): a statement ("FILE:LINE:COL: error: ...", then its line
+ * and a caret), the whole file ("FILE: error: ...") or, with no mark,
+ * "pointcalc: error: ..." */
 static void report(const char *head, const char *tail)
 {
     static const int fd = 2;
@@ -132,8 +133,6 @@ static void report(const char *head, const char *tail)
     Span span;
     budget_where(&src, &span);
     const char *phase = budget_phase_now();
-    if (phase)
-        src = NULL;
     if (src != NULL)
         diag_put_location(&k, src, span, "error");
     else
@@ -143,7 +142,7 @@ static void report(const char *head, const char *tail)
     put_fd((void *)&fd, phase, strlen(phase));
     put_fd((void *)&fd, tail, strlen(tail));
     put_fd((void *)&fd, "\n", 1);
-    if (src != NULL)
+    if (src != NULL && !DIAG_IS_WHOLE_FILE(span))
         diag_put_excerpt(&k, src, span);
 }
 

@@ -71,11 +71,11 @@ typedef struct FitFront {
 static void front_clear(FitFront *F)
 {
     for (int j = 0; j < F->nparams; j++)
-        free(F->params[j]);
-    free(F->params);
-    free(F->fits);
-    free(F->outputs);
-    free(F->text);
+        pc_free(F->params[j]);
+    pc_free(F->params);
+    pc_free(F->fits);
+    pc_free(F->outputs);
+    pc_free(F->text);
 }
 
 static char *read_text(const char *path, size_t *len, FILE *err)
@@ -170,25 +170,25 @@ static char *fit_text(const FitFront *F, const FitStmt *s, size_t *len)
     int xl = s->xs.end - s->xs.start, fl = s->fs.end - s->fs.start;
     const char *X = F->text + s->xs.start, *f = F->text + s->fs.start;
     char *all = pc_xasprintf("%s\n", t);
-    free(t);
+    pc_free(t);
     for (int j = 0; j < F->nparams; j++) {
         char *next = pc_xasprintf(
             "%s__fit_f%d = diff(%.*s, %s)\n__fit_x%d = diff(%.*s, %s)\n", all,
             j, fl, f, F->params[j], j, xl, X, F->params[j]);
-        free(all);
+        pc_free(all);
         all = next;
     }
     char *next = pc_xasprintf("%soutput %.*s, %.*s", all, xl, X, fl, f);
-    free(all);
+    pc_free(all);
     all = next;
     for (int w = 0; w < 2; w++)
         for (int j = 0; j < F->nparams; j++) {
             next = pc_xasprintf("%s, __fit_%c%d", all, w ? 'x' : 'f', j);
-            free(all);
+            pc_free(all);
             all = next;
         }
     next = pc_xasprintf("%s\n", all);
-    free(all);
+    pc_free(all);
     *len = strlen(next);
     return next;
 }
@@ -230,9 +230,9 @@ static void weights_at(const Plan *p, int out, int param, int np, int n,
     for (int j = 0; j < np; j++)
         params[j] = j == param ? &t : &zero;
     plan_eval(p, out, 1, params, NULL, pts, n, w, &st);
-    free(params);
-    free(pts);
-    free(unit);
+    pc_free(params);
+    pc_free(pts);
+    pc_free(unit);
 }
 
 /* the t in [0, 1] where base point k's weight is 1 and the others 0:
@@ -300,7 +300,7 @@ static int check_interpolation(const Derived *d, const Plan *p,
         }
     }
     *ends = fabs(t0) <= FIT_INTERP_TOL && fabs(t1 - 1) <= FIT_INTERP_TOL;
-    free(grid);
+    pc_free(grid);
     return rc;
 }
 
@@ -364,7 +364,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
     char *text = fit_text(F, s, &len);
     DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS};
     Derived *d = derive_source_ex(path, text, len, err, NULL, &opt);
-    free(text);
+    pc_free(text);
     Plan *p = d ? lower_derived(d, err) : NULL;
     int xp, fp, ends = 0, rc = 1, np = F->nparams;
     if (!p || find_params(d, F, s, &xp, &fp, err) != 0 ||
@@ -388,7 +388,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
     }
     if (fit_curve_coefficients(coef, d, 0, xp, fo.nodes) != 0) {
         BookOptions bo = {.origin = -1};
-        free(coef);
+        pc_free(coef);
         coef = NULL;
         eq = book_output(d, &d->outputs[0], &bo);
     }
@@ -402,9 +402,9 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
         plan_free(p);
         t.plan = NULL;
         if (fit_target_data(&t, data, &fo, err) != 0) {
-            free(phi);
-            free(coef);
-            free(eq);
+            pc_free(phi);
+            pc_free(coef);
+            pc_free(eq);
             derived_free(d);
             return 1;
         }
@@ -417,7 +417,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
         rc = report(ctx, f, &info);
     }
     fit_free(f);
-    free(eq);
+    pc_free(eq);
     derived_free(d);
     return rc;
 }
