@@ -15,6 +15,7 @@
 
 #include "base/budget.h"
 #include "base/mem.h"
+#include "base/stack.h"
 #include "compiler/expand_int.h"
 #include "compiler/sema.h"
 
@@ -427,6 +428,10 @@ int ex_rewrite(Expander *E, Node **slot)
     Node *n = *slot;
     if (ex_too_deep(n))
         return 0;
+    if (stack_low()) {
+        diag_error(E->d, n->span, STACK_MESSAGE);
+        return -1;
+    }
     switch (n->kind) {
     case ND_NUM:
         return 0;

@@ -285,6 +285,30 @@ if [ -z "${PC_VALGRIND:-}" ] && ! nm "$PC" 2>/dev/null | grep -q __asan_init; th
     check "out of memory: located" grep -q "c2000.pcs:[0-9]*:[0-9]*: error: out of memory while deriving this (the system refused more)" "$tmp/err"
 fi
 
+# issue 23 item 7: 1999 nested along (sema allows 2000) needs about 2.2
+# MiB of stack; the command runs on a thread of its own stack (16 MiB), so
+# a small `ulimit -s` does not matter.  The weight of A is (1 - t)^1999
+# and B's 1 - (1 - t)^1999 (each along(P, B, t) multiplies P's weights by
+# 1 - t), compared exactly at t = 1/3 whatever form they print in
+if [ -z "${PC_VALGRIND:-}" ]; then
+    { printf 'point A, B\nparam t\nM = '
+      for i in $(seq 1 1999); do printf 'along('; done
+      printf 'A'
+      for i in $(seq 1 1999); do printf ', B, t)'; done
+      printf '\n'; } >"$tmp/along1999.pcs"
+    (ulimit -s 1024; "$PCB" derive "$tmp/along1999.pcs" --format json >"$tmp/out" 2>"$tmp/err")
+    check "1999 nested along under ulimit -s 1024: exit 0" test $? -eq 0 -a ! -s "$tmp/err"
+    check "1999 nested along: the weights" python3 -c "
+import json, sys
+from fractions import Fraction as F
+w = json.load(open(sys.argv[1]))['outputs'][0]['terms']
+t = F(1, 3)
+at = lambda e: eval(e.replace('^', '**'), {'t': t})
+assert at(w['A']) == (1 - t)**1999, w['A'][:100]
+assert at(w['B']) == 1 - (1 - t)**1999, w['B'][:100]
+" "$tmp/out"
+fi
+
 # input limits
 "$PC" derive /dev/zero >"$tmp/out" 2>"$tmp/err"
 check "/dev/zero refused" grep -qx "/dev/zero: error: cannot read the file: it is larger than 16 MiB, the limit of a scheme" "$tmp/err"

@@ -2,7 +2,8 @@
  * budget.c - the hard limits of the command line (budget.h): the options
  * every command takes, the timer and the memory handler.  Both handlers
  * report at the statement the library marked (base/budget.h).  The timer's
- * SIGALRM is the command line's, which has one thread.
+ * SIGALRM is the command line's: it reaches the command's thread (main.c
+ * blocks it on the main thread, which only waits), whose mark it reads.
  */
 #include "driver/cli/budget.h"
 
