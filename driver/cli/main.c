@@ -17,6 +17,7 @@
  * usage error; nothing reaches stdout when the scheme has an error.
  */
 #include <errno.h>
+#include <malloc.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
@@ -124,6 +125,9 @@ static int run_on_big_stack(int argc, char **argv)
     sigemptyset(&alarm);
     sigaddset(&alarm, SIGALRM);
     pthread_sigmask(SIG_BLOCK, &alarm, &old);
+    /* one malloc arena: a thread's own would reserve 64 MiB of address
+     * space, which a `ulimit -v` counts (the main thread only waits) */
+    mallopt(M_ARENA_MAX, 1);
     int made = pthread_attr_init(&a) == 0;
     made = made && pthread_attr_setstacksize(&a, CLI_STACK) == 0 &&
            pthread_create(&th, &a, run_thread, &r) == 0;
