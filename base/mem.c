@@ -55,7 +55,7 @@ static _Noreturn void pc_out_of_memory(MemFailure why)
     _exit(1);
 }
 
-/* ---- counted allocators for GMP and FLINT -------------------------------- */
+/* ---- the counted allocators (GMP, FLINT and the tree's own) ----------- */
 
 /* The block sizes come from malloc_usable_size (glibc, valgrind and the
  * sanitizers all provide it), so the pointers handed out are malloc's own:

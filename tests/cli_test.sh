@@ -307,6 +307,12 @@ at = lambda e: eval(e.replace('^', '**'), {'t': t})
 assert at(w['A']) == (1 - t)**1999, w['A'][:100]
 assert at(w['B']) == 1 - (1 - t)**1999, w['B'][:100]
 " "$tmp/out"
+    # the command's thread shares the main malloc arena (a thread's own
+    # reserves 64 MiB of address space, which ulimit -v counts)
+    if ! nm "$PC" 2>/dev/null | grep -q __asan_init; then
+        (ulimit -v 120000; "$PCB" derive "$tmp/along1999.pcs" >"$tmp/out" 2>"$tmp/err")
+        check "1999 nested along under ulimit -v 120000: exit 0" test $? -eq 0 -a -s "$tmp/out"
+    fi
 fi
 
 # input limits
