@@ -118,6 +118,8 @@ static void test_stack_left_measures(void **state)
     Job j = {.text = "point A, B\nparam t\nM = along(A, B, t)\n"};
     run_with_stack(&j, (size_t)1 << 20);
     assert_null(j.diag);
+    assert_string_equal(j.weight, "-t+1"); // the weight of A: 1 - t
+    free(j.weight);
     assert_true(j.left_top <= ((size_t)1 << 20));
     assert_true(j.left_top > ((size_t)1 << 20) - 64 * 1024);
 }
