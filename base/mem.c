@@ -79,30 +79,43 @@ static void count(long long n)
     atomic_fetch_add_explicit(&in_use, n, memory_order_relaxed);
 }
 
-/* counts n bytes about to be allocated; out of memory (the budget) when
- * they do not fit: the check and the count are one atomic step, so
- * threads allocating at once cannot together exceed the budget */
-static void charge(size_t n)
+/* a refusal before the system is asked for n more bytes: beyond the
+ * budget alone, or with what is counted now (plain loads: settle decides) */
+static void precheck(size_t n)
 {
     size_t lim = atomic_load_explicit(&limit, memory_order_relaxed);
-    if (lim && n > lim)
+    if (lim && (n > lim || atomic_load_explicit(&in_use, memory_order_relaxed) +
+                                   (long long)n >
+                               (long long)lim))
         pc_out_of_memory(MEM_BUDGET);
+}
+
+/* counts delta bytes of a block made (or grown) already; 1 when a growth
+ * does not fit the budget (the count is then taken back): the check and
+ * the count are one atomic step, so threads allocating at once cannot
+ * together exceed the budget */
+static int settle(long long delta)
+{
+    size_t lim = atomic_load_explicit(&limit, memory_order_relaxed);
     long long now =
-        atomic_fetch_add_explicit(&in_use, (long long)n, memory_order_relaxed) +
-        (long long)n;
-    if (lim && now > (long long)lim) {
-        count(-(long long)n);
-        pc_out_of_memory(MEM_BUDGET);
+        atomic_fetch_add_explicit(&in_use, delta, memory_order_relaxed) + delta;
+    if (lim && delta > 0 && now > (long long)lim) {
+        count(-delta);
+        return 1;
     }
+    return 0;
 }
 
 static void *c_alloc(size_t n)
 {
-    charge(n);
+    precheck(n);
     void *p = malloc(n ? n : 1);
     if (p == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    count((long long)malloc_usable_size(p) - (long long)n);
+    if (settle((long long)malloc_usable_size(p))) {
+        free(p);
+        pc_out_of_memory(MEM_BUDGET);
+    }
     return p;
 }
 
@@ -119,12 +132,12 @@ static void *c_realloc(void *p, size_t n)
     if (p == NULL)
         return c_alloc(n);
     size_t old = malloc_usable_size(p);
-    size_t more = n > old ? n - old : 0;
-    charge(more);
+    precheck(n > old ? n - old : 0);
     void *q = realloc(p, n ? n : 1);
     if (q == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    count((long long)malloc_usable_size(q) - (long long)old - (long long)more);
+    if (settle((long long)malloc_usable_size(q) - (long long)old))
+        pc_out_of_memory(MEM_BUDGET); /* q stays counted as it was */
     return q;
 }
 
@@ -132,11 +145,14 @@ static void *c_calloc(size_t n, size_t size)
 {
     if (size != 0 && n > (size_t)-1 / size)
         pc_out_of_memory(MEM_SYSTEM);
-    charge(n * size);
+    precheck(n * size);
     void *p = calloc(n ? n : 1, size ? size : 1);
     if (p == NULL)
         pc_out_of_memory(MEM_SYSTEM);
-    count((long long)malloc_usable_size(p) - (long long)(n * size));
+    if (settle((long long)malloc_usable_size(p))) {
+        free(p);
+        pc_out_of_memory(MEM_BUDGET);
+    }
     return p;
 }
 
@@ -171,11 +187,14 @@ void *pc_xrealloc(void *p, size_t n)
 
 void *pc_xaligned_alloc(size_t align, size_t n)
 {
-    charge(n);
+    precheck(n);
     void *p = NULL;
     if (posix_memalign(&p, align, n ? n : 1) != 0)
         pc_out_of_memory(MEM_SYSTEM);
-    count((long long)malloc_usable_size(p) - (long long)n);
+    if (settle((long long)malloc_usable_size(p))) {
+        free(p);
+        pc_out_of_memory(MEM_BUDGET);
+    }
     return p;
 }
 
