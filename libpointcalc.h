@@ -73,9 +73,11 @@ pc_scheme *pc_scheme_load_opts(const char *path, const pc_options *opt,
 /* Process-wide, and to be called before any other pc_ function (and before
  * the program's own first use of GMP or FLINT): routes GMP's and FLINT's
  * allocations through the library's counted allocators and sets a memory
- * budget of `bytes` for them (0: none).  When the budget would be exceeded,
- * or the system refuses memory, no error can be returned from inside GMP:
- * the library writes "pointcalc: error: the memory budget ran out" (or
+ * budget of `bytes` (0: none) for them and for everything the library
+ * allocates itself (names, texts, generated C, plans; the strings it
+ * returns leave the count when they are handed over).  When the budget would be
+ * exceeded, or the system refuses memory, no error can be returned from inside
+ * GMP: the library writes "pointcalc: error: the memory budget ran out" (or
  * "out of memory") to stderr and ends the process with _exit(1).  Without
  * this call GMP's own policy applies (it aborts). */
 void pc_use_memory_budget(size_t bytes);

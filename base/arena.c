@@ -84,7 +84,7 @@ void arena_reset(Arena *a)
     ArenaBlock *b = a->blocks;
     while (b) {
         ArenaBlock *next = b->next;
-        free(b);
+        pc_free(b);
         b = next;
     }
     a->blocks = NULL;

@@ -25,10 +25,21 @@ void budget_statement(const Source *src, Span span);
  * signal handler: the mark is published by flipping an index. */
 void budget_where(const Source **src, Span *span);
 
-/* What this thread does after the derivation, for the budget handlers'
- * messages ("ran out while PHASE"): a static string such as "printing the
- * result", or NULL while deriving (the handlers then point at the marked
- * statement).  budget_phase_now reads it (safe in a signal handler). */
+/* A mark for the whole file (budget_statement(src, BUDGET_WHOLE_FILE)):
+ * the handlers then write "FILE: error: ..." */
+#define BUDGET_WHOLE_FILE ((Span){-1, -2}) /* diag.h's DIAG_WHOLE_FILE */
+
+/* What this thread does, for the budget handlers' messages ("ran out
+ * while PHASE"): a static string, or NULL while deriving ("deriving
+ * this").  The phases of the pipeline, each with its mark:
+ *   "lexing and parsing the scheme"  the whole file (compiler/pipeline.c)
+ *   "expanding this"                 each statement (expand.c)
+ *   "checking the scheme"            the whole file (sema)
+ *   NULL: "deriving this"            each definition (derive/)
+ *   "printing this"                  each output (derived_mark)
+ *   "lowering this to numbers"       each output (derived_mark)
+ *   "writing the result"             the whole file (the command line)
+ * budget_phase_now reads it (safe in a signal handler). */
 void budget_phase(const char *phase);
 const char *budget_phase_now(void);
 

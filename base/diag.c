@@ -50,7 +50,7 @@ static int msg_cmp(const void *x, const void *y)
 void diag_rollback(Diag *d, int nmsgs, int nerrors)
 {
     for (int i = nmsgs; i < d->nmsgs; i++)
-        free(d->msgs[i].text);
+        pc_free(d->msgs[i].text);
     if (nmsgs < d->nmsgs)
         d->nmsgs = nmsgs;
     d->reported -= d->nerrors - nerrors; /* (errors since count both) */
@@ -89,12 +89,12 @@ void diag_flush(Diag *d)
             mute = ++errors > DIAG_MAX_ERRORS;
         if (d->out && !mute)
             fputs(d->msgs[i].text, d->out);
-        free(d->msgs[i].text);
+        pc_free(d->msgs[i].text);
     }
     note_unshown(d, d->reported -
                         (errors < DIAG_MAX_ERRORS ? errors : DIAG_MAX_ERRORS));
     d->reported = 0;
-    free(d->msgs);
+    pc_free(d->msgs);
     d->msgs = NULL;
     d->nmsgs = d->amsgs = 0;
     d->hold = 0;
@@ -256,6 +256,13 @@ void diag_put_location(DiagSink *k, const Source *s, Span span,
     size_t n = 0;
     while (name[n])
         n++;
+    if (DIAG_IS_WHOLE_FILE(span)) { /* "NAME: WHAT: " */
+        put_escaped(k, name, n);
+        put_str(k, ": ");
+        put_str(k, what);
+        put_str(k, ": ");
+        return;
+    }
     span = clamp(s, span);
     source_locate(s, span.start, &line, &col);
     put_escaped(k, name, n);

@@ -87,7 +87,10 @@ typedef struct DiagSink {
     void (*put)(void *ctx, const char *s, size_t n);
     void *ctx;
 } DiagSink;
-/* "NAME:LINE:COL: WHAT: " */
+/* "NAME:LINE:COL: WHAT: ", or "NAME: WHAT: " for DIAG_WHOLE_FILE */
+/* a span that stands for the whole file (no line, no excerpt) */
+#define DIAG_WHOLE_FILE ((Span){-1, -2})
+#define DIAG_IS_WHOLE_FILE(sp) ((sp).start == -1 && (sp).end == -2)
 void diag_put_location(DiagSink *k, const Source *s, Span span,
                        const char *what);
 /* the source line of span, then its caret line, each ending in '\n'; a

@@ -46,7 +46,7 @@ void source_init(Source *s, const char *name, const char *text, size_t len)
 
 void source_clear(Source *s)
 {
-    free(s->line_starts);
+    pc_free(s->line_starts);
     s->line_starts = NULL;
 }
 

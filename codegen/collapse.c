@@ -60,7 +60,7 @@ static void mark_vars(unsigned char *dep, const fmpz_mpoly_t p, const Ring *r)
     for (slong v = 0; v < nv; v++)
         if (deg[v] > 0)
             dep[v] = 1;
-    free(deg);
+    pc_free(deg);
 }
 
 /* res = p as a polynomial in variable v (p depends on no other) */
@@ -219,7 +219,7 @@ static double kappa_bound(const fmpq_poly_t F, const fmpq_poly_struct *p,
         fmpq_clear(st[i].x0);
         fmpq_clear(st[i].x1);
     }
-    free(st);
+    pc_free(st);
     fmpq_clear(c);
     fmpq_clear(h);
     fmpq_clear(X);
@@ -305,7 +305,7 @@ static slong the_param(CollapseOutput *co, const Derived *d,
             ndep++;
             var = v;
         }
-    free(dep);
+    pc_free(dep);
     if (ndep == 0) {
         co->why = pc_xasprintf("depends on no param");
         return -1;
@@ -539,7 +539,7 @@ static int conditioning(CollapseOutput *co, const fmpq_poly_struct *np,
     }
     for (slong k = 0; k <= K; k++)
         fmpq_poly_clear(dn + k);
-    free(dn);
+    pc_free(dn);
     fmpq_poly_clear(F);
     fmpq_poly_clear(Fd);
     fmpq_clear(t);
@@ -606,7 +606,7 @@ static void analyse(CollapseOutput *co, const Derived *d,
 done:
     for (slong k = 0; k <= K; k++)
         fmpq_poly_clear(np + k);
-    free(np);
+    pc_free(np);
     fmpq_poly_clear(dpoly);
     fmpq_clear(m);
     fmpq_clear(lo);
@@ -628,9 +628,9 @@ Collapse *collapse_new(const Derived *d, const Plan *p)
         }
         analyse(co, d, &d->outputs[o]);
         if (!co->ok) { // nothing half-made is kept
-            free(co->point);
-            free(co->a);
-            free(co->b);
+            pc_free(co->point);
+            pc_free(co->a);
+            pc_free(co->b);
             co->point = NULL;
             co->a = co->b = NULL;
         }

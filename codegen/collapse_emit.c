@@ -28,7 +28,7 @@ static void signature(FILE *out, const CollapseNames *N, const char *fn,
     char *head = pc_xasprintf("%ssize_t %s(", is_static ? "static " : "", fn);
     cwrite_params(out, head, N->in, N->nparams, N->nin, N->pt, N->npt, 1, 1,
                   restr);
-    free(head);
+    pc_free(head);
 }
 
 /* is coefficient j of the numerators non-zero for some point? */

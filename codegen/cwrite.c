@@ -69,12 +69,12 @@ void cwrite_params(FILE *out, const char *head, char *const *in, int nparams,
                 : "double ",
             in[i]);
         cwrite_line_arg(&L, arg, 0);
-        free(arg);
+        pc_free(arg);
     }
     for (int i = 0; i < npt; i++) {
         char *arg = pc_xasprintf("const double *%s", pt[i]);
         cwrite_line_arg(&L, arg, 0);
-        free(arg);
+        pc_free(arg);
     }
     cwrite_line_arg(&L, "int dim", 0);
     cwrite_line_arg(&L, restr ? "double *restrict out" : "double *out",

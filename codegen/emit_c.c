@@ -45,7 +45,7 @@ static void set_roles(const Plan *p, const PlanOutput *o, const char **role,
         int r = o->reg[k];
         if (p->ins[r].op == PLAN_CONST || p->ins[r].op == PLAN_INPUT)
             continue;
-        free(owned[r]);
+        pc_free(owned[r]);
         if (o->point[k] < 0)
             owned[r] = pc_xasprintf("value of %s", o->name);
         else
@@ -169,7 +169,7 @@ static int emit_collapsed(Ctx *C, Names *N, const Collapse *col, int i)
     if (!collapse_name_free(fallback, N->fn, N->nfn) ||
         !collapse_name_free(fallback, N->in, N->nin) ||
         !collapse_name_free(fallback, N->pt, N->npt)) {
-        free(fallback);
+        pc_free(fallback);
         return 0;
     }
     unsigned want = N->want;
@@ -182,7 +182,7 @@ static int emit_collapsed(Ctx *C, Names *N, const Collapse *col, int i)
                         N->in, C->p->nparams, N->nin,
                         N->pt, N->npt};
     collapse_emit_batch(C->out, &col->o[i], &CN, C->o->line);
-    free(fallback);
+    pc_free(fallback);
     return 1;
 }
 
@@ -244,10 +244,10 @@ static void emit_all(FILE *out, const Plan *p, const char *prefix,
         }
     }
     for (int r = 0; r < p->nins; r++)
-        free(owned[r]);
-    free(owned);
-    free(role);
-    free(live);
+        pc_free(owned[r]);
+    pc_free(owned);
+    pc_free(role);
+    pc_free(live);
     emit_names_clear(&N);
 }
 
@@ -275,6 +275,6 @@ void emit_c_header_ex(FILE *out, const Plan *p, const char *prefix,
     prototypes(out, p, &N);
     fputs("\n#ifdef __cplusplus\n}\n#endif\n\n", out);
     fprintf(out, "#endif /* %s */\n", guard);
-    free(guard);
+    pc_free(guard);
     emit_names_clear(&N);
 }

@@ -58,7 +58,7 @@ unsigned emit_c_parse_functions(const char *list, const char **bad);
 
 /* 1 when two outputs would generate the same C function name (*o1 < *o2,
  * e.g. outputs M and M_batch: NAME_M_batch), or a name that is a C keyword
- * or macro (*o1 == *o2); *name receives it (free() it).  0 when every name
+ * or macro (*o1 == *o2); *name receives it (pc_free() it).  0 when every name
  * is usable.  emit_c's output compiles only when this is 0. */
 int emit_c_clash(const Plan *p, const char *prefix, int *o1, int *o2,
                  char **name);

@@ -198,7 +198,7 @@ static char *c_name(const Names *N, int nin, int npt, const char *user)
     char *s = identifier(user);
     if (reserved_family(s)) {
         char *t = pc_xasprintf("a_%s", s);
-        free(s);
+        pc_free(s);
         s = t;
     }
     while (is_reserved(s) || taken(N, nin, npt, s)) {
@@ -225,7 +225,7 @@ void emit_names_init(Names *N, const Plan *p, const char *prefix)
         for (int v = 0; v < NVARIANTS; v++)
             N->fn[NVARIANTS * i + v] =
                 pc_xasprintf("%s_%s%s", N->prefix, oname, variant_suffix[v]);
-        free(oname);
+        pc_free(oname);
     }
     for (int i = 0; i < N->nin; i++)
         N->in[i] = c_name(
@@ -237,15 +237,15 @@ void emit_names_init(Names *N, const Plan *p, const char *prefix)
 void emit_names_clear(Names *N)
 {
     for (int i = 0; i < N->nfn; i++)
-        free(N->fn[i]);
+        pc_free(N->fn[i]);
     for (int i = 0; i < N->nin; i++)
-        free(N->in[i]);
+        pc_free(N->in[i]);
     for (int i = 0; i < N->npt; i++)
-        free(N->pt[i]);
-    free(N->fn);
-    free(N->in);
-    free(N->pt);
-    free(N->prefix);
+        pc_free(N->pt[i]);
+    pc_free(N->fn);
+    pc_free(N->in);
+    pc_free(N->pt);
+    pc_free(N->prefix);
 }
 
 int emit_c_check(const Plan *p, const Derived *d, const char *prefix, FILE *err)
@@ -266,7 +266,7 @@ int emit_c_check(const Plan *p, const Derived *d, const char *prefix, FILE *err)
                       "(line %d) and %s; rename one of them",
                       clash, d->outputs[o1].name, d->outputs[o1].line,
                       d->outputs[o2].name);
-    free(clash);
+    pc_free(clash);
     return 1;
 }
 
@@ -306,7 +306,7 @@ void emit_signature_ex(FILE *out, const Plan *p, const Names *N, int oi,
                               ret[v], N->fn[NVARIANTS * oi + v]);
     cwrite_params(out, head, N->in, p->nparams, N->nin, N->pt, N->npt,
                   v == BATCH || v == BATCH_CHECKED, v == BATCH_CHECKED, restr);
-    free(head);
+    pc_free(head);
 }
 
 void emit_signature(FILE *out, const Plan *p, const Names *N, int oi, Variant v)

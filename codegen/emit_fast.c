@@ -136,14 +136,14 @@ static void checked_call(const Ctx *C, const char *ind, const char *n,
         "%s(void)%s(", ind,
         C->N->fn[NVARIANTS * C->oi + (n ? BATCH_CHECKED : ONE_CHECKED)]);
     cwrite_line_start(&L, C->out, head);
-    free(head);
+    pc_free(head);
     if (n)
         cwrite_line_arg(&L, n, 0);
     for (int i = 0; i < C->N->nin; i++) {
         char *a =
             pc_xasprintf("%s%s", C->N->in[i], i < C->p->nparams ? off : "");
         cwrite_line_arg(&L, a, 0);
-        free(a);
+        pc_free(a);
     }
     for (int i = 0; i < C->N->npt; i++)
         cwrite_line_arg(&L, C->N->pt[i], 0);
@@ -241,7 +241,7 @@ static void fast_dim(Ctx *C, const Slot *slot, const int *nf, const int *f,
     fputs("            if (!(chk[0] - chk[0] == 0.0)) /* not finite */\n", out);
     char *nn = pc_xasprintf("%d", BLOCK);
     checked_call(C, "                ", nn, " + i0", "o");
-    free(nn);
+    pc_free(nn);
     fputs("        }\n", out);
 }
 
@@ -275,7 +275,7 @@ int emit_batch_fast(Ctx *C)
             nf[k] = inverse_factors(p, slot[k].root, inv, f + k * NF, NF, seen);
         hoist &= nf[k] >= 0;
     }
-    free(seen);
+    pc_free(seen);
     memset(C->live, 0, (size_t)p->nins);
     for (int k = 0; k < o->nterms; k++) {
         if (!hoist)
@@ -287,9 +287,9 @@ int emit_batch_fast(Ctx *C)
         C->live[inv] = 1;
     plan_live_close(p, C->live);
     if (inv >= 0 && !C->live[inv]) { // the weights do not use 1/L
-        free(slot);
-        free(nf);
-        free(f);
+        pc_free(slot);
+        pc_free(nf);
+        pc_free(f);
         return 0;
     }
 
@@ -314,9 +314,9 @@ int emit_batch_fast(Ctx *C)
     checked_call(C, "        ", "n - nfull", " + nfull",
                  "out + nfull * (size_t)dim");
     fputs("}\n\n", out);
-    free(slot);
-    free(nf);
-    free(f);
+    pc_free(slot);
+    pc_free(nf);
+    pc_free(f);
     return 1;
 }
 

@@ -582,8 +582,8 @@ void emit_batch(Ctx *C)
     for (int k = 0; k < nslots; k++) {
         if (owned[k])
             C->role[slot[k].root] = NULL;
-        free(owned[k]);
+        pc_free(owned[k]);
     }
-    free(owned);
-    free(slot);
+    pc_free(owned);
+    pc_free(slot);
 }

@@ -73,7 +73,7 @@ static void factored_init(Factored *F)
 static void factored_clear(Factored *F)
 {
     fmpq_clear(F->c);
-    free(F->f);
+    pc_free(F->f);
 }
 
 /* multiplies F by reg^exp, merging equal registers */
@@ -570,8 +570,8 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
         factored_clear(&den[i]);
     }
     factored_clear(&lcm);
-    free(num);
-    free(den);
+    pc_free(num);
+    pc_free(den);
 }
 
 /* the PlanFn of a kernel (the same row of base/functions.def), with the
@@ -842,6 +842,7 @@ Plan *lower_derived(const Derived *d, FILE *err)
                    (int)d->npoints, (const char *const *)d->points);
     for (slong o = 0; o < d->noutputs; o++) {
         const DerivedOutput *out = &d->outputs[o];
+        derived_mark(d, o); /* blamed if a budget runs out */
         slong n = out->kind == KIND_SCALAR ? 1 : out->eq->len;
         const RatFunStruct **ws = pc_xmalloc(sizeof *ws * (size_t)(n ? n : 1));
         int *point = pc_xmalloc(sizeof *point * (size_t)(n ? n : 1));
@@ -895,7 +896,7 @@ Plan *lower_derived(const Derived *d, FILE *err)
                                           : plan_add(L.p, bad, L.kbad[i]);
                     }
             }
-            free(added);
+            pc_free(added);
             bad = bound_flags(&L, d, out, bad);
             if (L.error != LOWER_OK)
                 derived_error(
@@ -911,13 +912,13 @@ Plan *lower_derived(const Derived *d, FILE *err)
                     out->name, (long)L.error_exp10);
         }
         if (atoms || degree < 0 || degree > DEGREE_MAX || L.error != LOWER_OK) {
-            free(ws);
-            free(point);
-            free(reg);
+            pc_free(ws);
+            pc_free(point);
+            pc_free(reg);
             plan_free(L.p);
-            free(L.kreg);
-            free(L.kbad);
-            free(L.used);
+            pc_free(L.kreg);
+            pc_free(L.kbad);
+            pc_free(L.used);
             return NULL;
         }
         Kind kind = out->kind == KIND_SCALAR  ? KIND_SCALAR
@@ -925,13 +926,13 @@ Plan *lower_derived(const Derived *d, FILE *err)
                                               : KIND_VECTOR;
         plan_add_output(L.p, out->name, kind, out->line, (int)n, point, reg,
                         bad);
-        free(ws);
-        free(point);
-        free(reg);
+        pc_free(ws);
+        pc_free(point);
+        pc_free(reg);
     }
-    free(L.kreg);
-    free(L.kbad);
-    free(L.used);
+    pc_free(L.kreg);
+    pc_free(L.kbad);
+    pc_free(L.used);
     plan_prune(L.p);
     return L.p;
 }

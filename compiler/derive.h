@@ -139,6 +139,7 @@ typedef struct Derived {
     char *filename; // as given
     char *text;     // owned copy of the scheme text (len bytes), so that back
     size_t len;     // ends can report errors with the source line and caret
+    Source src;     // filename and text as a Source (derived_mark)
     slong npoints;  // base points, declaration order
     char **points;
     slong nparams; // params, declaration order: ring variables 0..nparams-1
@@ -212,6 +213,11 @@ __attribute__((format(printf, 4, 5)))
 #endif
 void derived_error(const Derived *d, FILE *err, Span span, const char *fmt,
                    ...);
+
+/* Marks output i's definition as the statement being worked on
+ * (budget_statement), so that a budget that runs out while it is printed
+ * or lowered is reported there. */
+void derived_mark(const Derived *d, slong i);
 
 /* Index of the output / point called name, or -1. */
 slong derived_find_output(const Derived *d, const char *name);

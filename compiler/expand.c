@@ -13,7 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
+#include "base/stack.h"
 #include "compiler/expand_int.h"
 #include "compiler/sema.h"
 
@@ -426,6 +428,10 @@ int ex_rewrite(Expander *E, Node **slot)
     Node *n = *slot;
     if (ex_too_deep(n))
         return 0;
+    if (stack_low()) {
+        diag_error(E->d, n->span, STACK_MESSAGE);
+        return -1;
+    }
     switch (n->kind) {
     case ND_NUM:
         return 0;
@@ -736,6 +742,7 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
         used[k] = 0;
     for (Stmt *st = s->stmts; st && !E.over; st = st->next) {
         E.stmt = st;
+        budget_statement(diag->src, st->span); /* blamed if out of memory */
         switch (st->kind) {
         case ST_SCHEME:
             break;
@@ -780,11 +787,11 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
             break;
         }
     }
-    free(E.ints);
-    free(E.fams);
-    free(E.funcs);
-    free(E.binds);
-    free(E.names);
-    free(E.spans);
+    pc_free(E.ints);
+    pc_free(E.fams);
+    pc_free(E.funcs);
+    pc_free(E.binds);
+    pc_free(E.names);
+    pc_free(E.spans);
     return diag->nerrors - errors0;
 }

@@ -354,7 +354,7 @@ int ex_expand_compr(Expander *E, Node **slot)
     if (st == 0)
         replace(slot,
                 balanced(E, prod ? ND_MUL : ND_ADD, terms, count, n->span));
-    free(terms);
+    pc_free(terms);
     return st;
 }
 
@@ -505,8 +505,8 @@ static int piecewise_formula(Expander *E, Node **slot, Node **a, int na)
     if (st == 0)
         replace(slot, f);
 done:
-    free(knots);
-    free(terms);
+    pc_free(knots);
+    pc_free(terms);
     return st;
 }
 
@@ -527,7 +527,7 @@ static int expand_piecewise(Expander *E, Node **slot)
     for (Node *x = n->args; x; x = x->next)
         a[na++] = x;
     int st = piecewise_formula(E, slot, a, na);
-    free(a);
+    pc_free(a);
     return st;
 }
 
@@ -820,9 +820,9 @@ static int expand_join(Expander *E, Node **slot, int smooth)
     } else {
         st = -1;
     }
-    free(J.a);
-    free(J.knots);
-    free(terms);
+    pc_free(J.a);
+    pc_free(J.knots);
+    pc_free(terms);
     return st;
 }
 

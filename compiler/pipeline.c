@@ -61,7 +61,7 @@ static void expand_with_defines(Compilation *c)
                 *opt->bad_define = 1;
             c->diag.nerrors++;
         }
-    free(used);
+    pc_free(used);
 }
 
 /* After a try: a failed derivation is dropped; 1 when it failed because
@@ -99,11 +99,17 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
 {
     Compilation c;
     compilation_init(&c, filename, text, len, err, opt);
+    budget_phase("lexing and parsing the scheme");
+    budget_statement(&c.src, BUDGET_WHOLE_FILE);
     c.scheme = parse_scheme(&c.src, &c.arena, &c.diag);
+    budget_phase("expanding this"); /* expand marks each statement */
     if (c.diag.nerrors == 0)
         expand_with_defines(&c);
+    budget_phase("checking the scheme");
+    budget_statement(&c.src, BUDGET_WHOLE_FILE);
     if (c.diag.nerrors == 0)
         c.info = sema_check(c.scheme, &c.arena, &c.diag);
+    budget_phase(NULL); /* deriving: derive marks each definition */
     /* Kernel slots (functions, pi, distances) are reserved when the ring is
      * built; every unused slot costs in every monomial, so the first try
      * reserves what the scheme's calls need at least, and a derivation

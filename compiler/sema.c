@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "base/check.h"
+#include "base/stack.h"
 
 typedef struct Builtin_info {
     const char *name;
@@ -564,6 +565,10 @@ static int check_expr(Sema *S, Node *n)
 static int check_node(Sema *S, Node *n)
 {
     int k = -1;
+    if (stack_low()) {
+        diag_error(S->diag, n->span, STACK_MESSAGE);
+        return -1;
+    }
     /* every later pass recurses over the tree: bound its height here, at
      * the root, before any recursion (a sum of 20000 terms is a left-deep
      * tree of that height) */

@@ -2,8 +2,10 @@
  * api.c - libpointcalc.h: the pipeline as a library.
  *
  * A pc_scheme wraps a Derived, a pc_plan a Plan.  Diagnostics are captured
- * with open_memstream so nothing is printed; every returned string is a
- * malloc'ed copy (FLINT's strings are copied out of flint_malloc memory).
+ * with memory streams so nothing is printed; every returned string is a
+ * malloc'ed copy (FLINT's strings are copied out of flint_malloc memory),
+ * taken off the memory budget's count (mem_disown) as it is handed over:
+ * the caller frees it with free().
  */
 #include "libpointcalc.h"
 
@@ -34,20 +36,19 @@ static char *copy_str(const char *s)
 {
     size_t n = strlen(s) + 1;
     char *r = pc_xmalloc(n);
-    if (r)
-        memcpy(r, s, n);
-    return r;
+    memcpy(r, s, n);
+    return mem_disown(r);
 }
 
 /* wraps d; the captured diagnostics go to *diagnostics on failure */
 static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
 {
     if (diagnostics && !d) {
-        *diagnostics = msg;
+        *diagnostics = mem_disown(msg);
     } else {
         if (diagnostics)
             *diagnostics = NULL;
-        free(msg);
+        pc_free(msg);
     }
     if (!d)
         return NULL;
@@ -118,7 +119,7 @@ void pc_scheme_free(pc_scheme *s)
     if (!s)
         return;
     derived_free(s->d);
-    free(s);
+    pc_free(s);
 }
 
 const char *pc_scheme_name(const pc_scheme *s)
@@ -230,12 +231,12 @@ static void hand_over(FILE *m, char **msg, int ok, char **diagnostics)
 {
     pc_xclose_memstream(m);
     if (diagnostics && !ok) {
-        *diagnostics = *msg;
+        *diagnostics = mem_disown(*msg);
         return;
     }
     if (diagnostics)
         *diagnostics = NULL;
-    free(*msg);
+    pc_free(*msg);
 }
 
 pc_plan *pc_compile(const pc_scheme *s, char **diagnostics)
@@ -261,7 +262,7 @@ void pc_plan_free(pc_plan *p)
     if (!p)
         return;
     plan_free(p->p);
-    free(p);
+    pc_free(p);
 }
 
 char *pc_plan_dump(const pc_plan *p)
@@ -271,7 +272,7 @@ char *pc_plan_dump(const pc_plan *p)
     FILE *m = pc_xopen_memstream(&text, &len);
     plan_dump(m, p->p);
     pc_xclose_memstream(m);
-    return text;
+    return mem_disown(text);
 }
 
 int pc_eval(const pc_plan *p, int output, size_t n, const double *const *params,
@@ -333,7 +334,7 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
     emit_c(c, p, prefix, s->d->filename);
     pc_xclose_memstream(c);
     plan_free(p);
-    return text;
+    return mem_disown(text);
 }
 
 void pc_cleanup(void)

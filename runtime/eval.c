@@ -250,26 +250,26 @@ static void prog_init(Prog *g, const Plan *p, int o, const double *consts,
     }
     g->nslots = nslots;
     size_t bytes = sizeof(double) * BL * (size_t)(nslots ? nslots : 1);
-    g->rf = aligned_alloc(64, bytes);
+    g->rf = pc_xaligned_alloc(64, bytes);
     for (int u = 0; u < nu; u++) {
         double *d = g->rf + (size_t)g->slot[uniform_slots[u]] * BL;
         for (int j = 0; j < BL; j++)
             d[j] = uval[uniform_slots[u]];
     }
-    free(uniform_slots);
-    free(free_slots);
-    free(uval);
-    free(last);
-    free(live);
+    pc_free(uniform_slots);
+    pc_free(free_slots);
+    pc_free(uval);
+    pc_free(last);
+    pc_free(live);
 }
 
 static void prog_clear(Prog *g)
 {
-    free(g->v);
-    free(g->slot);
-    free(g->root);
-    free(g->coef);
-    free(g->rf);
+    pc_free(g->v);
+    pc_free(g->slot);
+    pc_free(g->root);
+    pc_free(g->coef);
+    pc_free(g->rf);
 }
 
 static double *reg(const Prog *g, int r)
@@ -363,7 +363,7 @@ int plan_output_uses_point(const Plan *p, int o, int point)
                    ((p->ins[i].op == PLAN_DIST &&
                      (p->ins[i].a == point || p->ins[i].b == point)) ||
                     (p->ins[i].op == PLAN_COORD && p->ins[i].a == point));
-        free(live);
+        pc_free(live);
         return used;
     }
     return 0;

@@ -182,16 +182,16 @@ static void work_init(Work *w, size_t m, int n)
 
 static void work_clear(Work *w)
 {
-    free(w->r);
-    free(w->rt);
-    free(w->J);
-    free(w->A);
-    free(w->Ad);
-    free(w->L);
-    free(w->g);
-    free(w->h);
-    free(w->ut);
-    free(w->D);
+    pc_free(w->r);
+    pc_free(w->rt);
+    pc_free(w->J);
+    pc_free(w->A);
+    pc_free(w->Ad);
+    pc_free(w->L);
+    pc_free(w->g);
+    pc_free(w->h);
+    pc_free(w->ut);
+    pc_free(w->D);
 }
 
 /* the LM state between iterations */

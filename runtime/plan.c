@@ -29,8 +29,8 @@ static char **copy_names(int n, const char *const *names)
 static void free_names(int n, char **v)
 {
     for (int i = 0; i < n; i++)
-        free(v[i]);
-    free(v);
+        pc_free(v[i]);
+    pc_free(v);
 }
 
 static const struct {
@@ -82,11 +82,11 @@ Plan *plan_new(const char *name, int nparams, const char *const *params,
 
 static void collapse_output_clear(CollapseOutput *o)
 {
-    free(o->name);
-    free(o->why);
-    free(o->point);
-    free(o->a);
-    free(o->b);
+    pc_free(o->name);
+    pc_free(o->why);
+    pc_free(o->point);
+    pc_free(o->a);
+    pc_free(o->b);
 }
 
 void collapse_free(Collapse *c)
@@ -95,36 +95,36 @@ void collapse_free(Collapse *c)
         return;
     for (int i = 0; i < c->n; i++)
         collapse_output_clear(&c->o[i]);
-    free(c->o);
-    free(c);
+    pc_free(c->o);
+    pc_free(c);
 }
 
 static void output_clear(PlanOutput *o)
 {
-    free(o->name);
-    free(o->point);
-    free(o->reg);
+    pc_free(o->name);
+    pc_free(o->point);
+    pc_free(o->reg);
 }
 
 void plan_free(Plan *p)
 {
     if (!p)
         return;
-    free(p->name);
+    pc_free(p->name);
     free_names(p->nparams, p->params);
     free_names(p->nconsts, p->consts);
     free_names(p->npoints, p->points);
     for (int o = 0; o < p->noutputs; o++)
         output_clear(&p->outputs[o]);
-    free(p->outputs);
+    pc_free(p->outputs);
     for (int i = 0; p->bound && i < p->nparams + p->nconsts; i++)
-        free(p->bound[i].text);
-    free(p->bound);
+        pc_free(p->bound[i].text);
+    pc_free(p->bound);
     collapse_free(p->collapse);
-    free(p->ins);
-    free(p->k);
-    free(p->hash);
-    free(p);
+    pc_free(p->ins);
+    pc_free(p->k);
+    pc_free(p->hash);
+    pc_free(p);
 }
 
 int plan_out_of_bounds(const Plan *p, int i, double x)
@@ -174,7 +174,7 @@ static int same(const Plan *p, const PlanIns *x, PlanOp op, int32_t a,
 
 static void rehash(Plan *p, int cap)
 {
-    free(p->hash);
+    pc_free(p->hash);
     p->hcap = cap;
     p->hash = pc_xmalloc(sizeof *p->hash * (size_t)cap);
     for (int i = 0; i < cap; i++)
@@ -280,7 +280,7 @@ int plan_output_min_dim(const Plan *p, int o, int *point)
             if (point)
                 *point = p->ins[i].a;
         }
-    free(live);
+    pc_free(live);
     return need;
 }
 
@@ -570,9 +570,9 @@ void plan_prune(Plan *p)
         if (o->bad >= 0)
             o->bad = map[o->bad];
     }
-    free(map);
-    free(live);
-    free(p->hash); // rebuilt on the next plan_node
+    pc_free(map);
+    pc_free(live);
+    pc_free(p->hash); // rebuilt on the next plan_node
     p->hash = NULL;
     p->hcap = 0;
 }
@@ -595,11 +595,11 @@ void plan_keep_outputs(Plan *p, const int *sel, int n)
             if (c)
                 collapse_output_clear(&c->o[o]);
         }
-    free(keep);
-    free(p->outputs);
+    pc_free(keep);
+    pc_free(p->outputs);
     p->outputs = kept;
     if (c) {
-        free(c->o);
+        pc_free(c->o);
         c->o = ck;
         c->n = n;
     }

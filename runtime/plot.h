@@ -104,7 +104,7 @@ typedef struct PlotCurve {
 /* The knots of point output o in [lo, hi]: the zeros of the arguments of
  * its sign kernels (abs(x) = x sign(x)) that are linear in the swept param,
  * each the double where the argument is nearest 0, sorted, without
- * repeats.  *knots receives them (malloc'ed, NULL when none: free() it);
+ * repeats.  *knots receives them (malloc'ed, NULL when none: pc_free() it);
  * returns how many. */
 size_t plot_knots(const PlotEnv *env, int o, double lo, double hi,
                   double **knots);
@@ -168,7 +168,7 @@ typedef struct PlotStats {
     int digits;        // significant digits of the curves' coordinates
     int keep_curves;   // in: 1 to receive the curves' samples below
     PlotCurve *curves; // out (keep_curves): ncurves, free each with
-                       // plot_curve_clear, then the array with free()
+                       // plot_curve_clear, then the array with pc_free()
 } PlotStats;
 
 void plot_spec_default(PlotSpec *s);

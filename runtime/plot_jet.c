@@ -204,7 +204,7 @@ int plot_jet(const PlotEnv *env, int o, double t, double *pos, double *d1,
         }
     }
     int st = po->bad >= 0 ? (int)plan_status(r[po->bad][0]) : 0;
-    free(live);
-    free(r);
+    pc_free(live);
+    pc_free(r);
     return st ? st : finite ? 0 : 3;
 }

@@ -67,12 +67,12 @@ static void sampler_clear(Sampler *S)
 {
     const Plan *p = S->env->plan;
     for (int i = 0; i < p->nparams; i++)
-        free(S->pv[i]);
-    free(S->pv);
-    free(S->live);
-    free(S->r);
-    free(S->pos);
-    free(S->st);
+        pc_free(S->pv[i]);
+    pc_free(S->pv);
+    pc_free(S->live);
+    pc_free(S->r);
+    pc_free(S->pos);
+    pc_free(S->st);
 }
 
 /* Evaluates n values ts into x, y, ok, fac (nfac per sample). */
@@ -208,10 +208,10 @@ size_t plot_knots(const PlotEnv *env, int o, double lo, double hi,
     for (size_t i = 0; i < n; i++)
         if (u == 0 || k[i] != k[u - 1])
             k[u++] = k[i];
-    free(r);
-    free(live);
+    pc_free(r);
+    pc_free(live);
     if (u == 0) {
-        free(k);
+        pc_free(k);
         k = NULL;
     }
     *knots = k;
@@ -262,14 +262,14 @@ void plot_curve_init(PlotCurve *c, const PlotEnv *env, int o, double lo,
 
 void plot_curve_clear(PlotCurve *c)
 {
-    free(c->t);
-    free(c->x);
-    free(c->y);
-    free(c->ok);
-    free(c->cut);
-    free(c->fac);
-    free(c->facreg);
-    free(c->knots);
+    pc_free(c->t);
+    pc_free(c->x);
+    pc_free(c->y);
+    pc_free(c->ok);
+    pc_free(c->cut);
+    pc_free(c->fac);
+    pc_free(c->facreg);
+    pc_free(c->knots);
     memset(c, 0, sizeof *c);
 }
 
@@ -395,21 +395,21 @@ static void merge(PlotCurve *c, const Test *T, const PlotLimits *lim, size_t m,
             k++;
         }
     }
-    free(c->t);
-    free(c->x);
-    free(c->y);
-    free(c->ok);
-    free(c->cut);
-    free(c->fac);
+    pc_free(c->t);
+    pc_free(c->x);
+    pc_free(c->y);
+    pc_free(c->ok);
+    pc_free(c->cut);
+    pc_free(c->fac);
     c->t = nc.t;
     c->x = nc.x;
     c->y = nc.y;
     c->ok = nc.ok;
     c->cut = nc.cut;
     c->fac = nc.fac;
-    free(pend);
-    free(depth);
-    free(unres);
+    pc_free(pend);
+    pc_free(depth);
+    pc_free(unres);
     *pendp = npend;
     *depthp = ndepth;
     *unresp = nunres;
@@ -474,7 +474,7 @@ static void drop_flat(PlotCurve *c, double tol)
         j++;
     }
     c->n = j;
-    free(keep);
+    pc_free(keep);
 }
 
 void plot_curve_refine(PlotCurve *c, const PlotEnv *env, const PlotView *view,
@@ -521,14 +521,14 @@ void plot_curve_refine(PlotCurve *c, const PlotEnv *env, const PlotView *view,
     }
     mark_cuts(c, box, unres);
     drop_flat(c, T.tol);
-    free(pend);
-    free(depth);
-    free(unres);
-    free(mt);
-    free(mx);
-    free(my);
-    free(mf);
-    free(mok);
+    pc_free(pend);
+    pc_free(depth);
+    pc_free(unres);
+    pc_free(mt);
+    pc_free(mx);
+    pc_free(my);
+    pc_free(mf);
+    pc_free(mok);
     sampler_clear(&S);
 }
 

@@ -47,8 +47,8 @@ long sample_numbers(const char *text, double **v)
         if (comma)
             *comma = '\0';
         if (sample_number(field, &out[k]) != 0) {
-            free(buf);
-            free(out);
+            pc_free(buf);
+            pc_free(out);
             return -1;
         }
         k++;
@@ -56,7 +56,7 @@ long sample_numbers(const char *text, double **v)
             break;
         field = comma + 1;
     }
-    free(buf);
+    pc_free(buf);
     *v = out;
     return k;
 }
@@ -121,7 +121,7 @@ int sample_parse(Spec *s, const char *text, char *msg, size_t msglen)
 
 void sample_clear(Spec *s)
 {
-    free(s->v);
+    pc_free(s->v);
     s->v = NULL;
 }
 

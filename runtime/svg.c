@@ -93,8 +93,8 @@ static void fit_box(double *box, const PlotSpec *s, const PlotCurve *cv,
                 }
         box_add(C, quantile(xs, n, 0.05), quantile(ys, n, 0.05));
         box_add(C, quantile(xs, n, 0.95), quantile(ys, n, 0.95));
-        free(xs);
-        free(ys);
+        pc_free(xs);
+        pc_free(ys);
     }
     if (box_empty(F)) {
         box[0] = box[1] = -1;
@@ -356,9 +356,9 @@ static void jet_init(Jet *J, const PlotEnv *env, const PlotView *view)
 
 static void jet_clear(Jet *J)
 {
-    free(J->live);
-    free(J->r);
-    free(J->buf);
+    pc_free(J->live);
+    pc_free(J->r);
+    pc_free(J->buf);
 }
 
 /* p[k] = (x, y) of the k-th derivative; 1 when all finite and no status */
@@ -469,7 +469,7 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
                 if (ok[i])
                     a[j++] = fabs(kap[i]);
             kmax[0] = quantile(a, nk, 0.9);
-            free(a);
+            pc_free(a);
             scale = kmax[0] > 0 ? 0.1 * (g->W + g->H) / 2 / g->s / kmax[0] : 0;
         }
         const char *col = palette[k % NPALETTE];
@@ -514,10 +514,10 @@ static void write_comb(const Fig *g, const PlotSpec *s, Jet *J,
         fputs("\"/>\n", out);
     }
     fputs("</g>\n", out);
-    free(px);
-    free(kap);
-    free(ok);
-    free(fac);
+    pc_free(px);
+    pc_free(kap);
+    pc_free(ok);
+    pc_free(fac);
 }
 
 static void write_lines(const Fig *g, const PlotSpec *s, const double *mx,
@@ -615,9 +615,9 @@ static int curve_point(const PlotSpec *s, int o, double t, double *x, double *y)
         ok = isfinite(pos[c]);
     if (ok)
         plot_project(&s->view, pos, env->dim, x, y);
-    free(pos);
-    free(prm);
-    free(pv);
+    pc_free(pos);
+    pc_free(prm);
+    pc_free(pv);
     return ok && isfinite(*x) && isfinite(*y);
 }
 
@@ -822,10 +822,10 @@ int plot_svg(FILE *out, const PlotSpec *s, PlotStats *st)
     } else {
         for (int k = 0; k < nc; k++)
             plot_curve_clear(&cv[k]);
-        free(cv);
+        pc_free(cv);
         st->curves = NULL;
     }
-    free(mx);
-    free(my);
+    pc_free(mx);
+    pc_free(my);
     return ferror(out) ? -1 : 0;
 }

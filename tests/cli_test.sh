@@ -168,10 +168,9 @@ check "time budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the time b
 check "memory budget: exit 1" test $? -eq 1
 check "memory budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the memory budget of 20 MiB ran out while deriving this; raise it with --max-memory" "$tmp/err"
 # a budget that runs out after the derivation says which phase it was in,
-# located at the output being printed (the printer marks it), and leaves
-# nothing on stdout: the five-point conic derives in
-# under 64 KiB of counted memory and prints in about 290 KiB (its form
-# search factors), so 128K runs out while printing
+# at the output being printed, and leaves nothing on stdout: the five-point conic derives in
+# under 128 KiB of counted memory (its text, names and arena included) and
+# prints in more (its form search factors), so 128K runs out while printing
 # JSON keeps abs() inside function arguments too (issue 19: a printed
 # result is never x*sign(x)), and cos(pi*t + pi) is -cos(pi*t)
 printf 'param t\nx = sin(pi*abs(t - 1)/4)\ny = cos(pi*t + pi) + cos(pi*t)\noutput x, y\n' >"$tmp/absarg.pcs"
@@ -268,6 +267,72 @@ ms=$(elapsed_ms "$PCB" derive "$tmp/slowprint.pcs" --max-seconds $tp)
 check "time budget while printing: exit 1" test "$(cat "$tmp/rc")" -eq 1
 check "time budget while printing: nothing on stdout" test ! -s "$tmp/out"
 check "time budget while printing: the phase named, at an output" grep -Eqx ".*slowprint.pcs:[0-9]+:1: error: the time budget of $tp s ran out while printing the result; raise it with --max-seconds" "$tmp/err"
+# issue 23 items 3 and 4: every allocation is counted against --max-memory
+# (the kernels' names, the printed text, the generated C, the expander's
+# arena, the scanner's buffers, eval's blocks), and a budget that runs out
+# says in which phase, at the statement (or the output, or the file) it
+# was working on, with nothing on stdout.  The peak RSS stays within 1.5x
+# of the budget (checked where GNU time is installed and no sanitizer or
+# valgrind needs its own memory).
+mb_rss=""
+if [ -x /usr/bin/time ] && [ -z "${PC_VALGRIND:-}" ] && ! nm "$PC" 2>/dev/null | grep -q __asan_init; then
+    mb_rss=1
+fi
+# run_rss MAXKIB CMD...: runs CMD with stdout to $tmp/out, stderr to
+# $tmp/err, its exit status in $rss_rc; a check that the peak RSS was at
+# most MAXKIB
+run_rss() {
+    local max=$1
+    shift
+    if [ -n "$mb_rss" ]; then
+        /usr/bin/time -o "$tmp/rss" -f '%M' "$@" >"$tmp/out" 2>"$tmp/err"
+        rss_rc=$?
+        check "RSS of $(basename "$3") within $max KiB ($(cat "$tmp/rss") KiB)" test "$(tail -1 "$tmp/rss")" -le "$max"
+    else
+        "$@" >"$tmp/out" 2>"$tmp/err"
+        rss_rc=$?
+    fi
+}
+# a tower of kernels whose names double with each level: the names are
+# counted as they are made (a single 335 MB name at level 23 was not)
+{ printf 'param t\nc0 = t\n'
+  for i in $(seq 1 30); do printf 'c%d = sin(c%d) + cos(%d*c%d)\n' $i $((i - 1)) $i $((i - 1)); done; } >"$tmp/tower.pcs"
+run_rss $((96 * 1024)) "$PCB" derive "$tmp/tower.pcs" --max-memory 64M --max-seconds 60
+check "tower: exit 1" test $rss_rc -eq 1
+check "tower: nothing on stdout" test ! -s "$tmp/out"
+check "tower: located, while deriving" grep -qx "$tmp/tower.pcs:[0-9]*:7: error: the memory budget of 64 MiB ran out while deriving this; raise it with --max-memory" "$tmp/err"
+# a derivative whose printed text is 3.7 MB: the text is counted as it is
+# printed, at the output being printed
+printf 'param t, u\nconst k\nx = diff(1/((t+u+1)^3+k*t+1), t, 30)\n' >"$tmp/diff30.pcs"
+run_rss $((48 * 1024)) "$PCB" derive "$tmp/diff30.pcs" --max-memory 32M
+if [ $rss_rc -eq 0 ]; then # a printer that needs less is fine too
+    check "diff30: printed" grep -q '^x = ' "$tmp/out"
+else
+    check "diff30: exit 1" test $rss_rc -eq 1
+    check "diff30: nothing on stdout" test ! -s "$tmp/out"
+    check "diff30: at the output, while printing" grep -qx "$tmp/diff30.pcs:3:1: error: the memory budget of 32 MiB ran out while printing the result; raise it with --max-memory" "$tmp/err"
+fi
+# 17 MB of C for the same scheme: counted while it is written
+run_rss $((36 * 1024)) "$PCB" emit-c "$tmp/diff30.pcs" --max-memory 24M
+check "emit-c of diff30: exit 1, nothing on stdout" test $rss_rc -eq 1 -a ! -s "$tmp/out"
+check "emit-c of diff30: while writing" grep -qx "$tmp/diff30.pcs: error: the memory budget of 24 MiB ran out while writing the result; raise it with --max-memory" "$tmp/err"
+# the expander's arena: three million copied nodes
+printf 'param t\nx = sum(t for i in 1..3000000)\n' >"$tmp/sum3m.pcs"
+run_rss $((96 * 1024)) "$PCB" derive "$tmp/sum3m.pcs" --max-memory 64M
+check "sum of 3000000 terms: exit 1, nothing on stdout" test $rss_rc -eq 1 -a ! -s "$tmp/out"
+check "sum of 3000000 terms: at the statement, while expanding" grep -qx "$tmp/sum3m.pcs:2:1: error: the memory budget of 64 MiB ran out while expanding this; raise it with --max-memory" "$tmp/err"
+# the scanner's and the parser's memory: the whole file
+"$PCB" derive examples/conic_five_points.pcs --max-memory 32K >"$tmp/out" 2>"$tmp/err"
+check "memory budget while parsing: exit 1, nothing on stdout" test $? -eq 1 -a ! -s "$tmp/out"
+check "memory budget while parsing: the file" grep -qx "examples/conic_five_points.pcs: error: the memory budget of 32768 bytes ran out while lexing and parsing the scheme; raise it with --max-memory" "$tmp/err"
+# eval's blocks of 200-dimensional rows: while writing, nothing on stdout
+# (the rows go to a temporary file, copied to stdout once all are written)
+z=$(printf '0%.0s,' $(seq 1 199))0
+"$PCB" eval examples/desargues_arc.pcs --max-memory 4M --at A=$z --at B=$z --at C=$z --at D=$z --param t=0:1:1000 >"$tmp/out" 2>"$tmp/err"
+check "eval: budget while writing: exit 1, nothing on stdout" test $? -eq 1 -a ! -s "$tmp/out"
+check "eval: budget while writing: the phase" grep -qx "examples/desargues_arc.pcs: error: the memory budget of 4 MiB ran out while writing the result; raise it with --max-memory" "$tmp/err"
+"$PCB" eval examples/desargues_arc.pcs --output M --at A=0,0 --at B=1,0 --at C=0,1 --at D=1,1 --param t=0:1:100001 >"$tmp/out" 2>"$tmp/err"
+check "eval: 100001 rows committed whole" test "$(wc -l <"$tmp/out")" -eq 100002 -a "$(sed -n '50002p' "$tmp/out")" = "0.5,0.5,0.5"
 "$PCB" emit-c "$tmp/chain.pcs" --max-seconds 0.2 >"$tmp/out" 2>"$tmp/err"
 check "emit-c time budget" test $? -eq 1 -a ! -s "$tmp/out"
 "$PCB" eval "$tmp/chain.pcs" --max-memory 20M --at A=0,0 --at B=1,0 --at C=0,1 \
@@ -286,6 +351,36 @@ if [ -z "${PC_VALGRIND:-}" ] && ! nm "$PC" 2>/dev/null | grep -q __asan_init; th
     (ulimit -v 400000; "$PCB" derive "$tmp/c2000.pcs" --max-memory 0 >"$tmp/out" 2>"$tmp/err")
     check "out of memory: exit 1" test $? -eq 1
     check "out of memory: located" grep -q "c2000.pcs:[0-9]*:[0-9]*: error: out of memory while deriving this (the system refused more)" "$tmp/err"
+fi
+
+# issue 23 item 7: 1999 nested along (sema allows 2000) needs about 2.2
+# MiB of stack; the command runs on a thread of its own stack (16 MiB), so
+# a small `ulimit -s` does not matter.  The weight of A is (1 - t)^1999
+# and B's 1 - (1 - t)^1999 (each along(P, B, t) multiplies P's weights by
+# 1 - t), compared exactly at t = 1/3 whatever form they print in
+if [ -z "${PC_VALGRIND:-}" ]; then
+    { printf 'point A, B\nparam t\nM = '
+      for i in $(seq 1 1999); do printf 'along('; done
+      printf 'A'
+      for i in $(seq 1 1999); do printf ', B, t)'; done
+      printf '\n'; } >"$tmp/along1999.pcs"
+    (ulimit -s 1024; "$PCB" derive "$tmp/along1999.pcs" --format json >"$tmp/out" 2>"$tmp/err")
+    check "1999 nested along under ulimit -s 1024: exit 0" test $? -eq 0 -a ! -s "$tmp/err"
+    check "1999 nested along: the weights" python3 -c "
+import json, sys
+from fractions import Fraction as F
+w = json.load(open(sys.argv[1]))['outputs'][0]['terms']
+t = F(1, 3)
+at = lambda e: eval(e.replace('^', '**'), {'t': t})
+assert at(w['A']) == (1 - t)**1999, w['A'][:100]
+assert at(w['B']) == 1 - (1 - t)**1999, w['B'][:100]
+" "$tmp/out"
+    # the command's thread shares the main malloc arena (a thread's own
+    # reserves 64 MiB of address space, which ulimit -v counts)
+    if ! nm "$PC" 2>/dev/null | grep -q __asan_init; then
+        (ulimit -v 120000; "$PCB" derive "$tmp/along1999.pcs" >"$tmp/out" 2>"$tmp/err")
+        check "1999 nested along under ulimit -v 120000: exit 0" test $? -eq 0 -a -s "$tmp/out"
+    fi
 fi
 
 # input limits

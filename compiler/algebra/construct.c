@@ -153,7 +153,7 @@ static slong dirs_rank(const PointEq *dirs, slong n, LinNormal *nf,
     slong m, rank = 0;
     slong *rows = support_union(&m, dirs, n);
     if (m == 0) {
-        free(rows);
+        pc_free(rows);
         return 0;
     }
     RatFunStruct *a = pc_xmalloc(sizeof(RatFunStruct) * (size_t)(m * n));
@@ -176,10 +176,10 @@ static slong dirs_rank(const PointEq *dirs, slong n, LinNormal *nf,
         for (slong j = 0; j < n; j++)
             ratfun_clear(a + i * n + j, r);
     }
-    free(x);
-    free(b);
-    free(a);
-    free(rows);
+    pc_free(x);
+    pc_free(b);
+    pc_free(a);
+    pc_free(rows);
     return rank;
 }
 
@@ -198,7 +198,7 @@ MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
         slong *rows = support_union(&m, (const PointEq *)gen, na + nb);
         int done = meet_fraction_free(res, (const PointEq *)gen, na, na + nb,
                                       rows, m, r);
-        free(rows);
+        pc_free(rows);
         if (done != 0)
             return done > 0 ? MEET_OK : MEET_TOO_BIG;
     }
@@ -282,13 +282,13 @@ MeetStatus construct_meet_general_nf(PointEq res, const PointEq *a, slong na,
             ratfun_clear(A + i * n + j, r);
     }
 cleanup:
-    free(X);
-    free(B);
-    free(A);
-    free(rows);
+    pc_free(X);
+    pc_free(B);
+    pc_free(A);
+    pc_free(rows);
     for (slong j = 0; j <= n; j++)
         pteq_clear(cols[j], r);
-    free(cols);
+    pc_free(cols);
     pteq_clear(rhs, r);
     pteq_clear(ob, r);
     pteq_clear(oa, r);
@@ -322,10 +322,10 @@ static int affine_coords(RatFunStruct *x, const PointEq target,
     int ok = linsolve(x, NULL, a, b, m, n, r) == LINSOLVE_UNIQUE;
     ratfun_vec_clear(b, m, r);
     ratfun_vec_clear(a, m * n, r);
-    free(rows);
+    pc_free(rows);
     for (slong j = 0; j <= n; j++)
         pteq_clear(all[j], r);
-    free(all);
+    pc_free(all);
     return ok;
 }
 

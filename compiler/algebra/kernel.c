@@ -118,17 +118,17 @@ void kernels_clear(Kernels *K)
         ratfun_clear(k->arg, K->r);
         ratfun_clear(k->arg2, K->r);
         ratfun_clear(k->rel, K->r);
-        free(k->name);
-        free(k->latex);
+        pc_free(k->name);
+        pc_free(k->latex);
     }
-    free(K->k);
+    pc_free(K->k);
     for (slong v = 0; K->range && v < K->first; v++) {
         fmpq_clear(K->range[v].lo);
         fmpq_clear(K->range[v].hi);
     }
-    free(K->range);
-    free(K->used);
-    free(K->cur);
+    pc_free(K->range);
+    pc_free(K->used);
+    pc_free(K->cur);
     K->cur = NULL;
     K->range = NULL;
     K->used = NULL;
@@ -255,7 +255,7 @@ static void coord_names(const Kernels *K, Kernel *k)
     snprintf(buf, sizeof buf, ", %ld)", (long)k->pb);
     char *t = cat3("coord(", p, "");
     k->name = cat3(t, buf, "");
-    free(t);
+    pc_free(t);
     if (k->pb <= 3) {
         static const char *const xyz[] = {"x_{", "y_{", "z_{"};
         k->latex = cat3(xyz[k->pb - 1], p, "}");
@@ -281,10 +281,10 @@ static void set_names(Kernels *K, Kernel *k)
         const char *pa = K->points[k->pa], *pb = K->points[k->pb];
         char *t = cat3("dist(", pa, ", ");
         k->name = cat3(t, pb, ")");
-        free(t);
+        pc_free(t);
         t = cat3("\\left|", pa, pb);
         k->latex = cat3(t, "\\right|", "");
-        free(t);
+        pc_free(t);
         break;
     }
     case KF_COORD:
@@ -307,8 +307,8 @@ static void set_names(Kernels *K, Kernel *k)
             char *ml = arg_text(m, r, FMT_LATEX);
             k->name = cat3("exp(", ma, ")");
             k->latex = cat3("e^{", ml, "}");
-            free(ma);
-            free(ml);
+            pc_free(ma);
+            pc_free(ml);
             ratfun_clear(m, r);
             break;
         }
@@ -323,12 +323,12 @@ static void set_names(Kernels *K, Kernel *k)
         char *lb = arg_text(k->arg2, r, FMT_LATEX);
         char *t = cat3("atan2(", a, ", ");
         k->name = cat3(t, b, ")");
-        free(t);
+        pc_free(t);
         t = cat3("\\operatorname{atan2}\\left(", la, ", ");
         k->latex = cat3(t, lb, "\\right)");
-        free(t);
-        free(b);
-        free(lb);
+        pc_free(t);
+        pc_free(b);
+        pc_free(lb);
         break;
     }
     case KF_EXP:
@@ -339,15 +339,15 @@ static void set_names(Kernels *K, Kernel *k)
         const char *const *lx = kernel_fn_latex;
         char *t = cat3(kernel_fn_names[k->fn], "(", a);
         k->name = cat3(t, ")", "");
-        free(t);
+        pc_free(t);
         t = cat3(lx[k->fn], "\\left(", la);
         k->latex = cat3(t, "\\right)", "");
-        free(t);
+        pc_free(t);
         break;
     }
     }
-    free(a);
-    free(la);
+    pc_free(a);
+    pc_free(la);
     K->r->names[k->var] = k->name;
     K->r->latex[k->var] = k->latex;
 }

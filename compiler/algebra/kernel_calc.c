@@ -353,7 +353,7 @@ static void free_images(RatFunStruct **img, slong nv, const Ring *r)
     for (slong v = 0; v < nv; v++)
         if (img[v])
             ratfun_vec_clear(img[v], 1, r);
-    free(img);
+    pc_free(img);
 }
 
 int kernel_compose(Kernels *K, RatFun res, const RatFun x, slong var,

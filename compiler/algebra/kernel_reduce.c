@@ -190,7 +190,7 @@ int kernel_map_weights(Kernels *K, PointEq res, const PointEq x,
     }
     if (rc == 0)
         pteq_set_weights(res, pts, w, n, r);
-    free(pts);
+    pc_free(pts);
     ratfun_vec_clear(w, n, r);
     return rc;
 }

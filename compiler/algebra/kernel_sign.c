@@ -553,7 +553,7 @@ static int commit(const Kernels *K, int s, const RatFun x, const fmpz_mpoly_t p,
             *has = 0;
             Touched u = {NULL, 0, 0};
             int still = prove(K, x, p, &u) == s;
-            free(u.v);
+            pc_free(u.v);
             *has = 1;
             if (!still) { /* needed: an assumption now */
                 K->used[t->v[i]] |= (unsigned char)(end ? 2 : 1);
@@ -561,7 +561,7 @@ static int commit(const Kernels *K, int s, const RatFun x, const fmpz_mpoly_t p,
             }
         }
     }
-    free(t->v);
+    pc_free(t->v);
     return s;
 }
 
@@ -594,7 +594,7 @@ int kernel_bounds(const Kernels *K, const RatFun x, fmpq_t lo, int *lo_open,
     QI q;
     qi_init(&q);
     poly_interval(K, x->num, &q, &t);
-    free(t.v);
+    pc_free(t.v);
     fmpz_t d;
     fmpz_init(d);
     fmpz_mpoly_get_fmpz(d, x->den, r->ctx); /* > 0: canonical */

@@ -515,8 +515,8 @@ static void debt_clear(SignDebt *d, const Ring *r)
 {
     for (slong i = 0; i < d->n; i++)
         fmpz_mpoly_clear(d->p + i, r->ctx);
-    free(d->p);
-    free(d->split);
+    pc_free(d->p);
+    pc_free(d->split);
     debt_init(d);
 }
 

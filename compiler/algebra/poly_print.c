@@ -41,7 +41,7 @@ void poly_print_latex_name(StrBuf *b, const char *name)
         char *stem = pc_xstrndup(name, (size_t)(under - name));
         StrBuf st = {0};
         poly_print_latex_name(&st, stem);
-        free(stem);
+        pc_free(stem);
         char *s = sb_take(&st);
         size_t sl = strlen(s);
         if (sl > 0 && s[sl - 1] == '}' && strstr(s, "_{")) {
@@ -53,7 +53,7 @@ void poly_print_latex_name(StrBuf *b, const char *name)
             sb_puts(b, s);
             sb_puts(b, "_{");
         }
-        free(s);
+        pc_free(s);
         sb_puts(b, under + 1);
         sb_puts(b, "}");
         return;
@@ -154,7 +154,7 @@ void poly_print(StrBuf *b, const fmpz_mpoly_t p, const Ring *r, FormatStyle st)
             }
         }
     }
-    free(e);
+    pc_free(e);
     fmpz_clear(c);
 }
 

@@ -43,8 +43,8 @@ static void remap_vars(fmpz_mpoly_t A, const fmpz_mpoly_t B, const slong *map,
     }
     fmpz_mpoly_sort_terms(A, ctxA);
     fmpz_clear(c);
-    free(ea);
-    free(eb);
+    pc_free(ea);
+    pc_free(eb);
 }
 
 /* ring_factor(f, p) done in a ring of only the variables p uses: FLINT's
@@ -93,9 +93,9 @@ int polyfactor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
         fmpz_mpoly_clear(q, small.ctx);
         fmpz_mpoly_ctx_clear(small.ctx);
     }
-    free(deg);
-    free(to_small);
-    free(to_big);
+    pc_free(deg);
+    pc_free(to_small);
+    pc_free(to_big);
     return ok;
 }
 
@@ -318,9 +318,9 @@ int polyfactor_surely_irreducible(const fmpz_mpoly_t p, const Ring *r)
     }
 done:
     fmpz_poly_clear(u);
-    free(cnt);
-    free(deg);
-    free(e);
+    pc_free(cnt);
+    pc_free(deg);
+    pc_free(e);
     fmpz_clear(g);
     return ok;
 }

@@ -384,7 +384,7 @@ void ratfun_vec_clear(RatFunStruct *v, slong len, const Ring *r)
 {
     for (slong i = 0; i < len; i++)
         ratfun_clear(v + i, r);
-    free(v);
+    pc_free(v);
 }
 
 int ratfun_depends_on(const RatFun x, slong var, const Ring *r)

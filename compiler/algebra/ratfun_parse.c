@@ -307,13 +307,13 @@ int ratfun_literal_fmpq(fmpq_t q, const char *text)
     if (*c == 'e' || *c == 'E') {
         exp10 = strtol(c + 1, NULL, 10);
         if (exp10 > 1000 || exp10 < -1000) {
-            free(digits);
+            pc_free(digits);
             return -1;
         }
     }
     fmpz_set_str(fmpq_numref(q), digits, 10);
     fmpz_one(fmpq_denref(q));
-    free(digits);
+    pc_free(digits);
     long e = exp10 - frac;
     fmpz_t p;
     fmpz_init(p);

@@ -86,11 +86,11 @@ static void system_clear(System *S, const Ring *r)
 {
     for (slong i = 0; i < S->neq * S->width; i++)
         fmpz_mpoly_clear(S->a + i, r->ctx);
-    free(S->a);
-    free(S->row);
-    free(S->orig);
-    free(S->nonzero);
-    free(S->known);
+    pc_free(S->a);
+    pc_free(S->row);
+    pc_free(S->orig);
+    pc_free(S->nonzero);
+    pc_free(S->known);
 }
 
 /* x = -(sum_k num[k] * known[k]) / den, canonical; num[k] may be swapped out */
@@ -154,7 +154,7 @@ static int solve_numeric(PointEq *x, const System *S, const Ring *r)
         }
         for (slong k = 0; k < S->nknown; k++)
             fmpz_mpoly_clear(num + k, r->ctx);
-        free(num);
+        pc_free(num);
         fmpz_mpoly_clear(t, r->ctx);
         fmpz_mpoly_clear(den, r->ctx);
     }
@@ -307,8 +307,8 @@ done:
     fmpz_mpoly_clear(t, r->ctx);
     fmpz_mpoly_clear(p, r->ctx);
     fmpz_mpoly_clear(prev, r->ctx);
-    free(used);
-    free(pivcol);
+    pc_free(used);
+    pc_free(pivcol);
     return st;
 }
 
@@ -404,9 +404,9 @@ done:
     ratfun_clear(t, r);
     ratfun_clear(piv, r);
     ratfun_vec_clear(a, FLINT_MAX(m * w, 1), r);
-    free(row);
-    free(used);
-    free(pivcol);
+    pc_free(row);
+    pc_free(used);
+    pc_free(pivcol);
     return st;
 }
 

@@ -121,7 +121,7 @@ Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
     }
     close(fd);
     if (len > (size_t)DERIVE_MAX_SOURCE) {
-        free(buf);
+        pc_free(buf);
         return file_error(filename, err, nerrors,
                           "cannot read the file: it is larger than %s, the "
                           "limit of a scheme",
@@ -130,7 +130,7 @@ Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
     if (timeout) {
         char secs[32];
         budget_format_seconds(secs, sizeof secs, budget);
-        free(buf);
+        pc_free(buf);
         return file_error(filename, err, nerrors,
                           "cannot read the file: it did not end within the "
                           "time budget of %s (a FIFO that no one writes "
@@ -138,12 +138,12 @@ Derived *derive_file_ex(const char *filename, FILE *err, int *nerrors,
                           secs);
     }
     if (e) {
-        free(buf);
+        pc_free(buf);
         return file_error(filename, err, nerrors, "cannot read the file: %s",
                           strerror(e));
     }
     Derived *d = derive_source_ex(filename, buf, len, err, nerrors, opt);
-    free(buf);
+    pc_free(buf);
     return d;
 }
 
@@ -153,40 +153,51 @@ void derived_free(Derived *d)
         return;
     for (slong i = 0; i < d->noutputs; i++)
         derive_output_clear(&d->outputs[i], &d->ring);
-    free(d->outputs);
+    pc_free(d->outputs);
     for (slong i = 0; i < d->nsteps; i++)
         derive_step_clear(&d->steps[i], &d->ring);
-    free(d->steps);
+    pc_free(d->steps);
     for (slong i = 0; i < d->nnamed; i++)
-        free(d->named[i].name);
-    free(d->named);
+        pc_free(d->named[i].name);
+    pc_free(d->named);
     if (d->kernels) {
         kernels_clear(d->kernels);
-        free(d->kernels);
+        pc_free(d->kernels);
     }
     if (d->range)
         ratfun_vec_clear(d->range, 2 * d->nparams, &d->ring);
-    free(d->has_range);
+    pc_free(d->has_range);
     if (d->bound)
         ratfun_vec_clear(d->bound, 2 * (d->nparams + d->nconsts), &d->ring);
-    free(d->bound_flags);
+    pc_free(d->bound_flags);
     ring_clear(&d->ring);
     for (slong i = 0; i < d->npoints; i++)
-        free(d->points[i]);
+        pc_free(d->points[i]);
     for (slong i = 0; i < d->nparams; i++)
-        free(d->params[i]);
+        pc_free(d->params[i]);
     for (slong i = 0; i < d->nconsts; i++)
-        free(d->consts[i]);
+        pc_free(d->consts[i]);
     for (slong i = 0; i < d->nextra; i++)
-        free(d->extra[i]);
-    free(d->extra);
-    free(d->points);
-    free(d->params);
-    free(d->consts);
-    free(d->scheme);
-    free(d->filename);
-    free(d->text);
-    free(d);
+        pc_free(d->extra[i]);
+    pc_free(d->extra);
+    pc_free(d->points);
+    pc_free(d->params);
+    pc_free(d->consts);
+    pc_free(d->scheme);
+    const Source *marked;
+    Span span;
+    budget_where(&marked, &span);
+    if (marked == &d->src) /* no mark left pointing into freed memory */
+        budget_statement(NULL, span);
+    source_clear(&d->src);
+    pc_free(d->filename);
+    pc_free(d->text);
+    pc_free(d);
+}
+
+void derived_mark(const Derived *d, slong i)
+{
+    budget_statement(&d->src, d->outputs[i].span);
 }
 
 void derived_error(const Derived *d, FILE *err, Span span, const char *fmt, ...)

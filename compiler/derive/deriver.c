@@ -67,7 +67,7 @@ static int check_joints(Deriver *D, Sym *s)
                            "%s, expected 0",
                            (int)(sp - e->what), e->what, sp + 1,
                            (int)(sp - e->what), e->what, sp + 1, txt);
-                free(txt);
+                pc_free(txt);
                 st = -1;
             }
         }
@@ -307,16 +307,16 @@ void deriver_clear(Deriver *D)
         derive_value_clear(&D->defs[i], r);
     for (int k = 0; k < info->nunknowns; k++)
         pteq_clear(D->usol[k], r);
-    free(D->usol);
+    pc_free(D->usol);
     ratfun_vec_clear(D->ssol, info->nunknowns, r);
-    free(D->uvar);
-    free(D->usolved);
+    pc_free(D->uvar);
+    pc_free(D->usolved);
     for (int i = 0; i < info->ndefs; i++)
-        free(D->dassume[i]);
+        pc_free(D->dassume[i]);
     for (int i = 0; i < info->nunknowns; i++)
-        free(D->uassume[i]);
-    free(D->dassume);
-    free(D->uassume);
-    free(D->defs);
-    free(D->state);
+        pc_free(D->uassume[i]);
+    pc_free(D->dassume);
+    pc_free(D->uassume);
+    pc_free(D->defs);
+    pc_free(D->state);
 }

@@ -15,6 +15,7 @@
 
 #include "base/check.h"
 #include "base/mem.h"
+#include "base/stack.h"
 #include "compiler/algebra/construct.h"
 
 /* every argument of a flat is a point (sum 1) or a direction (sum 0),
@@ -396,7 +397,7 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
             construct_bezier(res->p, s, (const PointEq *)pts, npts, r);
         for (slong i = 0; i < npts; i++)
             pteq_clear(pts[i], r);
-        free(pts);
+        pc_free(pts);
         ratfun_clear(s, r);
         res->is_point = 1;
         return st;
@@ -485,6 +486,10 @@ static int eval_node(Deriver *D, Value *res, const Node *n);
 /* res receives the exact value of n; 0 or -1 (reported) */
 int derive_eval(Deriver *D, Value *res, const Node *n)
 {
+    if (stack_low()) { /* a level takes 1-2 KiB: stop before the end */
+        diag_error(D->diag, n->span, STACK_MESSAGE);
+        return -1;
+    }
     if (n->call_site) /* a user function's expansion: errors note the call */
         diag_push_context(D->diag, n->call_site->span, n->call_site->text);
     int st = eval_node(D, res, n);

@@ -63,7 +63,7 @@ static void sides_clear(Sides *Q)
         for (int j = 0; j <= KNOTS_MAX_ORDER; j++)
             if (Q->s[k].val[j])
                 ratfun_vec_clear(Q->s[k].val[j], Q->nx, Q->S->r);
-        free(Q->s[k].val);
+        pc_free(Q->s[k].val);
     }
 }
 
@@ -298,8 +298,8 @@ int knots_present(const Derived *d, slong o)
         for (slong i = 0; i < K->n && !any; i++)
             any = used[i] && dep[i] && K->k[i].fn == KF_SIGN;
     }
-    free(dep);
-    free(used);
+    pc_free(dep);
+    pc_free(used);
     return any;
 }
 
@@ -385,7 +385,7 @@ void knots_analyse(KnotList *res, const Derived *d, slong o)
             nused++;
         }
     }
-    free(dep);
+    pc_free(dep);
     if (nused != 1) {
         res->note = "the output depends on several params: its knots are "
                     "not analysed";
@@ -424,10 +424,10 @@ void knots_clear(KnotList *res, const Derived *d)
         if (res->k[i].jump)
             ratfun_vec_clear(res->k[i].jump, res->k[i].njump, &d->ring);
     }
-    free(res->k);
+    pc_free(res->k);
     for (slong i = 0; i < res->nskip; i++)
-        free(res->skip[i]);
-    free(res->skip);
+        pc_free(res->skip[i]);
+    pc_free(res->skip);
     memset(res, 0, sizeof *res);
 }
 

@@ -269,10 +269,10 @@ void knots_scan_clear(Scan *S)
 {
     for (slong i = 0; i < S->nz; i++)
         ratfun_clear(S->z[i].root, S->r);
-    free(S->z);
-    free(S->other);
-    free(S->used);
-    free(S->dep);
+    pc_free(S->z);
+    pc_free(S->other);
+    pc_free(S->used);
+    pc_free(S->dep);
 }
 
 /* ---- one-sided values ---------------------------------------------------- */
@@ -364,7 +364,7 @@ static int compose_images(Scan *S, RatFun res, const RatFunStruct *x,
             rc = ratfun_compose_var(res, res, v, img[v], r);
     fmpq_clear(q);
     _fmpz_vec_clear(val, nv);
-    free(has);
+    pc_free(has);
     return rc;
 }
 
@@ -428,8 +428,8 @@ static int subst_vars(Scan *S, RatFun res, const RatFunStruct *x, slong nsub,
     for (slong v = 0; v < nv; v++)
         if (img[v])
             ratfun_vec_clear(img[v], 1, r);
-    free(img);
-    free(used);
+    pc_free(img);
+    pc_free(used);
     return rc;
 }
 
@@ -473,8 +473,8 @@ static int vanishes_at(Scan *S, const RatFunStruct *x, const RatFunStruct *t0)
             bad = knots_eval_at(S, a, K->k[i].arg, t0) != 0 ||
                   ratfun_is_zero(a, r);
     ratfun_clear(a, r);
-    free(dep);
-    free(used);
+    pc_free(dep);
+    pc_free(used);
     return bad;
 }
 
@@ -541,6 +541,6 @@ int knots_side_forms(Scan *S, const RatFunStruct *t0, const RatFunStruct *xs,
     ratfun_clear(a, r);
     ratfun_vec_clear(vl, S->nscan + 1, r);
     ratfun_vec_clear(vr, S->nscan + 1, r);
-    free(vars);
+    pc_free(vars);
     return rc;
 }

@@ -102,10 +102,10 @@ void derive_output_clear(DerivedOutput *o, const Ring *r)
     }
     pteq_clear(o->eq, r);
     ratfun_clear(o->scalar, r);
-    free((char *)o->name);
-    free(o->assumed);
-    free(o->diff_of);
-    free(o->diff_var);
+    pc_free((char *)o->name);
+    pc_free(o->assumed);
+    pc_free(o->diff_of);
+    pc_free(o->diff_var);
 }
 
 /* an output defined as diff(NAME, t[, n]) of a plain name: the printers

@@ -135,7 +135,7 @@ static slong plan_kernel_slots(const SemaInfo *info, slong npoints)
     if (metric)
         nslots += kernels_metric_slots(metric, npoints);
     nslots += kernels_coord_slots(ncoord_ks, npoints);
-    free(coord_ks);
+    pc_free(coord_ks);
     return nslots;
 }
 
@@ -148,6 +148,7 @@ Derived *derive_plan_ring(const SemaInfo *info, const char *filename,
     if (len)
         memcpy(d->text, text, len);
     d->len = len;
+    source_init(&d->src, d->filename, d->text, len);
     d->scheme =
         info->scheme_name ? pc_xstrdup(info->scheme_name) : base_name(filename);
     d->npoints = info->npoints;
@@ -179,7 +180,7 @@ Derived *derive_plan_ring(const SemaInfo *info, const char *filename,
     for (slong i = 0; i < d->nextra; i++)
         vars[d->nparams + d->nconsts + i] = d->extra[i];
     ring_init(&d->ring, nv, vars);
-    free(vars);
+    pc_free(vars);
     if (nslots > 0) {
         d->kernels = pc_xcalloc(1, sizeof(Kernels));
         kernels_init(d->kernels, &d->ring, nv - nslots, nslots);

@@ -100,7 +100,7 @@ static void substitute_solved(Deriver *D, const slong *cols, Sym *const *syms,
             has_any(D->usol[k], cols, n))
             pteq_subst_points(D->usol[k], D->usol[k], cols,
                               (const PointEq *)sol, n, r);
-    free(sol);
+    pc_free(sol);
 }
 
 /* the names of the unknowns flagged in `which`, "'B', 'C'" (caller frees) */
@@ -149,7 +149,7 @@ static slong degree_in(const fmpz_mpoly_t p, const slong *vars, slong nv,
         }
         best = d > best ? d : best;
     }
-    free(e);
+    pc_free(e);
     return best;
 }
 
@@ -162,7 +162,7 @@ static void linear_coeff(fmpz_mpoly_t c, const fmpz_mpoly_t p,
     if (m >= 0)
         ex[m] = 1;
     fmpz_mpoly_get_coeff_vars_ui(c, p, vars, ex, nv, r->ctx);
-    free(ex);
+    pc_free(ex);
 }
 
 /* the note on a system that is singular only by the functions' identities
@@ -358,7 +358,7 @@ static void mixed_solve(Deriver *D, Stmt *st, const Mixed *M, RatFunStruct *A,
             D->usolved[xs[xi]->index] = 1;
         }
         substitute_solved(D, xcol, xs, nx);
-        free(xs);
+        pc_free(xs);
     }
 }
 
@@ -409,11 +409,11 @@ static void derive_solve_mixed(Deriver *D, Stmt *st, PointEq *peq,
         ratfun_vec_clear(x, ncol, r);
     }
     fmpz_mpoly_clear(c, r->ctx);
-    free(M.known);
-    free(M.ksym);
-    free(M.xsym);
-    free(M.kvar);
-    free(M.xcol);
+    pc_free(M.known);
+    pc_free(M.ksym);
+    pc_free(M.xsym);
+    pc_free(M.kvar);
+    pc_free(M.xcol);
 }
 
 /* a solve statement's system: neq equations (eqn), each a combination
@@ -511,10 +511,10 @@ static void solve_split_mixed(Deriver *D, Stmt *st, const SolveSys *S)
         }
     }
     derive_solve_mixed(D, st, pe, pq, npe, se, sq, nse, syms, names, nunk);
-    free(se);
-    free(sq);
-    free(pq);
-    free(pe);
+    pc_free(se);
+    pc_free(sq);
+    pc_free(pq);
+    pc_free(pe);
 }
 
 /* the error of a solve of points that failed with ss */
@@ -539,7 +539,7 @@ static void report_solve(Deriver *D, Stmt *st, SolveStatus ss, int by_identity,
             if (dependent[e])
                 diag_note(D->diag, eqn[e]->span,
                           "this equation follows from the others");
-        free(list);
+        pc_free(list);
     } else if (ss == SOLVE_INCONSISTENT) {
         for (e = 0; e < neq && !dependent[e]; e++)
             ;
@@ -606,7 +606,7 @@ static void solve_points_stmt(Deriver *D, Stmt *st, const SolveSys *S)
                                       NULL, NULL, D->deadline, r) == SOLVE_OK;
         for (j = 0; j < nunk; j++)
             pteq_clear(y[j], r);
-        free(y);
+        pc_free(y);
     }
     if (ss == SOLVE_FAILED)
         derive_kernel_error_at(D, nf->err, st->span, st->span);
@@ -704,15 +704,15 @@ void derive_solve(Deriver *D, Stmt *st)
     for (e = 0; e < neq; e++)
         pteq_clear(eqs[e], r);
     ratfun_vec_clear(seqs, neq, r);
-    free(scalar_eq);
+    pc_free(scalar_eq);
     for (j = 0; j < nunk; j++)
         pteq_clear(x[j], r);
-    free(names);
-    free(eqn);
-    free(dependent);
-    free(undetermined);
-    free(cols);
-    free(syms);
-    free(x);
-    free(eqs);
+    pc_free(names);
+    pc_free(eqn);
+    pc_free(dependent);
+    pc_free(undetermined);
+    pc_free(cols);
+    pc_free(syms);
+    pc_free(x);
+    pc_free(eqs);
 }

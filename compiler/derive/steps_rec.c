@@ -22,15 +22,15 @@ void derive_step_clear(DerivedStep *st, const Ring *r)
     derive_output_clear(&st->value, r);
     for (slong k = 0; k < st->nargs; k++)
         derive_output_clear(&st->args[k], r);
-    free(st->args);
+    pc_free(st->args);
     if (st->params)
         ratfun_vec_clear(st->params, st->nparams, r);
     if (st->sv_coord)
         ratfun_vec_clear(st->sv_coord, st->nparams + 1, r);
     ratfun_clear(st->det, r);
     ratfun_clear(st->scalar, r);
-    free((char *)st->var);
-    free(st->expr);
+    pc_free((char *)st->var);
+    pc_free(st->expr);
 }
 
 /* the source text of span, owned */
@@ -68,7 +68,7 @@ static int step_arg(Deriver *D, DerivedStep *st, slong k, const Node *a)
     if (derive_eval(D, &v, a) < 0 || derive_unsolved_in(D, &v))
         rc = -1;
     derive_output_fill(&st->args[k], name, a->span, &v, D->src, D->r);
-    free(name);
+    pc_free(name);
     derive_value_clear(&v, D->r);
     return rc;
 }
@@ -276,5 +276,5 @@ void derive_record_named(Deriver *D, Derived *d, const Source *src)
         nm->exp = e[var];
         nm->line = line;
     }
-    free(e);
+    pc_free(e);
 }

@@ -48,7 +48,7 @@ static int sum_rotate(PSum *s)
     memcpy(head, s->t, sizeof(PTerm) * (size_t)first);
     memmove(s->t, s->t + first, sizeof(PTerm) * (size_t)(s->n - first));
     memcpy(s->t + s->n - first, head, sizeof(PTerm) * (size_t)first);
-    free(head);
+    pc_free(head);
     return 1;
 }
 
@@ -86,7 +86,7 @@ static int free_part_last(PSum *s, const Ctx *c)
     memcpy(head, s->t, sizeof(PTerm) * (size_t)k);
     memmove(s->t, s->t + k, sizeof(PTerm) * (size_t)(s->n - k));
     memcpy(s->t + s->n - k, head, sizeof(PTerm) * (size_t)k);
-    free(head);
+    pc_free(head);
     return 1;
 }
 
@@ -147,7 +147,7 @@ static void put_quotient(StrBuf *b, PSum *items, const PSum *den, const Ctx *c)
         sb_puts(b, n.s);
     else
         book_put_frac(b, n.s, (int)items->n, den, c);
-    free(n.s);
+    pc_free(n.s);
 }
 
 /* num/den as a scalar */
@@ -202,7 +202,7 @@ static void put_best(StrBuf *b, const fmpz_mpoly_t num, const fmpz_mpoly_t den,
                 best = i;
             }
         }
-        free(m.s);
+        pc_free(m.s);
     }
     if (best < 0)
         put(b, num, den, arg, c);
@@ -210,7 +210,7 @@ static void put_best(StrBuf *b, const fmpz_mpoly_t num, const fmpz_mpoly_t den,
         put(b, cs[best].num, cs[best].den, arg, c);
     for (slong i = 0; i < nc; i++)
         book_cand_clear(&cs[i], c);
-    free(cs);
+    pc_free(cs);
 }
 
 static void put_scalar_frac(StrBuf *b, const fmpz_mpoly_t num,
@@ -268,7 +268,7 @@ static void put_origin_item(StrBuf *b, const fmpz_mpoly_t wnum,
         sb_puts(b, "}{");
         book_put_sum(b, den, c);
         sb_puts(b, "}");
-        free(m.s);
+        pc_free(m.s);
     } else {
         sb_puts(b, n.s);
         if (den) {
@@ -280,7 +280,7 @@ static void put_origin_item(StrBuf *b, const fmpz_mpoly_t wnum,
                 sb_puts(b, ")");
         }
     }
-    free(n.s);
+    pc_free(n.s);
     book_sum_free(one, c);
     book_sum_free(den, c);
     fmpz_mpoly_clear(num, r->ctx);
@@ -302,7 +302,7 @@ static void rhs_origin(StrBuf *b, const Derived *d, const DerivedOutput *o,
         put_best(b, o->w[i].num, o->w[i].den, H, nh, put_origin_item, &it, c);
         first = 0;
     }
-    free(H);
+    pc_free(H);
     if (o->kind == KIND_POINT) {
         sb_puts(b, first ? "" : " + ");
         book_put_point(b, d->points[origin], c);
@@ -378,7 +378,7 @@ static void eq_parts(EqParts *P, const Derived *d, const DerivedOutput *o,
         }
         push_item(P->items, q, pt, c);
     }
-    free(used);
+    pc_free(used);
     fmpz_mpoly_clear(q, r->ctx);
     fmpz_mpoly_clear(g, r->ctx);
 }
@@ -398,7 +398,7 @@ static size_t eq_text_len(const Derived *d, const DerivedOutput *o,
     rhs_equation(&b, &P, &t);
     eq_parts_clear(&P, &t);
     size_t n = b.len;
-    free(b.s);
+    pc_free(b.s);
     return n;
 }
 
@@ -417,7 +417,7 @@ static const PointEqStruct *eq_form(PointEqStruct *tmp, const Derived *d,
         N[i] = eq->terms[i].num;
     Cand *cs;
     slong nc = book_unroot_cands(&cs, N, n, eq->den, NULL, 0, c);
-    free(N);
+    pc_free(N);
     if (nc == 0)
         return eq;
     size_t best_len = eq_text_len(d, o, eq, c);
@@ -433,7 +433,7 @@ static const PointEqStruct *eq_form(PointEqStruct *tmp, const Derived *d,
         }
         e.den[0] = cs[k].den[0];
         size_t len = eq_text_len(d, o, &e, c);
-        free(e.terms);
+        pc_free(e.terms);
         if (len < best_len) {
             best_len = len;
             best = k;
@@ -455,7 +455,7 @@ static const PointEqStruct *eq_form(PointEqStruct *tmp, const Derived *d,
     }
     for (slong k = 0; k < nc; k++)
         book_cand_clear(&cs[k], c);
-    free(cs);
+    pc_free(cs);
     return res;
 }
 
@@ -466,7 +466,7 @@ static void eq_form_clear(PointEqStruct *tmp, const PointEqStruct *used,
         return;
     for (slong i = 0; i < tmp->len; i++)
         fmpz_mpoly_clear(tmp->terms[i].num, c->r->ctx);
-    free(tmp->terms);
+    pc_free(tmp->terms);
     fmpz_mpoly_clear(tmp->den, c->r->ctx);
 }
 
@@ -523,7 +523,7 @@ static void rhs_equation(StrBuf *b, const EqParts *P, const Ctx *c)
     if (minus)
         for (slong i = 0; i < P->items->n; i++)
             P->items->t[i].neg = 1;
-    free(n.s);
+    pc_free(n.s);
 }
 
 static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
@@ -661,12 +661,12 @@ static void put_multline(StrBuf *b, const StrBuf *lhs, const EqParts *P,
             sb_puts(&line, " ");
         }
         sb_puts(&line, item.s);
-        free(item.s);
+        pc_free(item.s);
     }
     sb_puts(&line, "\\Bigr)");
     put_line(b, line.s, 1);
     sb_puts(b, "\\end{multline*}\n");
-    free(line.s);
+    pc_free(line.s);
 }
 
 char *book_output(const Derived *d, const DerivedOutput *o,
@@ -694,16 +694,16 @@ char *book_output(const Derived *d, const DerivedOutput *o,
             book_put_sum(&dn, P.den, &c);
         put_common(&cm, P.common, &c);
         size_t wide = lhs.len + 3 + cm.len + (n.len > dn.len ? n.len : dn.len);
-        free(n.s);
-        free(dn.s);
-        free(cm.s);
+        pc_free(n.s);
+        pc_free(dn.s);
+        pc_free(cm.s);
         if ((int)wide > width && P.items->n > 1) {
             put_multline(&b, &lhs, &P, &c, width);
             eq_parts_clear(&P, &c);
             eq_form_clear(&tmp, eq, &c);
             book_memo_clear(&memo, &c);
-            free(rhs);
-            free(lhs.s);
+            pc_free(rhs);
+            pc_free(lhs.s);
             return sb_take(&b);
         }
         eq_parts_clear(&P, &c);
@@ -724,7 +724,7 @@ char *book_output(const Derived *d, const DerivedOutput *o,
             sb_puts(&b, eq.s);
             sb_puts(&b, " \\]\n");
         }
-        free(eq.s);
+        pc_free(eq.s);
     } else {
         sb_puts(&b, lhs.s);
         sb_puts(&b, " = ");
@@ -732,7 +732,7 @@ char *book_output(const Derived *d, const DerivedOutput *o,
         sb_puts(&b, o->kind == KIND_VECTOR ? "    (vector)\n" : "\n");
     }
     book_memo_clear(&memo, &c);
-    free(rhs);
-    free(lhs.s);
+    pc_free(rhs);
+    pc_free(lhs.s);
     return sb_take(&b);
 }

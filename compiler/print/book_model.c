@@ -32,7 +32,7 @@ static void term_clear(PTerm *t, const Ctx *c)
     for (slong i = 0; i < t->n; i++)
         if (t->a[i].kind == AT_SUM)
             book_sum_free(t->a[i].sum, c);
-    free(t->a);
+    pc_free(t->a);
     fmpz_clear(t->coeff);
 }
 
@@ -49,9 +49,9 @@ void book_sum_free(PSum *s, const Ctx *c)
         return;
     for (slong i = 0; i < s->n; i++)
         term_clear(&s->t[i], c);
-    free(s->t);
+    pc_free(s->t);
     fmpz_mpoly_clear(s->poly, c->r->ctx);
-    free(s);
+    pc_free(s);
 }
 
 PTerm *book_sum_push(PSum *s)
@@ -95,7 +95,7 @@ void book_memo_clear(Memo *m, const Ctx *c)
         fmpz_mpoly_clear(m->e[i].poly, c->r->ctx);
         book_sum_free(m->e[i].sum, c);
     }
-    free(m->e);
+    pc_free(m->e);
     m->e = NULL;
     m->n = m->alloc = 0;
     for (slong i = 0; i < m->nfac; i++)
@@ -220,7 +220,7 @@ void book_term_absorb(PTerm *dst, PTerm *src)
     dst->neg ^= src->neg;
     for (slong i = 0; i < src->n; i++)
         book_term_push(dst, src->a[i]);
-    free(src->a);
+    pc_free(src->a);
     src->a = NULL;
     src->n = 0;
 }
@@ -274,5 +274,5 @@ void book_memo_free(BookMemo *m, const Derived *d)
     Ctx c = {0};
     c.r = &d->ring;
     book_memo_clear(m, &c);
-    free(m);
+    pc_free(m);
 }

@@ -102,7 +102,7 @@ static void conj_root(fmpz_mpoly_t res, const fmpz_mpoly_t L, slong s,
     fmpz_mpoly_sort_terms(res, r->ctx);
     fmpz_mpoly_combine_like_terms(res, r->ctx);
     fmpz_clear(k);
-    free(e);
+    pc_free(e);
 }
 
 static void cand_init(Cand *x, slong n, const Ctx *c)
@@ -118,7 +118,7 @@ void book_cand_clear(Cand *x, const Ctx *c)
 {
     for (slong i = 0; i < x->n; i++)
         fmpz_mpoly_clear(x->num + i, c->r->ctx);
-    free(x->num);
+    pc_free(x->num);
     fmpz_mpoly_clear(x->den, c->r->ctx);
 }
 
@@ -299,7 +299,7 @@ slong book_unroot_cands(Cand **out, const fmpz_mpoly_struct *const *N, slong n,
     }
     fmpz_mpoly_clear(lb, r->ctx);
     if (nc == 0) {
-        free(cs);
+        pc_free(cs);
         return 0;
     }
     *out = cs;

@@ -106,7 +106,7 @@ static void put_arg(StrBuf *b, const RatFun x, int expanded, const Ctx *c)
     StrBuf n = {0};
     book_put_sum(&n, s, c);
     book_put_frac(b, n.s, (int)s->n, d, c);
-    free(n.s);
+    pc_free(n.s);
     book_sum_free(d, c);
     book_sum_free(s, c);
 }
@@ -129,14 +129,14 @@ static char *kernel_arg(const Kernel *k, const char *open, const char *close,
     int book = bk.len < strlen(own); /* ties: as kernel.c named it */
     if (!c->latex) {
         if (book) {
-            free(own);
+            pc_free(own);
             return sb_take(&bk);
         }
-        free(bk.s);
+        pc_free(bk.s);
         return own;
     }
-    free(own);
-    free(bk.s);
+    pc_free(own);
+    pc_free(bk.s);
     t.latex = 1;
     StrBuf lb = {0};
     put_arg(&lb, k->arg, !book, &t);
@@ -158,7 +158,7 @@ static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
         sb_puts(b, a);
         sb_puts(b, c->latex ? "}" : ")");
         book_put_exp(b, e, c);
-        free(a);
+        pc_free(a);
         return 1;
     }
     /* the functions with an operator name; sign has its own form */
@@ -174,7 +174,7 @@ static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
         sb_puts(b, a);
         sb_puts(b, ")");
         book_put_exp(b, e, c);
-        free(a);
+        pc_free(a);
         return 1;
     }
     sb_puts(b, lx[k->fn]);
@@ -200,7 +200,7 @@ static int put_kernel(StrBuf *b, const Kernel *k, ulong e, const Ctx *c)
     if (e > 1 && (k->fn == KF_ASIN || k->fn == KF_ACOS || k->fn == KF_ATAN))
         book_put_exp(b, e,
                      c); /* \arcsin^{2} would read as a power of the map */
-    free(a);
+    pc_free(a);
     return 1;
 }
 
@@ -248,7 +248,7 @@ void book_put_atom(StrBuf *b, const Atom *a, const Ctx *c)
         sb_puts(b, c->latex ? "\\left|" : "abs(");
         sb_puts(b, x);
         sb_puts(b, c->latex ? "\\right|" : ")");
-        free(x);
+        pc_free(x);
         break;
     }
     case AT_KNOT: { /* x of |x|, as |x| writes it: (t - 1), t */
@@ -261,7 +261,7 @@ void book_put_atom(StrBuf *b, const Atom *a, const Ctx *c)
         sb_puts(b, one ? "" : open);
         sb_puts(b, x);
         sb_puts(b, one ? "" : close);
-        free(x);
+        pc_free(x);
         break;
     }
     case AT_POINT:
@@ -325,7 +325,7 @@ size_t book_sum_text_len(const PSum *s, const Ctx *c)
     StrBuf b = {0};
     book_put_sum(&b, s, c);
     size_t n = b.len;
-    free(b.s);
+    pc_free(b.s);
     return n;
 }
 

@@ -167,8 +167,8 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
         }
     }
     fmpz_clear(c);
-    free(zero);
-    free(fs);
+    pc_free(zero);
+    pc_free(fs);
     fmpz_mpoly_factor_clear(f, r->ctx);
     *negative = neg;
     return items;
@@ -198,7 +198,7 @@ static void put_den(StrBuf *b, const fmpz_mpoly_t den, const Ring *r,
     sb_puts(b, ds);
     if (wrap)
         sb_puts(b, ")");
-    free(ds);
+    pc_free(ds);
 }
 
 static int is_den_one(const RatFun w, const Ring *r)
@@ -293,19 +293,19 @@ char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
             t[lf] = '(';
             memcpy(t + lf + 1, a, la);
             memcpy(t + lf + 1 + la, ")", 2);
-            free(a);
+            pc_free(a);
             names[v] = t;
         }
         ra.names = names;
         res = format_weight(x, &ra);
         for (slong v = 0; v < r->nvars; v++)
             if (mask[v])
-                free((char *)names[v]);
-        free(names);
+                pc_free((char *)names[v]);
+        pc_free(names);
     }
     fmpz_mpoly_clear(x->den, r->ctx);
     fmpz_mpoly_clear(x->num, r->ctx);
-    free(mask);
+    pc_free(mask);
     return res;
 }
 
@@ -318,7 +318,7 @@ char *format_weight(const RatFun w, const Ring *r)
     if (neg)
         sb_puts(&b, "-");
     sb_puts(&b, n.s);
-    free(n.s);
+    pc_free(n.s);
     if (!is_den_one(w, r))
         put_den(&b, w->den, r, FMT_JSON);
     return sb_take(&b);
@@ -329,22 +329,6 @@ char *format_output_rhs(const Derived *d, const DerivedOutput *o,
 {
     BookOptions opt = {st == FMT_LATEX, 0, origin, NULL};
     return book_rhs(d, o, &opt);
-}
-
-void format_mark_output(Source *src, const Derived *d, slong i)
-{
-    if (i < 0) {
-        budget_statement(NULL, (Span){0, 0});
-        if (src->text)
-            source_clear(src);
-        src->text = NULL;
-        return;
-    }
-    if (!d->text)
-        return;
-    if (!src->text)
-        source_init(src, d->filename, d->text, d->len);
-    budget_statement(src, d->outputs[i].span);
 }
 
 void format_derived(FILE *out, const Derived *d, FormatStyle st, slong origin)
@@ -388,13 +372,12 @@ void format_derived_width(FILE *out, const Derived *d, FormatStyle st,
         return;
     }
     BookOptions opt = {st == FMT_LATEX, width, origin, book_memo_new()};
-    Source src = {0};
     for (slong i = 0; i < d->noutputs; i++) {
-        format_mark_output(&src, d, i);
+        derived_mark(d, i); /* blamed if a budget runs out */
         char *line = book_output(d, &d->outputs[i], &opt);
         fputs(line, out);
-        free(line);
+        pc_free(line);
     }
-    format_mark_output(&src, d, -1);
+    budget_statement(NULL, (Span){0, 0}); /* printed: no output to blame */
     book_memo_free(opt.memo, d);
 }

@@ -33,7 +33,7 @@ void format_latex_begin(FILE *out, const Derived *d);
 void format_latex_end(FILE *out);
 
 /* One weight as a reduced, re-readable expression with '*' for every
- * product (the JSON form).  Caller frees with free(). */
+ * product (the JSON form).  Caller frees with pc_free(). */
 char *format_weight(const RatFun w, const Ring *r);
 /* the same with abs(x) for every x*sign(x) of K's sign kernels (absform.h):
  * what derive --format json writes (the contract has abs, not sign) */
@@ -43,7 +43,7 @@ char *format_weight_k(const RatFun w, const Ring *r, const struct Kernels *K);
 /* The right-hand side of one output as derive prints it (text or LaTeX;
  * "(A*(1 - t)^3 + ...)/(2*t^2 - 2*t + 1)"), for a point, vector or scalar;
  * origin as above.  Used by derive --steps and plot labels.  Caller frees
- * with free(). */
+ * with pc_free(). */
 char *format_output_rhs(const Derived *d, const DerivedOutput *o,
                         FormatStyle st, slong origin);
 

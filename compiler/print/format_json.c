@@ -33,7 +33,7 @@ void format_json_weight(FILE *out, const char *key, const RatFun w,
     json_string(out, key);
     fputs(": ", out);
     json_string(out, s);
-    free(s);
+    pc_free(s);
 }
 
 /* , "assumes": ["t >= 0", "e < 1"]: the ends of declared ranges the
@@ -57,8 +57,8 @@ static void json_assumes(FILE *out, const Derived *d, const DerivedOutput *o)
             fputs(first ? ", \"assumes\": [" : ", ", out);
             json_string(out, txt);
             first = 0;
-            free(txt);
-            free(b);
+            pc_free(txt);
+            pc_free(b);
         }
     if (!first)
         fputs("]", out);
@@ -101,6 +101,7 @@ void format_json(FILE *out, const Derived *d)
     for (slong i = 0; i < d->noutputs; i++) {
         format_mark_output(&src, d, i);
         fputs(i ? ",\n  " : "", out);
+        derived_mark(d, i); /* blamed if a budget runs out */
         json_output(out, d, &d->outputs[i]);
     }
     format_mark_output(&src, d, -1);

@@ -22,7 +22,7 @@
 
 /* The jump of knot k of output o as a combination of base points, "6*B -
  * 6/5*O": each term a number times the point where the weight is a number,
- * else B*(w); a scalar's value.  Caller frees with free(). */
+ * else B*(w); a scalar's value.  Caller frees with pc_free(). */
 static char *knots_jump_text(const Derived *d, const DerivedOutput *o,
                              const Knot *k)
 {
@@ -56,7 +56,7 @@ static char *knots_jump_text(const Derived *d, const DerivedOutput *o,
             sb_puts(&b, "*(");
             sb_puts(&b, s);
             sb_puts(&b, ")");
-            free(s);
+            pc_free(s);
         }
     }
     fmpq_clear(q);
@@ -82,7 +82,7 @@ static void print_knot(FILE *out, const Derived *d, const DerivedOutput *o,
 {
     char *at = format_weight_k(k->t, &d->ring, d->kernels);
     fprintf(out, "%s at %s = %s: ", o->name, t, at);
-    free(at);
+    pc_free(at);
     if (!k->analysed) {
         if (k->continuity >= 0)
             fprintf(out, "C^%d; derivative %d not analysed (%s)\n",
@@ -103,8 +103,8 @@ static void print_knot(FILE *out, const Derived *d, const DerivedOutput *o,
         char *dn = deriv_name(o->name, t, k->jump_order);
         char *j = knots_jump_text(d, o, k);
         fprintf(out, "; jump of %s: %s", dn, j);
-        free(j);
-        free(dn);
+        pc_free(j);
+        pc_free(dn);
     }
     fputs("\n", out);
 }
@@ -172,7 +172,7 @@ static void json_knot(FILE *out, const Derived *d, const DerivedOutput *o,
         char *v = knots_jump_text(d, o, k);
         fputs("}, \"jump_vector\": ", out);
         json_string(out, v);
-        free(v);
+        pc_free(v);
     }
     if (!k->analysed) {
         fputs(", \"analysed\": false, \"note\": ", out);

@@ -268,7 +268,7 @@ static int push_wrapped(Words *ws, const char *inner, size_t n,
     Words in = {0};
     split_words(&in, inner, n);
     if (in.n == 0) {
-        free(in.w);
+        pc_free(in.w);
         return 0;
     }
     for (size_t k = 0; k < in.n; k++) {
@@ -276,10 +276,10 @@ static int push_wrapped(Words *ws, const char *inner, size_t n,
         char *pre = k == 0 ? cat(open, x->pre) : pc_xstrdup(x->pre);
         char *post = k + 1 == in.n ? cat(x->post, close) : pc_xstrdup(x->post);
         words_push(ws, pre, x->core, post);
-        free(x->pre);
-        free(x->post);
+        pc_free(x->pre);
+        pc_free(x->post);
     }
-    free(in.w);
+    pc_free(in.w);
     return 1;
 }
 
@@ -314,8 +314,8 @@ static int expand(Words *out, const Word *x, double width)
         y.pre = cat(x->pre, "-");
         y.core = pc_xstrdup(s + 1);
         int ok = expand(out, &y, width);
-        free(y.pre);
-        free(y.core);
+        pc_free(y.pre);
+        pc_free(y.core);
         return ok;
     }
     Words mid = {0};
@@ -330,8 +330,8 @@ static int expand(Words *out, const Word *x, double width)
             char *close = pc_xmalloc(e1 - e0 + n - e1 + 8);
             sprintf(close, " \\Bigr%.*s%s", (int)(e1 - e0), s + e0, s + e1);
             ok = push_wrapped(&mid, s + d1, r - d1, open, close);
-            free(open);
-            free(close);
+            pc_free(open);
+            pc_free(close);
         }
     } else if (is_cmd(s, n, 0, "frac") && n > 5 && s[5] == '{') {
         size_t e1 = group_end(s, n, 5);
@@ -354,7 +354,7 @@ static int expand(Words *out, const Word *x, double width)
                            pc_xstrdup(""));
                 ok &= push_wrapped(&mid, den, dn, "\\Bigl( ", close);
             }
-            free(close);
+            pc_free(close);
         }
     } else if (is_cmd(s, n, 0, "sqrt") && n > 5 && s[5] == '{' &&
                group_end(s, n, 5) == n) {
@@ -385,17 +385,17 @@ static int expand(Words *out, const Word *x, double width)
             char *post =
                 k + 1 == mid.n ? cat(y->post, x->post) : pc_xstrdup(y->post);
             words_push(out, pre, y->core, post);
-            free(y->pre);
-            free(y->post);
+            pc_free(y->pre);
+            pc_free(y->post);
         }
     } else {
         for (size_t k = 0; k < mid.n; k++) {
-            free(mid.w[k].pre);
-            free(mid.w[k].core);
-            free(mid.w[k].post);
+            pc_free(mid.w[k].pre);
+            pc_free(mid.w[k].core);
+            pc_free(mid.w[k].post);
         }
     }
-    free(mid.w);
+    pc_free(mid.w);
     return ok;
 }
 
@@ -421,15 +421,15 @@ size_t latex_break(char ***lines, const char *s, double width)
         for (size_t k = 0; k < ws.n; k++) {
             Word *x = &ws.w[k];
             if (x->w > width && expand(&next, x, width)) {
-                free(x->pre);
-                free(x->core);
-                free(x->post);
+                pc_free(x->pre);
+                pc_free(x->core);
+                pc_free(x->post);
                 changed = 1;
             } else {
                 words_push(&next, x->pre, x->core, x->post);
             }
         }
-        free(ws.w);
+        pc_free(ws.w);
         ws = next;
         if (!changed)
             break;
@@ -483,11 +483,11 @@ size_t latex_break(char ***lines, const char *s, double width)
         k = end;
     }
     for (size_t j = 0; j < ws.n; j++) {
-        free(ws.w[j].pre);
-        free(ws.w[j].core);
-        free(ws.w[j].post);
+        pc_free(ws.w[j].pre);
+        pc_free(ws.w[j].core);
+        pc_free(ws.w[j].post);
     }
-    free(ws.w);
+    pc_free(ws.w);
     if (nl == 0)
         out[nl++] = pc_xstrdup("");
     *lines = out;
@@ -497,6 +497,6 @@ size_t latex_break(char ***lines, const char *s, double width)
 void latex_lines_free(char **lines, size_t n)
 {
     for (size_t i = 0; i < n; i++)
-        free(lines[i]);
-    free(lines);
+        pc_free(lines[i]);
+    pc_free(lines);
 }

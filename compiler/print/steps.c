@@ -57,7 +57,7 @@ static void text_value(FILE *out, const Derived *d, const DerivedOutput *o,
 {
     char *v = format_output_rhs(d, o, FMT_TEXT, origin);
     fputs(v, out);
-    free(v);
+    pc_free(v);
     if (o->kind == KIND_VECTOR)
         fputs("    (vector)", out);
 }
@@ -142,7 +142,7 @@ static void text_meet(FILE *out, const Derived *d, const DerivedStep *s)
             char *v = scalar_str(d, s->sv_coord + k, FMT_TEXT);
             coord_name(cn, sizeof cn, k, n);
             fprintf(out, "%s %s = %s", k ? "," : "", cn, v);
-            free(v);
+            pc_free(v);
         }
         /* det[a, b, c..; 1 - lambda, lambda, 0..; unit rows] */
         fputs("\n    det[", out);
@@ -162,7 +162,7 @@ static void text_meet(FILE *out, const Derived *d, const DerivedStep *s)
         char *det = scalar_str(d, s->det, FMT_TEXT);
         fprintf(out, "    a + b = %s    (zero: the %s parallel)\n", det,
                 nb == 2 ? "lines are" : "line and the plane are");
-        free(det);
+        pc_free(det);
     }
     if (s->nparams == 0)
         return;
@@ -171,7 +171,7 @@ static void text_meet(FILE *out, const Derived *d, const DerivedStep *s)
     char *l = scalar_str(d, s->params, FMT_TEXT);
     fprintf(out, "    lambda = %s%s,  %s = ", s->has_sv ? "b/(a + b) = " : "",
             l, M);
-    free(l);
+    pc_free(l);
     text_factor(out, s->args[o].name);
     fputs(" + ", out);
     text_direction(out, s, o == 0 ? 1 : 0, o);
@@ -182,7 +182,7 @@ static void text_meet(FILE *out, const Derived *d, const DerivedStep *s)
     for (slong j = 1; j < s->nparams; j++) {
         char *m = scalar_str(d, s->params + j, FMT_TEXT);
         fprintf(out, " %s = %s,", param_name(s, j, FMT_TEXT), m);
-        free(m);
+        pc_free(m);
     }
     fprintf(out, "  %s = ", M);
     text_factor(out, s->args[o].name);
@@ -239,7 +239,7 @@ static void latex_name(FILE *out, const char *name)
 {
     char *s = book_latex_name(name);
     fputs(s, out);
-    free(s);
+    pc_free(s);
 }
 
 /* source text in \texttt{}, with TeX's special characters escaped */
@@ -295,7 +295,7 @@ static void latex_value(FILE *out, const Derived *d, const DerivedOutput *o,
 {
     char *v = format_output_rhs(d, o, FMT_LATEX, origin);
     fputs(v, out);
-    free(v);
+    pc_free(v);
     if (o->kind == KIND_VECTOR)
         fputs(" \\quad \\text{(vector)}", out);
 }
@@ -366,7 +366,7 @@ static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
             fputs(k ? ",\\quad " : "  &\\quad ", out);
             latex_coord_name(out, k, n);
             fprintf(out, " = %s", v);
-            free(v);
+            pc_free(v);
         }
         fputs(" \\\\\n  &\\quad \\begin{vmatrix} ", out);
         for (slong k = 0; k < n; k++) {
@@ -387,12 +387,12 @@ static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
                 " \\end{vmatrix} = 0 \\;\\Rightarrow\\; \\lambda = "
                 "\\frac{b}{a + b} = %s,\\quad a + b = %s \\\\\n",
                 l, det);
-        free(l);
-        free(det);
+        pc_free(l);
+        pc_free(det);
     } else if (s->nparams > 0) {
         char *l = scalar_str(d, s->params, FMT_LATEX);
         fprintf(out, "  &\\quad \\lambda = %s \\\\\n", l);
-        free(l);
+        pc_free(l);
     }
     if (s->nparams == 0)
         return;
@@ -416,7 +416,7 @@ static void latex_meet(FILE *out, const Derived *d, const DerivedStep *s)
     for (slong j = 1; j < s->nparams; j++) {
         char *m = scalar_str(d, s->params + j, FMT_LATEX);
         fprintf(out, ",\\quad %s = %s", param_name(s, j, FMT_LATEX), m);
-        free(m);
+        pc_free(m);
     }
     fputs(" \\\\\n", out);
 }
@@ -475,7 +475,7 @@ static void put_rows(FILE *out, const char *body)
         }
         if (nl)
             fputs("\n", out);
-        free(row);
+        pc_free(row);
         if (!e)
             break;
         fputs(" \\\\\n", out);
@@ -505,7 +505,7 @@ static void latex_steps(FILE *out, const Derived *d, slong origin)
     } else {
         fputs(body, out);
     }
-    free(body);
+    pc_free(body);
 }
 
 static void latex_steps_rows(FILE *out, const Derived *d, slong origin)
@@ -548,7 +548,7 @@ static void json_ratfun(FILE *out, const Derived *d, const RatFun x)
 {
     char *s = format_weight(x, &d->ring);
     json_string(out, s);
-    free(s);
+    pc_free(s);
 }
 
 /* "kind": .., "terms": {..} or "value": ".." (contract section 4's form) */
@@ -671,7 +671,7 @@ static void json_steps(FILE *out, const Derived *d)
         if (obj[--len] == '}')
             break;
     fwrite(obj, 1, len, out);
-    free(obj);
+    pc_free(obj);
     fputs(",\n \"steps\": [", out);
     for (slong i = 0; i < d->nsteps; i++) {
         fputs(i ? ",\n  " : "", out);

@@ -91,8 +91,8 @@ int args_names_add(NameList *l, const char *list)
 void args_names_clear(NameList *l)
 {
     for (int i = 0; i < l->n; i++)
-        free(l->v[i]);
-    free(l->v);
+        pc_free(l->v[i]);
+    pc_free(l->v);
     l->v = NULL;
     l->n = 0;
 }
@@ -116,7 +116,7 @@ static const char *output_list(const Plan *p, char *buf, size_t size)
     for (int k = 0; k < p->noutputs; k++)
         names[k] = p->outputs[k].name;
     args_name_list(names, p->noutputs, buf, size);
-    free(names);
+    pc_free(names);
     return buf;
 }
 
@@ -158,8 +158,8 @@ void eval_args_init(EvalArgs *a)
 static void assigns_clear(Assign *list, int n)
 {
     for (int i = 0; i < n; i++)
-        free(list[i].name);
-    free(list);
+        pc_free(list[i].name);
+    pc_free(list);
 }
 
 void eval_args_clear(EvalArgs *a)
@@ -228,13 +228,13 @@ void eval_setup_clear(EvalSetup *s)
 {
     if (s->pt)
         for (int i = 0; i < s->npoints; i++)
-            free(s->pt[i]);
-    free(s->pt);
-    free(s->sel);
-    free(s->consts);
+            pc_free(s->pt[i]);
+    pc_free(s->pt);
+    pc_free(s->sel);
+    pc_free(s->consts);
     for (int i = 0; i < s->naxes; i++)
         sample_clear(&s->axes[i].spec);
-    free(s->axes);
+    pc_free(s->axes);
     memset(s, 0, sizeof *s);
 }
 
@@ -318,7 +318,7 @@ static unsigned char *used_inputs(const EvalSetup *s, const Plan *p)
             if (live[i] && p->ins[i].op == PLAN_INPUT)
                 used[p->ins[i].a] = 1;
     }
-    free(live);
+    pc_free(live);
     return used;
 }
 
@@ -380,7 +380,7 @@ static int setup_consts(EvalSetup *s, const EvalArgs *a, const Plan *p,
     for (int k = 0; k < p->nconsts && !rc; k++)
         if (given[k])
             rc = setup_const(s, given[k], k, usage, err);
-    free(given);
+    pc_free(given);
     return rc;
 }
 
@@ -419,7 +419,7 @@ static int setup_params(EvalSetup *s, const EvalArgs *a, const Plan *p,
             rc = args_usage_error(err, usage, "--param %s=%s: %s",
                                   given[k]->name, given[k]->text, msg);
     }
-    free(given);
+    pc_free(given);
     return rc;
 }
 
@@ -437,7 +437,7 @@ static int check_inputs(const EvalSetup *s, const Plan *p,
         if (used[k] && !seen[k])
             rc = args_usage_error(err, usage, "missing --param %s=SPEC",
                                   p->params[k]);
-    free(used);
+    pc_free(used);
     return rc;
 }
 
@@ -486,7 +486,7 @@ int eval_setup(EvalSetup *s, const EvalArgs *a, const Plan *p,
         rc = check_inputs(s, p, seen, usage, err);
     if (!rc)
         rc = setup_rows(s, usage, err);
-    free(seen);
+    pc_free(seen);
     return rc;
 }
 

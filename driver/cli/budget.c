@@ -2,7 +2,8 @@
  * budget.c - the hard limits of the command line (budget.h): the options
  * every command takes, the timer and the memory handler.  Both handlers
  * report at the statement the library marked (base/budget.h).  The timer's
- * SIGALRM is the command line's, which has one thread.
+ * SIGALRM is the command line's: it reaches the command's thread (main.c
+ * blocks it on the main thread, which only waits), whose mark it reads.
  */
 #include "driver/cli/budget.h"
 
@@ -121,9 +122,10 @@ static void put_fd(void *ctx, const char *s, size_t n)
     pc_write_all(*(const int *)ctx, s, n);
 }
 
-/* "HEAD PHASE TAIL": located at the marked statement (while deriving, or
- * the output being printed: the printer marks it), a plain message in the
- * other phases (budget_phase) or with no statement marked */
+/* "HEAD PHASE TAIL", located at what the pipeline marked
+ * (base/budget.h): a statement ("FILE:LINE:COL: error: ...", then its line
+ * and a caret), the whole file ("FILE: error: ...") or, with no mark,
+ * "pointcalc: error: ..." */
 static void report(const char *head, const char *tail)
 {
     static const int fd = 2;
@@ -141,7 +143,7 @@ static void report(const char *head, const char *tail)
     put_fd((void *)&fd, phase, strlen(phase));
     put_fd((void *)&fd, tail, strlen(tail));
     put_fd((void *)&fd, "\n", 1);
-    if (src != NULL)
+    if (src != NULL && !DIAG_IS_WHOLE_FILE(span))
         diag_put_excerpt(&k, src, span);
 }
 

@@ -42,6 +42,9 @@ CliCommand cli_plot;   // cmd_plot.c: the curves and the construction as SVG
 /* keep_steps: also record the steps (derive --steps) */
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
                                int keep_steps, FILE *err, int *rc);
+/* the phase of the command from here on (base/budget.h), at the scheme's
+ * file (the file of the last cli_derive_file_steps or cli_plan_file) */
+void cli_mark_file(const char *phase);
 Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
                     int *rc, Derived **derived);
 

@@ -108,7 +108,7 @@ static void print_result(const DeriveArgs *a, const Derived *d, slong origin,
     }
     pc_xclose_memstream(m);
     fwrite(text, 1, len, out);
-    free(text);
+    pc_free(text);
 }
 
 int cli_derive(int argc, char **argv, FILE *out, FILE *err)

@@ -138,8 +138,8 @@ static int write_outputs(const EmitArgs *a, const Plan *p, const char *file,
     OutFile f[2] = {{a->hpath, htext, hlen}, {a->cpath, ctext, clen}};
     int rc = a->hpath ? outfile_write_all(f, 2, out, err)
                       : outfile_write_all(f + 1, 1, out, err);
-    free(ctext);
-    free(htext);
+    pc_free(ctext);
+    pc_free(htext);
     return rc;
 }
 
@@ -154,7 +154,7 @@ static int select_outputs(const EmitArgs *a, Plan *p, FILE *err)
     int n = args_select_outputs(sel, &a->outputs, p, a->usage, err);
     if (n >= 0)
         plan_keep_outputs(p, sel, n);
-    free(sel);
+    pc_free(sel);
     return n < 0 ? 2 : 0;
 }
 

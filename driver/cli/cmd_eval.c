@@ -12,6 +12,7 @@
  */
 #include "driver/cli/cli.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -94,18 +95,18 @@ static void block_init(Block *b, const Plan *p, const EvalSetup *s)
 static void block_clear(Block *b, const Plan *p, const EvalSetup *s)
 {
     for (int i = 0; i < p->nparams; i++)
-        free(b->pv[i]);
+        pc_free(b->pv[i]);
     for (int j = 0; j < s->nsel; j++) {
-        free(b->res[j]);
-        free(b->st[j]);
+        pc_free(b->res[j]);
+        pc_free(b->st[j]);
     }
-    free(b->pv);
-    free(b->res);
-    free(b->st);
-    free(b->row);
-    free(b->consts);
-    free(b->vals);
-    free(b->rst);
+    pc_free(b->pv);
+    pc_free(b->res);
+    pc_free(b->st);
+    pc_free(b->row);
+    pc_free(b->consts);
+    pc_free(b->vals);
+    pc_free(b->rst);
 }
 
 /* rows r0 .. r0+m-1 of the grid, evaluated */
@@ -262,6 +263,42 @@ static int eval_rows(FILE *out, FILE *err, TableFormat f, const Plan *p,
     return n.poles + n.nonfinite + n.domain > 0;
 }
 
+/* out gets the rows only once all of them are written: they go to a
+ * temporary file first (a counted memory stream where none can be made),
+ * so that a budget that runs out on the way (its handler ends the process)
+ * leaves nothing on stdout, as for every exit 1 of a scheme
+ * (docs/language.md).  The table can be larger than memory; the file
+ * holds it. */
+static int eval_committed(FILE *out, FILE *err, TableFormat f, const Plan *p,
+                          const EvalSetup *s)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *tmp = tmpfile();
+    FILE *t = tmp ? tmp : pc_xopen_memstream(&text, &len);
+    int rc = eval_rows(t, err, f, p, s);
+    if (!tmp) {
+        pc_xclose_memstream(t);
+        fwrite(text, 1, len, out);
+        pc_free(text);
+        return rc;
+    }
+    char buf[8192];
+    size_t n;
+    int bad = fflush(tmp) != 0 || ferror(tmp);
+    rewind(tmp);
+    while (!bad && (n = fread(buf, 1, sizeof buf, tmp)) > 0)
+        bad = fwrite(buf, 1, n, out) != n;
+    bad = bad || ferror(tmp);
+    fclose(tmp);
+    if (bad) {
+        fprintf(err, "pointcalc: cannot write the output: %s\n",
+                strerror(errno));
+        return 1;
+    }
+    return rc;
+}
+
 int cli_eval(int argc, char **argv, FILE *out, FILE *err)
 {
     EvalOptions o = {.format = TABLE_CSV, .usage = help_usage("eval")};
@@ -274,7 +311,7 @@ int cli_eval(int argc, char **argv, FILE *out, FILE *err)
         EvalSetup s;
         rc = eval_setup(&s, &o.args, p, o.usage, err);
         if (!rc)
-            rc = eval_rows(out, err, o.format, p, &s);
+            rc = eval_committed(out, err, o.format, p, &s);
         eval_setup_clear(&s);
         plan_free(p);
     }

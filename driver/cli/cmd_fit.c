@@ -212,7 +212,7 @@ static void node_values(Fit *f, const FitResult *r, double *y)
     double *res = pc_xmalloc(sizeof *res * f->ns);
     fit_residuals_x(f, r->nodes + 1, res, NULL);
     memcpy(y, f->fx + f->ns, sizeof *y * (size_t)f->n);
-    free(res);
+    pc_free(res);
 }
 
 static void print_json(FILE *out, const FitInfo *in, Fit *f, const FitResult *r,
@@ -363,7 +363,7 @@ static int run_and_print(void *ctx, Fit *f, const FitInfo *info)
             print_json(o->out, info, f, &r, y, cx, cy);
         else if (rc == 0)
             print_text(o->out, info, f, &r, y, cx, cy);
-        free(y);
+        pc_free(y);
     }
     fit_result_clear(&r);
     return rc;
@@ -397,8 +397,8 @@ int cli_fit(int argc, char **argv, FILE *out, FILE *err)
             f = fit_new_from(&a.o, &t, phi, coef, 1, err, &rc);
         else {
             fit_spline_free(t.spline);
-            free(phi);
-            free(coef);
+            pc_free(phi);
+            pc_free(coef);
         }
     } else {
         f = fit_new(a.target, &a.o, err, &rc);

@@ -57,7 +57,7 @@ typedef struct PlotArgs {
 static void args_clear(PlotArgs *a)
 {
     eval_args_clear(&a->ea);
-    free(a->atp.name);
+    pc_free(a->atp.name);
     args_names_clear(&a->aux);
 }
 
@@ -192,15 +192,15 @@ static void run_clear(Run *r)
 {
     if (r->pt)
         for (int i = 0; r->p && i < r->p->npoints; i++)
-            free(r->pt[i]);
-    free(r->pt);
-    free(r->range_o);
-    free(r->step_o);
-    free(r->arg_o);
-    free(r->sel);
-    free(r->consts);
-    free(r->params);
-    free(r->tangents);
+            pc_free(r->pt[i]);
+    pc_free(r->pt);
+    pc_free(r->range_o);
+    pc_free(r->step_o);
+    pc_free(r->arg_o);
+    pc_free(r->sel);
+    pc_free(r->consts);
+    pc_free(r->params);
+    pc_free(r->tangents);
     plan_free(r->p);
     derived_free(r->d);
 }
@@ -250,7 +250,7 @@ static Plan *lower_all(Run *r, FILE *err)
     Plan *p = lower_derived(d, err);
     d->outputs = keep;
     d->noutputs = n;
-    free(all);
+    pc_free(all);
     r->nout = (int)n;
     return p;
 }
@@ -266,7 +266,7 @@ static double scalar_value(const Run *r, int o)
     unsigned char st = 0;
     plan_eval(p, o, 1, (const double *const *)cols, r->consts,
               (const double *const *)r->pt, r->dim ? r->dim : 1, &v, &st);
-    free(cols);
+    pc_free(cols);
     return st ? NAN : v;
 }
 
@@ -279,7 +279,7 @@ static int uses_const(const Plan *p, int o, int k)
     for (int i = 0; i < p->nins && !used; i++)
         used = live[i] && p->ins[i].op == PLAN_INPUT &&
                p->ins[i].a == p->nparams + k;
-    free(live);
+    pc_free(live);
     return used;
 }
 
@@ -429,7 +429,7 @@ static int setup_params(Run *r, const PlotArgs *a, FILE *err,
             int ok = sample_number(t1, &r->lo) == 0 &&
                      sample_number(c1 + 1, &r->hi) == 0 &&
                      (!c2 || parse_count(c2 + 1, 100000, &n) == 0);
-            free(t1);
+            pc_free(t1);
             if (!ok)
                 rc = usage_error(err,
                                  "--param %s=%s: expected LO:HI or LO:HI:N "
@@ -482,7 +482,7 @@ static int setup_sweep(Run *r, FILE *err, const unsigned char *pseen)
                 "it as --param NAME=LO:HI, or leave only it "
                 "out), the others need --param NAME=VALUE",
                 args_name_list(free_names, nfree, list, sizeof list));
-        free(free_names);
+        pc_free(free_names);
         if (!rc && r->sweep < 0)
             rc = usage_error(err, p->nparams == 0
                                       ? "the scheme has no param to sweep"
@@ -567,7 +567,7 @@ static int setup_figure(Run *r, const PlotArgs *a, FILE *err)
                  isfinite(v[2] - v[0]) && isfinite(v[3] - v[1]);
         if (ok)
             memcpy(r->window, v, sizeof r->window);
-        free(v);
+        pc_free(v);
         if (!ok)
             return usage_error(err,
                                "--window '%s': expected XMIN,YMIN,XMAX,YMAX "
@@ -583,7 +583,7 @@ static int setup_figure(Run *r, const PlotArgs *a, FILE *err)
         long W, H = 0;
         int ok = parse_count(w, 10000, &W) == 0 && W >= 16 &&
                  (!x || (parse_count(x + 1, 10000, &H) == 0 && H >= 16));
-        free(w);
+        pc_free(w);
         if (!ok)
             return usage_error(err,
                                "--size '%s': expected W or WxH in pixels, "
@@ -609,7 +609,7 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
     unsigned char *cseen = pc_xcalloc((size_t)p->nconsts + 1, 1);
     rc = setup_consts(r, a, err, cseen);
     if (rc) {
-        free(cseen);
+        pc_free(cseen);
         return rc;
     }
     /* params: one swept (LO:HI[:N], or the one not given and declared with
@@ -623,7 +623,7 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
         rc = setup_sweep(r, err, pseen);
     if (!rc)
         rc = setup_needed_consts(r, err, cseen, pseen);
-    free(cseen);
+    pc_free(cseen);
     if (!rc && !pseen[r->sweep]) {
         r->lo = scalar_value(r, r->range_o[r->sweep]);
         r->hi = scalar_value(r, r->range_o[r->sweep] + 1);
@@ -634,7 +634,7 @@ static int setup(Run *r, const PlotArgs *a, FILE *err)
                              p->params[r->sweep], r->lo, r->hi,
                              p->params[r->sweep]);
     }
-    free(pseen);
+    pc_free(pseen);
     if (rc)
         return rc;
     if (r->dim == 0)
@@ -652,9 +652,9 @@ typedef struct Construction {
 
 static void construction_clear(Construction *c)
 {
-    free(c->marks);
-    free(c->lines);
-    free(c->xyz);
+    pc_free(c->marks);
+    pc_free(c->lines);
+    pc_free(c->xyz);
 }
 
 /* 1 when every base point plan output o reads is given */
@@ -826,10 +826,10 @@ int cli_plot(int argc, char **argv, FILE *out, FILE *err)
         return rc;
     }
     budget_arm(bo.max_seconds, bo.max_memory);
-    budget_phase("lowering the equations to numbers");
+    cli_mark_file("lowering the equations to numbers"); /* at each output */
     r.p = lower_all(&r, err);
     budget_disarm(); /* the drawing takes what the budget of samples allows */
-    budget_phase("drawing the plot");
+    cli_mark_file("drawing the plot");
     if (!r.p) {
         run_clear(&r);
         args_clear(&a);
@@ -907,8 +907,8 @@ int cli_plot(int argc, char **argv, FILE *out, FILE *err)
         fprintf(err, "pointcalc: plot: nothing of the curves is drawable "
                      "over the range (every sample a pole, undefined or not "
                      "finite)\n");
-    free(svg);
-    free(title);
+    pc_free(svg);
+    pc_free(title);
     construction_clear(&c);
     run_clear(&r);
     args_clear(&a);

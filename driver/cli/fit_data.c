@@ -50,7 +50,7 @@ static void spline_solve(FitSpline *s)
     }
     for (int i = n - 2; i >= 1; i--)
         s->m[i] -= c[i] * s->m[i + 1];
-    free(c);
+    pc_free(c);
 }
 
 static int data_error(FILE *err, const char *path, long line, const char *why)
@@ -124,10 +124,10 @@ void fit_spline_free(FitSpline *s)
 {
     if (!s)
         return;
-    free(s->x);
-    free(s->y);
-    free(s->m);
-    free(s);
+    pc_free(s->x);
+    pc_free(s->y);
+    pc_free(s->m);
+    pc_free(s);
 }
 
 size_t fit_spline_eval(const FitSpline *s, int o, size_t n, const double *x,

@@ -10,10 +10,16 @@
  *           `-> sample and draw: SVG       plot    (plot.c)
  *
  * with the options every command shares in args.c.  This file only picks
- * the command.  Exit status: 0 success, 1 an error in the scheme, 2 a
+ * the command, and runs it on a thread of CLI_STACK bytes of stack: the
+ * passes recurse over expression trees, and the deepest the language
+ * allows (2000 levels) need about 4 MiB (docs/api.md, "Stack"), whatever
+ * `ulimit -s` says.  Exit status: 0 success, 1 an error in the scheme, 2 a
  * usage error; nothing reaches stdout when the scheme has an error.
  */
 #include <errno.h>
+#include <malloc.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -88,11 +94,57 @@ static int run(int argc, char **argv)
     return c->run(argc - 1, argv + 1, stdout, stderr);
 }
 
+/* the command's thread: 4 times what the deepest expression needs */
+#define CLI_STACK ((size_t)16 << 20)
+
+typedef struct Run {
+    int argc;
+    char **argv;
+    int rc;
+} Run;
+
+static void *run_thread(void *arg)
+{
+    Run *r = arg;
+    /* the budget's SIGALRM comes here, where the statement is marked */
+    sigset_t alarm;
+    sigemptyset(&alarm);
+    sigaddset(&alarm, SIGALRM);
+    pthread_sigmask(SIG_UNBLOCK, &alarm, NULL);
+    r->rc = run(r->argc, r->argv);
+    flint_cleanup(); /* this thread's caches */
+    return NULL;
+}
+
+/* run() on a thread of CLI_STACK bytes (on this one if none can be made:
+ * the passes then stop with a located error where the stack runs low) */
+static int run_on_big_stack(int argc, char **argv)
+{
+    Run r = {argc, argv, 0};
+    pthread_attr_t a;
+    pthread_t th;
+    sigset_t alarm, old;
+    sigemptyset(&alarm);
+    sigaddset(&alarm, SIGALRM);
+    pthread_sigmask(SIG_BLOCK, &alarm, &old);
+    /* one malloc arena: a thread's own would reserve 64 MiB of address
+     * space, which a `ulimit -v` counts (the main thread only waits) */
+    mallopt(M_ARENA_MAX, 1);
+    int made = pthread_attr_init(&a) == 0;
+    made = made && pthread_attr_setstacksize(&a, CLI_STACK) == 0 &&
+           pthread_create(&th, &a, run_thread, &r) == 0;
+    pthread_attr_destroy(&a);
+    if (made)
+        pthread_join(th, NULL);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    return made ? r.rc : run(argc, argv);
+}
+
 int main(int argc, char **argv)
 {
     /* before anything allocates: GMP and FLINT under the one policy */
     mem_use_for_gmp_flint();
-    int rc = run(argc, argv);
+    int rc = run_on_big_stack(argc, argv);
     flint_cleanup_master();
     /* output that did not reach its file (a full disk, a closed pipe) is
      * an error too, never a silent exit 0 */

@@ -113,7 +113,7 @@ static int resolve_links(char **res, const char *path, int *proc)
             return 0;
         }
         if (hops == MAX_LINKS) {
-            free(cur);
+            pc_free(cur);
             errno = ELOOP;
             return -1;
         }
@@ -121,7 +121,7 @@ static int resolve_links(char **res, const char *path, int *proc)
         ssize_t k = readlink(cur, buf, sizeof buf - 1);
         if (k < 0) {
             int e = errno;
-            free(cur);
+            pc_free(cur);
             errno = e;
             return -1;
         }
@@ -135,9 +135,9 @@ static int resolve_links(char **res, const char *path, int *proc)
             next = pc_xmalloc(dn + (size_t)k + 1);
             memcpy(next, d, dn);
             memcpy(next + dn, buf, (size_t)k + 1);
-            free(d);
+            pc_free(d);
         }
-        free(cur);
+        pc_free(cur);
         cur = next;
         if (strncmp(cur, "/proc/", 6) == 0)
             *proc = 1;
@@ -160,11 +160,11 @@ static char *canonical(const char *path)
         size_t n = strlen(rd) + strlen(base) + 2;
         c = pc_xmalloc(n);
         snprintf(c, n, "%s/%s", strcmp(rd, "/") == 0 ? "" : rd, base);
-        free(rd);
-        free(r);
+        free(rd); /* realpath: libc's block, uncounted */
+        pc_free(r);
     } else
         c = r;
-    free(d);
+    pc_free(d);
     return c;
 }
 
@@ -183,8 +183,8 @@ int outfile_same(const char *a, const char *b)
         return 0;
     char *ca = canonical(a), *cb = canonical(b);
     int same = strcmp(ca, cb) == 0;
-    free(ca);
-    free(cb);
+    pc_free(ca);
+    pc_free(cb);
     return same;
 }
 
@@ -196,7 +196,7 @@ static char *temp_name(const char *path)
     char *tmp = pc_xmalloc(cap);
     memcpy(tmp, d, dn);
     snprintf(tmp + dn, cap - dn, ".%s.XXXXXX", path + dn);
-    free(d);
+    pc_free(d);
     return tmp;
 }
 
@@ -234,7 +234,7 @@ static int prepare(Pending *pd, const OutFile *f)
     } else if (resolve_links(&pd->target, f->path, &proc) != 0)
         return -1;
     if (!pd->through && proc) {
-        free(pd->target);
+        pc_free(pd->target);
         pd->target = NULL;
         pd->through = 1;
     }
@@ -264,7 +264,7 @@ static int prepare(Pending *pd, const OutFile *f)
     }
     signals_block(0, &saved);
     if (fd < 0) {
-        free(pd->tmp);
+        pc_free(pd->tmp);
         pd->tmp = NULL;
         if (pd->exists && (e == EACCES || e == EPERM)) {
             /* a file we may write in a directory we may not: written in
@@ -348,7 +348,7 @@ int outfile_write_all(const OutFile *files, int n, FILE *out, FILE *err)
             signals_block(1, &saved);
             sig_tmp[pd[i].sig] = NULL;
             signals_block(0, &saved);
-            free(pd[i].tmp);
+            pc_free(pd[i].tmp);
             pd[i].tmp = NULL;
         }
     sigset_t saved;
@@ -360,8 +360,8 @@ int outfile_write_all(const OutFile *files, int n, FILE *out, FILE *err)
     signals_block(0, &saved);
     signals_restore(old);
     for (int i = 0; i < np; i++) {
-        free(pd[i].tmp);
-        free(pd[i].target);
+        pc_free(pd[i].tmp);
+        pc_free(pd[i].target);
     }
     for (int i = 0; i < n && rc == 0; i++)
         if (!files[i].path)

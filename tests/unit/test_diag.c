@@ -563,6 +563,11 @@ static void test_sink_location_and_excerpt(void **state)
     b.n = 0;
     diag_put_location(&k, &src, (Span){-5, -1}, "error");
     assert_string_equal(b.text, "dir/x.pcs:1:1: error: ");
+    /* the whole file (the budget's phases before and after the
+     * statements): the name alone */
+    b.n = 0;
+    diag_put_location(&k, &src, DIAG_WHOLE_FILE, "error");
+    assert_string_equal(b.text, "dir/x.pcs: error: ");
     source_clear(&src);
 }
 

@@ -182,11 +182,11 @@ static char *run_example(int i)
             sb_putn(&b, "\n", 1);
         }
     }
-    free(par);
-    free(parv);
-    free(con);
-    free(pts);
-    free(ptv);
+    pc_free(par);
+    pc_free(parv);
+    pc_free(con);
+    pc_free(pts);
+    pc_free(ptv);
     pc_plan_free(p);
     pc_scheme_free(s);
     return sb_take(&b);
@@ -253,11 +253,11 @@ static void test_threads_agree(void **state)
             if (strcmp(jobs[t].got[i], expected[i]) != 0)
                 fail_msg("thread %d, %s: not the single-threaded result", t,
                          ex[i].path);
-            free(jobs[t].got[i]);
+            pc_free(jobs[t].got[i]);
         }
     }
     for (int i = 0; i < nex; i++)
-        free(expected[i]);
+        pc_free(expected[i]);
     pc_thread_cleanup(); // the main thread's caches too
     /* every counted byte allocated since main began has been freed */
     assert_int_equal(mem_in_use(), mem_start);
@@ -286,15 +286,15 @@ static void test_op_names(void **state)
 int main(void)
 {
     pc_use_memory_budget((size_t)4 << 30);
-    mem_start = mem_in_use();
     load_examples();
+    mem_start = mem_in_use(); // the examples' paths stay to the end
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_threads_agree),
         cmocka_unit_test(test_op_names),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     for (int i = 0; i < nex; i++) {
-        free(ex[i].path);
+        pc_free(ex[i].path);
         free(ex[i].text);
     }
     pc_cleanup();
