@@ -237,6 +237,7 @@ LINT_C = $(filter %.c,$(foreach d,$(LAYERS) driver driver/cli,$(wildcard $(d)/*.
 lint: $(B)/pointcalc $(B)/libpointcalc.a
 	tests/lint/layers.sh
 	tests/lint/selftest.sh
+	tests/lint/alloc.sh
 	@tests/lint/format.sh $(FORMAT_SRC)
 	tests/lint/exports.sh $(B)
 	python3 tests/lint/funclen.py $(sort $(LINT_C))

@@ -395,7 +395,7 @@ int pc_natural_fit(const double *pts, const unsigned char *has_angle, int n,
         }
     if (rc != PC_EINVAL)
         nat_curve_free(&c);
-    free(p);
+    pc_free(p);
     return rc;
 }
 

@@ -232,8 +232,8 @@ int nat_table_build(NatTable *t, const NatSegment *seg)
 
 void nat_table_free(NatTable *t)
 {
-    free(t->cx);
-    free(t->cy);
+    pc_free(t->cx);
+    pc_free(t->cy);
     t->cx = t->cy = NULL;
 }
 

@@ -124,8 +124,8 @@ void nat_chord_angles(NatPoint *p, int n)
 
 void nat_curve_free(NatCurve *c)
 {
-    free(c->seg);
-    free(c->joint);
+    pc_free(c->seg);
+    pc_free(c->joint);
     c->seg = NULL;
     c->joint = NULL;
     c->nseg = 0;

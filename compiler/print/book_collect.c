@@ -85,8 +85,8 @@ static void coeffs_clear(Coeffs *k, const Ctx *c)
 {
     for (slong j = 0; j < k->n; j++)
         fmpz_mpoly_clear(k->a + j, c->r->ctx);
-    free(k->a);
-    free(k->e);
+    pc_free(k->a);
+    pc_free(k->e);
 }
 
 /* s, being built, with more leaves to come (at least more), would have

@@ -80,7 +80,7 @@ static void push_factor(PTerm *t, const fmpz_mpoly_t p, ulong e, int depth,
             a.exp *= e;
             book_term_push(t, a);
         }
-        free(u->a);
+        pc_free(u->a);
         u->a = NULL;
         u->n = 0;
         book_sum_free(s, c);
@@ -139,7 +139,7 @@ static void primitive_split(fmpz_mpoly_t q, fmpz_t g, ulong *lo,
     }
     /* (the same order: dividing by a monomial keeps degrevlex's) */
     fmpz_clear(cq);
-    free(e);
+    pc_free(e);
 }
 
 /* FLINT's factorisation of p (ring_factor), or what form_factored makes
@@ -223,9 +223,9 @@ static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
             f->num++;
         }
     }
-    free(bars);
+    pc_free(bars);
     fmpz_mpoly_clear(q, r->ctx);
-    free(lo);
+    pc_free(lo);
     fmpz_clear(g);
     return ok;
 }
@@ -294,8 +294,8 @@ static int divide_known(fmpz_mpoly_t q, ulong *e, const Ctx *c)
             fmpz_mpoly_degrees_si(dq, q, r->ctx);
     }
     fmpz_mpoly_clear(quo, r->ctx);
-    free(dh);
-    free(dq);
+    pc_free(dh);
+    pc_free(dq);
     return found;
 }
 
@@ -352,8 +352,8 @@ static int factor_by_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
     }
     fmpz_mpoly_factor_clear(fq, r->ctx);
     fmpz_mpoly_clear(q, r->ctx);
-    free(e);
-    free(lo);
+    pc_free(e);
+    pc_free(lo);
     fmpz_clear(g);
     return ok;
 }
@@ -464,8 +464,8 @@ PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
             found = 1;
         }
     }
-    free(lo);
-    free(e);
+    pc_free(lo);
+    pc_free(e);
     if (fmpz_mpoly_is_fmpz(q, r->ctx)) {
         /* what is left is a unit: its sign */
         if (fmpz_sgn(q->coeffs) < 0)

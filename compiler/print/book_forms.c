@@ -38,7 +38,7 @@ static slong term_degree(const fmpz_mpoly_t p, slong k, const Ctx *c)
     slong d = 0;
     for (slong v = 0; v < r->nvars; v++)
         d += (slong)e[v];
-    free(e);
+    pc_free(e);
     return d;
 }
 
@@ -80,7 +80,7 @@ PSum *book_form_expanded(const fmpz_mpoly_t p, const Ctx *c)
             if (e[v])
                 book_term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, e[v]});
     }
-    free(e);
+    pc_free(e);
     book_sum_finish(s, p, c);
     return s;
 }
@@ -196,7 +196,7 @@ static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
             av[j] = v;
         }
     if (na == 0) {
-        free(av);
+        pc_free(av);
         return NULL;
     }
     slong len = fmpz_mpoly_length(p, r->ctx), ng = 0;
@@ -290,16 +290,16 @@ static PSum *form_knots(const fmpz_mpoly_t p, int depth, const Ctx *c)
             book_term_push(t, xs[i]);
     }
     fmpz_mpoly_clear(quo, r->ctx);
-    free(xs);
+    pc_free(xs);
     for (slong j = 0; j < ng; j++) {
-        free(g[j].ex);
+        pc_free(g[j].ex);
         fmpz_mpoly_clear(g[j].coef, r->ctx);
     }
     fmpz_clear(cf);
-    free(g);
-    free(ex);
-    free(e);
-    free(av);
+    pc_free(g);
+    pc_free(ex);
+    pc_free(e);
+    pc_free(av);
     book_sum_finish(s, p, c);
     s->keep_order = 1;
     return s;
@@ -398,7 +398,7 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
         s = render_memo(p, depth, c);
     }
     fmpz_mpoly_clear(q, r->ctx);
-    free(mask);
+    pc_free(mask);
     return s;
 }
 

@@ -100,7 +100,7 @@ void book_memo_clear(Memo *m, const Ctx *c)
     m->n = m->alloc = 0;
     for (slong i = 0; i < m->nfac; i++)
         fmpz_mpoly_clear(m->fac + i, c->r->ctx);
-    free(m->fac);
+    pc_free(m->fac);
     m->fac = NULL;
     m->nfac = m->facalloc = 0;
 }

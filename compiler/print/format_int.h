@@ -20,11 +20,6 @@
 #include "compiler/derive.h"
 
 void format_json(FILE *out, const Derived *d);
-/* Output i of d (i < 0: none) is the statement being printed, for a budget
- * handler's message (base/budget.h: "ran out while printing the result" at
- * the output's definition).  *src is d's text, made by the first mark
- * (src->text NULL until then) and cleared by the mark of none. */
-void format_mark_output(Source *src, const Derived *d, slong i);
 /* "key": "WEIGHT", w as derive's JSON writes every weight (format_weight_k:
  * abs kept); the outputs' terms and the knots' values and jumps */
 void format_json_weight(FILE *out, const char *key, const RatFun w,

@@ -357,7 +357,7 @@ static int run_and_print(void *ctx, Fit *f, const FitInfo *info)
         if (o->plot) { // before stdout: a picture that fails is exit 1
             char *path = plot_path(o);
             rc = fit_plot_svg(path, f, &r, y, cx, cy, o->err);
-            free(path);
+            pc_free(path);
         }
         if (rc == 0 && o->format == FIT_JSON)
             print_json(o->out, info, f, &r, y, cx, cy);

@@ -385,10 +385,10 @@ static void print_json(FILE *out, const NatArgs *a, const NatCli *k)
 static void args_free(NatArgs *a)
 {
     for (int c = 0; c < a->ncurves; c++) {
-        free(a->curves[c].pts);
+        pc_free(a->curves[c].pts);
         nat_curve_free(&a->curves[c].curve);
     }
-    free(a->curves);
+    pc_free(a->curves);
 }
 
 static int fit_all(NatArgs *a, FILE *err)

@@ -81,7 +81,7 @@ int fit_curve_coefficients(double *coef, const Derived *d, int out, slong var,
     fmpq_clear(q);
     fmpz_clear(den);
     fmpz_clear(c);
-    free(ex);
+    pc_free(ex);
     return rc;
 }
 
@@ -105,11 +105,11 @@ int fit_curve_table(double *phi, const Plan *p, const double *consts, int out,
     for (int j = 0; j < nparams; j++)
         params[j] = j == param ? t : t + ns;
     size_t bad = plan_eval(p, out, ns, params, consts, pts, n, phi, st);
-    free(st);
-    free(params);
-    free(pts);
-    free(unit);
-    free(t);
+    pc_free(st);
+    pc_free(params);
+    pc_free(pts);
+    pc_free(unit);
+    pc_free(t);
     return bad ? -1 : 0;
 }
 
@@ -159,7 +159,7 @@ static Plan *derive_target(const char *expr, FILE *err)
     else if (d)
         p = lower_derived(d, err);
     derived_free(d);
-    free(text);
+    pc_free(text);
     return p;
 }
 
@@ -222,9 +222,9 @@ static int check_target(const Fit *f, FILE *err)
                    f->tg.label, x[first],
                    f->tg.spline ? "outside the data" : status_text(st[first]),
                    count, n, f->o.lo, f->o.hi, x[first], x[last]);
-    free(st);
-    free(v);
-    free(x);
+    pc_free(st);
+    pc_free(v);
+    pc_free(x);
     return count ? -1 : 0;
 }
 
@@ -268,7 +268,7 @@ static void target_clear(FitTarget *t)
 {
     plan_free(t->plan);
     fit_spline_free(t->spline);
-    free(t->consts);
+    pc_free(t->consts);
     t->consts = NULL;
     t->plan = NULL;
     t->spline = NULL;
@@ -280,8 +280,8 @@ Fit *fit_new_from(const FitOptions *o, FitTarget *t, double *phi, double *coef,
     *rc = 2;
     if (fit_check_options(o, err) != 0) {
         target_clear(t);
-        free(phi);
-        free(coef);
+        pc_free(phi);
+        pc_free(coef);
         return NULL;
     }
     *rc = 1;
@@ -327,8 +327,8 @@ Fit *fit_new(const char *target, const FitOptions *o, FILE *err, int *rc)
     if (!t.plan || fit_lagrange_curve(o->nodes, (size_t)o->samples + 1, &phi,
                                       &coef, err) != 0) {
         target_clear(&t);
-        free(phi);
-        free(coef);
+        pc_free(phi);
+        pc_free(coef);
         return NULL;
     }
     return fit_new_from(o, &t, phi, coef, 1, err, rc);
@@ -339,17 +339,17 @@ void fit_free(Fit *f)
     if (!f)
         return;
     target_clear(&f->tg);
-    free(f->tpar);
-    free(f->tzero);
-    free(f->phi);
-    free(f->coef);
-    free(f->x);
-    free(f->xs);
-    free(f->fx);
-    free(f->fpx);
-    free(f->st);
-    free(f->jx);
-    free(f);
+    pc_free(f->tpar);
+    pc_free(f->tzero);
+    pc_free(f->phi);
+    pc_free(f->coef);
+    pc_free(f->x);
+    pc_free(f->xs);
+    pc_free(f->fx);
+    pc_free(f->fpx);
+    pc_free(f->st);
+    pc_free(f->jx);
+    pc_free(f);
 }
 
 /* f (output 0) or f' (output 1) at the ns + n points f->xs into v; -1
@@ -647,12 +647,12 @@ int fit_run(Fit *f, FitResult *res)
         res->lsq.stop = LSQ_STOP_EVAL;
     }
     res->cheb_lagrange_mse = cheb_lagrange_mse(f);
-    free(r);
+    pc_free(r);
     return best >= 0 && res->lsq.converged ? 0 : 1;
 }
 
 void fit_result_clear(FitResult *r)
 {
-    free(r->nodes);
+    pc_free(r->nodes);
     r->nodes = NULL;
 }

@@ -91,7 +91,7 @@ int fit_plot_svg(const char *path, const Fit *f, const FitResult *r,
     svgfig_line_end(&g);
     for (int k = 0; k < f->n; k++)
         svgfig_circle(&g, "node", r->nodes[k], y[k], 4);
-    free(fx);
-    free(st);
+    pc_free(fx);
+    pc_free(st);
     return svgfig_end(&g, path, err);
 }

@@ -71,11 +71,11 @@ typedef struct FitFront {
 static void front_clear(FitFront *F)
 {
     for (int j = 0; j < F->nparams; j++)
-        free(F->params[j]);
-    free(F->params);
-    free(F->fits);
-    free(F->outputs);
-    free(F->text);
+        pc_free(F->params[j]);
+    pc_free(F->params);
+    pc_free(F->fits);
+    pc_free(F->outputs);
+    pc_free(F->text);
 }
 
 static char *read_text(const char *path, size_t *len, FILE *err)
@@ -147,7 +147,7 @@ static int front(FitFront *F, const char *path, const FitOptions *o, FILE *err)
     char *used = pc_xcalloc((size_t)o->ndefines + 1, 1);
     if (diag.nerrors == 0)
         expand_scheme(sc, &arena, &diag, o->defines, o->ndefines, used);
-    free(used);
+    pc_free(used);
     SemaInfo *I = diag.nerrors == 0 ? sema_check(sc, &arena, &diag) : NULL;
     if (diag.nerrors == 0)
         collect(F, sc, I);
@@ -172,25 +172,25 @@ static char *fit_text(const FitFront *F, const FitStmt *s, size_t *len)
     int xl = s->xs.end - s->xs.start, fl = s->fs.end - s->fs.start;
     const char *X = F->text + s->xs.start, *f = F->text + s->fs.start;
     char *all = pc_xasprintf("%s\n", t);
-    free(t);
+    pc_free(t);
     for (int j = 0; j < F->nparams; j++) {
         char *next = pc_xasprintf(
             "%s__fit_f%d = diff(%.*s, %s)\n__fit_x%d = diff(%.*s, %s)\n", all,
             j, fl, f, F->params[j], j, xl, X, F->params[j]);
-        free(all);
+        pc_free(all);
         all = next;
     }
     char *next = pc_xasprintf("%soutput %.*s, %.*s", all, xl, X, fl, f);
-    free(all);
+    pc_free(all);
     all = next;
     for (int w = 0; w < 2; w++)
         for (int j = 0; j < F->nparams; j++) {
             next = pc_xasprintf("%s, __fit_%c%d", all, w ? 'x' : 'f', j);
-            free(all);
+            pc_free(all);
             all = next;
         }
     next = pc_xasprintf("%s\n", all);
-    free(all);
+    pc_free(all);
     *len = strlen(next);
     return next;
 }
@@ -232,9 +232,9 @@ static void weights_at(const Plan *p, const double *consts, int out, int param,
     for (int j = 0; j < np; j++)
         params[j] = j == param ? &t : &zero;
     plan_eval(p, out, 1, params, consts, pts, n, w, &st);
-    free(params);
-    free(pts);
-    free(unit);
+    pc_free(params);
+    pc_free(pts);
+    pc_free(unit);
 }
 
 /* the t in [0, 1] where base point k's weight is 1 and the others 0:
@@ -303,7 +303,7 @@ static int check_interpolation(const Derived *d, const Plan *p,
         }
     }
     *ends = fabs(t0) <= FIT_INTERP_TOL && fabs(t1 - 1) <= FIT_INTERP_TOL;
-    free(grid);
+    pc_free(grid);
     return rc;
 }
 
@@ -389,7 +389,7 @@ static int const_values(const Derived *d, const Plan *p, const FitStmt *s,
                           "fit needs numbers: the const '%s' has no value; "
                           "expected --set %s=VALUE",
                           p->consts[c], p->consts[c]);
-            free(v);
+            pc_free(v);
             return -1;
         }
         v[c] = pc_strtod(val, NULL);
@@ -411,7 +411,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
                          .ndefines = o->ndefines,
                          .bad_define = &bad_define};
     Derived *d = derive_source_ex(path, text, len, err, NULL, &opt);
-    free(text);
+    pc_free(text);
     if (bad_define) { // a usage error, as for derive
         derived_free(d);
         return 2;
@@ -424,7 +424,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
         rc = 2;
     if (!p || cv != 0 || find_params(d, F, s, &xp, &fp, err) != 0 ||
         check_interpolation(d, p, consts, s, xp, np, &ends, err) != 0) {
-        free(consts);
+        pc_free(consts);
         plan_free(p);
         derived_free(d);
         return rc;
@@ -444,7 +444,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
     }
     if (fit_curve_coefficients(coef, d, 0, xp, fo.nodes) != 0) {
         BookOptions bo = {.origin = -1};
-        free(coef);
+        pc_free(coef);
         coef = NULL;
         eq = book_output(d, &d->outputs[0], &bo);
     }
@@ -459,9 +459,9 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
         plan_free(p);
         t.plan = NULL;
         if (fit_target_data(&t, data, &fo, err) != 0) {
-            free(phi);
-            free(coef);
-            free(eq);
+            pc_free(phi);
+            pc_free(coef);
+            pc_free(eq);
             derived_free(d);
             return 1;
         }
@@ -474,7 +474,7 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
         rc = report(ctx, f, &info);
     }
     fit_free(f);
-    free(eq);
+    pc_free(eq);
     derived_free(d);
     return rc;
 }

@@ -193,7 +193,7 @@ static void c_tables(FILE *out, const NatCurve *c, const char *name)
             law[5 * i + 1 + j] = c->seg[i].k[j];
     }
     c_array(out, name, "law", law, (size_t)ns * 5);
-    free(law);
+    pc_free(law);
     c_array(out, name, "start", start, (size_t)ns + 1);
     c_array(out, name, "scale", scale, (size_t)ns);
     c_array(out, name, "offset", off, (size_t)ns);
@@ -201,9 +201,9 @@ static void c_tables(FILE *out, const NatCurve *c, const char *name)
     c_array(out, name, "ncoef", nc, (size_t)ns);
     c_array(out, name, "cx", cx, total);
     c_array(out, name, "cy", cy, total);
-    free(start);
-    free(cx);
-    free(cy);
+    pc_free(start);
+    pc_free(cx);
+    pc_free(cy);
 }
 
 /* the evaluator: $ is the name, # the segments' count */
@@ -271,6 +271,6 @@ int natural_emit_c(const char *path, const NatCurve *c, const char *name,
     put_template(out, c_body, name, c->nseg);
     pc_xclose_memstream(out);
     int rc = outfile_write(path, text, len, NULL, err);
-    free(text);
+    pc_free(text);
     return rc;
 }

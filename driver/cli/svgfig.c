@@ -90,7 +90,7 @@ int svgfig_end(SvgFig *g, const char *path, FILE *err)
     pc_xclose_memstream(g->out);
     g->out = NULL;
     int rc = outfile_write(path, g->text, g->len, NULL, err);
-    free(g->text);
+    pc_free(g->text);
     g->text = NULL;
     return rc;
 }
