@@ -160,6 +160,9 @@ void derived_free(Derived *d)
     for (slong i = 0; i < d->nnamed; i++)
         free(d->named[i].name);
     free(d->named);
+    for (slong i = 0; i < d->nchecks; i++)
+        free(d->checks[i].detail);
+    free(d->checks);
     if (d->kernels) {
         kernels_clear(d->kernels);
         free(d->kernels);

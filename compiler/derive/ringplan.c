@@ -9,6 +9,8 @@
  */
 #include "compiler/derive/derive_int.h"
 
+#include "compiler/check.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -115,6 +117,15 @@ static slong plan_kernel_slots(const SemaInfo *info, slong npoints)
             count_coord_indices(e->lhs, &coord_ks, &ncoord_ks);
             count_coord_indices(e->rhs, &coord_ks, &ncoord_ks);
         }
+    }
+    /* the checks' values are derived too (compiler/check.h) */
+    for (int i = 0; i < info->nchecks; i++) {
+        const CheckInfo *c = info->checks[i]->check;
+        for (int k = 0; k < c->nops; k++)
+            if (c->ops[k]) {
+                count_kernel_uses(c->ops[k], &calls, &ops, &pis, &metric);
+                count_coord_indices(c->ops[k], &coord_ks, &ncoord_ks);
+            }
     }
     /* the params' ranges and the consts' bounds are derived too
      * (Derived.range, Derived.bound) */

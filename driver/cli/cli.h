@@ -38,9 +38,12 @@ CliCommand cli_plot;   // cmd_plot.c: the curves and the construction as SVG
  * budget); NULL with *rc = 1 when an output cannot be lowered.  With
  * derived not NULL, the derivation is handed over there (the caller
  * frees it) when a Plan is returned. */
-/* keep_steps: also record the steps (derive --steps) */
+/* keep: CLI_KEEP_STEPS also records the steps (derive --steps);
+ * CLI_KEEP_CHECKS returns the Derived also when only checks failed (with
+ * *rc = 1: derive --format json lists every verdict) */
+enum { CLI_KEEP_STEPS = 1, CLI_KEEP_CHECKS = 2 };
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
-                               int keep_steps, FILE *err, int *rc);
+                               int keep, FILE *err, int *rc);
 Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
                     int *rc, Derived **derived);
 

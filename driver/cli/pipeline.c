@@ -6,16 +6,17 @@
 #include "driver/cli/cli.h"
 
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
-                               int keep_steps, FILE *err, int *rc)
+                               int keep, FILE *err, int *rc)
 {
-    int bad_define = 0;
+    int bad_define = 0, nerr = 0;
     DeriveOptions opt = derive_options_cli(b, err, &bad_define);
-    opt.keep_steps = keep_steps;
+    opt.keep_steps = (keep & CLI_KEEP_STEPS) != 0;
+    opt.keep_failed_checks = (keep & CLI_KEEP_CHECKS) != 0;
     budget_arm(b->max_seconds, b->max_memory);
-    Derived *d = derive_file_ex(file, err, NULL, &opt);
+    Derived *d = derive_file_ex(file, err, &nerr, &opt);
     budget_disarm(); /* the derivation is budgeted, not the output */
-    budget_phase("printing the result"); /* for the memory budget */
-    *rc = d ? 0 : bad_define ? 2 : 1;
+    budget_phase("printing the result");      /* for the memory budget */
+    *rc = d ? nerr != 0 : bad_define ? 2 : 1; /* d and 1: failed checks */
     return d;
 }
 
