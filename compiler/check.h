@@ -10,6 +10,10 @@
  *   check contact(k, M at t = a, N at u = b) contact of order exactly k
  *   check Ck(M at t = a, N at u = b)         C^k at a joint (k = 0..8)
  *   check Gk(M at t = a, N at u = b)         G^k at a joint
+ *   check order(M, t) = n                    the degree of M in t (its
+ *                                            reduced equation's numerators
+ *                                            and denominator): the order of
+ *                                            a properly parametrised curve
  *   check Ck(M at t = a), Gk(M at t = a)     the same at a knot of one
  *                                            composite curve (abs, sign):
  *                                            its left side against its right
@@ -46,7 +50,8 @@ enum { CHECK_MAX_ORDER = 8 };
     X(CK_TANGENT, "tangent")   /* ops A, B, then M's jet 0..order */           \
     X(CK_CONTACT, "contact")   /* ops M's jet 0..order+1, N's jet */           \
     X(CK_C, "C")               /* ops M's jet 0..order, N's jet 0..order */    \
-    X(CK_G, "G")               /* the same */
+    X(CK_G, "G")               /* the same */                                  \
+    X(CK_ORDER, "order")       /* ops M; order n, knot_var t */
 
 typedef enum CheckKind {
 #define X(k, s) k,
@@ -63,7 +68,8 @@ struct CheckInfo {
     int jet0;     // the first op of the first jet (CK_TANGENT: 2, else 0)
     int jetlen;   // the length of each jet
     Span what[2]; // the curves' arguments (`M at t = 1`), for messages
-    int knot_var; // Ck(M at t = a) of one curve: the param's ring
+    int knot_var; // order(M, t): t's ring variable.
+                  // Ck(M at t = a) of one curve: the param's ring
                   // variable; the jets (left, then right) are the one-sided
                   // derivatives at a, ops 2*jetlen and 2*jetlen + 1 are M and
                   // a, the jets' ops NULL; else -1

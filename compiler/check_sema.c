@@ -37,7 +37,8 @@ typedef struct Resolver {
 static const char *const claims =
     "expected a claim after 'check': 'L = R', 'on(P, line(A, B))', "
     "'parallel(U, V)', 'tangent(M at t = v, line(A, B))', 'contact(k, M at "
-    "t = a, N at u = b)', 'Ck(M at t = a, N at u = b)' or 'Gk(...)' "
+    "t = a, N at u = b)', 'Ck(M at t = a, N at u = b)', 'Gk(...)' or "
+    "'order(M, t) = N' "
     "(docs/language.md, Checks)";
 
 static Node *nth(Node *call, int i)
@@ -97,10 +98,8 @@ static int is_param(Resolver *R, const Node *n, const char *what)
 {
     if (n->kind == ND_NAME && n->sym && n->sym->kind == SYM_PARAM)
         return 1;
-    diag_error(R->d, n->span,
-               "expected a parameter in %s, found '%s'; the curve's point is "
-               "written 'M at t = VALUE' with t a param",
-               what, n->kind == ND_NAME ? n->text : "an expression");
+    diag_error(R->d, n->span, "expected a param in %s, found '%s'", what,
+               n->kind == ND_NAME ? n->text : "an expression");
     return 0;
 }
 
@@ -127,7 +126,7 @@ static int add_jet(Resolver *R, Node *arg, int len, Node **mvv)
     int k = R->type(R->ctx, m);
     if (k < 0 || R->type(R->ctx, var) < 0 || R->type(R->ctx, val) < 0)
         return -1;
-    if (!is_param(R, var, "a curve's point"))
+    if (!is_param(R, var, "a curve's point 'M at t = VALUE'"))
         return -1;
     if (k == 0) {
         diag_error(R->d, m->span,
@@ -196,13 +195,36 @@ static int arity(Resolver *R, Node *call, int n, const char *form)
     return -1;
 }
 
+/* a whole number of literals, + - * and unary minus (ints are literals
+ * after expand.c: `order(X, t) = n + 1`) into *v; 0 when n is not one */
+static int whole(const Node *n, long *v)
+{
+    long a, b;
+    char *end;
+    switch (n->kind) {
+    case ND_NUM:
+        *v = strtol(n->text, &end, 10);
+        return *end == '\0' && *v >= 0 && *v <= 100000;
+    case ND_NEG:
+        return whole(n->lhs, &a) && (*v = -a, 1);
+    case ND_ADD:
+    case ND_SUB:
+    case ND_MUL:
+        if (!whole(n->lhs, &a) || !whole(n->rhs, &b))
+            return 0;
+        *v = n->kind == ND_ADD ? a + b : n->kind == ND_SUB ? a - b : a * b;
+        return *v >= -100000 && *v <= 100000;
+    default:
+        return 0;
+    }
+}
+
 /* contact(k, M at t = a, N at u = b): k a whole number 1..CHECK_MAX_ORDER
  * - 1 */
 static int contact_order(Resolver *R, Node *k)
 {
-    char *end;
-    long v = k->kind == ND_NUM ? strtol(k->text, &end, 10) : -1;
-    if (k->kind == ND_NUM && *end == '\0' && v >= 1 && v < CHECK_MAX_ORDER)
+    long v;
+    if (whole(k, &v) && v >= 1 && v < CHECK_MAX_ORDER)
         return (int)v;
     diag_error(R->d, k->span,
                "expected the order of contact, a whole number from 1 to %d",
@@ -284,6 +306,29 @@ static int resolve_claim(Resolver *R, CheckInfo *c, Node *call)
     return 0;
 }
 
+/* order(M, t) = n: M a curve, t a param, n a whole number */
+static int resolve_order(Resolver *R, CheckInfo *c, Node *call, Node *n)
+{
+    long v;
+    if (arity(R, call, 2, "order(M, t) = N"))
+        return -1;
+    if (!whole(n, &v) || v < 0) {
+        diag_error(R->d, n->span,
+                   "expected the order, a whole number, after 'order(M, t) "
+                   "='");
+        return -1;
+    }
+    Node *var = nth(call, 1);
+    if (R->type(R->ctx, var) < 0 || !is_param(R, var, "order(M, t)"))
+        return -1;
+    c->kind = CK_ORDER;
+    c->order = (int)v;
+    c->knot_var = var->sym->index;
+    c->what[0] = nth(call, 0)->span;
+    add_op(R, wrap(R, root_copy(R->a, nth(call, 0))));
+    return 0;
+}
+
 /* the bindings of `at`: each a param or const, bound once, to a scalar */
 static int check_bindings(Resolver *R)
 {
@@ -359,7 +404,10 @@ int check_resolve(SemaInfo *I, Stmt *st, Arena *a, Diag *d,
     CheckInfo *c = arena_new(a, CheckInfo);
     c->knot_var = -1;
     int rc = check_bindings(&R);
-    if (rc == 0 && st->rhs) {
+    if (rc == 0 && st->rhs && st->expr->kind == ND_CALL &&
+        strcmp(st->expr->text, "order") == 0) {
+        rc = resolve_order(&R, c, st->expr, st->rhs);
+    } else if (rc == 0 && st->rhs) {
         c->kind = CK_EQUAL;
         if (type(ctx, st->expr) < 0 || type(ctx, st->rhs) < 0)
             rc = -1;

@@ -44,6 +44,15 @@ static Value *op(Checker *K, int i)
                            derive_reduce_value(K->D, &K->v[i], K->c->ops[i]) < 0
                        ? -1
                        : 1;
+        const Sym *u = K->ok[i] > 0 ? derive_unsolved_in(K->D, &K->v[i]) : NULL;
+        if (u) { /* a claim is about the known points */
+            diag_error(K->D->diag, K->c->ops[i]->span,
+                       "the check depends on the unknown '%s', which no "
+                       "solve determines; expected 'solve ... for %s' "
+                       "before it",
+                       u->name, u->name);
+            K->ok[i] = -1;
+        }
     }
     if (K->ok[i] < 0)
         K->error = 1;
@@ -408,7 +417,9 @@ static void claim_c(Checker *K, DerivedCheck *out)
                                   "differ by ",
                                   j - 1, c->order, j);
         fail2(K, out, pre, &x, "", NULL,
-              knot ? " (right minus left)" : " (first minus second)");
+              !j     ? ""
+              : knot ? " (right minus left)"
+                     : " (first minus second)");
         free(pre);
         break;
     }
@@ -620,6 +631,47 @@ static int knot_jets(Checker *K)
     return rc;
 }
 
+/* order(M, t) = n: the largest degree in t of the numerators and the
+ * denominator of M's reduced equation (a scalar: of its numerator and
+ * denominator).  For a rational curve traced once (a proper
+ * parametrisation) over a generic simplex, its order: a line meets it in
+ * as many points as the degree of the equation in t that the line's
+ * equation makes of it. */
+static void claim_order(Checker *K, DerivedCheck *out)
+{
+    const Ring *r = K->D->r;
+    const Value *m = op(K, 0);
+    if (!m)
+        return;
+    if (K->D->K && (m->is_point ? kernel_uses_pteq(K->D->K, m->p, 1)
+                                : kernel_uses(K->D->K, m->s, 1))) {
+        diag_error(K->D->diag, K->c->what[0],
+                   "order() needs a rational curve: this one holds "
+                   "functions (sin, sqrt, abs, ...)");
+        K->error = 1;
+        return;
+    }
+    slong v = K->c->knot_var, deg;
+    if (m->is_point) {
+        deg = fmpz_mpoly_degree_si(m->p->den, v, r->ctx);
+        for (slong i = 0; i < m->p->len; i++)
+            deg = FLINT_MAX(
+                deg, fmpz_mpoly_degree_si(m->p->terms[i].num, v, r->ctx));
+    } else {
+        deg = FLINT_MAX(fmpz_mpoly_degree_si(m->s->num, v, r->ctx),
+                        fmpz_mpoly_degree_si(m->s->den, v, r->ctx));
+    }
+    deg = FLINT_MAX(deg, 0);
+    out->found = (int)deg;
+    if (deg != K->c->order) {
+        char *pre =
+            pc_xasprintf("the curve is of order %ld in %s, not %d: ", (long)deg,
+                         r->names[v], K->c->order);
+        fail2(K, out, pre, m, "", NULL, "");
+        free(pre);
+    }
+}
+
 /* one check statement: its verdict into out */
 static void run_check(Checker *K, DerivedCheck *out)
 {
@@ -649,6 +701,9 @@ static void run_check(Checker *K, DerivedCheck *out)
     case CK_CONTACT:
         claim_geometric(K, out);
         break;
+    case CK_ORDER:
+        claim_order(K, out);
+        break;
     }
 }
 
@@ -674,7 +729,7 @@ void derive_checks(Deriver *D, Derived *d)
         out->pass = 1;
         int errors0 = D->diag->nerrors;
         derive_assume_clear(D);
-        if (K.c->knot_var < 0 || knot_jets(&K) == 0)
+        if (K.c->knot_var < 0 || K.c->kind == CK_ORDER || knot_jets(&K) == 0)
             run_check(&K, out);
         else
             K.error = 1;

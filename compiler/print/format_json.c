@@ -89,8 +89,8 @@ static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
 
 /* ,\n "checks": [{"line": 12, "kind": "tangent", "verdict": "pass"}, ..]:
  * every check statement's verdict (compiler/check.h); "order" and "found"
- * for C, G and contact, "detail" (what differs) for a failed one; nothing
- * when the scheme has no check */
+ * for C, G, contact and order, "detail" (what differs) for a failed one;
+ * nothing when the scheme has no check */
 static void json_checks(FILE *out, const Derived *d)
 {
     if (!d->nchecks)
@@ -100,8 +100,8 @@ static void json_checks(FILE *out, const Derived *d)
         const DerivedCheck *c = &d->checks[i];
         fprintf(out, "%s{\"line\": %d, \"kind\": \"%s\"", i ? ",\n  " : "",
                 c->line, c->kind);
-        if (c->order || c->found >= 0 || strcmp(c->kind, "C") == 0 ||
-            strcmp(c->kind, "G") == 0 || strcmp(c->kind, "contact") == 0)
+        if (strcmp(c->kind, "C") == 0 || strcmp(c->kind, "G") == 0 ||
+            strcmp(c->kind, "contact") == 0 || strcmp(c->kind, "order") == 0)
             fprintf(out, ", \"order\": %d, \"found\": %d", c->order, c->found);
         fprintf(out, ", \"verdict\": \"%s\"",
                 c->pass > 0    ? "pass"
