@@ -21,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "compiler/check.h"
 #include "compiler/derive/knots.h"
@@ -534,11 +535,12 @@ static int geometric(Checker *K, int oriented, int maxj, char **why)
             *why =
                 pc_xasprintf("the tangents %s and %s are not parallel", b, a);
         else
-            *why = pc_xasprintf("the second curve's derivative of order %d, "
-                                "less its part through the first curve's "
-                                "derivatives of orders 2 to %d, is %s, not "
-                                "parallel to the first tangent %s",
-                                j, j, a, b);
+            *why = pc_xasprintf(
+                "the second curve's derivative of order %d, less its part "
+                "through the first curve's derivative%s of order%s 2%s%.0d "
+                "(the chain rule), is %s, not parallel to the first tangent %s",
+                j, j > 2 ? "s" : "", j > 2 ? "s" : "", j > 2 ? " to " : "",
+                j > 2 ? j : 0, a, b);
         free(b);
         free(a);
         break;
@@ -728,6 +730,7 @@ void derive_checks(Deriver *D, Derived *d)
         out->found = -1;
         out->pass = 1;
         int errors0 = D->diag->nerrors;
+        budget_statement(D->src, st->span); /* for the budget's handlers */
         derive_assume_clear(D);
         if (K.c->knot_var < 0 || K.c->kind == CK_ORDER || knot_jets(&K) == 0)
             run_check(&K, out);
