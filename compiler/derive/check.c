@@ -238,14 +238,19 @@ static int plane_coords(Checker *K, RatFun lambda, RatFun mu, const Value *u,
                         const Value *d1, const Value *d2)
 {
     const Ring *r = K->D->r;
-    slong n = ncols(K);
+    /* only the points where d1 or d2 has a weight give non-zero minors */
+    slong n = 0, *col = pc_xmalloc(sizeof(slong) * (size_t)(ncols(K) + 1));
+    for (slong i = 0; i < ncols(K); i++)
+        if (pteq_has_point(d1->p, i) || pteq_has_point(d2->p, i))
+            col[n++] = i;
     RatFun a1, a2, b1, b2, c1, c2, m, t;
     ratfun_init(a1, r), ratfun_init(a2, r), ratfun_init(b1, r);
     ratfun_init(b2, r), ratfun_init(c1, r), ratfun_init(c2, r);
     ratfun_init(m, r), ratfun_init(t, r);
     int found = 0;
-    for (slong i = 0; i < n && !found; i++)
-        for (slong j = i + 1; j < n && !found; j++) {
+    for (slong ii = 0; ii < n && !found; ii++)
+        for (slong jj = ii + 1; jj < n && !found; jj++) {
+            slong i = col[ii], j = col[jj];
             weight(a1, d1, i, r), weight(a2, d1, j, r);
             weight(b1, d2, i, r), weight(b2, d2, j, r);
             ratfun_mul(m, a1, b2, r);
@@ -267,6 +272,7 @@ static int plane_coords(Checker *K, RatFun lambda, RatFun mu, const Value *u,
     ratfun_clear(t, r), ratfun_clear(m, r), ratfun_clear(c2, r);
     ratfun_clear(c1, r), ratfun_clear(b2, r), ratfun_clear(b1, r);
     ratfun_clear(a2, r), ratfun_clear(a1, r);
+    free(col);
     return found;
 }
 
