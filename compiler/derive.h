@@ -134,6 +134,20 @@ typedef struct DerivedName {
               // what is defined after them
 } DerivedName;
 
+/* The verdict of one `check` statement (compiler/check.h; docs/language.md
+ * "Checks"), in source order. */
+typedef struct DerivedCheck {
+    int line;         // 1-based line of the statement
+    const char *kind; // static: "equal", "on_line", "on_plane", "parallel",
+                      // "tangent", "contact", "C", "G"
+    int order;        // contact, C, G: the k claimed; else 0
+    int found;        // contact, C, G: the order found (-1: not even
+                      // continuous; up to k, or k + 1 for contact); else -1
+    int pass;         // 1 proved, 0 failed (detail says why), -1 an error
+                      // stopped it (reported as such)
+    char *detail;     // failed: what differs, in the book's form (owned)
+} DerivedCheck;
+
 typedef struct Derived {
     char *scheme;   // scheme name (`scheme NAME` or the file's base name)
     char *filename; // as given
@@ -164,6 +178,8 @@ typedef struct Derived {
     DerivedStep *steps; // order (above); else 0 and NULL
     slong nnamed;       // the named kernel powers (above), source order
     DerivedName *named;
+    slong nchecks;        // the check statements, source order (above)
+    DerivedCheck *checks; // (owned; NULL when there are none)
 } Derived;
 
 /* How a derivation runs (budget.h): a wall-clock budget checked between
@@ -183,6 +199,10 @@ typedef struct DeriveOptions {
     int keep_abs;    // 1: the declared ranges of params decide no sign, so
                      // abs(t - a) stays abs on param t in [lo, hi]
                      // (--keep-abs); the bounds of consts still do
+    int keep_failed_checks; // 1: a scheme whose only errors are failed
+                            // checks still returns its Derived (with
+                            // *nerrors > 0), so that derive --format json
+                            // can list every verdict
 } DeriveOptions;
 
 /* Derive a scheme from source text.  Diagnostics (contract section 4 format)

@@ -733,6 +733,21 @@ static void expand_solve(Expander *E, Stmt *st)
     st->names = refer_names(E, st->names);
 }
 
+/* a check (compiler/check.h): its values, the claim's arguments but not
+ * the claim itself (a user function called on() does not replace the
+ * claim on()), and the values of its `at` bindings */
+static void expand_check(Expander *E, Stmt *st)
+{
+    int bad = 0;
+    if (st->rhs)
+        bad = ex_rewrite(E, &st->expr) < 0 || ex_rewrite(E, &st->rhs) < 0;
+    else if (st->expr->kind == ND_CALL && !ex_too_deep(st->expr))
+        bad = ex_rewrite_args(E, st->expr) < 0;
+    for (Equation *b = st->eqs; b; b = b->next)
+        bad |= ex_rewrite(E, &b->rhs) < 0;
+    st->bad = bad;
+}
+
 int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
                   int ndefines, char *used)
 {
@@ -777,6 +792,9 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
             break;
         case ST_OUTPUT:
             st->names = refer_names(&E, st->names);
+            break;
+        case ST_CHECK:
+            expand_check(&E, st);
             break;
         case ST_FIT: /* its names may be members: fit M[2] to f ... */
             st->names = refer_names(&E, st->names);

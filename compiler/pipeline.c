@@ -64,12 +64,23 @@ static void expand_with_defines(Compilation *c)
     pc_free(used);
 }
 
+/* every error of the compilation is a failed check (a verdict, not an
+ * error of the scheme), and the options keep such a result */
+static int only_checks_failed(const Compilation *c)
+{
+    slong failed = 0;
+    for (slong i = 0; c->d && i < c->d->nchecks; i++)
+        failed += c->d->checks[i].pass == 0;
+    return c->opt->keep_failed_checks && failed && c->diag_errors0 == 0 &&
+           c->diag.nerrors == failed;
+}
+
 /* After a try: a failed derivation is dropped; 1 when it failed because
  * its kernel slots ran out and more may be reserved (its messages are then
  * rolled back and the slots doubled), else 0 */
 static int retry_with_more_slots(Compilation *c)
 {
-    if (c->diag.nerrors == 0)
+    if (c->diag.nerrors == 0 || only_checks_failed(c))
         return 0;
     int again = c->d->kernels && c->d->kernels->full &&
                 c->nslots_try < KERNELS_MAX_SLOTS;
@@ -124,7 +135,8 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
         deriver_init(&D, c.d, c.info, &c.diag, &c.src, c.start, opt);
         derive_all(&D, c.d);
         derive_collect_outputs(&D, c.d);
-        if (c.diag.nerrors == 0) {
+        derive_checks(&D, c.d);
+        if (c.diag.nerrors == 0 || only_checks_failed(&c)) {
             if (opt->keep_steps)
                 derive_record_steps(&D, c.d, &c.src);
             derive_record_named(&D, c.d, &c.src);

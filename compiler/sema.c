@@ -16,6 +16,7 @@
 
 #include "base/check.h"
 #include "base/stack.h"
+#include "compiler/check.h"
 
 typedef struct Builtin_info {
     const char *name;
@@ -364,7 +365,7 @@ static int find_builtin(Sema *S, Node *n)
                        n->text);
         return -1;
     }
-    if (b == BI_PI) {
+    if (b == BI_PI && n->builtin != BI_PI) { /* (not a pi typed before) */
         diag_error(S->diag, n->name_span,
                    "'pi' is a constant, not a function; write pi without "
                    "parentheses");
@@ -828,6 +829,12 @@ static void check_fit(Sema *S, Stmt *st)
                    "expected a whole number >= 1 of samples");
 }
 
+/* sema's typing of an expression, for check_resolve (check.h) */
+static int type_expr(void *S, Node *n)
+{
+    return check_expr(S, n);
+}
+
 /* The `output` list (output_stmt, or NULL: the last definition): each a
  * definition or a solved unknown, listed once.  Outputs are resolved last:
  * they may name definitions that follow. */
@@ -956,6 +963,9 @@ SemaInfo *sema_check(Scheme *scheme, Arena *a, Diag *diag)
         }
         case ST_FIT:
             check_fit(&S, st);
+            break;
+        case ST_CHECK: /* after every definition: compiler/derive/check.c */
+            check_resolve(I, st, a, diag, type_expr, &S);
             break;
         case ST_OUTPUT:
             if (output_stmt) {

@@ -91,6 +91,8 @@ typedef struct SemaInfo {
     int nsteps;
     Sym **outputs; // `output` list (definitions and solved unknowns),
     int noutputs;  // default the last definition
+    Stmt **checks; // the check statements without errors, source order
+    int nchecks;   // (compiler/check.h)
 } SemaInfo;
 
 /* Checks s and returns what it found, also when it reported errors

@@ -263,6 +263,11 @@ void ast_dump(FILE *out, const Scheme *s)
             fputc(' ', out);
             dump_node(out, st->expr);
         }
+        if (st->rhs) { /* check L = R */
+            fputs(" (is ", out);
+            dump_node(out, st->rhs);
+            fputc(')', out);
+        }
         if (st->lo && st->hi) { /* a range: its open ends named */
             fputs(" (in ", out);
             dump_node(out, st->lo);

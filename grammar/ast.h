@@ -36,7 +36,8 @@ typedef enum NodeKind {
 #undef X
 } NodeKind;
 
-typedef struct Sym Sym; // compiler/sema.h
+typedef struct Sym Sym;             // compiler/sema.h
+typedef struct CheckInfo CheckInfo; // compiler/check.h
 
 typedef struct Node Node;
 struct Node {
@@ -93,8 +94,11 @@ struct Name {
     X(ST_FUNC, "function")   /* def NAME(a, b) = EXPR: a user function */      \
     X(ST_SOLVE, "solve")     /* solve EQ, ... for X, ... */                    \
     X(ST_OUTPUT, "output")   /* output NAME, ... */                            \
-    X(ST_FIT, "fit") /* fit X to f on [lo, hi] [samples m]: names X, f;        \
-                        lo, hi; expr m or NULL (docs/fit.md) */
+    X(ST_FIT, "fit")     /* fit X to f on [lo, hi] [samples m]: names X, f;    \
+                            lo, hi; expr m or NULL (docs/fit.md) */            \
+    X(ST_CHECK, "check") /* check L = R | check PRED(...) [at t = v, ...]:     \
+                            expr L or the claim, rhs R or NULL, eqs the        \
+                            bindings of `at` (compiler/check.h) */
 
 typedef enum StmtKind {
 #define X(k, s) k,
@@ -132,15 +136,18 @@ struct Stmt {
                           // only, `const k < 1`: hi only)
     int lo_open, hi_open; // ST_PARAM, ST_CONST: an end that is excluded
                           // ('(' or ')', '>' or '<')
-    Equation *eqs;        // ST_SOLVE
+    Equation *eqs;        // ST_SOLVE; ST_CHECK: the bindings `at t = v`
+                          // (lhs the name, rhs the value)
+    Node *rhs;            // ST_CHECK: R of `check L = R`, or NULL
     Equation *joints;     // ST_DEF: where the segments of a join() must meet
                           // (expand.c; derive checks them)
 
     // filled by sema
-    Sym *sym;   // ST_DEF: the defined name
-    int scalar; // ST_UNKNOWN: `unknown scalar k, ...`
-    int bad;    // ST_SOLVE, ST_PARAM (its range): an error was reported;
-                // derive skips it
+    Sym *sym;         // ST_DEF: the defined name
+    int scalar;       // ST_UNKNOWN: `unknown scalar k, ...`
+    int bad;          // ST_SOLVE, ST_PARAM (its range), ST_CHECK: an error was
+                      // reported; derive skips it
+    CheckInfo *check; // ST_CHECK: the claim resolved (compiler/check.h)
 };
 
 typedef struct Scheme {

@@ -102,10 +102,31 @@ static Stmt *stmt_names(Parser *p, StmtKind k, Name *names, Span span)
     return s;
 }
 
+/* a name of a fit (X, f): NAME or a member NAME[i] written as an
+ * expression; anything else is reported (NULL) */
+static Name *fit_name(Parser *p, const Node *n)
+{
+    if (n->kind == ND_NAME)
+        return ast_new_namelist(p->arena, n->text, n->span);
+    if (n->kind == ND_INDEX) {
+        Name *nm = ast_new_namelist(p->arena, n->text, n->span);
+        if (n->rhs) {
+            nm->lo = n->lhs;
+            nm->hi = n->rhs;
+        } else {
+            nm->index = n->lhs;
+        }
+        return nm;
+    }
+    diag_error(p->diag, n->span,
+               "expected a name in 'fit X to f on [LO, HI]' (docs/fit.md)");
+    return NULL;
+}
+
 /* `fit X to f on [lo, hi]`: fit, to and on are keywords only here; the
  * first of them that is not the word expected is reported */
 static Stmt *stmt_fit(Parser *p, const char *const *kw, const Span *kws,
-                      Name *x, Name *f, Span span)
+                      Node *xn, Node *fn, Span span)
 {
     static const char *const want[3] = {"fit", "to", "on"};
     for (int i = 0; i < 3; i++)
@@ -116,9 +137,115 @@ static Stmt *stmt_fit(Parser *p, const char *const *kw, const Span *kws,
                        kw[i]);
             return NULL;
         }
+    Name *x = fit_name(p, xn), *f = x ? fit_name(p, fn) : NULL;
+    if (!f)
+        return NULL;
     Stmt *s = stmt_names(p, ST_FIT, x, span);
     x->next = f;
     return s;
+}
+
+/* `def NAME(a, b) = ...`: the call's arguments must be plain names */
+static Stmt *stmt_func(Parser *p, Node *call, Node *body, Span span)
+{
+    Name *params = NULL;
+    for (Node *a = call->args; a; a = a->next) {
+        if (a->kind != ND_NAME) {
+            diag_error(p->diag, a->span,
+                       "expected a parameter name in 'def %s(NAME, ...) = "
+                       "...'",
+                       call->text);
+            return NULL;
+        }
+        params =
+            ast_append_name(params, ast_new_namelist(p->arena, a->text, a->span));
+    }
+    Stmt *s = ast_new_stmt(p->arena, ST_FUNC, span);
+    s->name = ast_new_namelist(p->arena, call->text, call->name_span);
+    s->names = params;
+    s->expr = body;
+    return s;
+}
+
+/* A statement that starts with a word other than a keyword: `int n = 12`,
+ * `def f(t) = ...` and `check L = R [at t = 0]`, `check on(P, line(A, B))`
+ * (int, def and check are keywords only here, so that older schemes may
+ * still call a point int, def or check).  lhs = rhs when rhs is not NULL,
+ * else lhs alone; at: the bindings of `at`, or NULL. */
+static Stmt *stmt_word(Parser *p, const char *w, Span ws, Node *lhs, Node *rhs,
+                       Equation *at, Span span)
+{
+    if (strcmp(w, "check") == 0) {
+        Stmt *s = ast_new_stmt(p->arena, ST_CHECK, span);
+        s->expr = lhs;
+        s->rhs = rhs;
+        s->eqs = at;
+        return s;
+    }
+    int is_int = strcmp(w, "int") == 0, is_def = strcmp(w, "def") == 0;
+    if (rhs && at && (is_int || is_def)) {
+        diag_error(p->diag, at->span,
+                   "unexpected 'at' after '%s %s': 'at' belongs to a check",
+                   w, lhs->text ? lhs->text : "...");
+        return NULL;
+    }
+    if (rhs && lhs->kind == ND_NAME) {
+        if (!is_int) {
+            diag_error(p->diag, ws,
+                       "unexpected '%s' before the name '%s'; expected 'int "
+                       "%s = ...' or '%s = ...'",
+                       w, lhs->text, lhs->text, lhs->text);
+            return NULL;
+        }
+        Stmt *s = ast_new_stmt(p->arena, ST_INT, span);
+        s->name = ast_new_namelist(p->arena, lhs->text, lhs->span);
+        s->expr = rhs;
+        return s;
+    }
+    if (rhs && lhs->kind == ND_CALL) {
+        if (!is_def) {
+            diag_error(p->diag, ws,
+                       "unexpected '%s' before '%s(...)'; expected 'def "
+                       "%s(NAME, ...) = ...' (a function)",
+                       w, lhs->text, lhs->text);
+            return NULL;
+        }
+        return stmt_func(p, lhs, rhs, span);
+    }
+    diag_error(p->diag, ws,
+               "unexpected '%s'; expected a statement: 'check CLAIM', 'int "
+               "NAME = ...', 'def NAME(...) = ...' or 'NAME = ...'",
+               w);
+    return NULL;
+}
+
+/* `at t = 0, u = 1`: at is a keyword only here */
+static Equation *at_clause(Parser *p, const char *w, Span ws, Equation *binds)
+{
+    if (strcmp(w, "at") == 0)
+        return binds;
+    diag_error(p->diag, ws,
+               "unexpected '%s'; expected 'at NAME = VALUE' or the end of "
+               "the line",
+               w);
+    return NULL;
+}
+
+/* `E at t = v` among a call's arguments: subst(E, t, v) (at is a keyword
+ * only here) */
+static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
+                    Node *val, Span span)
+{
+    if (strcmp(w, "at") != 0) {
+        diag_error(p->diag, ws,
+                   "unexpected '%s'; expected 'EXPR at NAME = VALUE', ',' "
+                   "or ')'",
+                   w);
+        return e;
+    }
+    e->next = var;
+    var->next = val;
+    return ast_new_call(p->arena, "subst", ws, e, span);
 }
 }
 
@@ -134,8 +261,9 @@ static Stmt *stmt_fit(Parser *p, const char *const *kw, const Span *kws,
 %precedence UMINUS
 %right '^'
 
-%type <Node *> expr args fit_samples
-%type <Name *> names name params
+%type <Node *> expr args arg fit_samples
+%type <Name *> names name
+%type <Equation *> at_opt bindings
 %type <Stmt *> stmt
 %type <int> lbr rbr
 
@@ -190,35 +318,14 @@ stmt:
 | OUTPUT names      { $$ = stmt_names(p, ST_OUTPUT, $2, @$); }
 | IDENT '=' expr    { $$ = ast_new_stmt(p->arena, ST_DEF, @$);
                       $$->name = ast_new_namelist(p->arena, $1, @1); $$->expr = $3; }
-| IDENT IDENT '=' expr /* `int n = 12`: int is a keyword only here, so
-                         that older schemes may still call a point int */
-                    { if (strcmp($1, "int") != 0) {
-                          diag_error(p->diag, @1,
-                                     "unexpected '%s' before the name '%s'; "
-                                     "expected 'int %s = ...' or '%s = ...'",
-                                     $1, $2, $2, $2);
-                          $$ = NULL;
-                      } else {
-                          $$ = ast_new_stmt(p->arena, ST_INT, @$);
-                          $$->name = ast_new_namelist(p->arena, $2, @2);
-                          $$->expr = $4;
-                      } }
-| IDENT IDENT '(' params ')' '=' expr /* `def P(t, a, w) = ...`: def is a
-                         keyword only here */
-                    { if (strcmp($1, "def") != 0) {
-                          diag_error(p->diag, @1,
-                                     "unexpected '%s' before '%s(...)'; "
-                                     "expected 'def %s(NAME, ...) = ...' (a "
-                                     "function)",
-                                     $1, $2, $2);
-                          $$ = NULL;
-                      } else {
-                          $$ = ast_new_stmt(p->arena, ST_FUNC, @$);
-                          $$->name = ast_new_namelist(p->arena, $2, @2);
-                          $$->names = $4;
-                          $$->expr = $7;
-                      } }
-| IDENT name IDENT name IDENT '[' expr ',' expr ']' fit_samples
+| IDENT expr '=' expr at_opt /* `int n = 12`, `def f(t) = ...`, `check L =
+                         R [at t = 0]`: int, def, check and at are keywords
+                         only here, so that older schemes may still call a
+                         point int or def */
+                    { $$ = stmt_word(p, $1, @1, $2, $4, $5, @$); }
+| IDENT expr at_opt /* `check on(P, line(A, B))` */
+                    { $$ = stmt_word(p, $1, @1, $2, NULL, $3, @$); }
+| IDENT expr IDENT expr IDENT '[' expr ',' expr ']' fit_samples
                     /* `fit X to f on [-1, 1] samples 100` (docs/fit.md) */
                     { const char *kw[3] = {$1, $3, $5};
                       Span kws[3] = {@1, @3, @5};
@@ -231,6 +338,19 @@ stmt:
 | SOLVE             { p->seqs = NULL; p->snames = NULL; }
   solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;
                       p->seqs = NULL; p->snames = NULL; }
+;
+
+/* a check's `at t = 0, u = 1`, or nothing */
+at_opt:
+  %empty            { $$ = NULL; }
+| IDENT bindings    { $$ = at_clause(p, $1, @1, $2); }
+;
+
+bindings:
+  IDENT '=' expr    { $$ = ast_new_equation(p->arena, ast_new_name(p->arena, $1, @1), $3, @$); }
+| bindings ',' IDENT '=' expr
+                    { $$ = ast_append_equation($1, ast_new_equation(p->arena,
+                          ast_new_name(p->arena, $3, @3), $5, (Span){@3.start, @5.end})); }
 ;
 
 /* a fit's optional `samples M` */
@@ -262,12 +382,6 @@ name:
                     { $$ = ast_new_namelist(p->arena, $1, @$); $$->index = $3; }
 | IDENT '[' expr DOTDOT expr ']'
                     { $$ = ast_new_namelist(p->arena, $1, @$); $$->lo = $3; $$->hi = $5; }
-;
-
-/* a function's parameters: plain names */
-params:
-  IDENT             { $$ = ast_new_namelist(p->arena, $1, @1); }
-| params ',' IDENT  { $$ = ast_append_name($1, ast_new_namelist(p->arena, $3, @3)); }
 ;
 
 names:
@@ -328,8 +442,16 @@ expr:
 ;
 
 args:
+  arg               { $$ = $1; }
+| args ',' arg      { $$ = ast_append($1, $3); }
+;
+
+/* an argument; `E at t = v` is subst(E, t, v) (in a check: the curve E at
+ * its point t = v) */
+arg:
   expr              { $$ = $1; }
-| args ',' expr     { $$ = ast_append($1, $3); }
+| expr IDENT IDENT '=' expr
+                    { $$ = arg_at(p, $1, $2, @2, ast_new_name(p->arena, $3, @3), $5, @$); }
 ;
 
 %%

@@ -20,6 +20,7 @@
  *   solve_stmt.c the `solve` statement
  *   outputs.c    the outputs: checks and DerivedOutput
  *   steps_rec.c  the steps recorder (derive --steps) and the named kernels
+ *   check.c      the `check` statements proved (compiler/check.h)
  *   derived.c    the Derived result: free, find, errors, file reading
  * Every shared helper is named derive_* or deriver_* (they are not static:
  * the prefix keeps them out of a user's way in libpointcalc.a).
@@ -122,6 +123,12 @@ void deriver_init(Deriver *D, Derived *d, SemaInfo *info, Diag *diag,
 void deriver_clear(Deriver *D);
 void derive_all(Deriver *D, Derived *d);
 void derive_solve(Deriver *D, Stmt *st);
+
+/* ---- check.c ------------------------------------------------------------ */
+
+/* every check statement (compiler/check.h) proved or reported, its
+ * verdict into d->checks */
+void derive_checks(Deriver *D, Derived *d);
 
 /* ---- outputs.c, steps_rec.c --------------------------------------------- */
 

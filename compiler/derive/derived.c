@@ -160,6 +160,9 @@ void derived_free(Derived *d)
     for (slong i = 0; i < d->nnamed; i++)
         pc_free(d->named[i].name);
     pc_free(d->named);
+    for (slong i = 0; i < d->nchecks; i++)
+        pc_free(d->checks[i].detail);
+    pc_free(d->checks);
     if (d->kernels) {
         kernels_clear(d->kernels);
         pc_free(d->kernels);

@@ -9,6 +9,8 @@
  */
 #include "compiler/derive/derive_int.h"
 
+#include "compiler/check.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -115,6 +117,23 @@ static slong plan_kernel_slots(const SemaInfo *info, slong npoints)
             count_coord_indices(e->lhs, &coord_ks, &ncoord_ks);
             count_coord_indices(e->rhs, &coord_ks, &ncoord_ks);
         }
+    }
+    /* the checks' values are derived too (compiler/check.h): the claim as
+     * written, once (its jets repeat the curve in every derivative: a
+     * jet counts as one more subst and diff, and a derivation that needs
+     * more slots is done again with twice as many) */
+    for (int i = 0; i < info->nchecks; i++) {
+        const Stmt *st = info->checks[i];
+        const Node *parts[2] = {st->expr, st->rhs};
+        for (int k = 0; k < 2; k++) {
+            count_kernel_uses(parts[k], &calls, &ops, &pis, &metric);
+            count_coord_indices(parts[k], &coord_ks, &ncoord_ks);
+        }
+        for (const Equation *e = st->eqs; e; e = e->next) {
+            count_kernel_uses(e->rhs, &calls, &ops, &pis, &metric);
+            count_coord_indices(e->rhs, &coord_ks, &ncoord_ks);
+        }
+        ops += st->check->jetlen ? 2 : 0;
     }
     /* the params' ranges and the consts' bounds are derived too
      * (Derived.range, Derived.bound) */

@@ -9,6 +9,7 @@
 #include "compiler/print/format_int.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/budget.h"
 #include "base/json.h"
@@ -87,6 +88,35 @@ static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
     fputs("}", out);
 }
 
+/* ,\n "checks": [{"line": 12, "kind": "tangent", "verdict": "pass"}, ..]:
+ * every check statement's verdict (compiler/check.h); "order" and "found"
+ * for C, G, contact and order, "detail" (what differs) for a failed one;
+ * nothing when the scheme has no check */
+static void json_checks(FILE *out, const Derived *d)
+{
+    if (!d->nchecks)
+        return;
+    fputs(",\n \"checks\": [", out);
+    for (slong i = 0; i < d->nchecks; i++) {
+        const DerivedCheck *c = &d->checks[i];
+        fprintf(out, "%s{\"line\": %d, \"kind\": \"%s\"", i ? ",\n  " : "",
+                c->line, c->kind);
+        if (strcmp(c->kind, "C") == 0 || strcmp(c->kind, "G") == 0 ||
+            strcmp(c->kind, "contact") == 0 || strcmp(c->kind, "order") == 0)
+            fprintf(out, ", \"order\": %d, \"found\": %d", c->order, c->found);
+        fprintf(out, ", \"verdict\": \"%s\"",
+                c->pass > 0    ? "pass"
+                : c->pass == 0 ? "fail"
+                               : "error");
+        if (c->detail) {
+            fputs(", \"detail\": ", out);
+            json_string(out, c->detail);
+        }
+        fputs("}", out);
+    }
+    fputs("]", out);
+}
+
 void format_json(FILE *out, const Derived *d)
 {
     fputs("{\"scheme\": ", out);
@@ -104,5 +134,7 @@ void format_json(FILE *out, const Derived *d)
         json_output(out, d, &d->outputs[i]);
     }
     budget_statement(NULL, (Span){0, 0}); /* printed: no output to blame */
-    fputs("]}\n", out);
+    fputs("]", out);
+    json_checks(out, d);
+    fputs("}\n", out);
 }

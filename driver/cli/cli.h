@@ -39,9 +39,12 @@ CliCommand cli_plot;   // cmd_plot.c: the curves and the construction as SVG
  * the budget); NULL with *rc = 1 when an output cannot be lowered.  With
  * derived not NULL, the derivation is handed over there (the caller
  * frees it) when a Plan is returned. */
-/* keep_steps: also record the steps (derive --steps) */
+/* keep: CLI_KEEP_STEPS also records the steps (derive --steps);
+ * CLI_KEEP_CHECKS returns the Derived also when only checks failed (with
+ * *rc = 1: derive --format json lists every verdict) */
+enum { CLI_KEEP_STEPS = 1, CLI_KEEP_CHECKS = 2 };
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
-                               int keep_steps, FILE *err, int *rc);
+                               int keep, FILE *err, int *rc);
 /* the phase of the command from here on (base/budget.h), at the scheme's
  * file (the file of the last cli_derive_file_steps or cli_plan_file) */
 void cli_mark_file(const char *phase);

@@ -94,7 +94,9 @@ const char cli_usage[] =
 static const char derive_help[] = DERIVE_USAGE
     "\n"
     "Reduces the scheme exactly and prints the final point equation of every\n"
-    "output (default: the last definition).\n"
+    "output (default: the last definition).  Its check statements are\n"
+    "proved; one that fails is an error (exit 1; JSON still lists every\n"
+    "verdict, as \"checks\"; docs/language.md, Checks).\n"
     "\n"
     "  --format text       one line per output, as the book writes it "
     "(default)\n"

@@ -26,18 +26,19 @@ static void mark_file_name(const char *file)
 }
 
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
-                               int keep_steps, FILE *err, int *rc)
+                               int keep, FILE *err, int *rc)
 {
-    int bad_define = 0;
+    int bad_define = 0, nerr = 0;
     DeriveOptions opt = derive_options_cli(b, err, &bad_define);
-    opt.keep_steps = keep_steps;
+    opt.keep_steps = (keep & CLI_KEEP_STEPS) != 0;
+    opt.keep_failed_checks = (keep & CLI_KEEP_CHECKS) != 0;
     budget_arm(b->max_seconds, b->max_memory);
     mark_file_name(file);
-    Derived *d = derive_file_ex(file, err, NULL, &opt);
+    Derived *d = derive_file_ex(file, err, &nerr, &opt);
     /* the budget stays armed for the printing (the caller disarms it):
      * the time and memory of the whole command are bounded */
     cli_mark_file("printing the result"); /* format marks each output */
-    *rc = d ? 0 : bad_define ? 2 : 1;
+    *rc = d ? nerr != 0 : bad_define ? 2 : 1; /* d and 1: failed checks */
     return d;
 }
 

@@ -83,6 +83,30 @@ static void test_parse_statements(void **state)
     free(s);
 }
 
+/* check, int, def and at are words, not keywords: the statement `WORD
+ * EXPR [= EXPR] [at NAME = EXPR, ...]` tells them apart, so a point may
+ * still be called check or at; `E at t = v` among arguments is subst */
+static void test_parse_check_statements(void **state)
+{
+    (void)state;
+    int n;
+    char *s = dump("point check, at\nparam t\nint n = 2\n"
+                   "def f(x, y) = x\ncheck = along(check, at, t)\n"
+                   "check check = at at t = 1, n = 2\n"
+                   "check tangent(check at t = 0, line(check, at))\n"
+                   "check C2(f(at, t) at t = 1)\n",
+                   &n);
+    assert_int_equal(n, 0);
+    assert_string_equal(s, "(point check at)\n(param t)\n(int n 2)\n"
+                           "(function f x y x)\n"
+                           "(def check (along check at t))\n"
+                           "(check check (is at) (= t 1) (= n 2))\n"
+                           "(check (tangent (subst check t 0) (line check "
+                           "at)))\n"
+                           "(check (C2 (subst (f at t) t 1)))\n");
+    free(s);
+}
+
 static void test_diag_format_has_line_and_caret(void **state)
 {
     (void)state;
@@ -542,6 +566,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_parse_precedence_and_associativity),
         cmocka_unit_test(test_parse_statements),
+        cmocka_unit_test(test_parse_check_statements),
         cmocka_unit_test(test_diag_format_has_line_and_caret),
         cmocka_unit_test(test_diag_caret_spans_expression),
         cmocka_unit_test(test_diag_redefinition_has_note),

@@ -126,6 +126,17 @@ static const char *const tokens[] = {
     "g[0..1]",
     "-inf",
     "inf",
+    "check ",
+    "check M = A",
+    " at t = 0",
+    " at t = 1, ",
+    "on(",
+    "parallel(",
+    "tangent(",
+    "contact(2, ",
+    "C2(",
+    "G1(",
+    "line(A, B))",
 };
 
 /* The back ends of one derived scheme are exercised once per file and
