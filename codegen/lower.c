@@ -798,25 +798,46 @@ static slong max_degree(const Lower *L, const RatFunStruct *x)
 }
 
 /* does x use a ring variable that is neither a param nor a const? */
+/* 1 when x has a positive degree in a variable v with bad[v] set */
+static int has_marked(const Lower *L, const RatFunStruct *x,
+                      const unsigned char *bad, slong *degs)
+{
+    const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
+    slong all = ctx->minfo->nvars;
+    for (int k = 0; k < 2; k++) {
+        fmpz_mpoly_degrees_si(degs, k ? x->den : x->num, ctx);
+        for (slong v = 0; v < all; v++)
+            if (bad[v] && degs[v] > 0)
+                return 1;
+    }
+    return 0;
+}
+
+/* 1 when x depends on an unknown scalar no solve determined (a ring
+ * variable after the consts and before the kernels), directly or inside a
+ * function's argument (sqrt(h)): such a value has no number */
 static int uses_atoms(const Lower *L, const RatFunStruct *x)
 {
     const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
-    slong all = ctx->minfo->nvars, nv = all;
-    slong first = L->nparams + L->nconsts;
-    if (L->K) /* the kernels' variables are evaluated; not what is before */
-        nv = L->K->first;
+    slong all = ctx->minfo->nvars;
+    slong first = L->nparams + L->nconsts, nv = L->K ? L->K->first : all;
     if (first >= nv)
         return 0;
-    /* (degrees_si writes one degree per variable of the ring) */
+    unsigned char *bad = pc_xcalloc((size_t)all, 1);
     slong *degs = flint_malloc(sizeof *degs * (size_t)all);
-    int found = 0;
-    for (int k = 0; k < 2 && !found; k++) {
-        fmpz_mpoly_degrees_si(degs, k ? x->den : x->num, ctx);
-        for (slong v = first; v < nv; v++)
-            if (degs[v] > 0)
-                found = 1;
+    for (slong v = first; v < nv; v++)
+        bad[v] = 1;
+    /* a kernel's arguments use only kernels made before it */
+    for (slong i = 0; L->K && i < L->K->n; i++) {
+        const Kernel *k = &L->K->k[i];
+        if (k->fn == KF_PI || k->fn == KF_DIST || k->fn == KF_COORD)
+            continue;
+        bad[k->var] = has_marked(L, k->arg, bad, degs) ||
+                      (k->fn == KF_ATAN2 && has_marked(L, k->arg2, bad, degs));
     }
+    int found = has_marked(L, x, bad, degs);
     flint_free(degs);
+    pc_free(bad);
     return found;
 }
 

@@ -1068,6 +1068,14 @@ printf 'point A, B\nparam t\nX = along(A, B, t)\nfit X to X on [0, 1]\n' >"$tmp/
 check "fit FILE: a kind error exits 1" test $? -eq 1
 check "fit FILE: located" grep -q "fitbad.pcs:4:10: error: 'X' is a point definition; expected a scalar definition (the target) in fit" "$tmp/fitbad.err"
 
+# an unknown scalar no solve determines, inside a function's argument:
+# emit-c refuses it (it read past the kernel table before)
+printf 'point A, B\nparam t\nunknown scalar h\nG = along(A, B, sqrt(h)*t)\noutput G\n' >"$tmp/unk.pcs"
+"$PC" emit-c "$tmp/unk.pcs" >"$tmp/unk.out" 2>"$tmp/unk.err"
+check "unsolved unknown in sqrt: emit-c exit 1" test $? -eq 1
+check "unsolved unknown in sqrt: nothing on stdout" test ! -s "$tmp/unk.out"
+check "unsolved unknown in sqrt: located" grep -q "unk.pcs:4:1: error: G depends on an unknown scalar that no solve determined" "$tmp/unk.err"
+
 # the scheme form with consts (--set) and ints (-D): Runge's function as
 # 1/(1 + a x^2) with a = 25 gives --target's nodes
 printf 'int n = 4\npoint M[1..n+1]\nparam t in [0, 1]\nunknown C[2..n]\nX = bezier(t, M[1], C[2..n], M[n+1])\nsolve subst(X, t, (i-1)/n) = M[i] for i in 2..n for C[2..n]\nparam x\nconst a\nf = 1/(1 + a*x^2)\nfit X to f on [-1, 1]\n' >"$tmp/fitc.pcs"

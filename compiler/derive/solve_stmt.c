@@ -18,6 +18,25 @@
 #include "base/numfmt.h"
 #include "compiler/algebra/solve.h"
 
+/* x (a point equation p or a scalar *sp) with var replaced by v, also
+ * inside the functions' arguments (sqrt(h) with h solved is sqrt of the
+ * solution: with ratfun_compose_var alone it kept h, an unknown no output
+ * may depend on, and lowering such an output broke) */
+static int compose(Deriver *D, int is_point, PointEq p, RatFunStruct *s,
+                   slong var, const RatFun v)
+{
+    if (D->K)
+        return is_point ? kernel_compose_pteq(D->K, p, p, var, v)
+                        : kernel_compose(D->K, s, s, var, v);
+    return is_point ? pteq_compose_var(p, p, var, v, D->r)
+                    : ratfun_compose_var(s, s, var, v, D->r);
+}
+
+static Span s_span(const Deriver *D, int i)
+{
+    return D->info->defs[i]->def->expr->span;
+}
+
 /* replaces the unknown scalar var by its solution v in every value derived
  * so far (a value whose denominator vanishes then keeps its form: its
  * definition was generic in var, and the outputs are checked later) */
@@ -32,11 +51,11 @@ static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
             continue;
         if (derive_value_has_var(d, var, r)) /* the solve's assumptions too */
             derive_assume_into(D, &D->dassume[i]);
-        if (d->is_point)
-            rc = pteq_compose_var(d->p, d->p, var, v, r);
-        else
-            rc = ratfun_compose_var(d->s, d->s, var, v, r);
-        if (rc != 0) {
+        rc = compose(D, d->is_point, d->p, d->s, var, v);
+        if (rc != 0 && rc != KERNEL_EZERO && rc != RATFUN_EPOLE) {
+            derive_kernel_error_at(D, rc, s_span(D, i), st->span);
+            D->state[i] = -1;
+        } else if (rc != 0) {
             const Sym *s = D->info->defs[i];
             char *txt = derive_show(v, r);
             diag_error(D->diag, s->def->expr->span,
@@ -54,10 +73,8 @@ static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
         if (!D->usolved[k])
             continue;
         int rc;
-        if (D->info->unknowns[k]->is_point)
-            rc = pteq_compose_var(D->usol[k], D->usol[k], var, v, r);
-        else
-            rc = ratfun_compose_var(D->ssol + k, D->ssol + k, var, v, r);
+        rc = compose(D, D->info->unknowns[k]->is_point, D->usol[k], D->ssol + k,
+                     var, v);
         /* (a failure leaves the solution as it is, valid but not in the
          * normal form: what uses it is reduced and reports) */
         if (rc == 0 && D->K && D->K->nrel)

@@ -37,7 +37,7 @@ Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
     Derived *d = derive_file_ex(file, err, &nerr, &opt);
     /* the budget stays armed for the printing (the caller disarms it):
      * the time and memory of the whole command are bounded */
-    cli_mark_file("printing the result"); /* format marks each output */
+    cli_mark_file("printing the result");     /* format marks each output */
     *rc = d ? nerr != 0 : bad_define ? 2 : 1; /* d and 1: failed checks */
     return d;
 }
