@@ -8,6 +8,7 @@
  *           |-> emit C                     emit-c  (emit_c.c)
  *           |-> interpret: CSV, JSON       eval    (eval.c, table.c)
  *           `-> sample and draw: SVG       plot    (plot.c)
+ *     `-> find what the curves are       analyze (cmd_analyze.c)
  *
  * with the options every command shares in args.c.  This file only picks
  * the command.  Exit status: 0 success, 1 an error in the scheme, 2 a
@@ -32,8 +33,9 @@ typedef struct Command {
 } Command;
 
 static const Command commands[] = {
-    {"derive", cli_derive}, {"emit-c", cli_emit_c}, {"eval", cli_eval},
-    {"help", cli_help},     {"plot", cli_plot},     {"fit", cli_fit},
+    {"derive", cli_derive},   {"emit-c", cli_emit_c}, {"eval", cli_eval},
+    {"help", cli_help},       {"plot", cli_plot},     {"fit", cli_fit},
+    {"analyze", cli_analyze},
 };
 
 static const Command *find_command(const char *name)
