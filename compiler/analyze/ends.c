@@ -10,7 +10,8 @@
  * so at most n - 1 derivatives after the first can be parallel to it.
  * Without a declared range the end is t -> oo, the same with the
  * reversed polynomials h^n n_i(1/h).  A denominator that vanishes at the
- * end sends the curve to infinity, in the direction sum n_i(e) A_i.
+ * end sends the curve to infinity, in the direction +-sum n_i(e) A_i (the
+ * sign of the way it goes as t comes from inside the range).
  */
 #include "compiler/analyze/analyze.h"
 
@@ -162,8 +163,20 @@ static void end_series(AnEnd *end, const AnCurve *c, const Series *S,
     fmpz_clear(one);
 }
 
+/* M ~ N(e)/(c_r h^r) near the end, den(e + h) = c_r h^r + ...: the sign
+ * that makes N(e) point where M goes, h < 0 at the upper end (h > 0 at
+ * the lower one, and at t -> oo, s = 1/t -> 0+) */
+static int infinity_sign(const fmpq_poly_t den, int upper)
+{
+    slong r = 0;
+    while (fmpz_is_zero(den->coeffs + r))
+        r++;
+    int sg = fmpz_sgn(den->coeffs + r);
+    return upper && r % 2 ? -sg : sg;
+}
+
 static void end_at(AnEnd *end, const AnCurve *c, const AnPolys *p,
-                   const fmpq *e, slong npoints)
+                   const fmpq *e, int upper, slong npoints)
 {
     if (e) {
         char *s = fmpq_get_str(NULL, 10, e);
@@ -184,11 +197,11 @@ static void end_at(AnEnd *end, const AnCurve *c, const AnPolys *p,
     fmpq_init(d0);
     fmpq_poly_get_coeff_fmpq(d0, den, 0);
     if (fmpq_is_zero(d0)) { /* at infinity: the direction sum n_i(e) A_i */
-        fmpz_t one;
-        fmpz_init_set_ui(one, 1);
+        fmpz_t sg;
+        fmpz_init_set_si(sg, infinity_sign(den, upper));
         end->infinite = 1;
-        end->point = coeff_vec(&S, p, 0, one, npoints);
-        fmpz_clear(one);
+        end->point = coeff_vec(&S, p, 0, sg, npoints);
+        fmpz_clear(sg);
     } else {
         for (slong i = 0; i < p->len; i++)
             fmpq_poly_div_series(S.s + i, S.s + i, den, S.cap);
@@ -205,11 +218,11 @@ void analyze_ends(AnCurve *c, const AnPolys *p, const fmpq *lo, const fmpq *hi,
                   slong npoints)
 {
     if (lo) {
-        end_at(c->ends + 0, c, p, lo, npoints);
-        end_at(c->ends + 1, c, p, hi, npoints);
+        end_at(c->ends + 0, c, p, lo, 0, npoints);
+        end_at(c->ends + 1, c, p, hi, 1, npoints);
         c->nends = 2;
     } else {
-        end_at(c->ends + 0, c, p, NULL, npoints);
+        end_at(c->ends + 0, c, p, NULL, 0, npoints);
         c->nends = 1;
     }
 }
