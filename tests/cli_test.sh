@@ -873,5 +873,55 @@ printf 'point A, B\nparam t\nX = along(A, B, t)\nfit X to X on [0, 1]\n' >"$tmp/
 check "fit FILE: a kind error exits 1" test $? -eq 1
 check "fit FILE: located" grep -q "fitbad.pcs:4:10: error: 'X' is a point definition; expected a scalar definition (the target) in fit" "$tmp/fitbad.err"
 
+# analyze (docs/analyze.md): the Desargues arc and its plane case C = B,
+# written by hand from monograph 3.7 (M(0) = A, dM(0) = C - A, M(1) = D,
+# dM(1) = D - B; C = B: d2M(0) = 2B - 2A is parallel to dM(0) = B - A, an
+# inflection at each end; b^3 = ad(a + 3b + d) in barycentric coordinates;
+# T, S, R have the pole t = 1/2 where PQ is parallel to AB)
+cat >"$tmp/analyze.want" <<'WANT'
+M: a point curve in t in [0, 1], degree 3, order 3, proper, a space curve
+  t = 0: M = A, dM/dt = C - A; smoothness order 1
+  t = 1: M = D, dM/dt = D - B; smoothness order 1
+  passes through: A at t = 0; D at t = 1
+  poles: none
+  stop points: none
+M_CB: a point curve in t in [0, 1], degree 3, order 3, proper, a plane curve
+  t = 0: M_CB = A, dM_CB/dt = B - A; smoothness order 2
+  t = 1: M_CB = D, dM_CB/dt = D - B; smoothness order 2
+  passes through: A at t = 0; D at t = 1
+  poles: none
+  stop points: none
+  inflections: t = 0, t = 1
+  implicit, in barycentric coordinates: B^3 - A^2*D - 3*A*B*D - A*D^2 = 0
+poles of the definitions in their param's range:
+  T (line 40): t = 1/2
+  S (line 45): t = 1/2
+  R (line 50): t = 1/2
+WANT
+"$PC" analyze examples/desargues_arc.pcs --output M,M_CB >"$tmp/analyze.out" 2>"$tmp/analyze.err"
+check "analyze exits 0" test $? -eq 0
+check "analyze: the Desargues arc's report" cmp -s "$tmp/analyze.want" "$tmp/analyze.out"
+check "analyze is quiet on stderr" test ! -s "$tmp/analyze.err"
+"$PC" analyze examples/contour_arcs.pcs --format json >"$tmp/analyze.json"
+check "analyze --format json: the contour arc of order 5" python3 -c "
+import json
+d=json.load(open('$tmp/analyze.json'))
+o=d['outputs'][0]
+assert o['name']=='M' and o['degree']==6 and o['order']==6 and o['proper']
+assert o['poles']==[] and o['stop_points']==[] and o['inflections']==['0','1']
+assert [e['smoothness'] for e in o['ends']]==[5,5]
+assert o['ends'][0]['derivative']=={'A':'-2','C':'2'}
+"
+"$PC" analyze examples/desargues_arc.pcs --format yaml >"$tmp/out" 2>/dev/null
+check "analyze: a bad format exits 2" test $? -eq 2
+"$PC" analyze examples/desargues_arc.pcs --output Z >"$tmp/out" 2>"$tmp/err"
+check "analyze: an unknown output exits 2" test $? -eq 2
+check "analyze: an unknown output prints nothing" test ! -s "$tmp/out"
+check "analyze: an unknown output says which" grep -q "pointcalc: --output 'Z' is not an output of the scheme" "$tmp/err"
+"$PC" analyze "$tmp/bad.pcs" >"$tmp/out" 2>"$tmp/err"
+check "analyze: a scheme error exits 1" test $? -eq 1
+check "analyze: a scheme error prints nothing" test ! -s "$tmp/out"
+check "analyze --help" sh -c "'$PC' analyze --help | grep -q '^usage: pointcalc analyze FILE'"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

@@ -139,7 +139,8 @@ static int sign_at(const fmpq_poly_t f, const fmpq_t x)
     return s;
 }
 
-/* 1 when b - a <= 2^-50 max(1, |a|) */
+/* 1 when b - a <= 2^-60 max(1, |a|): below 1e-15, and fine enough
+ * that the midpoint rounds to the double nearest the root */
 static int narrow(const fmpq_t a, const fmpq_t b)
 {
     fmpq_t w, m;
@@ -149,7 +150,7 @@ static int narrow(const fmpq_t a, const fmpq_t b)
     fmpq_abs(m, a);
     if (fmpq_cmp_ui(m, 1) < 0)
         fmpq_one(m);
-    fmpq_mul_2exp(w, w, 50);
+    fmpq_mul_2exp(w, w, 60);
     int ok = fmpq_cmp(w, m) <= 0;
     fmpq_clear(m);
     fmpq_clear(w);

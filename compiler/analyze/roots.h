@@ -3,7 +3,7 @@
  * where that is possible: rational roots as fractions, the roots of
  * irreducible quadratic factors in square-root form, and the roots of
  * every other irreducible factor isolated (Sturm sequences, bisection at
- * exact rational points) to an interval of width at most 2^-50 max(1, |x|)
+ * exact rational points) to an interval of width at most 2^-60 max(1, |x|)
  * (below 1e-15 relative).  What `analyze` reports as poles, stop points,
  * inflections and passages (analyze.h).
  */
