@@ -921,6 +921,17 @@ check "analyze: an unknown output says which" grep -q "pointcalc: --output 'Z' i
 "$PC" analyze "$tmp/bad.pcs" >"$tmp/out" 2>"$tmp/err"
 check "analyze: a scheme error exits 1" test $? -eq 1
 check "analyze: a scheme error prints nothing" test ! -s "$tmp/out"
+printf 'point A, B\nparam t in [0, 1]\nconst k\nM = along(A, B, t/(k - t))\n' >"$tmp/anset.pcs"
+"$PC" analyze "$tmp/anset.pcs" --set k=1/2 >"$tmp/out" 2>"$tmp/err"
+check "analyze --set k=1/2: the pole t = 1/2" grep -qx '  poles: t = 1/2' "$tmp/out"
+"$PC" analyze "$tmp/anset.pcs" >"$tmp/out" 2>"$tmp/err"
+check "analyze without --set: not analysed" grep -qx 'M: not analysed: depends on k, not only on a param' "$tmp/out"
+"$PC" analyze "$tmp/anset.pcs" --set q=1 >"$tmp/out" 2>"$tmp/err"
+check "analyze --set of no const exits 2" test $? -eq 2
+check "analyze --set of no const says so" grep -q "pointcalc: --set 'q=1': 'q' is not a const of the scheme" "$tmp/err"
+"$PC" analyze "$tmp/anset.pcs" --set k=x >"$tmp/out" 2>"$tmp/err"
+check "analyze --set k=x exits 2" test $? -eq 2
+check "analyze --set k=x prints nothing" test ! -s "$tmp/out"
 check "analyze --help" sh -c "'$PC' analyze --help | grep -q '^usage: pointcalc analyze FILE'"
 
 echo "cli: $pass passed, $fail failed"

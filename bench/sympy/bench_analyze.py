@@ -6,11 +6,13 @@ derive --format json` (not timed), then timed, median of ROUNDS runs:
 the reduced common denominator, the poles (real_roots of the denominator
 in [LO, HI]), the index (a gcd in s, t), the stop points (gcd of the
 numerators of dM/dt, real_roots), the Taylor series at both ends to 2n + 3
-terms (the order of smoothness; one run when it takes over 2 s), and for curves over three base points the
+terms (the order of smoothness), and for curves over three base points the
 inflections (real_roots of det(N, N', N'')) and the implicit equation
-(resultant, factor_list).  Prints "OUTPUT MS" per case.
+(resultant, factor_list).  Prints "OUTPUT MS" per case (one run when it
+takes over 2 s; "OUTPUT timeout" after TIMEOUT s).
 """
 import json
+import signal
 import subprocess
 import sys
 import time
@@ -18,6 +20,7 @@ import time
 import sympy as sp
 
 ROUNDS = 3
+TIMEOUT = 120  # seconds per case: SymPy's order-12 series can take long
 
 
 def analyze(w, t, lo, hi):
@@ -57,6 +60,10 @@ def analyze(w, t, lo, hi):
     return poles, index, stops
 
 
+def timeout(signum, frame):
+    raise TimeoutError
+
+
 def main():
     pc = sys.argv[1]
     for case in sys.argv[2:]:
@@ -70,16 +77,24 @@ def main():
         t = sp.Symbol(j['params'][0])
         loc = {p: sp.Symbol(p) for p in j['points'] + j['params']}
         w = [sp.sympify(v, locals=loc) for v in o['terms'].values()]
+        label = f"{name}{'(' + define + ')' if define else ''}"
         times = []
-        for _ in range(ROUNDS):
-            t0 = time.perf_counter()
-            analyze(w, t, sp.Rational(lo), sp.Rational(hi))
-            times.append((time.perf_counter() - t0) * 1e3)
-            if times[0] > 2000:  # one run is enough to compare
-                break
+        signal.signal(signal.SIGALRM, timeout)
+        signal.alarm(TIMEOUT)
+        try:
+            for _ in range(ROUNDS):
+                t0 = time.perf_counter()
+                analyze(w, t, sp.Rational(lo), sp.Rational(hi))
+                times.append((time.perf_counter() - t0) * 1e3)
+                if times[0] > 2000:  # one run is enough to compare
+                    break
+        except TimeoutError:
+            print(f"{label} timeout", flush=True)
+            continue
+        finally:
+            signal.alarm(0)
         times.sort()
-        print(f"{name}{'(' + define + ')' if define else ''} {times[len(times) // 2]:.1f}",
-              flush=True)
+        print(f"{label} {times[len(times) // 2]:.1f}", flush=True)
 
 
 if __name__ == '__main__':

@@ -102,11 +102,21 @@ typedef struct Analysis {
     AnDef *defs;
 } Analysis;
 
+/* Values of consts (analyze --set k=VALUE): for const k (0 ..
+ * d->nconsts - 1), given[k] = 1 and value[k] its exact value, which every
+ * value is analysed with; the others stay symbolic. */
+typedef struct AnSet {
+    const unsigned char *given;
+    const fmpq *value;
+} AnSet;
+
 /* Analyses the outputs sel[0..nsel-1] of d (indices into d->outputs; sel
  * NULL: every output), and the poles of d's steps when d has them
- * (DeriveOptions.keep_steps).  Never fails: a curve it cannot analyse
- * says why (AnCurve.skip). */
-Analysis *analyze_derived(const Derived *d, const int *sel, int nsel);
+ * (DeriveOptions.keep_steps), with the consts that set gives (NULL: none)
+ * replaced by their values.  Never fails: a curve it cannot analyse says
+ * why (AnCurve.skip). */
+Analysis *analyze_derived(const Derived *d, const int *sel, int nsel,
+                          const AnSet *set);
 void analysis_free(Analysis *a);
 
 /* the report: text for people, JSON for programs (docs/analyze.md) */

@@ -283,7 +283,66 @@ static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
     fmpz_poly_clear(g);
 }
 
-static void analyze_curve(AnCurve *c, const Derived *d, const DerivedOutput *o)
+/* ---- the consts' values ------------------------------------------------- */
+
+/* res = x with the consts set gives replaced; RATFUN_EPOLE when a
+ * denominator vanishes there */
+static int set_consts(PointEq res, RatFun sres, const DerivedOutput *x,
+                      const Derived *d, const AnSet *set)
+{
+    const Ring *r = &d->ring;
+    if (x->kind == KIND_SCALAR)
+        ratfun_set(sres, x->scalar, r);
+    else
+        pteq_set(res, x->eq, r);
+    RatFun v;
+    ratfun_init(v, r);
+    int rc = 0;
+    for (slong k = 0; set && k < d->nconsts && !rc; k++) {
+        if (!set->given[k])
+            continue;
+        ratfun_set_fmpq(v, set->value + k, r);
+        rc = x->kind == KIND_SCALAR
+                 ? ratfun_compose_var(sres, sres, d->nparams + k, v, r)
+                 : pteq_compose_var(res, res, d->nparams + k, v, r);
+    }
+    ratfun_clear(v, r);
+    return rc;
+}
+
+static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq)
+{
+    slong np = eq->len + 1;
+    const fmpz_mpoly_struct **ps = pc_xmalloc((size_t)np * sizeof *ps);
+    for (slong i = 0; i < eq->len; i++)
+        ps[i] = eq->terms[i].num;
+    ps[np - 1] = eq->den;
+    c->param = one_param(ps, np, d, &c->skip);
+    free(ps);
+    if (c->param == -1)
+        c->skip = pc_xstrdup("a constant, not a curve");
+    if (c->skip)
+        return;
+    AnPolys p;
+    polys_from_pteq(&p, eq, c->param, &d->ring);
+    fmpq_t lo, hi;
+    fmpq_init(lo);
+    fmpq_init(hi);
+    c->bounded = param_range(lo, hi, d, c->param);
+    const fmpq *plo = c->bounded ? lo : NULL, *phi = c->bounded ? hi : NULL;
+    c->degree = poly_degree_max(&p);
+    if (fmpz_poly_degree(p.den) >= 1)
+        roots_real(&c->poles, p.den, plo, phi, NULL);
+    if (c->kind == KIND_POINT)
+        point_curve(c, &p, plo, phi, d);
+    analyze_ends(c, &p, plo, phi, d->npoints);
+    fmpq_clear(hi);
+    fmpq_clear(lo);
+    polys_clear(&p);
+}
+
+static void analyze_curve(AnCurve *c, const Derived *d, const DerivedOutput *o,
+                          const AnSet *set)
 {
     c->name = o->name;
     c->kind = o->kind;
@@ -294,56 +353,27 @@ static void analyze_curve(AnCurve *c, const Derived *d, const DerivedOutput *o)
         c->skip = pc_xstrdup("a scalar, not a curve");
         return;
     }
-    slong np = o->eq->len + 1;
-    const fmpz_mpoly_struct **ps = pc_xmalloc((size_t)np * sizeof *ps);
-    for (slong i = 0; i < o->eq->len; i++)
-        ps[i] = o->eq->terms[i].num;
-    ps[np - 1] = o->eq->den;
-    c->param = one_param(ps, np, d, &c->skip);
-    free(ps);
-    if (c->param == -1)
-        c->skip = pc_xstrdup("a constant, not a curve");
-    if (c->skip)
-        return;
-    AnPolys p;
-    polys_from_pteq(&p, o->eq, c->param, &d->ring);
-    fmpq_t lo, hi;
-    fmpq_init(lo);
-    fmpq_init(hi);
-    c->bounded = param_range(lo, hi, d, c->param);
-    const fmpq *plo = c->bounded ? lo : NULL, *phi = c->bounded ? hi : NULL;
-    c->degree = poly_degree_max(&p);
-    if (fmpz_poly_degree(p.den) >= 1)
-        roots_real(&c->poles, p.den, plo, phi, NULL);
-    if (o->kind == KIND_POINT)
-        point_curve(c, &p, plo, phi, d);
-    analyze_ends(c, &p, plo, phi, d->npoints);
-    fmpq_clear(hi);
-    fmpq_clear(lo);
-    polys_clear(&p);
+    PointEq eq;
+    pteq_init(eq, &d->ring);
+    if (set_consts(eq, NULL, o, d, set))
+        c->skip = pc_xstrdup("its denominator vanishes at the values of "
+                             "--set");
+    else
+        curve_polys(c, d, eq);
+    pteq_clear(eq, &d->ring);
 }
 
-/* the poles of a step's value, when it is a function of one param */
-static int analyze_def(AnDef *a, const Derived *d, const DerivedOutput *v)
+/* the poles of the polynomials' one param (ps[np - 1] the denominator):
+ * 0 when they are no function of one param */
+static int def_poles(AnDef *a, const Derived *d, const fmpz_mpoly_struct **ps,
+                     slong np)
 {
-    const fmpz_mpoly_struct *den =
-        v->kind == KIND_SCALAR ? v->scalar->den : v->eq->den;
-    slong np = v->kind == KIND_SCALAR ? 2 : v->eq->len + 1;
-    const fmpz_mpoly_struct **ps = pc_xmalloc((size_t)np * sizeof *ps);
-    if (v->kind == KIND_SCALAR)
-        ps[0] = v->scalar->num;
-    else
-        for (slong i = 0; i < v->eq->len; i++)
-            ps[i] = v->eq->terms[i].num;
-    ps[np - 1] = den;
+    const fmpz_mpoly_struct *den = ps[np - 1];
     char *why = NULL;
     slong param = one_param(ps, np, d, &why);
-    free(ps);
     free(why);
     if (param < 0)
         return 0;
-    a->name = v->name;
-    a->line = v->line;
     a->param = param;
     roots_init(&a->poles);
     fmpz_poly_t q;
@@ -361,7 +391,39 @@ static int analyze_def(AnDef *a, const Derived *d, const DerivedOutput *v)
     return 1;
 }
 
-Analysis *analyze_derived(const Derived *d, const int *sel, int nsel)
+/* the poles of a step's value, when it is a function of one param */
+static int analyze_def(AnDef *a, const Derived *d, const DerivedOutput *v,
+                       const AnSet *set)
+{
+    const Ring *r = &d->ring;
+    PointEq eq;
+    RatFun sv;
+    pteq_init(eq, r);
+    ratfun_init(sv, r);
+    int ok = 0;
+    if (!set_consts(eq, sv, v, d, set)) {
+        slong np = v->kind == KIND_SCALAR ? 2 : eq->len + 1;
+        const fmpz_mpoly_struct **ps = pc_xmalloc((size_t)np * sizeof *ps);
+        if (v->kind == KIND_SCALAR)
+            ps[0] = sv->num;
+        else
+            for (slong i = 0; i < eq->len; i++)
+                ps[i] = eq->terms[i].num;
+        ps[np - 1] = v->kind == KIND_SCALAR ? sv->den : eq->den;
+        ok = def_poles(a, d, ps, np);
+        free(ps);
+    }
+    if (ok) {
+        a->name = v->name;
+        a->line = v->line;
+    }
+    ratfun_clear(sv, r);
+    pteq_clear(eq, r);
+    return ok;
+}
+
+Analysis *analyze_derived(const Derived *d, const int *sel, int nsel,
+                          const AnSet *set)
 {
     Analysis *a = pc_xcalloc(1, sizeof *a);
     a->d = d;
@@ -369,11 +431,11 @@ Analysis *analyze_derived(const Derived *d, const int *sel, int nsel)
     a->curves = pc_xcalloc((size_t)n + 1, sizeof *a->curves);
     a->ncurves = n;
     for (slong i = 0; i < n; i++)
-        analyze_curve(a->curves + i, d, d->outputs + (sel ? sel[i] : i));
+        analyze_curve(a->curves + i, d, d->outputs + (sel ? sel[i] : i), set);
     a->defs = pc_xcalloc((size_t)d->nsteps + 1, sizeof *a->defs);
     for (slong i = 0; i < d->nsteps; i++)
         if (!d->steps[i].pending &&
-            analyze_def(a->defs + a->ndefs, d, &d->steps[i].value))
+            analyze_def(a->defs + a->ndefs, d, &d->steps[i].value, set))
             a->ndefs++;
     return a;
 }

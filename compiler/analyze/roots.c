@@ -14,7 +14,6 @@
  */
 #include "compiler/analyze/roots.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -394,16 +393,4 @@ void roots_real(AnRoots *res, const fmpz_poly_t p, const fmpq *lo,
     fmpz_poly_clear(q);
     fmpz_poly_factor_clear(fac);
     qsort(res->v, (size_t)res->n, sizeof *res->v, cmp_root);
-}
-
-int roots_contains(const AnRoots *r, const AnRoot *x)
-{
-    for (slong i = 0; i < r->n; i++) {
-        const AnRoot *y = r->v + i;
-        if (x->exact && y->exact
-                ? strcmp(x->exact, y->exact) == 0
-                : fabs(x->value - y->value) <= 1e-12 * fmax(1, fabs(x->value)))
-            return 1;
-    }
-    return 0;
 }

@@ -34,8 +34,4 @@ void roots_clear(AnRoots *r);
 void roots_real(AnRoots *res, const fmpz_poly_t p, const fmpq *lo,
                 const fmpq *hi, const fmpz_poly_t excl);
 
-/* 1 when x is one of r's roots: the same exact text, or (isolated roots)
- * within 1e-12 relative */
-int roots_contains(const AnRoots *r, const AnRoot *x);
-
 #endif

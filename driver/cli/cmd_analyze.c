@@ -18,10 +18,11 @@
 typedef struct AnalyzeArgs {
     int json;         // --format json
     NameList outputs; // --output
+    NameList set;     // --set NAME=VALUE, as typed
     const char *usage;
 } AnalyzeArgs;
 
-/* --format text|json, --output NAMES */
+/* --format text|json, --output NAMES, --set k=VALUE */
 static int analyze_option(void *ctx, int argc, char **argv, int i, FILE *err)
 {
     AnalyzeArgs *a = ctx;
@@ -33,6 +34,17 @@ static int analyze_option(void *ctx, int argc, char **argv, int i, FILE *err)
             args_usage_error(err, a->usage, "--output '%s': an empty name", v);
             return -1;
         }
+        return 2;
+    }
+    if (strcmp(argv[i], "--set") == 0) {
+        if (!strchr(v, '=') || v[0] == '=') {
+            args_usage_error(err, a->usage, "--set '%s': expected NAME=VALUE",
+                             v);
+            return -1;
+        }
+        a->set.v =
+            pc_xrealloc(a->set.v, (size_t)(a->set.n + 1) * sizeof *a->set.v);
+        a->set.v[a->set.n++] = pc_xstrdup(v);
         return 2;
     }
     if (strcmp(argv[i], "--format") != 0)
@@ -77,44 +89,103 @@ static int select_outputs(int *sel, const AnalyzeArgs *a, const Derived *d,
     return n;
 }
 
+/* --set's values against d's consts, exact (ratfun_set_str: 1/3, 0.25,
+ * -2); 0, or 2 after a usage error */
+static int set_values(unsigned char *given, fmpq *value, const AnalyzeArgs *a,
+                      const Derived *d, FILE *err)
+{
+    int rc = 0;
+    RatFun x;
+    ratfun_init(x, &d->ring);
+    for (int i = 0; i < a->set.n && !rc; i++) {
+        char *name = pc_xstrdup(a->set.v[i]);
+        char *eq = strchr(name, '=');
+        *eq = 0;
+        slong k = 0;
+        while (k < d->nconsts && strcmp(d->consts[k], name) != 0)
+            k++;
+        if (k == d->nconsts)
+            rc = args_usage_error(err, a->usage,
+                                  "--set '%s': '%s' is not a const of the "
+                                  "scheme",
+                                  a->set.v[i], name);
+        else if (given[k])
+            rc = args_usage_error(err, a->usage, "--set '%s' is given twice",
+                                  name);
+        else if (ratfun_set_str(x, eq + 1, &d->ring) != RATFUN_OK ||
+                 !ratfun_get_fmpq(value + k, x, &d->ring))
+            rc = args_usage_error(err, a->usage,
+                                  "--set '%s': expected a number such as "
+                                  "1/3 or 0.25",
+                                  a->set.v[i]);
+        else
+            given[k] = 1;
+        free(name);
+    }
+    ratfun_clear(x, &d->ring);
+    return rc;
+}
+
+/* the report, made in memory and written in one piece (as derive's) */
+static void report(FILE *out, const AnalyzeArgs *a, const Derived *d,
+                   const int *sel, int nsel, const AnSet *set)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = pc_xopen_memstream(&text, &len);
+    Analysis *an = analyze_derived(d, sel, nsel, set);
+    if (a->json)
+        analyze_print_json(m, an);
+    else
+        analyze_print_text(m, an);
+    analysis_free(an);
+    pc_xclose_memstream(m);
+    fwrite(text, 1, len, out);
+    free(text);
+}
+
+static void args_clear(AnalyzeArgs *a)
+{
+    args_names_clear(&a->outputs);
+    for (int i = 0; i < a->set.n; i++)
+        free(a->set.v[i]);
+    free(a->set.v);
+}
+
 int cli_analyze(int argc, char **argv, FILE *out, FILE *err)
 {
-    AnalyzeArgs a = {0, {NULL, 0}, help_usage("analyze")};
+    AnalyzeArgs a = {0, {NULL, 0}, {NULL, 0}, help_usage("analyze")};
     BudgetOptions bo;
     const char *file;
     int rc =
         args_parse(argc, argv, a.usage, &bo, &file, analyze_option, &a, err);
     if (rc) {
-        args_names_clear(&a.outputs);
+        args_clear(&a);
         return rc;
     }
     Derived *d = cli_derive_file_steps(file, &bo, 1, err, &rc);
     if (!d) {
-        args_names_clear(&a.outputs);
+        args_clear(&a);
         return rc;
     }
     int *sel =
         pc_xmalloc((size_t)(d->noutputs + a.outputs.n + 1) * sizeof *sel);
+    unsigned char *given = pc_xcalloc((size_t)d->nconsts + 1, 1);
+    fmpq *value = pc_xmalloc((size_t)(d->nconsts + 1) * sizeof *value);
+    for (slong k = 0; k < d->nconsts; k++)
+        fmpq_init(value + k);
     int nsel = select_outputs(sel, &a, d, err);
-    if (nsel < 0)
-        rc = 2;
-    else {
-        /* made in memory and written in one piece, as derive's result */
-        char *text = NULL;
-        size_t len = 0;
-        FILE *m = pc_xopen_memstream(&text, &len);
-        Analysis *an = analyze_derived(d, sel, nsel);
-        if (a.json)
-            analyze_print_json(m, an);
-        else
-            analyze_print_text(m, an);
-        analysis_free(an);
-        pc_xclose_memstream(m);
-        fwrite(text, 1, len, out);
-        free(text);
+    rc = nsel < 0 ? 2 : set_values(given, value, &a, d, err);
+    if (!rc) {
+        AnSet set = {given, value};
+        report(out, &a, d, sel, nsel, &set);
     }
+    for (slong k = 0; k < d->nconsts; k++)
+        fmpq_clear(value + k);
+    free(value);
+    free(given);
     free(sel);
     derived_free(d);
-    args_names_clear(&a.outputs);
+    args_clear(&a);
     return rc;
 }

@@ -23,7 +23,8 @@ const char cli_usage[] =
     "                        [--at-param t=VALUE] ...   (pointcalc help plot)\n"
     "       pointcalc fit    --target 'EXPR' --on LO,HI --nodes N  (pointcalc "
     "help fit)\n"
-    "       pointcalc analyze FILE [--output NAME,...] [--format text|json]\n"
+    "       pointcalc analyze FILE [--output NAME,...] [--set k=VALUE ...] "
+    "[--format text|json]\n"
     "       pointcalc help [derive|emit-c|eval|plot|fit|analyze] | CMD --help "
     "| --version\n"
     "\n"
@@ -86,7 +87,8 @@ const char cli_usage[] =
 
 #define ANALYZE_USAGE                                                          \
     "usage: pointcalc analyze FILE [--output NAME[,NAME...]] ... "             \
-    "[--format text|json]\n"
+    "[--set k=VALUE ...]\n"                                                    \
+    "                         [--format text|json]\n"
 
 #define HELP_USAGE                                                             \
     "usage: pointcalc help [derive|emit-c|eval|plot|fit|analyze]\n"
@@ -213,6 +215,8 @@ static const char analyze_help[] = ANALYZE_USAGE
     "\n"
     "  --output NAMES      which outputs, repeatable or comma-separated "
     "(default: all)\n"
+    "  --set k=VALUE       analyse with const k at this exact value (1/3, "
+    "0.25)\n"
     "  --format text|json  the report for people (default) or "
     "programs\n" COMMON_HELP;
 

@@ -22,7 +22,7 @@
  *   - along(A, B, t/(1 - t)) on [0, 1]: to infinity at t = 1 in the
  *     direction B - A; (A + B t + C t^2)/(1 + t + t^2) without a range:
  *     C at t -> oo, d/ds = B - C (s = 1/t);
- *   - what is not analysed, and why.
+ *   - what is not analysed, and why; consts given values (--set).
  */
 /* cmocka.h needs these first, in this order */
 // clang-format off
@@ -190,7 +190,7 @@ static void test_desargues(void **state)
 {
     (void)state;
     Derived *d = derive_text(desargues);
-    Analysis *a = analyze_derived(d, NULL, 0);
+    Analysis *a = analyze_derived(d, NULL, 0, NULL);
     const AnCurve *m = curve(a, "M");
     assert_null(m->skip);
     assert_int_equal(m->degree, 3);
@@ -244,7 +244,7 @@ static void test_contour_arc(void **state)
     (void)state;
     Derived *d = derive_file("examples/contour_arcs.pcs", stderr, NULL);
     assert_non_null(d);
-    Analysis *a = analyze_derived(d, NULL, 0);
+    Analysis *a = analyze_derived(d, NULL, 0, NULL);
     const AnCurve *m = curve(a, "M");
     assert_int_equal(m->degree, 6);
     assert_int_equal(m->order, 6);
@@ -263,7 +263,7 @@ static void test_traced_twice(void **state)
     (void)state;
     Derived *d = derive_text("point A, B, C\nparam t in [-1, 1]\n"
                              "M = bezier(t^2, A, C, B)\n");
-    Analysis *a = analyze_derived(d, NULL, 0);
+    Analysis *a = analyze_derived(d, NULL, 0, NULL);
     const AnCurve *m = curve(a, "M");
     assert_int_equal(m->degree, 4);
     assert_int_equal(m->index, 2);
@@ -285,7 +285,7 @@ static void test_infinity(void **state)
                              "M = along(A, B, t/(1 - t))\n"
                              "N = (A + B*u + C*u^2)/(1 + u + u^2)\n"
                              "output M, N\n");
-    Analysis *a = analyze_derived(d, NULL, 0);
+    Analysis *a = analyze_derived(d, NULL, 0, NULL);
     const AnCurve *m = curve(a, "M");
     assert_int_equal(m->ends[1].infinite, 1);
     assert_combo(m->ends[1].point, d, "A:-1 B:1");
@@ -310,7 +310,7 @@ static void test_skipped(void **state)
                              "s = t^2\nM = along(A, B, k*t)\n"
                              "N = along(A, B, t*u)\nP = along(A, B, 1/3)\n"
                              "output s, M, N, P\n");
-    Analysis *a = analyze_derived(d, NULL, 0);
+    Analysis *a = analyze_derived(d, NULL, 0, NULL);
     assert_string_equal(curve(a, "s")->skip, "a scalar, not a curve");
     assert_string_equal(curve(a, "M")->skip,
                         "depends on k, not only on a param");
@@ -320,12 +320,39 @@ static void test_skipped(void **state)
     derived_free(d);
 }
 
+/* --set: along(A, B, t/(k - t)) at k = 1/2 has the pole t = 1/2; at k = 0
+ * it is along(A, B, -1), a constant */
+static void test_set(void **state)
+{
+    (void)state;
+    Derived *d = derive_text("point A, B\nparam t in [0, 1]\nconst k\n"
+                             "M = along(A, B, t/(k - t))\n");
+    unsigned char given[1] = {1};
+    fmpq value[1];
+    fmpq_init(value);
+    fmpq_set_si(value, 1, 2);
+    AnSet set = {given, value};
+    Analysis *a = analyze_derived(d, NULL, 0, &set);
+    assert_null(a->curves[0].skip);
+    assert_roots(&a->curves[0].poles, "1/2");
+    assert_int_equal(a->ndefs, 1);
+    assert_roots(&a->defs[0].poles, "1/2");
+    analysis_free(a);
+    fmpq_zero(value);
+    a = analyze_derived(d, NULL, 0, &set);
+    assert_string_equal(a->curves[0].skip, "a constant, not a curve");
+    analysis_free(a);
+    fmpq_clear(value);
+    derived_free(d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_roots),       cmocka_unit_test(test_desargues),
         cmocka_unit_test(test_contour_arc), cmocka_unit_test(test_traced_twice),
         cmocka_unit_test(test_infinity),    cmocka_unit_test(test_skipped),
+        cmocka_unit_test(test_set),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     flint_cleanup_master();

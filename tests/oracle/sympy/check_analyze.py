@@ -153,20 +153,22 @@ def same_roots(got, want):
     return True
 
 
-def analyze(path, name, defines=()):
+def analyze(path, name, defines=(), sets=()):
     cmd = [PC, 'analyze', path, '--format', 'json', '--output', name]
     for d in defines:
         cmd += ['-D', d]
+    for v in sets:
+        cmd += ['--set', v]
     out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
     return json.loads(out)
 
 
 def check(label, path, name, expr, points, rng, defines=(), plane=None,
-          smooth=None, defs=None):
+          smooth=None, defs=None, sets=()):
     """expr: the curve as a combination of the point symbols; rng: (lo, hi)
     or None; smooth: the book's smoothness order at both ends, if it states
     one; defs: {name: [poles]} the book states for the definitions"""
-    j = analyze(path, name, defines)
+    j = analyze(path, name, defines, sets)
     o = j['outputs'][0]
     lo, hi = rng if rng else (None, None)
     w = weights_of(expr, points)
@@ -263,6 +265,16 @@ def main():
                 'examples/interpolation_conic.pcs', 'M_parabola',
                 (A - K) * tb * (1 - 2 * t) + (B - K) * t * (2 * t - 1) + K,
                 [A, K, B], (0, 1))
+    # the closed "cubic" arcs of 3.5 (scheme No. 1, table 3.2: kP = 0.8,
+    # kQ = 0.5), the printed M1: of order 5, not 3
+    kP, kQ = sp.Rational(4, 5), sp.Rational(1, 2)
+    dP = kP * (1 - 2 * t)**2 + 2 * t * tb
+    dQ = kQ * (1 - 2 * t)**2 + 2 * t * tb
+    M1c = ((A - C) * (kP * t**2 * tb / dP + kQ * tb**2 * t / dQ) +
+           (B - C) * (kP * tb**3 / dP + kQ * t**3 / dQ) + C)
+    ok &= check('closed cubic No. 1, kP = 0.8, kQ = 0.5 (3.5)',
+                'examples/closed_cubics.pcs', 'M1', M1c, [A, B, C], (0, 1),
+                sets=['kP=0.8', 'kQ=0.5'])
     M1, M2, M3, M4, M5, M6 = sp.symbols('M_1:7')
     nodes = [M1, M2, M3, M4, M5, M6]
     lag = sum(nodes[i] * sp.prod([(5 * t - j) / (i - j) for j in range(6) if j != i])
