@@ -84,6 +84,15 @@ typedef struct AnCurve {
     char *implicit;   // plane curves over three base points: F, in the
                       // points' names as coordinates (text), or NULL
     char *implicit_j; // the same in the JSON form (products with '*')
+    /* with coordinates (AnSet.dim; metric.c), points on a bounded range
+     * without poles: */
+    int has_metric;        // 1: the values below were computed
+    int metric_missing;    // 1: a point of the curve has no coordinates
+    double kappa_end[2];   // the curvature at the ends (NAN: M' = 0 there)
+    double kappa_ext[2];   // its largest [0] and smallest [1] value
+    double kappa_ext_t[2]; // and where
+    int has_kappa_ext[2];
+    double length; // the arc length over the range
 } AnCurve;
 
 /* A definition (derive's steps) in one param, and its poles in range. */
@@ -104,10 +113,15 @@ typedef struct Analysis {
 
 /* Values of consts (analyze --set k=VALUE): for const k (0 ..
  * d->nconsts - 1), given[k] = 1 and value[k] its exact value, which every
- * value is analysed with; the others stay symbolic. */
+ * value is analysed with; the others stay symbolic (given NULL: none).
+ * And the coordinates of base points (--at), for the curvature and the
+ * arc length. */
 typedef struct AnSet {
     const unsigned char *given;
     const fmpq *value;
+    int dim;                 // coordinates (analyze --at): 0 none, else
+    const double *const *pt; // pt[i] the dim coordinates of base point i,
+                             // or NULL (not given)
 } AnSet;
 
 /* Analyses the outputs sel[0..nsel-1] of d (indices into d->outputs; sel
@@ -138,6 +152,9 @@ typedef struct AnPolys {
 void analyze_ends(AnCurve *c, const AnPolys *p, const fmpq *lo, const fmpq *hi,
                   slong npoints);
 void analyze_end_clear(AnEnd *e, slong npoints);
+/* metric.c: curvature and arc length, with set's coordinates */
+void analyze_metric(AnCurve *c, const AnPolys *p, const fmpq *lo,
+                    const fmpq *hi, const AnSet *set);
 /* implicit.c: c->implicit of the plane curve over three points */
 void analyze_implicit(AnCurve *c, const AnPolys *p, const Derived *d);
 

@@ -298,7 +298,7 @@ static int set_consts(PointEq res, RatFun sres, const DerivedOutput *x,
     RatFun v;
     ratfun_init(v, r);
     int rc = 0;
-    for (slong k = 0; set && k < d->nconsts && !rc; k++) {
+    for (slong k = 0; set && set->given && k < d->nconsts && !rc; k++) {
         if (!set->given[k])
             continue;
         ratfun_set_fmpq(v, set->value + k, r);
@@ -310,7 +310,8 @@ static int set_consts(PointEq res, RatFun sres, const DerivedOutput *x,
     return rc;
 }
 
-static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq)
+static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq,
+                        const AnSet *set)
 {
     slong np = eq->len + 1;
     const fmpz_mpoly_struct **ps = pc_xmalloc((size_t)np * sizeof *ps);
@@ -336,6 +337,7 @@ static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq)
     if (c->kind == KIND_POINT)
         point_curve(c, &p, plo, phi, d);
     analyze_ends(c, &p, plo, phi, d->npoints);
+    analyze_metric(c, &p, plo, phi, set);
     fmpq_clear(hi);
     fmpq_clear(lo);
     polys_clear(&p);
@@ -359,7 +361,7 @@ static void analyze_curve(AnCurve *c, const Derived *d, const DerivedOutput *o,
         c->skip = pc_xstrdup("its denominator vanishes at the values of "
                              "--set");
     else
-        curve_polys(c, d, eq);
+        curve_polys(c, d, eq, set);
     pteq_clear(eq, &d->ring);
 }
 

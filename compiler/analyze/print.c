@@ -6,6 +6,7 @@
  */
 #include "compiler/analyze/analyze.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -144,6 +145,34 @@ static void end_text(FILE *out, const AnCurve *c, const AnEnd *e,
     fputs("\n", out);
 }
 
+/* a curvature, or "-" where M' = 0 */
+static void kappa_text(FILE *out, double k)
+{
+    if (isnan(k))
+        fputs("- (dM/dt = 0)", out);
+    else
+        pc_fprintf(out, "%.15g", k);
+}
+
+static void metric_text(FILE *out, const AnCurve *c, const char *t)
+{
+    if (c->metric_missing)
+        fputs("  curvature, arc length: --at misses a point of it\n", out);
+    if (!c->has_metric)
+        return;
+    fputs("  curvature at the ends: ", out);
+    kappa_text(out, c->kappa_end[0]);
+    fputs(", ", out);
+    kappa_text(out, c->kappa_end[1]);
+    fputs("\n", out);
+    const char *what[2] = {"largest", "smallest"};
+    for (int e = 0; e < 2; e++)
+        if (c->has_kappa_ext[e])
+            pc_fprintf(out, "  %s curvature: %.15g at %s = %.15g\n", what[e],
+                       c->kappa_ext[e], t, c->kappa_ext_t[e]);
+    pc_fprintf(out, "  arc length: %.15g\n", c->length);
+}
+
 static void curve_text(FILE *out, const AnCurve *c, const Derived *d)
 {
     if (c->skip) {
@@ -197,6 +226,7 @@ static void curve_text(FILE *out, const AnCurve *c, const Derived *d)
     if (c->implicit)
         fprintf(out, "  implicit, in barycentric coordinates: %s = 0\n",
                 c->implicit);
+    metric_text(out, c, t);
 }
 
 void analyze_print_text(FILE *out, const Analysis *a)
@@ -258,6 +288,33 @@ static void end_json(FILE *out, const AnEnd *e, const Derived *d)
     fputs("}", out);
 }
 
+/* a number, null for NAN */
+static void number_or_null(FILE *out, double v)
+{
+    if (isnan(v))
+        fputs("null", out);
+    else
+        json_number(out, v);
+}
+
+static void metric_json(FILE *out, const AnCurve *c)
+{
+    fputs(", \"curvature_ends\": [", out);
+    number_or_null(out, c->kappa_end[0]);
+    fputs(", ", out);
+    number_or_null(out, c->kappa_end[1]);
+    fputs("], \"curvature_max\": ", out);
+    number_or_null(out, c->has_kappa_ext[0] ? c->kappa_ext[0] : NAN);
+    fputs(", \"curvature_max_at\": ", out);
+    number_or_null(out, c->has_kappa_ext[0] ? c->kappa_ext_t[0] : NAN);
+    fputs(", \"curvature_min\": ", out);
+    number_or_null(out, c->has_kappa_ext[1] ? c->kappa_ext[1] : NAN);
+    fputs(", \"curvature_min_at\": ", out);
+    number_or_null(out, c->has_kappa_ext[1] ? c->kappa_ext_t[1] : NAN);
+    fputs(", \"arc_length\": ", out);
+    json_number(out, c->length);
+}
+
 static void curve_json(FILE *out, const AnCurve *c, const Derived *d)
 {
     fputs("{\"name\": ", out);
@@ -312,6 +369,8 @@ static void curve_json(FILE *out, const AnCurve *c, const Derived *d)
         json_string(out, c->implicit_j);
     else
         fputs("null", out);
+    if (c->has_metric)
+        metric_json(out, c);
     fputs("}", out);
 }
 

@@ -4,7 +4,8 @@
  * derived equation (compiler/analyze/analyze.h, docs/analyze.md): its
  * ends, degree and order, poles, stop points, inflections, the base points
  * it passes through, the implicit equation of a plane curve, and the
- * poles of every definition.
+ * poles of every definition; with --at, the curvature and the arc
+ * length.
  */
 #include "driver/cli/cli.h"
 
@@ -14,11 +15,13 @@
 #include "base/mem.h"
 #include "compiler/analyze/analyze.h"
 #include "driver/cli/args.h"
+#include "runtime/sample.h"
 
 typedef struct AnalyzeArgs {
     int json;         // --format json
     NameList outputs; // --output
     NameList set;     // --set NAME=VALUE, as typed
+    EvalArgs ev;      // --at A=x,y,... (eval's parsing; only at is used)
     const char *usage;
 } AnalyzeArgs;
 
@@ -36,6 +39,8 @@ static int analyze_option(void *ctx, int argc, char **argv, int i, FILE *err)
         }
         return 2;
     }
+    if (strcmp(argv[i], "--at") == 0)
+        return eval_args_option(&a->ev, argc, argv, i, a->usage, err);
     if (strcmp(argv[i], "--set") == 0) {
         if (!strchr(v, '=') || v[0] == '=') {
             args_usage_error(err, a->usage, "--set '%s': expected NAME=VALUE",
@@ -126,6 +131,39 @@ static int set_values(unsigned char *given, fmpq *value, const AnalyzeArgs *a,
     return rc;
 }
 
+/* --at's coordinates against d's points into pt (npoints, NULL: not
+ * given); *dim their dimension.  0, or 2 after a usage error */
+static int coordinates(double **pt, int *dim, const AnalyzeArgs *a,
+                       const Derived *d, FILE *err)
+{
+    for (int i = 0; i < a->ev.nat; i++) {
+        const Assign *x = a->ev.at + i;
+        slong k = derived_find_point(d, x->name);
+        if (k < 0)
+            return args_usage_error(err, a->usage,
+                                    "--at %s: '%s' is not a base point of "
+                                    "the scheme",
+                                    x->name, x->name);
+        if (pt[k])
+            return args_usage_error(err, a->usage, "--at %s given twice",
+                                    x->name);
+        long n = sample_numbers(x->text, pt + k);
+        if (n < 0)
+            return args_usage_error(err, a->usage,
+                                    "--at %s=%s: malformed coordinates; "
+                                    "expected numbers separated by commas",
+                                    x->name, x->text);
+        if (*dim && n != *dim)
+            return args_usage_error(err, a->usage,
+                                    "--at %s has %ld coordinates but the "
+                                    "points before it have %d: every point "
+                                    "must have the same dimension",
+                                    x->name, n, *dim);
+        *dim = (int)n;
+    }
+    return 0;
+}
+
 /* the report, made in memory and written in one piece (as derive's) */
 static void report(FILE *out, const AnalyzeArgs *a, const Derived *d,
                    const int *sel, int nsel, const AnSet *set)
@@ -150,11 +188,13 @@ static void args_clear(AnalyzeArgs *a)
     for (int i = 0; i < a->set.n; i++)
         free(a->set.v[i]);
     free(a->set.v);
+    eval_args_clear(&a->ev);
 }
 
 int cli_analyze(int argc, char **argv, FILE *out, FILE *err)
 {
-    AnalyzeArgs a = {0, {NULL, 0}, {NULL, 0}, help_usage("analyze")};
+    AnalyzeArgs a = {0, {NULL, 0}, {NULL, 0}, {0}, help_usage("analyze")};
+    eval_args_init(&a.ev);
     BudgetOptions bo;
     const char *file;
     int rc =
@@ -174,12 +214,19 @@ int cli_analyze(int argc, char **argv, FILE *out, FILE *err)
     fmpq *value = pc_xmalloc((size_t)(d->nconsts + 1) * sizeof *value);
     for (slong k = 0; k < d->nconsts; k++)
         fmpq_init(value + k);
+    double **pt = pc_xcalloc((size_t)d->npoints + 1, sizeof *pt);
+    int dim = 0;
     int nsel = select_outputs(sel, &a, d, err);
     rc = nsel < 0 ? 2 : set_values(given, value, &a, d, err);
+    if (!rc)
+        rc = coordinates(pt, &dim, &a, d, err);
     if (!rc) {
-        AnSet set = {given, value};
+        AnSet set = {given, value, dim, (const double *const *)pt};
         report(out, &a, d, sel, nsel, &set);
     }
+    for (slong k = 0; k < d->npoints; k++)
+        free(pt[k]);
+    free(pt);
     for (slong k = 0; k < d->nconsts; k++)
         fmpq_clear(value + k);
     free(value);

@@ -217,6 +217,10 @@ static const char analyze_help[] = ANALYZE_USAGE
     "(default: all)\n"
     "  --set k=VALUE       analyse with const k at this exact value (1/3, "
     "0.25)\n"
+    "  --at A=x,y,...      coordinates of base points: then also the "
+    "curvature at the\n"
+    "                      ends, its largest and smallest value and the arc "
+    "length\n"
     "  --format text|json  the report for people (default) or "
     "programs\n" COMMON_HELP;
 

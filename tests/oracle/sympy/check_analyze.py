@@ -19,7 +19,9 @@ what analyze reports, its own way:
   passes       base points: where all other weights vanish
 
 Every value of pointcalc's JSON is parsed with sympify and compared exactly
-(isolated roots: within 1e-14).  PC_BIN names the binary (default
+(isolated roots: within 1e-14).  With --at (check_metric): the curvature
+at the ends, its largest value and the arc length, by mpmath at 30 digits,
+within 1e-12.  PC_BIN names the binary (default
 build/pointcalc).  Prints one line per curve and "analyze: N curves agree".
 """
 import json
@@ -241,6 +243,48 @@ def check(label, path, name, expr, points, rng, defines=(), plane=None,
     return not errs
 
 
+def check_metric(label, path, name, expr, coords, rng):
+    """--at: the curvature at the ends (exact, then float), its largest and
+    smallest value (mpmath: a dense grid, then findroot on kappa'), the arc
+    length (mpmath.quad at 30 digits)"""
+    import mpmath
+    mpmath.mp.dps = 30
+    cmd = [PC, 'analyze', path, '--format', 'json', '--output', name]
+    for p, xy in coords.items():
+        cmd += ['--at', f"{p}={','.join(str(v) for v in xy)}"]
+    o = json.loads(subprocess.run(cmd, capture_output=True, text=True,
+                                  check=True).stdout)['outputs'][0]
+    e = sp.expand(expr)
+    X = [sum(sp.together(e.coeff(sp.Symbol(p))) * xy[k]
+             for p, xy in coords.items()) for k in range(len(next(iter(coords.values()))))]
+    d1 = [sp.diff(x, t) for x in X]
+    d2 = [sp.diff(x, t, 2) for x in X]
+    sq = sum(a * a for a in d1)
+    cross = sum((d1[a] * d2[b] - d1[b] * d2[a])**2
+                for a in range(len(X)) for b in range(a + 1, len(X)))
+    kappa = sp.sqrt(cross) / sq**sp.Rational(3, 2)
+    errs = []
+    lo, hi = rng
+    for k, end in enumerate((lo, hi)):
+        want = float(sp.simplify(kappa.subs(t, end)))
+        if abs(o['curvature_ends'][k] - want) > 1e-12 * max(1, want):
+            errs.append(f"curvature at {end}: {o['curvature_ends'][k]} != {want}")
+    f = sp.lambdify(t, kappa, 'mpmath')
+    grid = [lo + (hi - lo) * mpmath.mpf(i) / 4000 for i in range(4001)]
+    vals = [f(g) for g in grid]
+    imax = max(range(len(vals)), key=lambda i: vals[i])
+    fd = sp.lambdify(t, sp.diff(sq**3 / cross, t), 'mpmath')  # kappa^-2
+    tmax = grid[imax] if imax in (0, 4000) else mpmath.findroot(fd, grid[imax])
+    if abs(o['curvature_max'] - float(f(tmax))) > 1e-12 * float(f(tmax)):
+        errs.append(f"largest curvature {o['curvature_max']} != {f(tmax)}")
+    speed = sp.lambdify(t, sp.sqrt(sq), 'mpmath')
+    L = mpmath.quad(speed, [lo, hi])
+    if abs(o['arc_length'] - float(L)) > 1e-12 * float(L):
+        errs.append(f"arc length {o['arc_length']} != {L}")
+    print(f"{label}: {'agrees' if not errs else 'DIFFERS: ' + '; '.join(errs)}")
+    return not errs
+
+
 def main():
     A, B, C, D, K = sp.symbols('A B C D K')
     ok = True
@@ -275,6 +319,14 @@ def main():
     ok &= check('closed cubic No. 1, kP = 0.8, kQ = 0.5 (3.5)',
                 'examples/closed_cubics.pcs', 'M1', M1c, [A, B, C], (0, 1),
                 sets=['kP=0.8', 'kQ=0.5'])
+    ok &= check_metric('desargues M --at (plane coordinates)',
+                       'examples/desargues_arc.pcs', 'M', M,
+                       {'A': (0, 0), 'B': (1, 0), 'C': (1, 1), 'D': (0, 1)},
+                       (0, 1))
+    ok &= check_metric('desargues M --at (space coordinates)',
+                       'examples/desargues_arc.pcs', 'M', M,
+                       {'A': (0, 0, 0), 'B': (1, 0, 0), 'C': (1, 1, 0),
+                        'D': (0, 1, 1)}, (0, 1))
     M1, M2, M3, M4, M5, M6 = sp.symbols('M_1:7')
     nodes = [M1, M2, M3, M4, M5, M6]
     lag = sum(nodes[i] * sp.prod([(5 * t - j) / (i - j) for j in range(6) if j != i])
