@@ -932,6 +932,18 @@ check "analyze --set of no const says so" grep -q "pointcalc: --set 'q=1': 'q' i
 "$PC" analyze "$tmp/anset.pcs" --set k=x >"$tmp/out" 2>"$tmp/err"
 check "analyze --set k=x exits 2" test $? -eq 2
 check "analyze --set k=x prints nothing" test ! -s "$tmp/out"
+# --at: at t = 0, M' = C - A = (1, 1), M'' = 2B - 2A = (2, 0): curvature
+# |1*0 - 1*2| / (sqrt 2)^3 = 1/sqrt(2); at t = 1, M' = D - B = (-1, 1),
+# M'' = 2C - 2D = (2, 0): 1/sqrt(2) again
+"$PC" analyze examples/desargues_arc.pcs --output M --at A=0,0 --at B=1,0 --at C=1,1 --at D=0,1 --format json >"$tmp/anat.json"
+check "analyze --at: the curvature at the ends" python3 -c "
+import json, math
+o=json.load(open('$tmp/anat.json'))['outputs'][0]
+assert all(abs(k - 1/math.sqrt(2)) < 1e-14 for k in o['curvature_ends']), o
+assert o['curvature_max'] >= 1/math.sqrt(2) and o['arc_length'] > math.sqrt(2), o
+"
+"$PC" analyze examples/desargues_arc.pcs --at A=0,0 --at B=1,0,0 >"$tmp/out" 2>"$tmp/err"
+check "analyze --at of two dimensions exits 2" test $? -eq 2
 check "analyze --help" sh -c "'$PC' analyze --help | grep -q '^usage: pointcalc analyze FILE'"
 
 echo "cli: $pass passed, $fail failed"
