@@ -222,7 +222,12 @@ int cli_analyze(int argc, char **argv, FILE *out, FILE *err)
         rc = coordinates(pt, &dim, &a, d, err);
     if (!rc) {
         AnSet set = {given, value, dim, (const double *const *)pt};
+        /* the analysis has its own budget: root isolation and factoring
+         * of a big curve are not bounded by themselves */
+        budget_arm(bo.max_seconds, bo.max_memory);
+        budget_phase("analysing the curves");
         report(out, &a, d, sel, nsel, &set);
+        budget_disarm();
     }
     for (slong k = 0; k < d->npoints; k++)
         free(pt[k]);
