@@ -331,7 +331,7 @@ static void test_set(void **state)
     fmpq value[1];
     fmpq_init(value);
     fmpq_set_si(value, 1, 2);
-    AnSet set = {given, value};
+    AnSet set = {given, value, 0, NULL};
     Analysis *a = analyze_derived(d, NULL, 0, &set);
     assert_null(a->curves[0].skip);
     assert_roots(&a->curves[0].poles, "1/2");
