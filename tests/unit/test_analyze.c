@@ -22,7 +22,9 @@
  *   - along(A, B, t/(1 - t)) on [0, 1]: to infinity at t = 1 in the
  *     direction B - A; (A + B t + C t^2)/(1 + t + t^2) without a range:
  *     C at t -> oo, d/ds = B - C (s = 1/t);
- *   - what is not analysed, and why; consts given values (--set).
+ *   - what is not analysed, and why; consts given values (--set);
+ *   - with coordinates, the curvature and the arc length of the parabola
+ *     y = x^2 over [0, 1].
  */
 /* cmocka.h needs these first, in this order */
 // clang-format off
@@ -346,13 +348,44 @@ static void test_set(void **state)
     derived_free(d);
 }
 
+/* --at: the parabola (t, t^2) = bezier(t, A, C, B) with A = (0, 0), C =
+ * (1/2, 0), B = (1, 1): curvature 2/(1 + 4t^2)^(3/2), 2 at t = 0 (its
+ * largest) and 2/5^(3/2) at t = 1 (its smallest); arc length
+ * (2 sqrt(5) + asinh(2))/4 */
+static void test_metric(void **state)
+{
+    (void)state;
+    Derived *d = derive_text("point A, B, C\nparam t in [0, 1]\n"
+                             "M = bezier(t, A, C, B)\n");
+    const double a[2] = {0, 0}, b[2] = {1, 1}, c[2] = {0.5, 0};
+    const double *pt[3] = {a, b, c};
+    AnSet set = {NULL, NULL, 2, pt};
+    Analysis *an = analyze_derived(d, NULL, 0, &set);
+    const AnCurve *m = an->curves;
+    assert_true(m->has_metric);
+    double k1 = 2 / pow(5, 1.5), len = (2 * sqrt(5) + asinh(2)) / 4;
+    assert_true(fabs(m->kappa_end[0] - 2) < 1e-14);
+    assert_true(fabs(m->kappa_end[1] - k1) < 1e-14);
+    assert_true(fabs(m->kappa_ext[0] - 2) < 1e-14 && m->kappa_ext_t[0] == 0);
+    assert_true(fabs(m->kappa_ext[1] - k1) < 1e-14 && m->kappa_ext_t[1] == 1);
+    assert_true(fabs(m->length - len) < 1e-12 * len);
+    analysis_free(an);
+    /* a point without coordinates: nothing, and said */
+    pt[2] = NULL;
+    an = analyze_derived(d, NULL, 0, &set);
+    assert_false(an->curves[0].has_metric);
+    assert_true(an->curves[0].metric_missing);
+    analysis_free(an);
+    derived_free(d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_roots),       cmocka_unit_test(test_desargues),
         cmocka_unit_test(test_contour_arc), cmocka_unit_test(test_traced_twice),
         cmocka_unit_test(test_infinity),    cmocka_unit_test(test_skipped),
-        cmocka_unit_test(test_set),
+        cmocka_unit_test(test_set),         cmocka_unit_test(test_metric),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     flint_cleanup_master();
