@@ -392,5 +392,6 @@ void roots_real(AnRoots *res, const fmpz_poly_t p, const fmpq *lo,
     }
     fmpz_poly_clear(q);
     fmpz_poly_factor_clear(fac);
-    qsort(res->v, (size_t)res->n, sizeof *res->v, cmp_root);
+    if (res->n > 1) /* qsort takes no NULL, even for 0 elements */
+        qsort(res->v, (size_t)res->n, sizeof *res->v, cmp_root);
 }
