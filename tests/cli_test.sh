@@ -926,6 +926,13 @@ printf 'point A, B\nparam t in [0, 1]\nconst k\nM = along(A, B, t/(k - t))\n' >"
 check "analyze --set k=1/2: the pole t = 1/2" grep -qx '  poles: t = 1/2' "$tmp/out"
 "$PC" analyze "$tmp/anset.pcs" >"$tmp/out" 2>"$tmp/err"
 check "analyze without --set: not analysed" grep -qx 'M: not analysed: depends on k, not only on a param' "$tmp/out"
+"$PC" analyze "$tmp/anset.pcs" --format json >"$tmp/anset.json"
+check "analyze --format json: a skipped output keeps the keys, null" python3 -c "
+import json
+o=json.load(open('$tmp/anset.json'))['outputs'][0]
+assert o['skipped']=='depends on k, not only on a param', o
+assert all(o[k] is None for k in ('degree','poles','stop_points','inflections')), o
+"
 "$PC" analyze "$tmp/anset.pcs" --set q=1 >"$tmp/out" 2>"$tmp/err"
 check "analyze --set of no const exits 2" test $? -eq 2
 check "analyze --set of no const says so" grep -q "pointcalc: --set 'q=1': 'q' is not a const of the scheme" "$tmp/err"

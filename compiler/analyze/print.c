@@ -320,10 +320,12 @@ static void curve_json(FILE *out, const AnCurve *c, const Derived *d)
     fputs("{\"name\": ", out);
     json_string(out, c->name);
     fprintf(out, ", \"kind\": \"%s\"", kind_name(c->kind));
-    if (c->skip) {
+    if (c->skip) { /* the keys every output has, null */
         fputs(", \"skipped\": ", out);
         json_string(out, c->skip);
-        fputs("}", out);
+        fputs(", \"degree\": null, \"poles\": null, \"stop_points\": null, "
+              "\"inflections\": null}",
+              out);
         return;
     }
     fputs(", \"param\": ", out);
