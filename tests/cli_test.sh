@@ -1103,5 +1103,85 @@ check "fit FILE -D of no int: nothing on stdout" test ! -s "$tmp/fitc.out"
 "$PC" fit --target 'x^2' --on 0,1 --nodes 3 --set a=1 >/dev/null 2>"$tmp/fitc.err"
 check "fit --target --set: exit 2" test $? -eq 2
 
+# analyze (docs/analyze.md): the Desargues arc and its plane case C = B,
+# written by hand from monograph 3.7 (M(0) = A, dM(0) = C - A, M(1) = D,
+# dM(1) = D - B; C = B: d2M(0) = 2B - 2A is parallel to dM(0) = B - A, an
+# inflection at each end; b^3 = ad(a + 3b + d) in barycentric coordinates;
+# T, S, R have the pole t = 1/2 where PQ is parallel to AB)
+cat >"$tmp/analyze.want" <<'WANT'
+M: a point curve in t in [0, 1], degree 3, order 3, proper, a space curve
+  t = 0: M = A, dM/dt = C - A; smoothness order 1
+  t = 1: M = D, dM/dt = D - B; smoothness order 1
+  passes through: A at t = 0; D at t = 1
+  poles: none
+  stop points: none
+M_CB: a point curve in t in [0, 1], degree 3, order 3, proper, a plane curve
+  t = 0: M_CB = A, dM_CB/dt = B - A; smoothness order 2
+  t = 1: M_CB = D, dM_CB/dt = D - B; smoothness order 2
+  passes through: A at t = 0; D at t = 1
+  poles: none
+  stop points: none
+  inflections: t = 0, t = 1
+  implicit, in barycentric coordinates: B^3 - A^2*D - 3*A*B*D - A*D^2 = 0
+poles of the definitions in their param's range:
+  T (line 40): t = 1/2
+  S (line 45): t = 1/2
+  R (line 50): t = 1/2
+WANT
+"$PC" analyze examples/desargues_arc.pcs --output M,M_CB >"$tmp/analyze.out" 2>"$tmp/analyze.err"
+check "analyze exits 0" test $? -eq 0
+check "analyze: the Desargues arc's report" cmp -s "$tmp/analyze.want" "$tmp/analyze.out"
+check "analyze is quiet on stderr" test ! -s "$tmp/analyze.err"
+"$PC" analyze examples/contour_arcs.pcs --format json >"$tmp/analyze.json"
+check "analyze --format json: the contour arc of order 5" python3 -c "
+import json
+d=json.load(open('$tmp/analyze.json'))
+o=d['outputs'][0]
+assert o['name']=='M' and o['degree']==6 and o['order']==6 and o['proper']
+assert o['poles']==[] and o['stop_points']==[] and o['inflections']==['0','1']
+assert [e['smoothness'] for e in o['ends']]==[5,5]
+assert o['ends'][0]['derivative']=={'A':'-2','C':'2'}
+"
+"$PC" analyze examples/desargues_arc.pcs --format yaml >"$tmp/out" 2>/dev/null
+check "analyze: a bad format exits 2" test $? -eq 2
+"$PC" analyze examples/desargues_arc.pcs --output Z >"$tmp/out" 2>"$tmp/err"
+check "analyze: an unknown output exits 2" test $? -eq 2
+check "analyze: an unknown output prints nothing" test ! -s "$tmp/out"
+check "analyze: an unknown output says which" grep -q "pointcalc: --output 'Z' is not an output of the scheme" "$tmp/err"
+"$PC" analyze "$tmp/bad.pcs" >"$tmp/out" 2>"$tmp/err"
+check "analyze: a scheme error exits 1" test $? -eq 1
+check "analyze: a scheme error prints nothing" test ! -s "$tmp/out"
+printf 'point A, B\nparam t in [0, 1]\nconst k\nM = along(A, B, t/(k - t))\n' >"$tmp/anset.pcs"
+"$PC" analyze "$tmp/anset.pcs" --set k=1/2 >"$tmp/out" 2>"$tmp/err"
+check "analyze --set k=1/2: the pole t = 1/2" grep -qx '  poles: t = 1/2' "$tmp/out"
+"$PC" analyze "$tmp/anset.pcs" >"$tmp/out" 2>"$tmp/err"
+check "analyze without --set: not analysed" grep -qx 'M: not analysed: depends on k, not only on a param' "$tmp/out"
+"$PC" analyze "$tmp/anset.pcs" --format json >"$tmp/anset.json"
+check "analyze --format json: a skipped output keeps the keys, null" python3 -c "
+import json
+o=json.load(open('$tmp/anset.json'))['outputs'][0]
+assert o['skipped']=='depends on k, not only on a param', o
+assert all(o[k] is None for k in ('degree','poles','stop_points','inflections')), o
+"
+"$PC" analyze "$tmp/anset.pcs" --set q=1 >"$tmp/out" 2>"$tmp/err"
+check "analyze --set of no const exits 2" test $? -eq 2
+check "analyze --set of no const says so" grep -q "pointcalc: --set 'q=1': 'q' is not a const of the scheme" "$tmp/err"
+"$PC" analyze "$tmp/anset.pcs" --set k=x >"$tmp/out" 2>"$tmp/err"
+check "analyze --set k=x exits 2" test $? -eq 2
+check "analyze --set k=x prints nothing" test ! -s "$tmp/out"
+# --at: at t = 0, M' = C - A = (1, 1), M'' = 2B - 2A = (2, 0): curvature
+# |1*0 - 1*2| / (sqrt 2)^3 = 1/sqrt(2); at t = 1, M' = D - B = (-1, 1),
+# M'' = 2C - 2D = (2, 0): 1/sqrt(2) again
+"$PC" analyze examples/desargues_arc.pcs --output M --at A=0,0 --at B=1,0 --at C=1,1 --at D=0,1 --format json >"$tmp/anat.json"
+check "analyze --at: the curvature at the ends" python3 -c "
+import json, math
+o=json.load(open('$tmp/anat.json'))['outputs'][0]
+assert all(abs(k - 1/math.sqrt(2)) < 1e-14 for k in o['curvature_ends']), o
+assert o['curvature_max'] >= 1/math.sqrt(2) and o['arc_length'] > math.sqrt(2), o
+"
+"$PC" analyze examples/desargues_arc.pcs --at A=0,0 --at B=1,0,0 >"$tmp/out" 2>"$tmp/err"
+check "analyze --at of two dimensions exits 2" test $? -eq 2
+check "analyze --help" sh -c "'$PC' analyze --help | grep -q '^usage: pointcalc analyze FILE'"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

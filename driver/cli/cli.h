@@ -23,11 +23,12 @@
 
 typedef int CliCommand(int argc, char **argv, FILE *out, FILE *err);
 
-CliCommand cli_derive; // cmd_derive.c: the exact equations, text|latex|json
-CliCommand cli_emit_c; // cmd_emit_c.c: C99 for the outputs
-CliCommand cli_eval;   // cmd_eval.c: numbers, CSV|JSON
-CliCommand cli_help;   // help.c: pointcalc help [CMD]
-CliCommand cli_plot;   // cmd_plot.c: the curves and the construction as SVG
+CliCommand cli_derive;  // cmd_derive.c: the exact equations, text|latex|json
+CliCommand cli_emit_c;  // cmd_emit_c.c: C99 for the outputs
+CliCommand cli_eval;    // cmd_eval.c: numbers, CSV|JSON
+CliCommand cli_help;    // help.c: pointcalc help [CMD]
+CliCommand cli_plot;    // cmd_plot.c: the curves and the construction as SVG
+CliCommand cli_analyze; // cmd_analyze.c: what the curves are, exactly
 
 /* The pipeline every command starts with (pipeline.c).
  *

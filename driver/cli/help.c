@@ -28,9 +28,10 @@ const char cli_usage[] =
     "X,Y,PHI\n"
     "                        [--law linear|quadratic|cubic]  (pointcalc help "
     "natural)\n"
-    "       pointcalc help [derive|emit-c|eval|plot|fit|natural] | CMD --help "
-    "| "
-    "--version\n"
+    "       pointcalc analyze FILE [--output NAME,...] [--set k=VALUE ...] "
+    "[--format text|json]\n"
+    "       pointcalc help [derive|emit-c|eval|plot|fit|natural|analyze] | CMD "
+    "--help | --version\n"
     "\n"
     "\n"
     "Every command also takes --max-seconds S and --max-memory SIZE (the\n"
@@ -89,7 +90,13 @@ const char cli_usage[] =
     "[--size W[xH]]\n"                                                         \
     "                      [--window X0,Y0,X1,Y1] [--max-samples N]\n"
 
-#define HELP_USAGE "usage: pointcalc help [derive|emit-c|eval|plot]\n"
+#define ANALYZE_USAGE                                                          \
+    "usage: pointcalc analyze FILE [--output NAME[,NAME...]] ... "             \
+    "[--set k=VALUE ...]\n"                                                    \
+    "                         [--format text|json]\n"
+
+#define HELP_USAGE                                                             \
+    "usage: pointcalc help [derive|emit-c|eval|plot|fit|analyze]\n"
 
 static const char derive_help[] = DERIVE_USAGE
     "\n"
@@ -199,6 +206,31 @@ static const char plot_help[] = PLOT_USAGE
     "  --max-samples N     the sample budget per curve (default 4000)\n"
     "\nPoles are cut, never joined.\n" COMMON_HELP;
 
+static const char analyze_help[] = ANALYZE_USAGE
+    "\n"
+    "Finds exactly what each output curve in one param is (docs/analyze.md):\n"
+    "its degree, order and whether it is traced once; the point and the "
+    "first\n"
+    "non-zero derivative at each end of the declared range, and its "
+    "order of\n"
+    "smoothness there; the base points it passes through; its poles, stop\n"
+    "points and (plane curves) inflections in the range, exact where they "
+    "are\n"
+    "rational or quadratic, else isolated to 1e-15; the implicit equation "
+    "of a\n"
+    "plane curve over three base points; the poles of every definition.\n"
+    "\n"
+    "  --output NAMES      which outputs, repeatable or comma-separated "
+    "(default: all)\n"
+    "  --set k=VALUE       analyse with const k at this exact value (1/3, "
+    "0.25)\n"
+    "  --at A=x,y,...      coordinates of base points: then also the "
+    "curvature at the\n"
+    "                      ends, its largest and smallest value and the arc "
+    "length\n"
+    "  --format text|json  the report for people (default) or "
+    "programs\n" COMMON_HELP;
+
 static const char help_help[] =
     HELP_USAGE "\nPrints the general usage, or the help of one command.\n";
 
@@ -213,6 +245,7 @@ static const HelpEntry entries[] = {
     {"plot", PLOT_USAGE, plot_help},
     {"fit", FIT_USAGE, fit_help},
     {"natural", NATURAL_USAGE, natural_help},
+    {"analyze", ANALYZE_USAGE, analyze_help},
     {"help", HELP_USAGE, help_help},
 };
 
@@ -246,7 +279,7 @@ int cli_help(int argc, char **argv, FILE *out, FILE *err)
     if (!h)
         return args_usage_error(err, HELP_USAGE,
                                 "no help on '%s'; expected derive, emit-c, "
-                                "eval or plot",
+                                "eval, plot, fit or analyze",
                                 argv[1]);
     return fputs(h, out) < 0;
 }

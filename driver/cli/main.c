@@ -8,6 +8,7 @@
  *           |-> emit C                     emit-c  (emit_c.c)
  *           |-> interpret: CSV, JSON       eval    (eval.c, table.c)
  *           `-> sample and draw: SVG       plot    (plot.c)
+ *     `-> find what the curves are       analyze (cmd_analyze.c)
  *
  * with the options every command shares in args.c.  This file only picks
  * the command, and runs it on a thread of CLI_STACK bytes of stack: the
@@ -42,6 +43,7 @@ static const Command commands[] = {
     {"derive", cli_derive},   {"emit-c", cli_emit_c}, {"eval", cli_eval},
     {"help", cli_help},       {"plot", cli_plot},     {"fit", cli_fit},
     {"natural", cli_natural},
+    {"analyze", cli_analyze},
 };
 
 static const Command *find_command(const char *name)

@@ -12,10 +12,67 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "compiler/analyze/analyze.h"
 #include "compiler/derive.h"
 #include "compiler/print/format.h"
 #include "runtime/eval.h"
 #include "runtime/plot.h"
+
+/* the largest total degree of d's outputs' equations */
+static inline slong exercise_degree(const Derived *d)
+{
+    slong deg = 0;
+    for (slong i = 0; i < d->noutputs; i++) {
+        const DerivedOutput *o = d->outputs + i;
+        if (o->kind == KIND_SCALAR)
+            continue;
+        deg =
+            FLINT_MAX(deg, fmpz_mpoly_total_degree_si(o->eq->den, d->ring.ctx));
+        for (slong k = 0; k < o->eq->len; k++)
+            deg = FLINT_MAX(deg, fmpz_mpoly_total_degree_si(o->eq->terms[k].num,
+                                                            d->ring.ctx));
+    }
+    return deg;
+}
+
+/* analyze (docs/analyze.md) as text and JSON, then with every const at 1/3
+ * and coordinates (i, i^2 - 1) for point i: the curvature and arc length
+ * too.  Only up to degree 24, which keeps a mutated scheme quick (the
+ * command line bounds the analysis by its time budget instead). */
+static inline void exercise_analyze(FILE *m, const Derived *d)
+{
+    if (exercise_degree(d) > 24)
+        return;
+    Analysis *a = analyze_derived(d, NULL, 0, NULL);
+    analyze_print_text(m, a);
+    analyze_print_json(m, a);
+    analysis_free(a);
+    unsigned char *given = calloc((size_t)d->nconsts + 1, 1);
+    fmpq *value = calloc((size_t)d->nconsts + 1, sizeof *value);
+    double *xy = calloc(2 * (size_t)d->npoints + 1, sizeof *xy);
+    const double **pt = calloc((size_t)d->npoints + 1, sizeof *pt);
+    for (slong k = 0; k < d->nconsts; k++) {
+        given[k] = 1;
+        fmpq_init(value + k);
+        fmpq_set_si(value + k, 1, 3);
+    }
+    for (slong i = 0; i < d->npoints; i++) {
+        xy[2 * i] = (double)i;
+        xy[2 * i + 1] = (double)(i * i - 1);
+        pt[i] = xy + 2 * i;
+    }
+    AnSet set = {given, value, 2, pt};
+    a = analyze_derived(d, NULL, 0, &set);
+    analyze_print_text(m, a);
+    analyze_print_json(m, a);
+    analysis_free(a);
+    for (slong k = 0; k < d->nconsts; k++)
+        fmpq_clear(value + k);
+    free(pt);
+    free(xy);
+    free(value);
+    free(given);
+}
 
 /* formats d three ways (and relative to its first point), lowers it, emits
  * C and a header, evaluates every output at a few samples in 2D, and plots
@@ -94,6 +151,7 @@ static inline void exercise_backends(const Derived *d)
         free(prm);
         plan_free(p);
     }
+    exercise_analyze(m, d);
     fclose(m);
     free(text);
 }

@@ -1,0 +1,468 @@
+/*
+ * curve.c - analyze_derived: each output as integer polynomials in its one
+ * param (AnPolys), then the invariants of analyze.h read from them, all in
+ * Z[t] (fmpz_poly) but the index, a gcd in Z[s, t] (fmpz_mpoly).  The ends
+ * are ends.c, the implicit equation implicit.c, the report print.c.
+ */
+#include "compiler/analyze/analyze.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/fmpz_mat.h>
+
+#include "base/mem.h"
+
+/* ---- the curve as polynomials in one param ------------------------------ */
+
+/* marks in used[] the ring variables p depends on */
+static void mark_vars(unsigned char *used, const fmpz_mpoly_t p, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars;
+    slong *deg = pc_xmalloc((size_t)nv * sizeof *deg);
+    fmpz_mpoly_degrees_si(deg, p, r->ctx);
+    for (slong v = 0; v < nv; v++)
+        if (deg[v] > 0)
+            used[v] = 1;
+    pc_free(deg);
+}
+
+/* the one param the polynomials depend on: its index; -1 none (a
+ * constant); -2 something else (why in *why, owned) */
+static slong one_param(const fmpz_mpoly_struct *const *p, slong np,
+                       const Derived *d, char **why)
+{
+    const Ring *r = &d->ring;
+    slong nv = r->ctx->minfo->nvars;
+    unsigned char *used = pc_xcalloc((size_t)nv, 1);
+    for (slong i = 0; i < np; i++)
+        mark_vars(used, p[i], r);
+    slong param = -1, n = 0;
+    for (slong v = 0; v < nv; v++) {
+        if (!used[v])
+            continue;
+        n++;
+        if (v >= d->nparams && !*why)
+            *why = pc_xasprintf("depends on %s, not only on a param",
+                                v < r->nvars ? r->names[v] : "a function");
+        param = v;
+    }
+    pc_free(used);
+    if (!*why && n > 1)
+        *why = pc_xstrdup("depends on more than one param");
+    return *why ? -2 : param;
+}
+
+static void polys_clear(AnPolys *p)
+{
+    for (slong i = 0; i < p->len; i++)
+        fmpz_poly_clear(p->n + i);
+    fmpz_poly_clear(p->den);
+    pc_free(p->n);
+    pc_free(p->pt);
+}
+
+/* eq's numerators and denominator as polynomials in param */
+static void polys_from_pteq(AnPolys *p, const PointEq eq, slong param,
+                            const Ring *r)
+{
+    p->len = eq->len;
+    p->pt = pc_xmalloc((size_t)(eq->len + 1) * sizeof *p->pt);
+    p->n = pc_xmalloc((size_t)(eq->len + 1) * sizeof *p->n);
+    for (slong i = 0; i < eq->len; i++) {
+        p->pt[i] = eq->terms[i].point;
+        fmpz_poly_init(p->n + i);
+        fmpz_mpoly_get_fmpz_poly(p->n + i, eq->terms[i].num, param, r->ctx);
+    }
+    fmpz_poly_init(p->den);
+    fmpz_mpoly_get_fmpz_poly(p->den, eq->den, param, r->ctx);
+}
+
+/* the param's declared range as numbers, 1; 0 none (or not numbers) */
+static int param_range(fmpq_t lo, fmpq_t hi, const Derived *d, slong param)
+{
+    if (!d->has_range || !d->has_range[param])
+        return 0;
+    return ratfun_get_fmpq(lo, d->range + 2 * param, &d->ring) &&
+           ratfun_get_fmpq(hi, d->range + 2 * param + 1, &d->ring);
+}
+
+/* ---- invariants --------------------------------------------------------- */
+
+static slong poly_degree_max(const AnPolys *p)
+{
+    slong n = fmpz_poly_degree(p->den);
+    for (slong i = 0; i < p->len; i++)
+        n = FLINT_MAX(n, fmpz_poly_degree(p->n + i));
+    return n;
+}
+
+/* rank of the numerators' coefficient matrix (rows[] = 1 for rows that
+ * a greedy choice of independent rows takes, when rows is not NULL) */
+static slong coeff_rank(const AnPolys *p, slong degree, int *rows)
+{
+    fmpz_mat_t m;
+    fmpz_mat_init(m, 0, degree + 1);
+    slong rank = 0;
+    for (slong i = 0; i < p->len; i++) {
+        fmpz_mat_t t;
+        fmpz_mat_init(t, rank + 1, degree + 1);
+        for (slong r = 0; r < rank; r++)
+            for (slong c = 0; c <= degree; c++)
+                fmpz_set(fmpz_mat_entry(t, r, c), fmpz_mat_entry(m, r, c));
+        for (slong c = 0; c <= degree; c++)
+            fmpz_poly_get_coeff_fmpz(fmpz_mat_entry(t, rank, c), p->n + i, c);
+        if (fmpz_mat_rank(t) > rank) {
+            fmpz_mat_swap(m, t);
+            rank++;
+            if (rows)
+                rows[i] = 1;
+        } else if (rows)
+            rows[i] = 0;
+        fmpz_mat_clear(t);
+    }
+    fmpz_mat_clear(m);
+    return rank;
+}
+
+/* deg_t gcd_i (n_i(t) n_0(s) - n_0(t) n_i(s)) in Z[t, s] */
+static slong trace_index(const AnPolys *p)
+{
+    fmpz_mpoly_ctx_t ctx;
+    fmpz_mpoly_ctx_init(ctx, 2, ORD_LEX);
+    fmpz_mpoly_t g, a, b, c, e, f;
+    fmpz_mpoly_init(g, ctx);
+    fmpz_mpoly_init(a, ctx);
+    fmpz_mpoly_init(b, ctx);
+    fmpz_mpoly_init(c, ctx);
+    fmpz_mpoly_init(e, ctx);
+    fmpz_mpoly_init(f, ctx);
+    fmpz_mpoly_set_fmpz_poly(a, p->n + 0, 0, ctx); /* n_0(t) */
+    fmpz_mpoly_set_fmpz_poly(b, p->n + 0, 1, ctx); /* n_0(s) */
+    for (slong i = 1; i < p->len; i++) {
+        fmpz_mpoly_set_fmpz_poly(c, p->n + i, 0, ctx);
+        fmpz_mpoly_set_fmpz_poly(e, p->n + i, 1, ctx);
+        fmpz_mpoly_mul(c, c, b, ctx);
+        fmpz_mpoly_mul(e, e, a, ctx);
+        fmpz_mpoly_sub(f, c, e, ctx);
+        fmpz_mpoly_gcd(g, g, f, ctx);
+    }
+    slong idx =
+        fmpz_mpoly_is_zero(g, ctx) ? 0 : fmpz_mpoly_degree_si(g, 0, ctx);
+    fmpz_mpoly_clear(f, ctx);
+    fmpz_mpoly_clear(e, ctx);
+    fmpz_mpoly_clear(c, ctx);
+    fmpz_mpoly_clear(b, ctx);
+    fmpz_mpoly_clear(a, ctx);
+    fmpz_mpoly_clear(g, ctx);
+    fmpz_mpoly_ctx_clear(ctx);
+    return idx;
+}
+
+/* g = gcd_i (n_i' d - n_i d'): zero where dM/dt is */
+static void stop_poly(fmpz_poly_t g, const AnPolys *p)
+{
+    fmpz_poly_t dd, w, t;
+    fmpz_poly_init(dd);
+    fmpz_poly_init(w);
+    fmpz_poly_init(t);
+    fmpz_poly_derivative(dd, p->den);
+    fmpz_poly_zero(g);
+    for (slong i = 0; i < p->len; i++) {
+        fmpz_poly_derivative(w, p->n + i);
+        fmpz_poly_mul(w, w, p->den);
+        fmpz_poly_mul(t, p->n + i, dd);
+        fmpz_poly_sub(w, w, t);
+        fmpz_poly_gcd(g, g, w);
+    }
+    fmpz_poly_clear(t);
+    fmpz_poly_clear(w);
+    fmpz_poly_clear(dd);
+}
+
+/* res = det of the 3x3 matrix of polynomials m[row][col] */
+static void det3(fmpz_poly_t res, fmpz_poly_struct m[3][3])
+{
+    fmpz_poly_t a, b;
+    fmpz_poly_init(a);
+    fmpz_poly_init(b);
+    fmpz_poly_zero(res);
+    for (int c = 0; c < 3; c++) {
+        int c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+        fmpz_poly_mul(a, m[1] + c1, m[2] + c2);
+        fmpz_poly_mul(b, m[1] + c2, m[2] + c1);
+        fmpz_poly_sub(a, a, b);
+        fmpz_poly_mul(a, a, m[0] + c);
+        fmpz_poly_add(res, res, a);
+    }
+    fmpz_poly_clear(b);
+    fmpz_poly_clear(a);
+}
+
+/* the inflections of a plane curve: det(N, N', N'') over three independent
+ * rows, without the stop points and poles (excl) */
+static void inflections(AnCurve *c, const AnPolys *p, const fmpq *lo,
+                        const fmpq *hi, const fmpz_poly_t excl)
+{
+    int *rows = pc_xcalloc((size_t)p->len, sizeof *rows);
+    coeff_rank(p, c->degree, rows);
+    fmpz_poly_struct m[3][3];
+    for (int r = 0; r < 3; r++)
+        for (int k = 0; k < 3; k++)
+            fmpz_poly_init(m[r] + k);
+    for (slong i = 0, k = 0; i < p->len && k < 3; i++) {
+        if (!rows[i])
+            continue;
+        fmpz_poly_set(m[0] + k, p->n + i);
+        fmpz_poly_derivative(m[1] + k, m[0] + k);
+        fmpz_poly_derivative(m[2] + k, m[1] + k);
+        k++;
+    }
+    fmpz_poly_t det;
+    fmpz_poly_init(det);
+    det3(det, m);
+    if (!fmpz_poly_is_zero(det))
+        roots_real(&c->infl, det, lo, hi, excl);
+    c->has_infl = 1;
+    fmpz_poly_clear(det);
+    for (int r = 0; r < 3; r++)
+        for (int k = 0; k < 3; k++)
+            fmpz_poly_clear(m[r] + k);
+    pc_free(rows);
+}
+
+/* the base points the curve passes through: where every other numerator
+ * vanishes */
+static void passages(AnCurve *c, const AnPolys *p, const fmpq *lo,
+                     const fmpq *hi)
+{
+    fmpz_poly_t g;
+    fmpz_poly_init(g);
+    c->pass = pc_xcalloc((size_t)p->len, sizeof *c->pass);
+    for (slong j = 0; j < p->len; j++) {
+        fmpz_poly_zero(g);
+        for (slong i = 0; i < p->len; i++)
+            if (i != j)
+                fmpz_poly_gcd(g, g, p->n + i);
+        AnPass *ps = c->pass + c->npass;
+        roots_init(&ps->t);
+        if (fmpz_poly_degree(g) >= 1)
+            roots_real(&ps->t, g, lo, hi, NULL);
+        for (slong k = 0; k < ps->t.n; k++)
+            ps->t.v[k].mult = 1; /* a root of the gcd: no meaning here */
+        if (ps->t.n) {
+            ps->point = p->pt[j];
+            c->npass++;
+        } else
+            roots_clear(&ps->t);
+    }
+    fmpz_poly_clear(g);
+}
+
+/* everything about a point curve but its poles and ends */
+static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
+                        const fmpq *hi, const Derived *d)
+{
+    c->index = trace_index(p);
+    c->order = c->index ? c->degree / c->index : 0;
+    c->dim = coeff_rank(p, c->degree, NULL) - 1;
+    fmpz_poly_t g, excl;
+    fmpz_poly_init(g);
+    fmpz_poly_init(excl);
+    stop_poly(g, p);
+    if (fmpz_poly_degree(g) >= 1)
+        roots_real(&c->stops, g, lo, hi, p->den);
+    if (c->dim == 2) {
+        fmpz_poly_mul(excl, g, p->den);
+        inflections(c, p, lo, hi, excl);
+        if (p->len == 3 && c->order >= 2)
+            analyze_implicit(c, p, d);
+    }
+    passages(c, p, lo, hi);
+    fmpz_poly_clear(excl);
+    fmpz_poly_clear(g);
+}
+
+/* ---- the consts' values ------------------------------------------------- */
+
+/* res = x with the consts set gives replaced; RATFUN_EPOLE when a
+ * denominator vanishes there */
+static int set_consts(PointEq res, RatFun sres, const DerivedOutput *x,
+                      const Derived *d, const AnSet *set)
+{
+    const Ring *r = &d->ring;
+    if (x->kind == KIND_SCALAR)
+        ratfun_set(sres, x->scalar, r);
+    else
+        pteq_set(res, x->eq, r);
+    RatFun v;
+    ratfun_init(v, r);
+    int rc = 0;
+    for (slong k = 0; set && set->given && k < d->nconsts && !rc; k++) {
+        if (!set->given[k])
+            continue;
+        ratfun_set_fmpq(v, set->value + k, r);
+        rc = x->kind == KIND_SCALAR
+                 ? ratfun_compose_var(sres, sres, d->nparams + k, v, r)
+                 : pteq_compose_var(res, res, d->nparams + k, v, r);
+    }
+    ratfun_clear(v, r);
+    return rc;
+}
+
+static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq,
+                        const AnSet *set)
+{
+    slong np = eq->len + 1;
+    const fmpz_mpoly_struct **ps = pc_xmalloc((size_t)np * sizeof *ps);
+    for (slong i = 0; i < eq->len; i++)
+        ps[i] = eq->terms[i].num;
+    ps[np - 1] = eq->den;
+    c->param = one_param(ps, np, d, &c->skip);
+    pc_free(ps);
+    if (c->param == -1)
+        c->skip = pc_xstrdup("a constant, not a curve");
+    if (c->skip)
+        return;
+    AnPolys p;
+    polys_from_pteq(&p, eq, c->param, &d->ring);
+    fmpq_t lo, hi;
+    fmpq_init(lo);
+    fmpq_init(hi);
+    c->bounded = param_range(lo, hi, d, c->param);
+    const fmpq *plo = c->bounded ? lo : NULL, *phi = c->bounded ? hi : NULL;
+    c->degree = poly_degree_max(&p);
+    if (fmpz_poly_degree(p.den) >= 1)
+        roots_real(&c->poles, p.den, plo, phi, NULL);
+    if (c->kind == KIND_POINT)
+        point_curve(c, &p, plo, phi, d);
+    analyze_ends(c, &p, plo, phi, d->npoints);
+    analyze_metric(c, &p, plo, phi, set);
+    fmpq_clear(hi);
+    fmpq_clear(lo);
+    polys_clear(&p);
+}
+
+static void analyze_curve(AnCurve *c, const Derived *d, const DerivedOutput *o,
+                          const AnSet *set)
+{
+    c->name = o->name;
+    c->kind = o->kind;
+    roots_init(&c->poles);
+    roots_init(&c->stops);
+    roots_init(&c->infl);
+    if (o->kind == KIND_SCALAR) {
+        c->skip = pc_xstrdup("a scalar, not a curve");
+        return;
+    }
+    PointEq eq;
+    pteq_init(eq, &d->ring);
+    if (set_consts(eq, NULL, o, d, set))
+        c->skip = pc_xstrdup("its denominator vanishes at the values of "
+                             "--set");
+    else
+        curve_polys(c, d, eq, set);
+    pteq_clear(eq, &d->ring);
+}
+
+/* the poles of the polynomials' one param (ps[np - 1] the denominator):
+ * 0 when they are no function of one param */
+static int def_poles(AnDef *a, const Derived *d, const fmpz_mpoly_struct **ps,
+                     slong np)
+{
+    const fmpz_mpoly_struct *den = ps[np - 1];
+    char *why = NULL;
+    slong param = one_param(ps, np, d, &why);
+    pc_free(why);
+    if (param < 0)
+        return 0;
+    a->param = param;
+    roots_init(&a->poles);
+    fmpz_poly_t q;
+    fmpq_t lo, hi;
+    fmpz_poly_init(q);
+    fmpq_init(lo);
+    fmpq_init(hi);
+    int b = param_range(lo, hi, d, param);
+    fmpz_mpoly_get_fmpz_poly(q, den, param, d->ring.ctx);
+    if (fmpz_poly_degree(q) >= 1)
+        roots_real(&a->poles, q, b ? lo : NULL, b ? hi : NULL, NULL);
+    fmpq_clear(hi);
+    fmpq_clear(lo);
+    fmpz_poly_clear(q);
+    return 1;
+}
+
+/* the poles of a step's value, when it is a function of one param */
+static int analyze_def(AnDef *a, const Derived *d, const DerivedOutput *v,
+                       const AnSet *set)
+{
+    const Ring *r = &d->ring;
+    PointEq eq;
+    RatFun sv;
+    pteq_init(eq, r);
+    ratfun_init(sv, r);
+    int ok = 0;
+    if (!set_consts(eq, sv, v, d, set)) {
+        slong np = v->kind == KIND_SCALAR ? 2 : eq->len + 1;
+        const fmpz_mpoly_struct **ps = pc_xmalloc((size_t)np * sizeof *ps);
+        if (v->kind == KIND_SCALAR)
+            ps[0] = sv->num;
+        else
+            for (slong i = 0; i < eq->len; i++)
+                ps[i] = eq->terms[i].num;
+        ps[np - 1] = v->kind == KIND_SCALAR ? sv->den : eq->den;
+        ok = def_poles(a, d, ps, np);
+        pc_free(ps);
+    }
+    if (ok) {
+        a->name = v->name;
+        a->line = v->line;
+    }
+    ratfun_clear(sv, r);
+    pteq_clear(eq, r);
+    return ok;
+}
+
+Analysis *analyze_derived(const Derived *d, const int *sel, int nsel,
+                          const AnSet *set)
+{
+    Analysis *a = pc_xcalloc(1, sizeof *a);
+    a->d = d;
+    slong n = sel ? nsel : d->noutputs;
+    a->curves = pc_xcalloc((size_t)n + 1, sizeof *a->curves);
+    a->ncurves = n;
+    for (slong i = 0; i < n; i++)
+        analyze_curve(a->curves + i, d, d->outputs + (sel ? sel[i] : i), set);
+    a->defs = pc_xcalloc((size_t)d->nsteps + 1, sizeof *a->defs);
+    for (slong i = 0; i < d->nsteps; i++)
+        if (!d->steps[i].pending &&
+            analyze_def(a->defs + a->ndefs, d, &d->steps[i].value, set))
+            a->ndefs++;
+    return a;
+}
+
+void analysis_free(Analysis *a)
+{
+    if (!a)
+        return;
+    for (slong i = 0; i < a->ncurves; i++) {
+        AnCurve *c = a->curves + i;
+        pc_free(c->skip);
+        roots_clear(&c->poles);
+        roots_clear(&c->stops);
+        roots_clear(&c->infl);
+        for (slong e = 0; e < c->nends; e++)
+            analyze_end_clear(c->ends + e, a->d->npoints);
+        for (slong k = 0; k < c->npass; k++)
+            roots_clear(&c->pass[k].t);
+        pc_free(c->pass);
+        pc_free(c->implicit);
+        pc_free(c->implicit_j);
+    }
+    for (slong i = 0; i < a->ndefs; i++)
+        roots_clear(&a->defs[i].poles);
+    pc_free(a->defs);
+    pc_free(a->curves);
+    pc_free(a);
+}
