@@ -40,10 +40,9 @@ typedef struct Command {
 } Command;
 
 static const Command commands[] = {
-    {"derive", cli_derive},   {"emit-c", cli_emit_c}, {"eval", cli_eval},
-    {"help", cli_help},       {"plot", cli_plot},     {"fit", cli_fit},
-    {"natural", cli_natural},
-    {"analyze", cli_analyze},
+    {"derive", cli_derive},   {"emit-c", cli_emit_c},   {"eval", cli_eval},
+    {"help", cli_help},       {"plot", cli_plot},       {"fit", cli_fit},
+    {"natural", cli_natural}, {"analyze", cli_analyze},
 };
 
 static const Command *find_command(const char *name)
