@@ -25,7 +25,8 @@ enum { ROUNDS = 15 };
 
 static void bench_one(int nodes, double goal_ms)
 {
-    FitOptions o = {-1, 1, nodes, 100, 8, 0};
+    FitOptions o = {
+        .lo = -1, .hi = 1, .nodes = nodes, .samples = 100, .starts = 8};
     int rc;
     double t0 = bench_now_ms();
     Fit *f = fit_new("1/(1 + 25*x^2)", &o, stderr, &rc);

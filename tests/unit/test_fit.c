@@ -31,7 +31,8 @@ static const char runge[] = "1/(1 + 25*x^2)";
 static Fit *new_fit(const char *target, double lo, double hi, int nodes,
                     int samples)
 {
-    FitOptions o = {lo, hi, nodes, samples, 8, 0};
+    FitOptions o = {
+        .lo = lo, .hi = hi, .nodes = nodes, .samples = samples, .starts = 8};
     int rc;
     Fit *f = fit_new(target, &o, stderr, &rc);
     assert_non_null(f);
@@ -298,7 +299,8 @@ static void test_fit_data_spline(void **state)
         fprintf(f, "%.17g,%.17g\n", x, 1 / (1 + 25 * x * x));
     }
     fclose(f);
-    FitOptions o = {NAN, NAN, 6, 100, 8, 0};
+    FitOptions o = {
+        .lo = NAN, .hi = NAN, .nodes = 6, .samples = 100, .starts = 8};
     FitTarget t;
     double *phi, *coef;
     int rc;
