@@ -198,7 +198,10 @@ fuzz:
 	$(FUZZ_CC) -o build-fuzz/fuzz_derive tests/fuzz/fuzz_derive.c build-fuzz/libpointcalc.a $(LDLIBS)
 	$(FUZZ_CC) -o build-fuzz/fuzz_eval_args tests/fuzz/fuzz_eval_args.c build-fuzz/libpointcalc-cli.a build-fuzz/libpointcalc.a $(LDLIBS)
 	@mkdir -p build-fuzz/corpus build-fuzz/corpus_eval build-fuzz/artifacts
-	cp examples/*.pcs tests/schemes/*.pcs tests/errors/*.pcs build-fuzz/corpus/
+	@# one seed per file, named by its folder (tests/schemes and tests/errors
+	@# share names: coord.pcs, ranges.pcs, ...)
+	for d in examples tests/schemes tests/errors; do for f in $$d/*.pcs; do \
+	  cp "$$f" "build-fuzz/corpus/$$(echo $$d | tr / _)_$$(basename $$f)"; done; done
 	cp tests/fuzz/eval_seeds/* build-fuzz/corpus_eval/
 	@# findings of earlier campaigns, replayed first (tests/fuzz/regressions/)
 	build-fuzz/fuzz_derive -timeout=120 -rss_limit_mb=4096 tests/fuzz/regressions/*
