@@ -21,8 +21,8 @@ CliCommand cli_natural;
     "X,Y,PHI\n"                                                                \
     "                 [--law linear|quadratic|cubic] [--k0 K] [--dk0 D]\n"     \
     "                 [--method newton|hooke-jeeves] [--format text|json]\n"   \
-    "                 [--samples N] [--plot FILE.svg [--comb]] [--emit-c "     \
-    "FILE.c [--name F]]\n"
+    "                 [--samples N] [--plot FILE.svg [--comb]]\n"              \
+    "                 [--emit-c FILE.c [--name F]]\n"
 extern const char natural_help[];
 
 /* one curve of the command line: its points as typed, and what the fit
