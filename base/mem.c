@@ -38,11 +38,18 @@ void mem_set_oom_handler(MemOomHandler fn, void *arg)
         free(r);
 }
 
+/* the process is on its way out: a second failure (valgrind's
+ * __libc_freeres flushes a memory stream's buffered text at _exit, which
+ * asks for the memory again) exits without a second message */
+static atomic_int reporting;
+
 static _Noreturn void pc_out_of_memory(MemFailure why)
 {
     static const char msg[] = "pointcalc: error: out of memory\n";
     static const char budget[] =
         "pointcalc: error: the memory budget ran out\n";
+    if (atomic_exchange(&reporting, 1))
+        _exit(1);
     free(atomic_exchange(&reserve, NULL));
     if (handler != NULL)
         handler(why, handler_arg);
