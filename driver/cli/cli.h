@@ -40,10 +40,8 @@ CliCommand cli_analyze; // cmd_analyze.c: what the curves are, exactly
  * the budget); NULL with *rc = 1 when an output cannot be lowered.  With
  * derived not NULL, the derivation is handed over there (the caller
  * frees it) when a Plan is returned. */
-/* keep: CLI_KEEP_STEPS also records the steps (derive --steps);
- * CLI_KEEP_CHECKS returns the Derived also when only checks failed (with
- * *rc = 1: derive --format json lists every verdict) */
-enum { CLI_KEEP_STEPS = 1, CLI_KEEP_CHECKS = 2 };
+/* keep: CLI_KEEP_STEPS also records the steps (derive --steps) */
+enum { CLI_KEEP_STEPS = 1 };
 Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
                                int keep, FILE *err, int *rc);
 /* the phase of the command from here on (base/budget.h), at the scheme's

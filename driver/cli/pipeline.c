@@ -31,7 +31,6 @@ Derived *cli_derive_file_steps(const char *file, const BudgetOptions *b,
     int bad_define = 0, nerr = 0;
     DeriveOptions opt = derive_options_cli(b, err, &bad_define);
     opt.keep_steps = (keep & CLI_KEEP_STEPS) != 0;
-    opt.keep_failed_checks = (keep & CLI_KEEP_CHECKS) != 0;
     budget_arm(b->max_seconds, b->max_memory);
     mark_file_name(file);
     Derived *d = derive_file_ex(file, err, &nerr, &opt);
