@@ -30,9 +30,22 @@
 #include "compiler/derive.h"
 #include "compiler/print/format.h"
 
+/* the scheme at path (at most 1 MiB), malloc'ed, or NULL */
+static char *read_scheme(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = malloc(1 << 20);
+    *len = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
+    fclose(f);
+    return buf;
+}
+
 /* median ms of deriving text (with -D define, or none) and then, for
  * style >= 0, printing the result in that style (derive + print, what a
  * user waits for); the runs fill about budget_ms, at least 7 */
+
 static double time_derive_print(const char *path, const char *text, size_t len,
                                 const char *define, int style, double budget_ms,
                                 FILE *sink)
@@ -77,12 +90,10 @@ static void bench_whole(const char *dir, FILE *sink)
                  i < 4 ? ex[i] : "interpolation_bezier");
         snprintf(label, sizeof label, "%s%s%s", i < 4 ? ex[i] : "interp",
                  def ? " " : "", def ? def : "");
-        FILE *f = fopen(path, "rb");
-        if (!f)
+        size_t len;
+        char *buf = read_scheme(path, &len);
+        if (!buf)
             continue;
-        char *buf = malloc(1 << 20);
-        size_t len = fread(buf, 1, (1 << 20) - 1, f);
-        fclose(f);
         double budget = i >= 8 ? 2000 : 300, m[4] = {0, 0, 0, 0};
         static const int styles[4] = {-1, FMT_TEXT, FMT_LATEX, FMT_JSON};
         for (int st = 0; st < 4; st++)
@@ -128,12 +139,10 @@ int main(int argc, char **argv)
     for (int i = 0; i < n; i++) {
         char path[1024];
         snprintf(path, sizeof path, "%s/%s", dir, names[i]);
-        FILE *f = fopen(path, "rb");
-        if (!f)
+        size_t len;
+        char *buf = read_scheme(path, &len);
+        if (!buf)
             continue;
-        char *buf = malloc(1 << 20);
-        size_t len = fread(buf, 1, (1 << 20) - 1, f);
-        fclose(f);
         double t0 = bench_now_ms();
         Derived *dv = derive_source(path, buf, len, stderr, NULL);
         double first = bench_now_ms() - t0;

@@ -381,7 +381,7 @@ int pc_natural_fit(const double *pts, const unsigned char *has_angle, int n,
     NatCurve c;
     int which;
     if (rc == PC_OK &&
-        nat_composite(p, n, (NatLaw)law, 0, 0, 0, &c, &which) != 0) {
+        nat_composite(p, n, &(NatChain){.law = (NatLaw)law}, &c, &which) != 0) {
         rc = PC_ENOFIT;
         if (bad)
             *bad = which;

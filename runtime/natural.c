@@ -39,6 +39,12 @@ static const double gl16[8][2] = {
     {0.989400934991649932596, 0.027152459411754094852},
 };
 
+double nat_reduce_angle(double a)
+{
+    double r = remainder(a, 2 * NAT_PI);
+    return r <= -NAT_PI ? r + 2 * NAT_PI : r;
+}
+
 double nat_kappa(const NatSegment *g, double s)
 {
     double v = 0;

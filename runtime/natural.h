@@ -41,9 +41,10 @@ enum {
     NAT_MAX_DEGREE = 3, // curvature laws of degree <= 3
     NAT_GL_POINTS = 16, // Gauss-Legendre points per panel
     NAT_MAX_PANELS = 4096,
-    NAT_CHEB_DEGREE = 20,    // Chebyshev pieces of the evaluation table
-    NAT_MAX_POINTS = 10000,  // a composite through at most this many points
-    NAT_MAX_HJ_POINTS = 100, // the article's search: at most this many
+    NAT_CHEB_DEGREE = 20,      // Chebyshev pieces of the evaluation table
+    NAT_MAX_POINTS = 10000,    // a composite through at most this many points
+    NAT_MAX_HJ_POINTS = 100,   // the article's search: at most this many
+    NAT_HJ_MAX_EVALS = 200000, // integrals a segment, to 1e-12 of the chord
 };
 #define NAT_PHASE_PER_PANEL 8.0
 #define NAT_PI 3.14159265358979323846
@@ -64,6 +65,9 @@ typedef struct NatSegment {
     int degree;                   // of k: 0 .. NAT_MAX_DEGREE
     double length;                // S >= 0
 } NatSegment;
+
+/* a to (-pi, pi] */
+double nat_reduce_angle(double a);
 
 /* the curvature, its derivative and the tangent angle at s (exact
  * polynomials, evaluated by Horner) */
@@ -157,14 +161,25 @@ typedef struct NatCurve {
  * the end chord (exact on a circle); with two points, the chord. */
 void nat_chord_angles(NatPoint *pts, int n);
 
+/* How a composite is fitted: the law of the later segments; the first
+ * segment's start curvature (and its derivative) when has_kstart; the
+ * article's Hooke-Jeeves search instead of Newton (linear law only). */
+typedef struct NatChain {
+    NatLaw law;
+    int has_kstart;
+    double kstart, dkstart;
+    int hooke_jeeves;
+} NatChain;
+
 /* The composite curve through n >= 2 points: the first segment is the
- * clothoid (or, with kstart given, i.e. has_kstart, the law's segment
- * with that start curvature and dkstart), every later one a segment of
- * `law` whose start continues the previous end: G1 (linear), G2
- * (quadratic: the curvature), G3 (cubic: also its derivative).  Returns
- * 0, or -1 with the failing segment's index in *bad. */
-int nat_composite(NatPoint *pts, int n, NatLaw law, int has_kstart,
-                  double kstart, double dkstart, NatCurve *c, int *bad);
+ * clothoid (or, with ch->has_kstart, the law's segment with that start
+ * curvature and dkstart), every later one a segment of ch->law whose start
+ * continues the previous end: G1 (linear), G2 (quadratic: the curvature),
+ * G3 (cubic: also its derivative).  The angles are reduced to (-pi, pi]
+ * (directions; the winding is the fit's).  Returns 0, or -1 with the
+ * failing segment's index in *bad. */
+int nat_composite(NatPoint *pts, int n, const NatChain *ch, NatCurve *c,
+                  int *bad);
 void nat_curve_free(NatCurve *c);
 
 #endif

@@ -40,13 +40,6 @@
 
 #include "runtime/lsq.h"
 
-/* to (-pi, pi] */
-static double reduce_angle(double a)
-{
-    double r = remainder(a, 2 * NAT_PI);
-    return r <= -NAT_PI ? r + 2 * NAT_PI : r;
-}
-
 /* The initial guess of A from the reduced angles: A ~ (p0 + p1) times a
  * symmetric polynomial in x = p0/pi, y = p1/pi, fitted by least squares to
  * the solutions over a 41 x 41 grid of (-0.99 pi, 0.99 pi)^2 (bench_natural
@@ -131,7 +124,8 @@ int nat_fit_g1(double x0, double y0, double th0, double x1, double y1,
     if (!(r > 0) || !isfinite(r) || !isfinite(th0) || !isfinite(th1))
         return -1;
     double phi = atan2(dy, dx);
-    double p0 = reduce_angle(th0 - phi), p1 = reduce_angle(th1 - phi), A, X;
+    double p0 = nat_reduce_angle(th0 - phi), p1 = nat_reduce_angle(th1 - phi),
+           A, X;
     if (solve_A(p0, p1, &A, &X, st) != 0)
         return -1;
     double L = r / X;

@@ -10,12 +10,6 @@
 
 #include "base/mem.h"
 
-static double reduce_angle(double a)
-{
-    double r = remainder(a, 2 * NAT_PI);
-    return r <= -NAT_PI ? r + 2 * NAT_PI : r;
-}
-
 /* ---- Hooke-Jeeves (the article's method) --------------------------------- */
 
 typedef struct HjCtx {
@@ -69,7 +63,7 @@ int nat_fit_hj(double x0, double y0, double th0, double x1, double y1,
     memset(st, 0, sizeof *st);
     double r = hypot(x1 - x0, y1 - y0), phi = atan2(y1 - y0, x1 - x0);
     HjCtx h = {x0, y0, th0, x1, y1, 0, 0};
-    h.D = reduce_angle(th1 - phi) - reduce_angle(th0 - phi);
+    h.D = nat_reduce_angle(th1 - phi) - nat_reduce_angle(th0 - phi);
     double base[2] = {0, r}, fb = hj_f(&h, base), step[2] = {0.5 / r, 0.25 * r};
     while (fb > tol * r && h.evals < max_evals && step[1] > 1e-17 * r) {
         double x[2] = {base[0], base[1]}, fx = fb;
@@ -138,8 +132,26 @@ static void add_stats(NatStats *sum, const NatStats *s)
     sum->error = fmax(sum->error, s->error);
 }
 
-int nat_composite(NatPoint *pts, int n, NatLaw law, int has_kstart,
-                  double kstart, double dkstart, NatCurve *c, int *bad)
+/* segment i of the chain from a (start angle th0, curvature k0 and its
+ * derivative dk0 there) to b */
+static int fit_segment(const NatChain *ch, int i, const NatPoint *a, double th0,
+                       double k0, double dk0, const NatPoint *b, NatSegment *g,
+                       NatStats *st)
+{
+    if (ch->hooke_jeeves)
+        return nat_fit_hj(a->x, a->y, th0, b->x, b->y, b->th, 1e-12,
+                          NAT_HJ_MAX_EVALS, g, st) != 0
+                   ? -1
+                   : 0;
+    int lawful = ch->law != NAT_LINEAR && (i > 0 || ch->has_kstart);
+    if (lawful)
+        return nat_fit_law(ch->law, a->x, a->y, th0, b->x, b->y, b->th, k0, dk0,
+                           g, st);
+    return nat_fit_g1(a->x, a->y, th0, b->x, b->y, b->th, g, st);
+}
+
+int nat_composite(NatPoint *pts, int n, const NatChain *ch, NatCurve *c,
+                  int *bad)
 {
     memset(c, 0, sizeof *c);
     *bad = -1;
@@ -147,28 +159,23 @@ int nat_composite(NatPoint *pts, int n, NatLaw law, int has_kstart,
         return -1;
     nat_chord_angles(pts, n);
     for (int i = 0; i < n; i++) // directions: the winding is the fit's
-        pts[i].th = reduce_angle(pts[i].th);
+        pts[i].th = nat_reduce_angle(pts[i].th);
     c->nseg = n - 1;
     c->seg = pc_xcalloc((size_t)n, sizeof *c->seg);
     c->joint = pc_xcalloc((size_t)n, sizeof *c->joint);
     for (int i = 0; i < n - 1; i++) {
-        const NatPoint *a = &pts[i], *b = &pts[i + 1];
+        const NatPoint *a = &pts[i];
         NatSegment *g = &c->seg[i];
         NatStats st;
-        double th0 = a->th, k0 = kstart, dk0 = dkstart;
-        int lawful =
-            i == 0 ? has_kstart && law != NAT_LINEAR : law != NAT_LINEAR;
+        double th0 = a->th, k0 = ch->kstart, dk0 = ch->dkstart;
         if (i > 0) { // continue the previous end: its angle, unwound
             const NatSegment *p = &c->seg[i - 1];
             double end = nat_phi(p, p->length);
-            th0 = end + reduce_angle(a->th - end);
+            th0 = end + nat_reduce_angle(a->th - end);
             k0 = nat_kappa(p, p->length);
             dk0 = nat_dkappa(p, p->length);
         }
-        int rc = lawful
-                     ? nat_fit_law(law, a->x, a->y, th0, b->x, b->y, b->th, k0,
-                                   dk0, g, &st)
-                     : nat_fit_g1(a->x, a->y, th0, b->x, b->y, b->th, g, &st);
+        int rc = fit_segment(ch, i, a, th0, k0, dk0, &pts[i + 1], g, &st);
         add_stats(&c->stats, &st);
         if (rc != 0) {
             *bad = i;
@@ -177,7 +184,7 @@ int nat_composite(NatPoint *pts, int n, NatLaw law, int has_kstart,
         if (i > 0) {
             const NatSegment *p = &c->seg[i - 1];
             NatJoint *j = &c->joint[i - 1];
-            j->dphi = reduce_angle(nat_phi(g, 0) - nat_phi(p, p->length));
+            j->dphi = nat_reduce_angle(nat_phi(g, 0) - nat_phi(p, p->length));
             j->dk = nat_kappa(g, 0) - nat_kappa(p, p->length);
             j->ddk = nat_dkappa(g, 0) - nat_dkappa(p, p->length);
         }

@@ -229,36 +229,6 @@ static int check_args(NatArgs *a, FILE *err)
     return 0;
 }
 
-/* the article's search, segment by segment (G1 joints) */
-static int composite_hj(NatCli *k, int *bad)
-{
-    NatCurve *c = &k->curve;
-    memset(c, 0, sizeof *c);
-    nat_chord_angles(k->pts, k->npts);
-    c->nseg = k->npts - 1;
-    c->seg = pc_xcalloc((size_t)k->npts, sizeof *c->seg);
-    c->joint = pc_xcalloc((size_t)k->npts, sizeof *c->joint);
-    for (int i = 0; i < c->nseg; i++) {
-        const NatPoint *p = &k->pts[i];
-        NatStats st;
-        int rc = nat_fit_hj(p->x, p->y, p->th, p[1].x, p[1].y, p[1].th, 1e-12,
-                            200000, &c->seg[i], &st);
-        c->stats.iterations += st.iterations;
-        c->stats.integrals += st.integrals;
-        c->stats.error = fmax(c->stats.error, st.error);
-        if (rc)
-            return *bad = i, -1;
-        if (i > 0) {
-            const NatSegment *q = &c->seg[i - 1], *g = &c->seg[i];
-            c->joint[i - 1].dphi =
-                remainder(nat_phi(g, 0) - nat_phi(q, q->length), 2 * NAT_PI);
-            c->joint[i - 1].dk = nat_kappa(g, 0) - nat_kappa(q, q->length);
-            c->joint[i - 1].ddk = nat_dkappa(g, 0) - nat_dkappa(q, q->length);
-        }
-    }
-    return 0;
-}
-
 static const char *law_name(NatLaw l)
 {
     return l == NAT_CUBIC       ? "cubic"
@@ -396,15 +366,14 @@ static int fit_all(NatArgs *a, FILE *err)
     for (int c = 0; c < a->ncurves; c++) {
         NatCli *k = &a->curves[c];
         int bad;
-        int rc = a->hj ? composite_hj(k, &bad)
-                       : nat_composite(k->pts, k->npts, a->law, a->has_k0,
-                                       a->k0, a->dk0, &k->curve, &bad);
+        NatChain ch = {a->law, a->has_k0, a->k0, a->dk0, a->hj};
+        int rc = nat_composite(k->pts, k->npts, &ch, &k->curve, &bad);
         if (rc && a->hj) {
             pc_fprintf(err,
                        "pointcalc: natural: curve %d, segment %d: Hooke-Jeeves "
                        "did not reach the end point within 1e-12 of the chord "
-                       "in 200000 integrals\n",
-                       c + 1, bad + 1);
+                       "in %d integrals\n",
+                       c + 1, bad + 1, NAT_HJ_MAX_EVALS);
             return 1;
         }
         if (rc) {

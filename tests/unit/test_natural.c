@@ -283,7 +283,8 @@ static void test_chord_rule(void **state)
     /* and the composite through them is that circle: k = 1/2 */
     NatCurve c;
     int bad;
-    assert_int_equal(nat_composite(p, 5, NAT_LINEAR, 0, 0, 0, &c, &bad), 0);
+    assert_int_equal(
+        nat_composite(p, 5, &(NatChain){.law = NAT_LINEAR}, &c, &bad), 0);
     for (int i = 0; i < 4; i++) {
         assert_true(fabs(c.seg[i].k[0] - 0.5) < 1e-12 &&
                     fabs(c.seg[i].k[1]) < 1e-12);
@@ -306,7 +307,8 @@ static void test_composite_joints(void **state)
         int bad;
         NatPoint q[5];
         memcpy(q, p, sizeof q);
-        assert_int_equal(nat_composite(q, 5, l, 0, 0, 0, &c, &bad), 0);
+        assert_int_equal(nat_composite(q, 5, &(NatChain){.law = l}, &c, &bad),
+                         0);
         assert_true(c.stats.error < 1e-12);
         for (int j = 0; j < 3; j++) {
             assert_true(fabs(c.joint[j].dphi) < 1e-13);
