@@ -24,6 +24,7 @@
 #include "bench/bench_util.h"
 
 #include "runtime/natural.h"
+#include "runtime/plan.h"
 
 enum { NFIT = 1000, NHJ = 200, ROUNDS = 7, NEVAL = 1000000 };
 
@@ -180,6 +181,22 @@ static void bench_eval(void)
            : lo > 100 ? "not met"
                       : "undecided (spread)");
     nat_table_free(&t);
+    /* the scheme language's natx and naty (plan.h NATX, NATY): a
+     * quadrature each, per point */
+    double tl[ROUNDS];
+    for (int r = 0; r < ROUNDS; r++) {
+        double t0 = bench_now_ms(), acc = 0;
+        for (int i = 0; i < NEVAL / 100; i++) {
+            double u = g.length * i / (NEVAL / 100);
+            acc += plan_natural_eval(0, g.k, u) + plan_natural_eval(1, g.k, u);
+        }
+        tl[r] = (bench_now_ms() - t0) * 1e6 / (NEVAL / 100);
+        sink += acc;
+    }
+    bench_stats(tl, ROUNDS, &m, &lo, &hi);
+    printf("  eval, natx+naty: %8.1f ns a point [%.1f..%.1f] (a scheme's "
+           "natural curve: two quadratures)\n",
+           m, lo, hi);
 }
 
 int main(void)

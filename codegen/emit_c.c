@@ -216,6 +216,7 @@ static void emit_all(FILE *out, const Plan *p, const char *prefix,
                     N.prefix);
             break;
         }
+    emit_natural_helper(out, p, N.prefix);
     unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
     const char **role = pc_xcalloc((size_t)p->nins + 1, sizeof *role);
     char **owned = pc_xcalloc((size_t)p->nins + 1, sizeof *owned);

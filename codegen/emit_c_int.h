@@ -43,6 +43,13 @@ typedef struct Ctx {
     const char **role;   // per register: what it is, or NULL
 } Ctx;
 
+/* ---- natx, naty (emit_natural.c) ---- */
+
+/* the static helper pcnat_PREFIX, when p needs it */
+void emit_natural_helper(FILE *out, const Plan *p, const char *prefix);
+/* the call computing instruction x (NATX or NATY) */
+void emit_natural_call(const Ctx *C, const PlanIns *x);
+
 /* ---- the weights code (emit_weights.c) ---- */
 
 /* register r as an operand: a literal, an input or rN */

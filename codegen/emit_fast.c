@@ -87,6 +87,9 @@ static int reads(const Plan *p, int r, int x, unsigned char *mark)
         case PLAN_POLE:
         case PLAN_FN:
         case PLAN_DOMAIN:
+        case PLAN_NATX:
+        case PLAN_NATY:
+        case PLAN_ISNAN:
             mark[i] = in->a >= x && mark[in->a];
             break;
         case PLAN_ADD:

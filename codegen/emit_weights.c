@@ -108,6 +108,15 @@ static void instruction(const Ctx *C, int r, const char *indent)
         fprintf(out, "(dim > %d ? %s[%d] : (double)NAN)", x->b, C->N->pt[x->a],
                 x->b);
         break;
+    case PLAN_NATX:
+    case PLAN_NATY:
+        emit_natural_call(C, x);
+        break;
+    case PLAN_ISNAN:
+        fputs("(double)(isnan(", out);
+        emit_operand(C, x->a);
+        fputs(") != 0)", out);
+        break;
     case PLAN_ATAN2:
         fputs("atan2(", out);
         emit_operand(C, x->a);

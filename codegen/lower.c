@@ -586,6 +586,8 @@ static int plan_fn_of(const Kernel *k)
 #undef PC_FUNCTION
         [KF_DIST] = -1,
         [KF_COORD] = -1,
+        [KF_NATX] = -1,
+        [KF_NATY] = -1,
     };
     if (k->fn == KF_ROOT)
         return PLAN_FN_ROOT | (int)(k->q << 8);
@@ -670,6 +672,16 @@ static int kernel_reg(Lower *L, slong var)
             if (abad >= 0)
                 bad = bad < 0 ? abad : plan_add(L->p, bad, abad);
             reg = plan_atan2(L->p, a, b);
+        } else if (k->fn == KF_NATX || k->fn == KF_NATY) {
+            const fmpq *law = kernels_law(L->K, k->q);
+            double kd[KERNEL_LAW_LEN];
+            for (int j = 0; j < KERNEL_LAW_LEN; j++)
+                kd[j] = fmpq_get_d(law + j);
+            reg = plan_natural(L->p, k->fn == KF_NATY, a, kd);
+            /* NaN beyond NAT_MAX_TURNING: a domain error, said as such */
+            int dom = plan_mul(L->p, plan_isnan(L->p, reg),
+                               plan_const(L->p, PLAN_DOMAIN_FLAG));
+            bad = bad < 0 ? dom : plan_add(L->p, bad, dom);
         } else if (k->fn == KF_ROOT && is_exp_kernel(L, k->arg)) {
             /* exp(m)^(1/q) is computed as exp(m/q): no overflow of exp(m) */
             reg = plan_fn(L->p, PLAN_FN_EXP,

@@ -37,7 +37,9 @@
     X(BI_DOT, "dot", 2, 2, 0)        /* metric: U . V */                       \
     X(BI_DIST, "dist", 2, 2, 0)      /* metric: |PQ| */                        \
     X(BI_ANGLE, "angle", 3, 3, 0)    /* metric: angle PQR at Q */              \
-    X(BI_COORD, "coord", 2, 2, 0)    /* coordinate k of a point or vector */
+    X(BI_COORD, "coord", 2, 2, 0)    /* coordinate k of a point or vector */   \
+    X(BI_NATX, "natx", 2, 5, 0)      /* natx(u, k0, k1, k2, k3): natural */    \
+    X(BI_NATY, "naty", 2, 5, 0)      /* naty(...) curves (kernel.h)      */
 
 typedef enum Builtin {
 #define X(id, name, lo, hi, res) id,

@@ -151,6 +151,11 @@ static double scalar_op(const Plan *p, const PlanIns *x, const double *val)
         return atan2(val[x->a], val[x->b]);
     case PLAN_DOMAIN:
         return plan_domain_eval(x->b, val[x->a]);
+    case PLAN_NATX:
+    case PLAN_NATY:
+        return plan_natural_eval(x->op == PLAN_NATY, p->k + x->b, val[x->a]);
+    case PLAN_ISNAN:
+        return isnan(val[x->a]) ? 1.0 : 0.0;
     default:
         (void)p;
         assert(0 && "not a computing op");
@@ -333,6 +338,19 @@ static void run_block(const Prog *g, const Plan *p, const double *const *params,
             const double *a = reg(g, x->a);
             for (int j = 0; j < BL; j++)
                 d[j] = plan_domain_eval(x->b, a[j]);
+            break;
+        }
+        case PLAN_NATX:
+        case PLAN_NATY: {
+            const double *a = reg(g, x->a);
+            for (int j = 0; j < BL; j++)
+                d[j] = plan_natural_eval(x->op == PLAN_NATY, p->k + x->b, a[j]);
+            break;
+        }
+        case PLAN_ISNAN: {
+            const double *a = reg(g, x->a);
+            for (int j = 0; j < BL; j++)
+                d[j] = isnan(a[j]) ? 1.0 : 0.0;
             break;
         }
         default:

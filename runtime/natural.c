@@ -144,6 +144,42 @@ void nat_point(const NatSegment *g, double s, double *x, double *y)
     *y = g->y0 + sn;
 }
 
+/* the phase of law k: ph[j + 1] = k[j] / (j + 1), ph[0] = 0; its degree */
+static int law_phase(const double *k, double *ph)
+{
+    int deg = 1;
+    ph[0] = 0;
+    for (int j = 0; j <= NAT_MAX_DEGREE; j++) {
+        ph[j + 1] = k[j] / (j + 1);
+        if (k[j] != 0)
+            deg = j + 1;
+    }
+    return deg;
+}
+
+double nat_law_phase(const double *k, double u)
+{
+    double ph[NAT_MAX_DEGREE + 2];
+    return horner(ph, law_phase(k, ph), u);
+}
+
+double nat_law_kappa(const double *k, double u)
+{
+    return horner(k, NAT_MAX_DEGREE, u);
+}
+
+void nat_law_xy(const double *k, double u, double *x, double *y)
+{
+    double ph[NAT_MAX_DEGREE + 2];
+    int deg = law_phase(k, ph);
+    double turn = rate_bound(ph, deg, 0, u) * fabs(u);
+    if (!(turn <= NAT_MAX_TURNING)) { /* also NaN: u or k not finite */
+        *x = *y = NAN;
+        return;
+    }
+    integrate(ph, deg, 0, u, 1, x, y);
+}
+
 /* ---- the table ----------------------------------------------------------- */
 
 enum { NCHEB = NAT_CHEB_DEGREE + 1 };

@@ -78,6 +78,17 @@ double nat_phi(const NatSegment *g, double s);
 /* the point at s, by Gauss-Legendre panels */
 void nat_point(const NatSegment *g, double s, double *x, double *y);
 
+/* The natural-curve functions of the language (plan.h's NATX, NATY;
+ * docs/language.md, "Natural curves"): x + i y = int_0^u exp(i psi(s)) ds
+ * with psi(s) = k[0] s + k[1] s^2/2 + k[2] s^3/3 + k[3] s^4/4.  NaN (both)
+ * when u or the law is not finite, or when the phase varies more than
+ * NAT_MAX_PANELS panels resolve (NAT_MAX_TURNING radians). */
+void nat_law_xy(const double *k, double u, double *x, double *y);
+/* psi(u) and the curvature k(u) of that law */
+double nat_law_phase(const double *k, double u);
+double nat_law_kappa(const double *k, double u);
+#define NAT_MAX_TURNING (NAT_PHASE_PER_PANEL * NAT_MAX_PANELS)
+
 /* The moments of the phase psi(tau) = sum_j p[j] tau^j (deg <= 4, p[0]
  * included) over [0, 1]:
  *   c[m] = int_0^1 tau^m cos psi,  s[m] = int_0^1 tau^m sin psi,

@@ -10,8 +10,10 @@
  * built in different ways still meet.
  */
 #include "runtime/plan.h"
+
 #include "base/mem.h"
 #include "base/numfmt.h"
+#include "runtime/natural.h"
 
 #include <assert.h>
 #include <math.h>
@@ -46,8 +48,9 @@ static const struct {
  * state to build, so any thread may read it) kept in the order of PLAN_OPS
  * by the assertion below and by test_plan's dumps */
 static const char *const op_lower[] = {
-    "const", "input", "neg", "add",   "sub",    "mul",  "div",
-    "powi",  "pole",  "fn",  "atan2", "domain", "dist", "coord",
+    "const", "input", "neg",  "add",  "sub",   "mul",
+    "div",   "powi",  "pole", "fn",   "atan2", "domain",
+    "dist",  "coord", "natx", "naty", "isnan",
 };
 _Static_assert(sizeof op_lower / sizeof *op_lower == PLAN_NOPS,
                "op_lower: one name per PLAN_OPS entry");
@@ -331,6 +334,12 @@ static int plan_node(Plan *p, PlanOp op, int a, int b)
             return plan_const(p, atan2(x, y));
         case PLAN_DOMAIN:
             return plan_const(p, plan_domain_eval(b, x));
+        case PLAN_NATX:
+        case PLAN_NATY:
+            return plan_const(p,
+                              plan_natural_eval(op == PLAN_NATY, p->k + b, x));
+        case PLAN_ISNAN:
+            return plan_const(p, isnan(x) ? 1 : 0);
         default:
             break;
         }
@@ -418,6 +427,37 @@ int plan_fn(Plan *p, int fn, int a)
 int plan_atan2(Plan *p, int y, int x)
 {
     return plan_node(p, PLAN_ATAN2, y, x);
+}
+
+double plan_natural_eval(int y, const double *k, double u)
+{
+    double vx, vy;
+    nat_law_xy(k, u, &vx, &vy);
+    return y ? vy : vx;
+}
+
+int plan_natural(Plan *p, int y, int u, const double *k)
+{
+    int b = -1; /* a law in the pool already (4 slots from b) */
+    for (int i = 0; i < p->nins && b < 0; i++)
+        if ((p->ins[i].op == PLAN_NATX || p->ins[i].op == PLAN_NATY) &&
+            memcmp(p->k + p->ins[i].b, k, 4 * sizeof *k) == 0)
+            b = p->ins[i].b;
+    if (b < 0) {
+        while (p->nk + 4 > p->ak) {
+            p->ak = p->ak ? 2 * p->ak : 32;
+            p->k = pc_xrealloc(p->k, sizeof *p->k * (size_t)p->ak);
+        }
+        b = p->nk;
+        memcpy(p->k + b, k, 4 * sizeof *k);
+        p->nk += 4;
+    }
+    return plan_node(p, y ? PLAN_NATY : PLAN_NATX, u, b);
+}
+
+int plan_isnan(Plan *p, int a)
+{
+    return plan_node(p, PLAN_ISNAN, a, 0);
 }
 
 int plan_domain(Plan *p, int fn, int a)
@@ -656,6 +696,12 @@ void plan_dump(FILE *out, const Plan *p)
             break;
         case PLAN_COORD:
             fprintf(out, " %s %d", p->points[x->a], x->b);
+            break;
+        case PLAN_NATX:
+        case PLAN_NATY:
+            pc_fprintf(out, " r%d law %.17g %.17g %.17g %.17g", x->a,
+                       p->k[x->b], p->k[x->b + 1], p->k[x->b + 2],
+                       p->k[x->b + 3]);
             break;
         default:
             fprintf(out, " r%d", x->a);

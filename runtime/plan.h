@@ -49,7 +49,10 @@
     X(ATAN2, 2, NULL) /* d = atan2(r[a], r[b])                              */ \
     X(DOMAIN, 1, NULL) /* d = (r[a] outside the domain of PlanFn b) ? 1 : 0 */ \
     X(DIST, 0, NULL)   /* d = |P_a - P_b|: base points a < b (uniform)     */  \
-    X(COORD, 0, NULL)  /* d = P_a[b]: coordinate b >= 0 of point a (uniform) */
+    X(COORD, 0, NULL) /* d = P_a[b]: coordinate b >= 0 of point a (uniform) */ \
+    X(NATX, 1, NULL)  /* d = natx(r[a], consts[b .. b+3]): natural.h     */    \
+    X(NATY, 1, NULL)  /* d = naty(r[a], consts[b .. b+3])                 */   \
+    X(ISNAN, 1, NULL) /* d = (r[a] is NaN) ? 1 : 0  (natx out of reach)  */
 
 /* x^e for 2 <= e <= PLAN_POW_CHAIN is a shared multiplication chain (error
  * below e/2 ulp, vectorisable); higher powers call pow() (about 1 ulp). */
@@ -289,6 +292,14 @@ int plan_atan2(Plan *p, int y, int x);
 int plan_domain(Plan *p, int fn, int a); // the domain flag of f(a)
 int plan_dist(Plan *p, int a, int b);    // |P_a - P_b|, base points a < b
 int plan_coord(Plan *p, int a, int c);   // P_a[c], 0-based coordinate c
+/* natx(u) (y = 0) or naty(u) (y = 1) of the curvature law k[0 .. 3]
+ * (runtime/natural.h): the law goes to the constant pool */
+int plan_natural(Plan *p, int y, int u, const double *k);
+/* 1 where register a is NaN, else 0: the domain flag of a natx or naty
+ * (natural.h: NaN beyond NAT_MAX_TURNING radians of turning) */
+int plan_isnan(Plan *p, int a);
+/* the value of NATX (y = 0) or NATY at u for law k (natural.h) */
+double plan_natural_eval(int y, const double *k, double u);
 
 /* P[c] when the points have dim > c coordinates, else NaN (never read
  * beyond the point: eval and the C API refuse such a dim first) */

@@ -7,6 +7,7 @@
  * it for the signs of the denominator factors, the SVG writer (svg.c) for
  * tangents and the comb.
  */
+#include "runtime/natural.h"
 #include "runtime/plot_int.h"
 
 #include <math.h>
@@ -154,6 +155,9 @@ void plot_jet_run(const PlotEnv *env, const unsigned char *live, double t,
         case PLAN_DOMAIN:
             d[0] = plan_domain_eval(x->b, a[0]);
             break;
+        case PLAN_ISNAN:
+            d[0] = isnan(a[0]) ? 1.0 : 0.0;
+            break;
         case PLAN_FN: {
             double f0, f1, f2;
             fn_jet(x->b, a[0], &f0, &f1, &f2);
@@ -170,6 +174,18 @@ void plot_jet_run(const PlotEnv *env, const unsigned char *live, double t,
             d[0] = atan2(y0, x0);
             d[1] = N / D;
             d[2] = (N1 * D - N * D1) / (D * D);
+            break;
+        }
+        case PLAN_NATX:
+        case PLAN_NATY: { // f' = cos(psi), sin(psi); psi' = kappa
+            const double *law = p->k + x->b;
+            int y = x->op == PLAN_NATY;
+            double ps = nat_law_phase(law, a[0]), ka = nat_law_kappa(law, a[0]);
+            double f1 = y ? sin(ps) : cos(ps),
+                   f2 = (y ? cos(ps) : -sin(ps)) * ka;
+            d[0] = plan_natural_eval(y, law, a[0]);
+            d[1] = f1 * a[1];
+            d[2] = f2 * a[1] * a[1] + f1 * a[2];
             break;
         }
         default:

@@ -740,7 +740,7 @@ printf 'point A, B\nparam t\nM = A*(1 - sqrt(t)) + B*sqrt(t)\nL = ln(t)\noutput 
 check "domain: exit 1" test $? -eq 1
 check "domain: csv nan row" grep -qx -- '-1,nan,nan' "$tmp/out"
 check "domain: csv good row" grep -qx '4,2,1.3862943611198906' "$tmp/out"
-check "domain: message" grep -qx "pointcalc: eval: M at t=-1 is undefined: a function's argument is outside its domain (sqrt of a negative number, ln of one <= 0, asin or acos beyond \[-1, 1\]); written as nan" "$tmp/err"
+check "domain: message" grep -qx "pointcalc: eval: M at t=-1 is undefined: a function's argument is outside its domain (sqrt of a negative number, ln of one <= 0, asin or acos beyond \[-1, 1\], natx or naty of a phase turning more than 32768 radians); written as nan" "$tmp/err"
 "$PC" eval "$tmp/fn.pcs" --at A=0 --at B=1 --param t=-1,4 --format json >"$tmp/out" 2>/dev/null
 check "domain: json lists the outputs" python3 -c "
 import json, sys

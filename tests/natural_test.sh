@@ -202,5 +202,100 @@ g = d['segments'][0]
 assert g['k'][0] == -0.792412 and g['k'][1] == -0.520567 and d['error'] < 1e-12
 "
 
+# ---- natural curves in the scheme language (natx, naty) ----
+# Euler's spiral against Fresnel's integrals (mpmath, 30 digits:
+# sqrt(pi) C(s/sqrt(pi)), sqrt(pi) S(s/sqrt(pi)))
+"$PC" eval examples/natural_clothoid.pcs --param s=1,2,3.5 --at O=0,0 --at E1=1,0 \
+    --at E2=0,1 --output M --format json >"$tmp/nc.json" 2>"$tmp/nc.err"
+check "clothoid scheme: exit 0" test $? -eq 0
+check "clothoid scheme: Fresnel's integrals" python3 -c "
+import json
+want = {1: (0.97528768820034454498, 0.16371404737570058525),
+        2: (1.3351936962943366222, 0.99762371132542129799),
+        3.5: (0.82068657502446940966, 0.61224042940072453833)}
+d = json.load(open('$tmp/nc.json'))
+assert len(d['samples']) == 3
+for s in d['samples']:
+    x, y = s['values']['M']
+    wx, wy = want[s['params']['s']]
+    assert abs(x - wx) < 2e-15 and abs(y - wy) < 2e-15, (s, wx, wy)
+"
+# the fitted segment placed by a user function: it ends at the fit's target
+# (1, 0) with the target's angle -0.3, and its apex is where the end
+# tangents meet (the lines through the ends at those angles, by hand)
+"$PC" eval examples/natural_g1_scheme.pcs --param s=0.5 --at O=0,0 --at E1=1,0 \
+    --at E2=0,1 --output P1,T1,Q --format json >"$tmp/ng.json"
+check "fitted segment in a scheme: end point, end angle, apex" python3 -c "
+import json, math
+v = json.load(open('$tmp/ng.json'))['samples'][0]['values']
+x, y = v['P1']; tx, ty = v['T1']; qx, qy = v['Q']
+assert abs(x - 1) < 1e-12 and abs(y) < 1e-12, (x, y)
+assert abs(math.hypot(tx, ty) - 1) < 1e-15
+assert abs(math.atan2(ty, tx) + 0.3) < 1e-12
+# apex: q = t0 (cos .5, sin .5) = (1, 0) + t1 (cos -.3, sin -.3)
+a, b = math.tan(0.5), math.tan(-0.3)
+X = -b / (a - b)
+assert abs(qx - X) < 1e-12 and abs(qy - a * X) < 1e-12, (qx, qy)
+"
+# the generated C of the scheme compiles with -pedantic -Werror and gives
+# eval's digits (tests/unit/test_emit_c compares every example with the
+# exact weights too)
+"$PC" emit-c examples/natural_clothoid.pcs -o "$tmp/nc.c"
+cat >"$tmp/nc_main.c" <<'EOF'
+#include <stdio.h>
+void natural_clothoid_M(double s, const double *O, const double *E1,
+                        const double *E2, int dim, double *out);
+int main(void)
+{
+    const double O[2] = {0, 0}, E1[2] = {1, 0}, E2[2] = {0, 1};
+    double m[2];
+    natural_clothoid_M(3.5, O, E1, E2, 2, m);
+    printf("%.17g,%.17g\n", m[0], m[1]);
+    return 0;
+}
+EOF
+check "natx in C: compiles with -pedantic -Werror" $CC -std=c99 -Wall -Wextra -pedantic -Werror \
+    -O2 -o "$tmp/nc" "$tmp/nc.c" "$tmp/nc_main.c" -lm
+check "natx in C: eval's digits" test "$("$tmp/nc")" = "$("$PC" eval examples/natural_clothoid.pcs \
+    --param s=3.5 --at O=0,0 --at E1=1,0 --at E2=0,1 --output M | tail -1 | cut -d, -f2-)"
+# a phase beyond reach is a domain error per sample, not a silent NaN
+printf 'point O, E1, E2\nparam s\nM = O + natx(s, 0, 1)*(E1 - O) + naty(s, 0, 1)*(E2 - O)\n' >"$tmp/big.pcs"
+"$PC" eval "$tmp/big.pcs" --param s=100,1000 --at O=0,0 --at E1=1,0 --at E2=0,1 >"$tmp/big.out" 2>"$tmp/big.err"
+check "natx beyond reach: exit 1" test $? -eq 1
+check "natx beyond reach: status 4 said" grep -q "M at s=1000 is undefined: a function's argument is outside its domain (.*natx or naty of a phase turning more than 32768 radians)" "$tmp/big.err"
+check "natx beyond reach: s=100 evaluated" grep -q "^100,0.876347106693" "$tmp/big.out"
+
+# a fitted composite written as a scheme (--scheme): the committed example
+# is what the command writes, and the scheme evaluates to the fit's own
+# samples (the Chebyshev table) in the middle of each segment and at the ends
+"$PC" natural --from 0,0,0.8 --through 3,1,-0.2 --to 6,0,-0.6 --law quadratic \
+    --scheme "$tmp/g2.pcs" --name natural_g2_scheme --samples 4 --format json >"$tmp/g2.json"
+check "--scheme: the example is current" cmp "$tmp/g2.pcs" examples/natural_g2_scheme.pcs
+python3 -c "
+import json
+d = json.load(open('$tmp/g2.json'))
+a, pts = 0.0, []
+for seg, rows in zip(d['segments'], d['samples']):
+    for r in rows[1:-1]:
+        pts.append((a + r[0], r[1], r[2]))
+    a += seg['length']
+pts.append((a, rows[-1][1], rows[-1][2]))
+print(','.join('%.17g' % p[0] for p in pts))
+open('$tmp/g2.want', 'w').write(repr(pts))
+" >"$tmp/g2.s"
+"$PC" eval examples/natural_g2_scheme.pcs --param s="$(cat "$tmp/g2.s")" --at O=0,0 --at E1=1,0 \
+    --at E2=0,1 --format json >"$tmp/g2.eval"
+check "--scheme: eval gives the fit's points" python3 -c "
+import json
+want = eval(open('$tmp/g2.want').read())
+got = json.load(open('$tmp/g2.eval'))['samples']
+assert len(got) == len(want) == 7
+for (s, x, y), g in zip(want, got):
+    gx, gy = g['values']['M']
+    assert abs(gx - x) < 1e-12 and abs(gy - y) < 1e-12, (s, x, y, gx, gy)
+"
+"$PC" natural --from 0,0,0 --to 1,1,0 --scheme "$tmp/x.pcs" --name 9x >"$tmp/o" 2>"$tmp/e"
+check "--scheme: a bad --name is a usage error" test $? -eq 2 -a ! -s "$tmp/o" -a ! -e "$tmp/x.pcs"
+
 echo "natural_test: $pass passed, $fail failed"
 test $fail -eq 0

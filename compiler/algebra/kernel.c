@@ -57,6 +57,8 @@ const char *const kernel_fn_names[KF_COUNT] = {
 #undef PC_FUNCTION
     [KF_DIST] = "dist",
     [KF_COORD] = "coord",
+    [KF_NATX] = "natx",
+    [KF_NATY] = "naty",
 };
 
 const char *const kernel_fn_latex[KF_COUNT] = {
@@ -106,6 +108,8 @@ void kernels_init(Kernels *K, Ring *r, slong first, slong cap)
     K->cur = pc_xcalloc((size_t)(first > 0 ? first : 1), 1);
     K->points = NULL;
     K->npoints = 0;
+    K->laws = NULL;
+    K->nlaws = 0;
     if (cap > 0 && !r->latex)
         r->latex = flint_calloc((size_t)(r->nvars ? r->nvars : 1),
                                 sizeof(const char *));
@@ -122,6 +126,11 @@ void kernels_clear(Kernels *K)
         pc_free(k->latex);
     }
     pc_free(K->k);
+    for (slong i = 0; i < K->nlaws * KERNEL_LAW_LEN; i++)
+        fmpq_clear(K->laws + i);
+    pc_free(K->laws);
+    K->laws = NULL;
+    K->nlaws = 0;
     for (slong v = 0; K->range && v < K->first; v++) {
         fmpq_clear(K->range[v].lo);
         fmpq_clear(K->range[v].hi);
@@ -289,6 +298,10 @@ static void set_names(Kernels *K, Kernel *k)
     }
     case KF_COORD:
         coord_names(K, k);
+        break;
+    case KF_NATX:
+    case KF_NATY:
+        kernel_natural_names(K, k, a, la);
         break;
     case KF_SQRT:
         k->name = cat3("sqrt(", a, ")");

@@ -53,6 +53,8 @@ typedef enum KernelFn {
 #undef PC_FUNCTION
     KF_DIST,  // |P_a P_b| of two base points: the metric
     KF_COORD, // coordinate pb (1-based) of base point pa
+    KF_NATX,  // natx(u, k0, k1, k2, k3): int_0^u cos(psi), the law q
+    KF_NATY,  // naty(...): int_0^u sin(psi) (kernel_natural.c)
     KF_COUNT
 } KernelFn;
 
@@ -65,7 +67,8 @@ extern const char *const kernel_fn_latex[KF_COUNT];
 typedef struct Kernel {
     KernelFn fn;
     slong var;    // its ring variable
-    slong q;      // KF_ROOT: the index of the root (>= 3); else 0
+    slong q;      // KF_ROOT: the index of the root (>= 3); KF_NATX, KF_NATY:
+                  // the curvature law's index (kernels_law); else 0
     slong pa, pb; // KF_DIST: the base points, pa < pb; KF_COORD: the base
                   // point and the coordinate's number k >= 1
     RatFun arg;   // the canonical argument (KF_ATAN2: y); 0 for pi
@@ -95,6 +98,8 @@ typedef struct Kernels {
                      // budget), 0: none; KERNEL_ETIME past it
     const char *const *points; // base point names (for dist names)
     slong npoints;
+    fmpq *laws;          // KF_NATX/KF_NATY: the curvature laws, KERNEL_LAW_LEN
+    slong nlaws;         // coefficients each (k0 .. k3), distinct
     KRange *range;       // per ring variable before the kernels: the
                          // declared interval (kernels_set_range)
     unsigned char *used; // per such variable: the ends of its declared
@@ -227,5 +232,24 @@ int kernel_compose(Kernels *K, RatFun res, const RatFun x, slong var,
                    const RatFun s);
 int kernel_compose_pteq(Kernels *K, PointEq res, const PointEq x, slong var,
                         const RatFun s);
+
+/* Natural curves (docs/language.md, "Natural curves"): the point at arc
+ * length u of the curve that starts at the origin with angle 0 and whose
+ * curvature is k(s) = k0 + k1 s + k2 s^2 + k3 s^3, so that its tangent
+ * angle is psi(s) = k0 s + k1 s^2/2 + k2 s^3/3 + k3 s^4/4:
+ *
+ *   natx(u, k) = int_0^u cos(psi(s)) ds,   naty(u, k) = int_0^u sin(psi(s)) ds
+ *
+ * The law's coefficients are numbers (a law is interned once per scheme:
+ * the kernel's q); u is any expression.  d/dt natx(u, k) = cos(psi(u)) u'
+ * and naty's with sin: exact.  A law of degree 0 folds: natx(u, k0) =
+ * sin(k0 u)/k0, naty(u, k0) = (1 - cos(k0 u))/k0 (u and 0 for k0 = 0);
+ * natx(0, k) = naty(0, k) = 0. */
+enum { KERNEL_LAW_LEN = 4 };
+/* res = natx(u, k) (f = KF_NATX) or naty(u, k) (KF_NATY), k[0 .. 3] */
+int kernel_natural(Kernels *K, RatFun res, KernelFn f, const fmpq *k,
+                   const RatFun u);
+/* the law of kernel q's index: KERNEL_LAW_LEN coefficients */
+const fmpq *kernels_law(const Kernels *K, slong q);
 
 #endif

@@ -144,6 +144,10 @@ static int kernel_dk(Kernels *K, RatFun res, const Kernel *k0, slong var)
         if (ratfun_div(res, t, u, r) != 0)
             rc = KERNEL_EZERO;
         break;
+    case KF_NATX:
+    case KF_NATY: /* cos(psi(a)) a', sin(psi(a)) a' */
+        rc = kernel_natural_dk(K, res, fn, q, a, da);
+        break;
     case KF_SIGN:
     case KF_PI:
     default:
@@ -313,6 +317,8 @@ int kernel_remake(Kernels *K, RatFun res, KernelFn f, slong q, RatFun x,
         return rc;
     if (f == KF_ROOT)
         return kernel_pow_q(K, res, x, 1, q);
+    if (f == KF_NATX || f == KF_NATY)
+        return kernel_natural(K, res, f, kernels_law(K, q), x);
     return kernel_apply(K, res, f, x, f == KF_ATAN2 ? y : NULL);
 }
 

@@ -44,4 +44,12 @@ typedef int (*KernelWeightFn)(Kernels *K, RatFun w, void *ctx);
 int kernel_map_weights(Kernels *K, PointEq res, const PointEq x,
                        KernelWeightFn f, void *ctx);
 
+/* k->name and k->latex of natx(a, law) / naty (kernel_natural.c); a, la:
+ * the argument's text and LaTeX */
+void kernel_natural_names(const Kernels *K, Kernel *k, const char *a,
+                          const char *la);
+/* res = d k / d var = cos(psi(a)) da (natx) or sin(psi(a)) da (naty) */
+int kernel_natural_dk(Kernels *K, RatFun res, KernelFn fn, slong q,
+                      const RatFun a, const RatFun da);
+
 #endif

@@ -96,6 +96,8 @@ int derive_value_has_var(const Value *v, slong var, const Ring *r);
 char *derive_show(const RatFun x, const Ring *r);
 slong derive_value_terms(const Value *v);
 int derive_kernel_error(Deriver *D, int rc, const Node *n, const Node *arg);
+/* natx(u, k0 ..), naty(u, k0 ..): the law's coefficients numbers */
+int derive_eval_natural(Deriver *D, Value *res, const Node *n);
 int derive_kernel_error_at(Deriver *D, int rc, Span at, Span arg);
 int derive_reduce_value(Deriver *D, Value *v, const Node *n);
 LinNormal *derive_solve_normal_form(Deriver *D, LinNormal *nf);

@@ -305,6 +305,8 @@ static int eval_call(Deriver *D, Value *res, const Node *n)
         return derive_eval_metric(D, res, n);
     if (n->builtin == BI_COORD)
         return derive_eval_coord(D, res, n);
+    if (n->builtin == BI_NATX || n->builtin == BI_NATY)
+        return derive_eval_natural(D, res, n);
     switch ((Builtin)n->builtin) {
     case BI_ALONG:
     case BI_DIVIDE: {

@@ -240,3 +240,40 @@ done:
     ratfun_clear(x, r);
     return st;
 }
+
+int derive_eval_natural(Deriver *D, Value *res, const Node *n)
+{
+    const Ring *r = D->r;
+    res->is_point = 0;
+    RatFun u, c;
+    ratfun_init(u, r);
+    ratfun_init(c, r);
+    fmpq k[KERNEL_LAW_LEN];
+    for (int j = 0; j < KERNEL_LAW_LEN; j++)
+        fmpq_init(k + j);
+    int st = derive_eval_scalar(D, u, derive_nth(n, 0));
+    for (int j = 0; st == 0 && j + 1 < n->nargs; j++) {
+        const Node *a = derive_nth(n, j + 1);
+        if (derive_eval_scalar(D, c, a) < 0)
+            st = -1;
+        else if (!ratfun_get_fmpq(k + j, c, r)) {
+            diag_error(D->diag, a->span,
+                       "expected a number: the coefficients of the curvature "
+                       "law of %s() are numbers (k%d here depends on a "
+                       "param, const or function)",
+                       n->builtin == BI_NATX ? "natx" : "naty", j);
+            st = -1;
+        }
+    }
+    if (st == 0) {
+        int rc = kernel_natural(
+            D->K, res->s, n->builtin == BI_NATX ? KF_NATX : KF_NATY, k, u);
+        if (rc != 0)
+            st = derive_kernel_error(D, rc, n, derive_nth(n, 0));
+    }
+    for (int j = 0; j < KERNEL_LAW_LEN; j++)
+        fmpq_clear(k + j);
+    ratfun_clear(c, r);
+    ratfun_clear(u, r);
+    return st;
+}

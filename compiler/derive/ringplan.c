@@ -31,6 +31,8 @@ static void count_kernel_uses(const Node *n, slong *calls, slong *ops,
             ++*pis;
         else if (derive_is_function(n->builtin))
             ++*calls;
+        else if (n->builtin == BI_NATX || n->builtin == BI_NATY)
+            *calls += 3; /* its derivative: cos and sin of the phase */
         else if (n->builtin == BI_SUBST || n->builtin == BI_DIFF)
             ++*ops;
         for (const Node *a = n->args; a; a = a->next)

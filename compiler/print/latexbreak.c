@@ -318,6 +318,24 @@ static int expand(Words *out, const Word *x, double width)
         pc_free(y.core);
         return ok;
     }
+    if (is_cmd(s, n, 0, "operatorname") && n > 13 && s[13] == '{') {
+        /* \operatorname{natx}\left(...\right): the name goes before the
+         * first piece of its argument list */
+        size_t e = group_end(s, n, 13);
+        if (e < n && is_cmd(s, n, e, "left")) {
+            Word y = *x;
+            char *name = pc_xmalloc(e + 1);
+            memcpy(name, s, e);
+            name[e] = '\0';
+            y.pre = cat(x->pre, name);
+            y.core = pc_xstrdup(s + e);
+            int ok = expand(out, &y, width);
+            pc_free(name);
+            pc_free(y.pre);
+            pc_free(y.core);
+            return ok;
+        }
+    }
     Words mid = {0};
     int ok = 0;
     if (is_cmd(s, n, 0, "left")) {

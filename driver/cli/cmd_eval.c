@@ -148,7 +148,8 @@ static const char *status_message(unsigned char st)
     case PLAN_STATUS_DOMAIN:
         return " is undefined: a function's argument is outside its domain "
                "(sqrt of a negative number, ln of one <= 0, asin or acos "
-               "beyond [-1, 1]); written as nan\n";
+               "beyond [-1, 1], natx or naty of a phase turning more than "
+               "32768 radians); written as nan\n";
     case PLAN_STATUS_OVERFLOW:
         return " is not finite in double precision (a denominator of its "
                "equation overflows); written as nan\n";

@@ -11,6 +11,7 @@
  * A fit that fails is an error (exit 1) naming the segment; nothing is
  * written to stdout then.
  */
+#include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,7 +29,7 @@ typedef struct NatArgs {
     NatLaw law;
     int has_k0, has_dk0, hj, json, samples, comb;
     double k0, dk0;
-    const char *plot, *emit, *name, *usage;
+    const char *plot, *emit, *scheme, *name, *usage;
 } NatArgs;
 
 /* "X,Y" or "X,Y,PHI" into p; the count of numbers, -1 when malformed */
@@ -139,9 +140,10 @@ static int natural_option(void *ctx, int argc, char **argv, int i, FILE *err)
     if (strcmp(opt, "--comb") == 0)
         return a->comb = 1, 1;
     static const char *const known[] = {
-        "--from",   "--through", "--to",      "--law",  "--k0",     "--dk0",
-        "--method", "--format",  "--samples", "--plot", "--emit-c", "--name"};
-    int k = choice(opt, known, 12);
+        "--from",   "--through", "--to",     "--law",     "--k0",
+        "--dk0",    "--method",  "--format", "--samples", "--plot",
+        "--emit-c", "--name",    "--scheme"};
+    int k = choice(opt, known, 13);
     if (k < 0)
         return 0;
     if (!v)
@@ -151,7 +153,10 @@ static int natural_option(void *ctx, int argc, char **argv, int i, FILE *err)
     if (k == 4 || k == 5 || k == 8)
         return number_option(a, opt, v, err);
     if (k >= 9) {
-        *(k == 9 ? &a->plot : k == 10 ? &a->emit : &a->name) = v;
+        *(k == 9    ? &a->plot
+          : k == 10 ? &a->emit
+          : k == 11 ? &a->name
+                    : &a->scheme) = v;
         return 2;
     }
     const char *const *names = k == 3 ? laws : k == 6 ? methods : formats;
@@ -169,6 +174,17 @@ static int natural_option(void *ctx, int argc, char **argv, int i, FILE *err)
     else
         a->json = c;
     return 2;
+}
+
+/* a C identifier (the scheme's and the C's name) */
+static int name_ok(const char *s)
+{
+    if (!(isalpha((unsigned char)*s) || *s == '_'))
+        return 0;
+    for (; *s; s++)
+        if (!(isalnum((unsigned char)*s) || *s == '_'))
+            return 0;
+    return 1;
 }
 
 static int check_args(NatArgs *a, FILE *err)
@@ -200,10 +216,15 @@ static int check_args(NatArgs *a, FILE *err)
         return args_usage_error(err, a->usage,
                                 "--method hooke-jeeves is the article's search "
                                 "for the linear law only");
-    if (a->emit && a->ncurves > 1)
-        return args_usage_error(
-            err, a->usage,
-            "--emit-c writes one curve; this command line has %d", a->ncurves);
+    if ((a->emit || a->scheme) && a->ncurves > 1)
+        return args_usage_error(err, a->usage,
+                                "%s writes one curve; this command line has %d",
+                                a->emit ? "--emit-c" : "--scheme", a->ncurves);
+    if (a->scheme && !name_ok(a->name))
+        return args_usage_error(err, a->usage,
+                                "--name '%s' is not a scheme name (a letter or "
+                                "'_', then letters, digits and '_')",
+                                a->name);
     for (int c = 0; c < a->ncurves; c++)
         for (int i = 0; i < a->curves[c].npts; i++) {
             const NatPoint *p = &a->curves[c].pts[i];
@@ -410,6 +431,8 @@ int cli_natural(int argc, char **argv, FILE *out, FILE *err)
         rc = natural_svg(a.plot, a.curves, a.ncurves, a.comb, err);
     if (!rc && a.emit)
         rc = natural_emit_c(a.emit, &a.curves[0].curve, a.name, err);
+    if (!rc && a.scheme)
+        rc = natural_scheme(a.scheme, &a.curves[0].curve, a.name, err);
     for (int c = 0; !rc && c < a.ncurves; c++) {
         if (!a.json)
             print_text(out, &a, &a.curves[c]);
@@ -454,4 +477,7 @@ const char natural_help[] = NATURAL_USAGE
     "over\n"
     "                      the whole arc length (--name F, default\n"
     "                      natural_curve)\n"
+    "  --scheme FILE.pcs   the curve as a scheme: natx and naty of each\n"
+    "                      segment's law, joined by piecewise in s (--name:\n"
+    "                      the scheme's name)\n"
     "\nExit status: 0 success, 1 a fit that fails, 2 a usage error.\n";

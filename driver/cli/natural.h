@@ -22,7 +22,7 @@ CliCommand cli_natural;
     "                 [--law linear|quadratic|cubic] [--k0 K] [--dk0 D]\n"     \
     "                 [--method newton|hooke-jeeves] [--format text|json]\n"   \
     "                 [--samples N] [--plot FILE.svg [--comb]]\n"              \
-    "                 [--emit-c FILE.c [--name F]]\n"
+    "                 [--emit-c FILE.c] [--scheme FILE.pcs] [--name F]\n"
 extern const char natural_help[];
 
 /* one curve of the command line: its points as typed, and what the fit
@@ -39,6 +39,10 @@ void natural_samples_json(FILE *out, const NatCurve *c, int n);
 int natural_svg(const char *path, const NatCli *curves, int ncurves, int comb,
                 FILE *err);
 int natural_emit_c(const char *path, const NatCurve *c, const char *name,
+                   FILE *err);
+/* the curve as a scheme (natx, naty; docs/natural.md, "In the scheme
+ * language"): segment i is Mi, the curve M their piecewise join in s */
+int natural_scheme(const char *path, const NatCurve *c, const char *name,
                    FILE *err);
 
 #endif

@@ -843,6 +843,13 @@ static void test_latex_break(void **state)
     expect_lines("2 \\left(a + b + c\\right)^{2}", 9, paren, 2);
     static const char *const fits[] = {"a + b"};
     expect_lines("a + b", 56, fits, 1);
+    /* a named function's argument list parts after its name (natx with
+     * a long law): the name stays with the first piece */
+    static const char *const named[] = {
+        "x = \\operatorname{natx}\\Bigl( aaaa, bbbb,", "cccc, dddd \\Bigr)"};
+    expect_lines(
+        "x = \\operatorname{natx}\\left(aaaa, bbbb, cccc, dddd\\right)", 20,
+        named, 2);
     /* the hexagon of the composite-curve text set as a standalone
      * document: six lines, each within the page */
     char *o = printed_ex("point A0, A1, A2, A3, A4, A5\nparam t\n"

@@ -127,6 +127,28 @@ static int rf_uses(const RatFunStruct *x, slong var, const Ring *r)
            fmpz_mpoly_degree_si(x->den, var, r->ctx) > 0;
 }
 
+/* natx (y = 0) or naty of law k at u, independently of the runtime's
+ * Gauss-Legendre panels: composite Simpson on 2^13 and 2^14 intervals,
+ * extrapolated (Richardson: error O(h^6)), in long double */
+static double ref_natural(const fmpq *k, double u, int y)
+{
+    long double c[4], res[2];
+    for (int j = 0; j < 4; j++)
+        c[j] = (long double)fmpq_get_d(k + j) / (j + 1);
+    for (int pass = 0; pass < 2; pass++) {
+        long n = 8192L << pass;
+        long double h = (long double)u / n, sum = 0;
+        for (long i = 0; i <= n; i++) {
+            long double s = h * i;
+            long double ph = (((c[3] * s + c[2]) * s + c[1]) * s + c[0]) * s;
+            long double f = y ? sinl(ph) : cosl(ph);
+            sum += f * (i == 0 || i == n ? 1 : i % 2 ? 4 : 2);
+        }
+        res[pass] = sum * h / 3;
+    }
+    return (double)(res[1] + (res[1] - res[0]) / 15);
+}
+
 /* used[i]: output o uses kernel i (directly or inside another's argument) */
 static void kernels_used(const Derived *d, int o, unsigned char *used)
 {
@@ -249,6 +271,10 @@ static int kernel_values(const Derived *d, int o, fmpq *vals,
             break;
         case KF_SIGN:
             v = (double)fmpq_sgn(a);
+            break;
+        case KF_NATX:
+        case KF_NATY:
+            v = ref_natural(kernels_law(K, k->q), x, k->fn == KF_NATY);
             break;
         default:
             break;

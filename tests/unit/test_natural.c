@@ -17,6 +17,8 @@
 
 #include "libpointcalc.h"
 #include "runtime/natural.h"
+#include "runtime/plan.h"
+#include "runtime/plot.h"
 
 static uint64_t rng_state = 0x2545f4914f6cdd1dULL;
 static double rnd(void) // xorshift64*, [0, 1)
@@ -371,6 +373,54 @@ static void test_api(void **state)
     assert_int_equal(bad, 1);
 }
 
+/* natx and naty in the Plan (the language's natural curves): the value
+ * is the segment's point, the constant fold agrees, and the jets that
+ * plot's curvature combs read give |M'| = 1 and the law's curvature,
+ * through the chain rule of u = 2s; a phase beyond reach is NaN and its
+ * ISNAN flag 1 */
+static void test_plan_natural(void **state)
+{
+    (void)state;
+    const char *params[] = {"s"}, *points[] = {"O", "E1", "E2"};
+    Plan *p = plan_new("nat", 1, params, 0, NULL, 3, points);
+    const double k[4] = {0.5, -1.25, 0.75, 0.125};
+    int s = plan_input(p, 0);
+    int u = plan_mul(p, plan_const(p, 2), s);
+    int x = plan_natural(p, 0, u, k), y = plan_natural(p, 1, u, k);
+    assert_int_equal(plan_natural(p, 0, u, k), x); /* hash-consed */
+    int wo = plan_sub(p, plan_sub(p, plan_const(p, 1), x), y);
+    int pt[3] = {0, 1, 2}, reg[3] = {wo, x, y};
+    plan_add_output(p, "M", KIND_POINT, 1, 3, pt, reg,
+                    plan_mul(p, plan_isnan(p, x), plan_const(p, 1e6)));
+    const double o[2] = {0, 0}, e1[2] = {1, 0}, e2[2] = {0, 1};
+    const double *pts[3] = {o, e1, e2};
+    PlotEnv env = {p, 0, NULL, NULL, pts, 2};
+    for (double t = -0.75; t <= 1.5; t += 0.25) {
+        double pos[2], d1[2], d2[2];
+        assert_int_equal(plot_jet(&env, 0, t, pos, d1, d2), 0);
+        NatSegment g = law(0, 0, 0, 3, k, 2 * t);
+        double gx, gy;
+        nat_point(&g, 2 * t, &gx, &gy);
+        assert_true(fabs(pos[0] - gx) < 1e-15 && fabs(pos[1] - gy) < 1e-15);
+        double sp = hypot(d1[0], d1[1]); /* |dM/ds| = |u'| = 2 */
+        assert_true(fabs(sp - 2) < 1e-14);
+        double kap = (d1[0] * d2[1] - d1[1] * d2[0]) / (sp * sp * sp);
+        double want =
+            k[0] + k[1] * 2 * t + k[2] * 4 * t * t + k[3] * 8 * t * t * t;
+        assert_true(fabs(kap - want) < 1e-13);
+        /* the fold of a constant argument: the same value */
+        int c = plan_natural(p, 1, plan_const(p, 2 * t), k);
+        assert_int_equal(p->ins[c].op, PLAN_CONST);
+        assert_true(fabs(p->k[p->ins[c].a] - gy) < 1e-15);
+    }
+    double pos[2];
+    assert_int_equal(plot_jet(&env, 0, 200, pos, NULL, NULL),
+                     PLAN_STATUS_POLE); /* the flag: 1e6 < the domain's */
+    assert_true(isnan(plan_natural_eval(0, k, 200)));
+    assert_false(isnan(plan_natural_eval(0, k, 20)));
+    plan_free(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -387,6 +437,7 @@ int main(void)
         cmocka_unit_test(test_chord_rule),
         cmocka_unit_test(test_composite_joints),
         cmocka_unit_test(test_api),
+        cmocka_unit_test(test_plan_natural),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
