@@ -1,5 +1,6 @@
 # pointcalc - plain Makefile, out-of-tree build in $(B)/ (default build/).
-#   make          build/pointcalc and build/libpointcalc.a
+#   make          build/pointcalc (with the static FLINT of build-flint/ when
+#                 there) and build/libpointcalc.a
 #   make check    build and run every test (unit, schemes, codegen, fuzz-lite)
 #   make asan     the same tests built with AddressSanitizer + UBSan (build-asan/)
 #   make tsan     the threaded test under ThreadSanitizer (build-tsan/)
@@ -27,10 +28,11 @@ ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) $(CFLAGS) $(SAN) \
              -I. -I$(B) -MMD -MP
 LDLIBS  = -lflint -lgmp -lm -lpthread
 TEST_LDLIBS = -lcmocka $(LDLIBS)
-# pointcalc itself links a static FLINT when .ci/flint-static has built one
-# (`make flint-static`): it then starts without loading libflint.so and what
-# that pulls in (issue 6: milliseconds a process); tests and benches keep
-# the shared libraries
+# pointcalc itself links a static FLINT by default when .ci/flint-static has
+# built one (.ci/install-deps does as root, or `make flint-static`): it then
+# starts without loading libflint.so and what that pulls in (issues 6 and
+# 24: milliseconds a process); tests and benches keep the shared libraries;
+# FLINT_STATIC= (empty) links the shared FLINT
 FLINT_STATIC ?= $(wildcard build-flint/libflint.a)
 ifneq ($(FLINT_STATIC),)
 PC_LDLIBS = $(FLINT_STATIC) $(shell $(CC) -print-file-name=libmpfr.a) \
