@@ -105,6 +105,12 @@ $(B)/bench/%: bench/%.c $(LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIBS) $(LDLIBS)
 
+# linked as pointcalc is (the static FLINT when there): its in-process
+# columns and the whole process it spawns run the same code
+$(B)/bench/bench_derive: bench/bench_derive.c $(LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIBS) $(PC_LDLIBS)
+
 # the library example of docs/api.md, built and run by `make check`
 $(B)/examples/api_example: examples/api_example.c $(B)/libpointcalc.a
 	@mkdir -p $(@D)
@@ -224,7 +230,9 @@ bench: $(BENCHES) $(B)/pointcalc $(if $(FLINT_STATIC),$(B)/pointcalc-shared)
 	  done; done; fi; \
 	for b in $(BENCHES); do case $$b in \
 	  *bench_start) $$b $(B)/pointcalc $(if $(FLINT_STATIC),$(B)/pointcalc-shared) || exit 1;; \
+	  *bench_derive) PC_BENCH_NO_WHOLE=1 $$b || exit 1;; \
 	  *) PYTHON=$$py $$b || exit 1;; esac; done
+	@PYTHON=$${PYTHON:-python3} bench/run_whole.sh $(B)
 	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
 
 # the figures of docs/plot.md (tests/plot_test.sh checks they are current)
