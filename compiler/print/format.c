@@ -62,10 +62,13 @@ typedef struct Factor {
 
 /* the order of a product's factors (docs/language.md, "derive"): by the
  * number of terms (monomials first), then by total degree, then by FLINT's
- * fixed order of polynomials (fmpz_mpoly_cmp), compared as FLINT's
- * factoring returns them (primitive, leading coefficient positive): a
- * total order on the factors, so a product prints the same however its
- * factors were found (shared among weights or not) */
+ * fixed order of polynomials (fmpz_mpoly_cmp) from the last, compared as
+ * FLINT's factoring returns them (primitive, leading coefficient
+ * positive): monomials in the ring's order of variables, as FLINT's
+ * factoring puts them, and sums as the book orders its sums (book_model.c:
+ * 4t - 1 before 4t - 3 before t - 1).  A total order on the factors, so a
+ * product prints the same however its factors were found (shared among
+ * weights or not). */
 static int factor_before(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
                          const Ring *r)
 {
@@ -76,7 +79,7 @@ static int factor_before(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
     slong db = fmpz_mpoly_total_degree_si(b, r->ctx);
     if (da != db)
         return da < db;
-    return fmpz_mpoly_cmp(a, b, r->ctx) < 0;
+    return fmpz_mpoly_cmp(a, b, r->ctx) > 0;
 }
 
 /* p's factoring (ring_factor's, through the factors shared by the
