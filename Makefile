@@ -1,5 +1,6 @@
 # pointcalc - plain Makefile, out-of-tree build in $(B)/ (default build/).
-#   make          build/pointcalc and build/libpointcalc.a
+#   make          build/pointcalc (with the static FLINT of build-flint/ when
+#                 there) and build/libpointcalc.a
 #   make check    build and run every test (unit, schemes, codegen, fuzz-lite)
 #   make asan     the same tests built with AddressSanitizer + UBSan (build-asan/)
 #   make tsan     the threaded test under ThreadSanitizer (build-tsan/)
@@ -27,10 +28,11 @@ ALL_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L $(WARN) $(CFLAGS) $(SAN) \
              -I. -I$(B) -MMD -MP
 LDLIBS  = -lflint -lgmp -lm -lpthread
 TEST_LDLIBS = -lcmocka $(LDLIBS)
-# pointcalc itself links a static FLINT when .ci/flint-static has built one
-# (`make flint-static`): it then starts without loading libflint.so and what
-# that pulls in (issue 6: milliseconds a process); tests and benches keep
-# the shared libraries
+# pointcalc itself links a static FLINT by default when .ci/flint-static has
+# built one (.ci/install-deps does as root, or `make flint-static`): it then
+# starts without loading libflint.so and what that pulls in (issues 6 and
+# 24: milliseconds a process); tests and benches keep the shared libraries;
+# FLINT_STATIC= (empty) links the shared FLINT
 FLINT_STATIC ?= $(wildcard build-flint/libflint.a)
 ifneq ($(FLINT_STATIC),)
 PC_LDLIBS = $(FLINT_STATIC) $(shell $(CC) -print-file-name=libmpfr.a) \
@@ -102,6 +104,12 @@ $(B)/tests/%: tests/unit/%.c $(LIBS)
 $(B)/bench/%: bench/%.c $(LIBS)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIBS) $(LDLIBS)
+
+# linked as pointcalc is (the static FLINT when there): its in-process
+# columns and the whole process it spawns run the same code
+$(B)/bench/bench_derive: bench/bench_derive.c $(LIBS)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LIBS) $(PC_LDLIBS)
 
 # the library example of docs/api.md, built and run by `make check`
 $(B)/examples/api_example: examples/api_example.c $(B)/libpointcalc.a
@@ -222,7 +230,9 @@ bench: $(BENCHES) $(B)/pointcalc $(if $(FLINT_STATIC),$(B)/pointcalc-shared)
 	  done; done; fi; \
 	for b in $(BENCHES); do case $$b in \
 	  *bench_start) $$b $(B)/pointcalc $(if $(FLINT_STATIC),$(B)/pointcalc-shared) || exit 1;; \
+	  *bench_derive) PC_BENCH_NO_WHOLE=1 $$b || exit 1;; \
 	  *) PYTHON=$$py $$b || exit 1;; esac; done
+	@PYTHON=$${PYTHON:-python3} bench/run_whole.sh $(B)
 	@if [ -x bench/run_maxima.sh ]; then bench/run_maxima.sh $(B); fi
 
 # the figures of docs/plot.md (tests/plot_test.sh checks they are current)

@@ -38,6 +38,7 @@
 #ifndef PC_BOOK_H
 #define PC_BOOK_H
 
+#include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly.h>
 
 #include "compiler/derive.h"
@@ -65,6 +66,15 @@ char *book_output(const Derived *d, const DerivedOutput *o,
                   const BookOptions *opt);
 /* LaTeX of a name (the rule above) appended to a malloc'd string */
 char *book_latex_name(const char *name);
+
+/* f = p's factoring as ring_factor (algebra/ring.h) makes it, up to the
+ * order of the factors: where FLINT would factor fully, the factors
+ * remembered in m (NULL: none) from the polynomials factored before are
+ * divided out first and the irreducible factors found are remembered in
+ * turn; derive's JSON and --steps share them this way (format.c).  0 when
+ * ring_factor fails. */
+int book_factor(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, const Derived *d,
+                BookMemo *m);
 
 /* for tests/unit/test_book.c only: the printer's cheap proofs of
  * irreducibility (compiler/algebra/polyfactor.h; 1: proved; 0: no proof), which

@@ -358,6 +358,32 @@ static int factor_by_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
     return ok;
 }
 
+/* p's factoring as ring_factor makes it (ring_factor.h), up to the order
+ * of the factors, with the irreducible factors of a full factoring
+ * remembered in c->memo and divided out of later polynomials first */
+static int factor_shared(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
+                         const Ctx *c)
+{
+    if (factor_known(f, p, c) || factor_by_known(f, p, c))
+        return 1;
+    if (!polyfactor_compact(f, p, c->r))
+        return 0;
+    if (c->memo && ring_factor_affordable(p, c->r))
+        remember_factors(f, c);
+    return 1;
+}
+
+int book_factor(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, const Derived *d,
+                BookMemo *m)
+{
+    Ctx c = {0};
+    c.r = &d->ring;
+    c.nparams = d->nparams;
+    c.nconsts = d->nconsts;
+    c.memo = m;
+    return factor_shared(f, p, &c);
+}
+
 PSum *book_form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
     const Ring *r = c->r;
@@ -383,13 +409,7 @@ PSum *book_form_factored(const fmpz_mpoly_t p, int depth, const Ctx *c)
     }
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
-    int ok = factor_known(f, p, c) || factor_by_known(f, p, c);
-    if (!ok && polyfactor_compact(f, p, r)) {
-        ok = 1;
-        if (c->memo && ring_factor_affordable(p, r))
-            remember_factors(f, c);
-    }
-    if (!ok) {
+    if (!factor_shared(f, p, c)) {
         fmpz_mpoly_factor_clear(f, r->ctx);
         return NULL;
     }

@@ -60,12 +60,44 @@ typedef struct Factor {
     int flipped; // negated to make its constant term positive
 } Factor;
 
-static int factor_cmp(const void *x, const void *y)
+/* the order of a product's factors (docs/language.md, "derive"): by the
+ * number of terms (monomials first), then by total degree, then by FLINT's
+ * fixed order of polynomials (fmpz_mpoly_cmp) from the last, compared as
+ * FLINT's factoring returns them (primitive, leading coefficient
+ * positive): monomials in the ring's order of variables, as FLINT's
+ * factoring puts them, and sums as the book orders its sums (book_model.c:
+ * 4t - 1 before 4t - 3 before t - 1).  A total order on the factors, so a
+ * product prints the same however its factors were found (shared among
+ * weights or not). */
+static int factor_before(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
+                         const Ring *r)
 {
-    const Factor *a = x, *b = y;
-    if (a->len != b->len)
-        return a->len < b->len ? -1 : 1;
-    return 0;
+    slong la = fmpz_mpoly_length(a, r->ctx), lb = fmpz_mpoly_length(b, r->ctx);
+    if (la != lb)
+        return la < lb;
+    slong da = fmpz_mpoly_total_degree_si(a, r->ctx);
+    slong db = fmpz_mpoly_total_degree_si(b, r->ctx);
+    if (da != db)
+        return da < db;
+    return fmpz_mpoly_cmp(a, b, r->ctx) > 0;
+}
+
+/* p's factoring (ring_factor's, through the factors shared by the
+ * scheme's weights when share is given: book_factor), its factors in
+ * factor_before's order (an insertion sort: a few) */
+static int factor_ordered(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
+                          const Ring *r, const FormatShare *share)
+{
+    if (!(share ? book_factor(f, p, share->d, share->memo)
+                : ring_factor(f, p, r)))
+        return 0;
+    for (slong i = 1; i < f->num; i++)
+        for (slong j = i;
+             j > 0 && factor_before(f->poly + j, f->poly + j - 1, r); j--) {
+            fmpz_mpoly_swap(f->poly + j, f->poly + j - 1, r->ctx);
+            fmpz_swap(f->exp + j, f->exp + j - 1);
+        }
+    return 1;
 }
 
 /* Writes |p| as  [c] f1^e1 f2^e2 ... (the sign is NOT written: *negative
@@ -76,12 +108,12 @@ static int factor_cmp(const void *x, const void *y)
  * Returns the number of items written (a constant counts as one), so that
  * callers can decide on parentheses. */
 static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
-                           FormatStyle st, int *negative, int bare,
-                           int positive)
+                           FormatStyle st, int *negative, int positive,
+                           const FormatShare *share)
 {
     fmpz_mpoly_factor_t f;
     fmpz_mpoly_factor_init(f, r->ctx);
-    if (fmpz_mpoly_is_zero(p, r->ctx) || !ring_factor(f, p, r)) {
+    if (fmpz_mpoly_is_zero(p, r->ctx) || !factor_ordered(f, p, r, share)) {
         /* unfactored (too costly to factor): one item, "(1 - t^400)" */
         fmpz_mpoly_factor_clear(f, r->ctx);
         *negative = 0;
@@ -97,7 +129,7 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
             fmpz_mpoly_clear(q, r->ctx);
             return 1;
         }
-        int paren = !bare && fmpz_mpoly_length(p, r->ctx) > 1;
+        int paren = fmpz_mpoly_length(p, r->ctx) > 1;
         if (paren)
             sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");
         poly_print(b, p, r, st);
@@ -131,7 +163,6 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
             fmpz_mpoly_neg(fs[i].poly, fs[i].poly, r->ctx);
             neg = 0;
         }
-    qsort(fs, (size_t)f->num, sizeof(Factor), factor_cmp);
     int items = 0;
     fmpz_abs(c, f->constant);
     if (!fmpz_is_one(c) || f->num == 0) {
@@ -151,8 +182,7 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
             sb_puts(b, "\\bar{");
             latex_name(b, r->names[v]);
             sb_puts(b, "}");
-        } else if (atom ||
-                   (bare && f->num == 1 && fs[i].exp == 1 && fmpz_is_one(c))) {
+        } else if (atom) {
             poly_print(b, fs[i].poly, r, st);
         } else {
             sb_puts(b, st == FMT_LATEX ? "\\left(" : "(");
@@ -174,20 +204,14 @@ static int put_factored_ex(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
     return items;
 }
 
-static int put_factored(StrBuf *b, const fmpz_mpoly_t p, const Ring *r,
-                        FormatStyle st, int *negative)
-{
-    return put_factored_ex(b, p, r, st, negative, 0, 0);
-}
-
 /* writes a denominator after the fraction bar (text/json): "/2", "/t",
  * "/(2*t^2 - 2*t + 1)", "/(t*(1-t))" */
 static void put_den(StrBuf *b, const fmpz_mpoly_t den, const Ring *r,
-                    FormatStyle st)
+                    FormatStyle st, const FormatShare *share)
 {
     StrBuf d = {0};
     int neg;
-    int items = put_factored_ex(&d, den, r, st, &neg, 0, 1);
+    int items = put_factored_ex(&d, den, r, st, &neg, 1, share);
     char *ds = sb_take(&d);
     int wrap = items > 1 || neg; /* "/(...)^2" and "/t^2" need no more */
     sb_puts(b, "/");
@@ -248,10 +272,27 @@ static int arg_has_sign(const Kernels *K, const Kernel *k, int depth)
  * r whose names of those sign kernels are abs(x), and whose names of
  * functions of such arguments are written again with abs:
  * sin(pi*abs(t - 1)/4), not sin((t*pi*sign(t - 1) - pi*sign(t - 1))/4) */
-char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
+static char *weight_text(const RatFun w, const Ring *r,
+                         const FormatShare *share)
+{
+    StrBuf b = {0};
+    StrBuf n = {0};
+    int neg;
+    put_factored_ex(&n, w->num, r, FMT_JSON, &neg, 0, share);
+    if (neg)
+        sb_puts(&b, "-");
+    sb_puts(&b, n.s);
+    pc_free(n.s);
+    if (!is_den_one(w, r))
+        put_den(&b, w->den, r, FMT_JSON, share);
+    return sb_take(&b);
+}
+
+static char *weight_k(const RatFun w, const Ring *r, const Kernels *K,
+                      const FormatShare *share)
 {
     if (!absform_any(K))
-        return format_weight(w, r);
+        return weight_text(w, r, share);
     size_t nv = (size_t)(r->nvars ? r->nvars : 1);
     unsigned char *mask = pc_xcalloc(nv, 1);
     RatFun x;
@@ -274,7 +315,7 @@ char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
     }
     char *res;
     if (n == 0) {
-        res = format_weight(w, r);
+        res = weight_text(w, r, share);
     } else {
         Ring ra = *r; /* read-only: the same FLINT context */
         const char **names = pc_xmalloc(sizeof(char *) * nv);
@@ -283,7 +324,7 @@ char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
             const Kernel *k = mask[v] ? kernels_of_var(K, v) : NULL;
             char *a = !k             ? NULL
                       : mask[v] == 1 ? absform_arg_text(k, 0)
-                                     : format_weight_k(k->arg, r, K);
+                                     : weight_k(k->arg, r, K, share);
             if (!a)
                 continue;
             const char *f = mask[v] == 1 ? "abs" : kernel_fn_names[k->fn];
@@ -297,7 +338,7 @@ char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
             names[v] = t;
         }
         ra.names = names;
-        res = format_weight(x, &ra);
+        res = weight_text(x, &ra, share);
         for (slong v = 0; v < r->nvars; v++)
             if (mask[v])
                 pc_free((char *)names[v]);
@@ -309,19 +350,19 @@ char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
     return res;
 }
 
+char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
+{
+    return weight_k(w, r, K, NULL);
+}
+
+char *format_weight_share(const RatFun w, const FormatShare *share)
+{
+    return weight_k(w, &share->d->ring, share->d->kernels, share);
+}
+
 char *format_weight(const RatFun w, const Ring *r)
 {
-    StrBuf b = {0};
-    StrBuf n = {0};
-    int neg;
-    put_factored(&n, w->num, r, FMT_JSON, &neg);
-    if (neg)
-        sb_puts(&b, "-");
-    sb_puts(&b, n.s);
-    pc_free(n.s);
-    if (!is_den_one(w, r))
-        put_den(&b, w->den, r, FMT_JSON);
-    return sb_take(&b);
+    return weight_text(w, r, NULL);
 }
 
 char *format_output_rhs(const Derived *d, const DerivedOutput *o,

@@ -39,6 +39,16 @@ char *format_weight(const RatFun w, const Ring *r);
  * what derive --format json writes (the contract has abs, not sign) */
 struct Kernels;
 char *format_weight_k(const RatFun w, const Ring *r, const struct Kernels *K);
+/* the same for the weights of one Derived d, which share factors: those
+ * found in the weights written before with the same memo (book.h's
+ * book_memo_new, freed by book_memo_free with d) are divided out first
+ * (book_factor); the text is format_weight_k's */
+struct Memo;
+typedef struct FormatShare {
+    const Derived *d;
+    struct Memo *memo;
+} FormatShare;
+char *format_weight_share(const RatFun w, const FormatShare *share);
 
 /* The right-hand side of one output as derive prints it (text or LaTeX;
  * "(A*(1 - t)^3 + ...)/(2*t^2 - 2*t + 1)"), for a point, vector or scalar;

@@ -18,11 +18,13 @@
 
 #include "base/source.h"
 #include "compiler/derive.h"
+#include "compiler/print/book.h"
 
 void format_json(FILE *out, const Derived *d);
 /* "key": "WEIGHT", w as derive's JSON writes every weight (format_weight_k:
- * abs kept); the outputs' terms and the knots' values and jumps */
+ * abs kept); the outputs' terms and the knots' values and jumps; memo
+ * (book.h; NULL: none) shares the factors among the weights */
 void format_json_weight(FILE *out, const char *key, const RatFun w,
-                        const Derived *d);
+                        const Derived *d, BookMemo *memo);
 
 #endif

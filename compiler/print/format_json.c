@@ -14,6 +14,7 @@
 #include "base/budget.h"
 #include "base/json.h"
 #include "base/mem.h"
+#include "compiler/print/book.h"
 #include "compiler/print/format.h"
 #include "compiler/print/knots_print.h"
 
@@ -29,9 +30,11 @@ static void json_names(FILE *out, const char *key, char *const *names, slong n)
 }
 
 void format_json_weight(FILE *out, const char *key, const RatFun w,
-                        const Derived *d)
+                        const Derived *d, BookMemo *memo)
 {
-    char *s = format_weight_k(w, &d->ring, d->kernels);
+    FormatShare share = {d, memo};
+    char *s = memo ? format_weight_share(w, &share)
+                   : format_weight_k(w, &d->ring, d->kernels);
     json_string(out, key);
     fputs(": ", out);
     json_string(out, s);
@@ -67,19 +70,20 @@ static void json_assumes(FILE *out, const Derived *d, const DerivedOutput *o)
 }
 
 /* {"name": "M", "kind": "point", "terms": {"A": "..", ..}} */
-static void json_output(FILE *out, const Derived *d, const DerivedOutput *o)
+static void json_output(FILE *out, const Derived *d, const DerivedOutput *o,
+                        BookMemo *memo)
 {
     fputs("{\"name\": ", out);
     json_string(out, o->name);
     fprintf(out, ", \"kind\": \"%s\", ", kind_name(o->kind));
     if (o->kind == KIND_SCALAR) {
-        format_json_weight(out, "value", o->scalar, d);
+        format_json_weight(out, "value", o->scalar, d, memo);
     } else {
         fputs("\"terms\": {", out);
         for (slong k = 0; k < o->eq->len; k++) {
             fputs(k ? ", " : "", out);
             format_json_weight(out, d->points[o->eq->terms[k].point], &o->w[k],
-                               d);
+                               d, memo);
         }
         fputs("}", out);
     }
@@ -128,11 +132,13 @@ void format_json(FILE *out, const Derived *d)
     fputs(", ", out);
     json_names(out, "consts", d->consts, d->nconsts);
     fputs(",\n \"outputs\": [", out);
+    BookMemo *memo = book_memo_new(); /* the weights share factors */
     for (slong i = 0; i < d->noutputs; i++) {
         fputs(i ? ",\n  " : "", out);
         derived_mark(d, i); /* blamed if a budget runs out */
-        json_output(out, d, &d->outputs[i]);
+        json_output(out, d, &d->outputs[i], memo);
     }
+    book_memo_free(memo, d);
     budget_statement(NULL, (Span){0, 0}); /* printed: no output to blame */
     fputs("]", out);
     json_checks(out, d);

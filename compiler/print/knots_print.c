@@ -136,7 +136,7 @@ static void json_knot(FILE *out, const Derived *d, const DerivedOutput *o,
                       const Knot *k)
 {
     fputs("{", out);
-    format_json_weight(out, "t", k->t, d);
+    format_json_weight(out, "t", k->t, d, NULL);
     if (k->continuity >= 0 || k->analysed)
         fprintf(out, ", \"continuity\": %d", k->continuity);
     else
@@ -157,7 +157,7 @@ static void json_knot(FILE *out, const Derived *d, const DerivedOutput *o,
         fputs(", \"jump\": null", out);
     } else if (o->kind == KIND_SCALAR) {
         fputs(", ", out);
-        format_json_weight(out, "jump", k->jump, d);
+        format_json_weight(out, "jump", k->jump, d, NULL);
     } else {
         fputs(", \"jump\": {", out);
         int first = 1;
@@ -166,7 +166,7 @@ static void json_knot(FILE *out, const Derived *d, const DerivedOutput *o,
                 continue;
             fputs(first ? "" : ", ", out);
             format_json_weight(out, d->points[o->eq->terms[i].point],
-                               k->jump + i, d);
+                               k->jump + i, d, NULL);
             first = 0;
         }
         char *v = knots_jump_text(d, o, k);

@@ -155,6 +155,48 @@ static void test_factors_shared(void **state)
     free(all);
 }
 
+/* JSON's factors in one total order (format.c, factor_before: terms,
+ * degree, FLINT's order of polynomials), the same whether a weight's
+ * factors were shared from the weights before it (book_factor) or found
+ * alone; the values by hand: (t + 2)(t + 3)(t^2 + 5) expanded etc. */
+static void test_json_factors_shared(void **state)
+{
+    (void)state;
+    static const char src[] = "param t\n"
+                              "s1 = (2 + t)*(3 + t)*(5 + t^2)\n"
+                              "s2 = (3 + t)*(5 + t^2)*(7 + t + t^3)/(2 - t)\n"
+                              "s3 = -4*(3 + t)^2*(2 - t)*(5 + t^2)*(1 + t^3)\n"
+                              "s4 = (4*t - 3)*(4*t - 1)*(t - 1)*t\n"
+                              "output s1, s2, s3, s4\n";
+    char *js = printed_ex(src, FMT_JSON, 0, -1);
+    /* t + 3 before t + 2: FLINT's order from the last (docs/language.md) */
+    assert_non_null(strstr(js, "\"value\": \"(t+3)*(t+2)*(t^2+5)\""));
+    assert_non_null(
+        strstr(js, "\"value\": \"-(t+3)*(t^2+5)*(t^3+t+7)/(t-2)\""));
+    assert_non_null(
+        strstr(js, "\"value\": \"-4*(t+3)^2*(t+1)*(2-t)*(t^2+5)*(t^2-t+1)\""));
+    /* 1 - 4t, 3 - 4t, 1 - t: FLINT's order of 4t - 1, 4t - 3, t - 1 from
+     * the last, the order of sums in the text */
+    assert_non_null(strstr(js, "\"value\": \"-t*(1-4*t)*(3-4*t)*(1-t)\""));
+    /* each output alone prints the same */
+    const char *one[] = {"s3 = -4*(3 + t)^2*(2 - t)*(5 + t^2)*(1 + t^3)\n"
+                         "output s3\n",
+                         "s2 = (3 + t)*(5 + t^2)*(7 + t + t^3)/(2 - t)\n"
+                         "output s2\n"};
+    for (int i = 0; i < 2; i++) {
+        char alone[256];
+        snprintf(alone, sizeof alone, "param t\n%s", one[i]);
+        char *a = printed_ex(alone, FMT_JSON, 0, -1);
+        const char *v = strstr(a, "\"value\": ");
+        assert_non_null(v);
+        char w[160];
+        snprintf(w, sizeof w, "%.*s", (int)strcspn(v + 10, "}"), v + 10);
+        assert_non_null(strstr(js, w));
+        free(a);
+    }
+    free(js);
+}
+
 /* factors found without FLINT's factoring (book.c, factor_known: an
  * integer, a monomial, powers of 1 - x, one irreducible rest) print as
  * FLINT's would: the same rules as above */
@@ -889,6 +931,7 @@ int main(void)
         cmocka_unit_test(test_collected_by_a_const),
         cmocka_unit_test(test_factor_order),
         cmocka_unit_test(test_factors_shared),
+        cmocka_unit_test(test_json_factors_shared),
         cmocka_unit_test(test_minus_outside),
         cmocka_unit_test(test_vector_differences),
         cmocka_unit_test(test_latex_names),
