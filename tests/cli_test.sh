@@ -1147,14 +1147,67 @@ printf 'point A, B\nparam t in [0, 1]\nconst k\nM = along(A, B, t/(k - t))\n' >"
 "$PC" analyze "$tmp/anset.pcs" --set k=1/2 >"$tmp/out" 2>"$tmp/err"
 check "analyze --set k=1/2: the pole t = 1/2" grep -qx '  poles: t = 1/2' "$tmp/out"
 "$PC" analyze "$tmp/anset.pcs" >"$tmp/out" 2>"$tmp/err"
-check "analyze without --set: not analysed" grep -qx 'M: not analysed: depends on k, not only on a param' "$tmp/out"
+check "analyze without --set: k at its generic value, said" grep -qx 'consts without --set, at generic values: k = 11/7 (what holds for all values but a few: degree, order, dim; the rest is for these values)' "$tmp/out"
+check "analyze without --set: the pole t = 11/7 is out of [0, 1]" grep -qx '  poles: none' "$tmp/out"
 "$PC" analyze "$tmp/anset.pcs" --format json >"$tmp/anset.json"
-check "analyze --format json: a skipped output keeps the keys, null" python3 -c "
+check "analyze --format json: generic_consts, and the curve analysed" python3 -c "
 import json
-o=json.load(open('$tmp/anset.json'))['outputs'][0]
-assert o['skipped']=='depends on k, not only on a param', o
-assert all(o[k] is None for k in ('degree','poles','stop_points','inflections')), o
+j=json.load(open('$tmp/anset.json'))
+assert j['generic_consts']=={'k': '11/7'}, j
+o=j['outputs'][0]
+assert 'skipped' not in o and o['degree']==1 and o['poles']==[], o
 "
+# curves with functions, found numerically (driver/cli/analyze_num.c);
+# every value derived by hand: M = A + t (B - A) + sin t (C - A) is the
+# graph y = sin x in the frame A, B, C (inflections at 0 and pi); L is
+# A + sin t (B - A) (at A where sin t = 0, at B and still where sin t = 1);
+# P has the pole t = 1 of sin t/(t - 1); S = A + sqrt(t + 1) (B - A)
+# starts at A with an infinite derivative and reaches B at t = 0
+printf 'point A, B, C\nparam t in [-1, 4]\nM = A + t*(B - A) + sin(t)*(C - A)\nL = along(A, B, sin(t))\nP = along(A, B, sin(t)/(t - 1))\nS = along(A, B, sqrt(t + 1))\noutput M, L, P, S\n' >"$tmp/annum.pcs"
+"$PC" analyze "$tmp/annum.pcs" --format json >"$tmp/annum.json"
+check "analyze: curves with sin and sqrt, found numerically to 1e-15" python3 -c "
+import json, math
+o={c['name']: c for c in json.load(open('$tmp/annum.json'))['outputs']}
+def near(xs, want):
+    assert len(xs)==len(want), (xs, want)
+    for x, w in zip(xs, want):
+        assert abs(x-w) <= 1e-15*max(1, abs(w)), (x, w)
+M, L, P, S = o['M'], o['L'], o['P'], o['S']
+assert M['numeric'] and M['degree']=='transcendental' and M['dim']==2, M
+near(M['inflections'], [0, math.pi]); near(M['stop_points'], []); near(M['poles'], [])
+assert [p['point'] for p in M['passes']]==['A'], M; near(M['passes'][0]['t'], [0])
+e=M['ends'][0]; assert e['t']=='-1'
+near([e['point']['A'], e['point']['B'], e['point']['C']], [2+math.sin(1), -1, -math.sin(1)])
+near([e['derivative']['A'], e['derivative']['B'], e['derivative']['C']], [-1-math.cos(1), 1, math.cos(1)])
+assert L['dim']==1 and L['inflections'] is None, L
+near(L['stop_points'], [math.pi/2])
+near(L['passes'][0]['t'], [0, math.pi]); near(L['passes'][1]['t'], [math.pi/2])
+near(P['poles'], [1])
+assert S['degree']=='algebraic', S
+near(S['passes'][0]['t'], [-1]); near(S['passes'][1]['t'], [0])
+assert 'derivative' not in S['ends'][0], S
+"
+"$PC" analyze "$tmp/annum.pcs" >"$tmp/out"
+check "analyze text: a curve found numerically" grep -qx 'M: a point curve in t in \[-1, 4\], transcendental: no degree or order, a plane curve; it has sin' "$tmp/out"
+check "analyze text: its inflections" grep -qx '  inflections: t = 0, t = 3.141592653589793' "$tmp/out"
+# the book's polyline of 2.2 (abs): through its vertices O, A, B, C at
+# t = 0, 1, 2, 3 and back to O at 4, with no stop
+"$PC" analyze examples/dolya_2_2_polyline.pcs >"$tmp/out"
+check "analyze: the polyline of 2.2 passes its vertices" grep -qx '  passes through: O at t = 0, 4; A at t = 1; B at t = 2; C at t = 3' "$tmp/out"
+# every example: each output analysed (exit 0), none skipped but what is
+# no curve (a scalar, a constant point, a surface in several params)
+for f in examples/*.pcs; do
+    "$PC" analyze "$f" --format json >"$tmp/ex.json" 2>"$tmp/err" ||
+        echo "$f: exit $?" >>"$tmp/anall"
+    python3 -c "
+import json, sys
+ok=('a scalar, not a curve', 'a constant, not a curve', 'depends on more than one param')
+for o in json.load(open('$tmp/ex.json'))['outputs']:
+    if o.get('skipped') not in (None,)+ok:
+        print('$f', o['name'], o['skipped'])
+" >>"$tmp/anall" 2>&1
+done
+check "analyze: every example curve analysed, none skipped" test ! -s "$tmp/anall"
 "$PC" analyze "$tmp/anset.pcs" --set q=1 >"$tmp/out" 2>"$tmp/err"
 check "analyze --set of no const exits 2" test $? -eq 2
 check "analyze --set of no const says so" grep -q "pointcalc: --set 'q=1': 'q' is not a const of the scheme" "$tmp/err"

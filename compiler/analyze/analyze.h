@@ -55,6 +55,10 @@ typedef struct AnEnd {
     slong parallel;  // derivatives first..parallel are parallel to it; -1:
                      // every one (a straight line)
     slong vanishing; // derivatives 1..first-1 vanish: first - 1
+    double *num;     // a curve found numerically (AnCurve.numeric): the
+    double *num_tan; // end point's and first derivative's weights
+                     // (npoints each; d->npoints), owned; point, tangent
+                     // NULL
 } AnEnd;
 
 /* A base point the curve passes through, and where. */
@@ -93,6 +97,18 @@ typedef struct AnCurve {
     double kappa_ext_t[2]; // and where
     int has_kappa_ext[2];
     double length; // the arc length over the range
+    /* a curve whose weights have functions (sin, sqrt, abs = x sign(x),
+     * pi, dist ...): found numerically by analyze_numeric (driver/cli/
+     * analyze_num.c: the runtime's Plan with exact derivatives), every
+     * AnRoot a number */
+    int numeric;           // 1: such a curve (degree, order, index unused)
+    const char *nature;    // "piecewise", "algebraic" or "transcendental"
+    char *functions;       // owned: the functions it has, "sin(t), pi"
+    int num_done;          // 1: analyze_numeric filled what follows
+    char *num_why;         // owned: why it could not be evaluated, or NULL
+    double num_lo, num_hi; // the interval sampled
+    double undefined[2];   // the first and last sample where a function is
+                           // undefined (NAN: none)
 } AnCurve;
 
 /* A definition (derive's steps) in one param, and its poles in range. */
@@ -109,7 +125,16 @@ typedef struct Analysis {
     AnCurve *curves;
     slong ndefs;
     AnDef *defs;
+    fmpq *cvalue;          // d->nconsts: the value each const was analysed
+                           // with (given, or the generic rule below)
+    unsigned char *cgiven; // 1: from AnSet (--set); 0: the generic value
+    unsigned char *cused;  // 1: an analysed output depends on it
 } Analysis;
+
+/* The value of const k that has none from --set: a generic one, chosen
+ * so that nothing special happens there (docs/analyze.md, "Consts"):
+ * (k + 11)/(k + 7), i.e. 11/7, 3/2, 13/9, 7/5, ... */
+void analyze_generic_value(fmpq_t res, slong k);
 
 /* Values of consts (analyze --set k=VALUE): for const k (0 ..
  * d->nconsts - 1), given[k] = 1 and value[k] its exact value, which every

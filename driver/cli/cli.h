@@ -54,6 +54,13 @@ Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
  * help_usage give a command's full help and its synopsis (for usage
  * errors), NULL for a name that is no command. */
 extern const char cli_usage[];
+/* analyze_num.c: the curves of a whose weights have functions
+ * (AnCurve.numeric), found numerically; set's coordinates (--at) for
+ * dist and coord when it gives every point */
+struct Analysis;
+struct AnSet;
+void analyze_numeric(struct Analysis *a, const struct AnSet *set);
+
 const char *help_text(const char *cmd);
 const char *help_usage(const char *cmd);
 

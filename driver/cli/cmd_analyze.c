@@ -172,6 +172,7 @@ static void report(FILE *out, const AnalyzeArgs *a, const Derived *d,
     size_t len = 0;
     FILE *m = pc_xopen_memstream(&text, &len);
     Analysis *an = analyze_derived(d, sel, nsel, set);
+    analyze_numeric(an, set);
     if (a->json)
         analyze_print_json(m, an);
     else
