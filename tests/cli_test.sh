@@ -1194,6 +1194,49 @@ check "analyze text: its inflections" grep -qx '  inflections: t = 0, t = 3.1415
 # t = 0, 1, 2, 3 and back to O at 4, with no stop
 "$PC" analyze examples/dolya_2_2_polyline.pcs >"$tmp/out"
 check "analyze: the polyline of 2.2 passes its vertices" grep -qx '  passes through: O at t = 0, 4; A at t = 1; B at t = 2; C at t = 3' "$tmp/out"
+# --format latex (the book's LaTeX, as derive --format latex), pinned by
+# hand for the Desargues arc M: the ends A and D, the tangents C - A and
+# D - B, smoothness order 1
+"$PC" analyze examples/desargues_arc.pcs --output M --format latex >"$tmp/out"
+check "analyze --format latex: the heading" grep -qxF '\paragraph{$M$} A point curve in $t \in [0, 1]$, degree 3, order 3, proper, a space curve.' "$tmp/out"
+check "analyze --format latex: an end" grep -qxF '\[ t = 0\colon\quad M = A, \quad \frac{\mathrm{d}M}{\mathrm{d}t} = C - A \quad (\text{smoothness order } 1) \]' "$tmp/out"
+check "analyze --format latex: the passages" grep -qxF 'Passes through: $A$ at $t = 0$; $D$ at $t = 1$.' "$tmp/out"
+# roots as \sqrt and \frac: the poles of 1/(t^2 - 2) and 1/(t^2 - t - 1)
+# in [0, 2] are sqrt(2) and (1 + sqrt(5))/2
+printf 'point A, B\nparam t in [0, 2]\nP = along(A, B, 1/(t^2 - 2))\nQ = along(A, B, 1/(t^2 - t - 1))\noutput P, Q\n' >"$tmp/anroot.pcs"
+"$PC" analyze "$tmp/anroot.pcs" --format latex >"$tmp/out"
+check "analyze --format latex: a root as \\sqrt" grep -qxF 'Poles: $t = \sqrt{2}$.' "$tmp/out"
+check "analyze --format latex: a root as \\frac" grep -qxF 'Poles: $t = \frac{1 + \sqrt{5}}{2}$.' "$tmp/out"
+# the implicit equation in Cartesian coordinates (--at): the parabola
+# N = A (1-t)^2 + 2 C t (1-t) + B t^2 with A = (0, 0), C = (1, 1),
+# B = (2, 0) is x = 2t, y = 2t(1 - t), i.e. x^2 - 2x + 2y = 0 (by hand:
+# the barycentric C^2 = 4AB with A = 1 - (x + y)/2, B = (x - y)/2, C = y)
+printf 'point A, C, B\nparam t in [0, 1]\nN = along(along(A, C, t), along(C, B, t), t)\n' >"$tmp/anxy.pcs"
+"$PC" analyze "$tmp/anxy.pcs" --at A=0,0 --at C=1,1 --at B=2,0 >"$tmp/out"
+check "analyze --at: the implicit equation in x, y" grep -qxF '  implicit, in Cartesian coordinates (x, y): x^2 - 2*x + 2*y = 0' "$tmp/out"
+"$PC" analyze "$tmp/anxy.pcs" --at A=0,0 --at C=0.5,0.5 --at B=1,0 --format json >"$tmp/anxy.json"
+check "analyze --at, JSON: implicit_xy from decimals read exactly (x^2 - x + y)" python3 -c "
+import json
+o=json.load(open('$tmp/anxy.json'))['outputs'][0]
+assert o['implicit_xy']=='x^2-x+y', o
+"
+"$PC" analyze "$tmp/anxy.pcs" --at A=0,0 --at C=1,1 --at B=2,0 --format latex >"$tmp/out"
+check "analyze --at --format latex: the Cartesian equation" grep -qxF '\[ x^{2} - 2 x + 2 y = 0 \]' "$tmp/out"
+# contact with a plane is no claim: the third argument must be a curve at
+# its point or a line
+printf 'point A, B, C\nparam t\nN = bezier(t, A, C, B)\ncheck contact(1, N at t = 0, plane(A, B, C))\n' >"$tmp/cplane.pcs"
+"$PC" derive "$tmp/cplane.pcs" >"$tmp/out" 2>"$tmp/err"
+check "check contact with a plane: exit 1" test $? -eq 1
+check "check contact with a plane: located" grep -qF "cplane.pcs:4:30: error: expected a curve at its point, 'M at t = VALUE' (or one 'at t = VALUE' after the claim)" "$tmp/err"
+# contact with a line in derive's JSON: kind contact, the order claimed
+# and found (N''(0) = 2(A + B - 2C) leaves AC: order 1)
+printf 'point A, B, C\nparam t\nN = bezier(t, A, C, B)\ncheck contact(1, N at t = 0, line(A, C))\n' >"$tmp/cline.pcs"
+"$PC" derive "$tmp/cline.pcs" --format json >"$tmp/cline.json"
+check "check contact with a line: JSON verdict" python3 -c "
+import json
+c=json.load(open('$tmp/cline.json'))['checks']
+assert c==[{'line': 4, 'kind': 'contact', 'order': 1, 'found': 1, 'verdict': 'pass'}], c
+"
 # every example: each output analysed (exit 0), none skipped but what is
 # no curve (a scalar, a constant point, a surface in several params)
 for f in examples/*.pcs; do

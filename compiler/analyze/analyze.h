@@ -85,9 +85,13 @@ typedef struct AnCurve {
     AnEnd ends[2];
     slong npass; // points: the base points it passes through in the range
     AnPass *pass;
-    char *implicit;   // plane curves over three base points: F, in the
-                      // points' names as coordinates (text), or NULL
-    char *implicit_j; // the same in the JSON form (products with '*')
+    char *implicit;        // plane curves over three base points: F, in the
+                           // points' names as coordinates (text), or NULL
+    char *implicit_j;      // the same in the JSON form (products with '*')
+    char *implicit_tex;    // and in LaTeX
+    char *implicit_xy;     // with exact plane coordinates of the three points
+    char *implicit_xy_j;   // (AnSet.qpt, dim 2): G(x, y) = 0 in Cartesian
+    char *implicit_xy_tex; // coordinates, text, JSON, LaTeX; else NULL
     /* with coordinates (AnSet.dim; metric.c), points on a bounded range
      * without poles: */
     int has_metric;        // 1: the values below were computed
@@ -147,6 +151,8 @@ typedef struct AnSet {
     int dim;                 // coordinates (analyze --at): 0 none, else
     const double *const *pt; // pt[i] the dim coordinates of base point i,
                              // or NULL (not given)
+    const fmpq *const *qpt;  // the same exactly, as typed (NULL: none, or
+                             // qpt[i] NULL): the Cartesian implicit equation
 } AnSet;
 
 /* Analyses the outputs sel[0..nsel-1] of d (indices into d->outputs; sel
@@ -161,6 +167,7 @@ void analysis_free(Analysis *a);
 /* the report: text for people, JSON for programs (docs/analyze.md) */
 void analyze_print_text(FILE *out, const Analysis *a);
 void analyze_print_json(FILE *out, const Analysis *a);
+void analyze_print_latex(FILE *out, const Analysis *a);
 
 /* ---- inside compiler/analyze/ ------------------------------------------ */
 
@@ -180,7 +187,9 @@ void analyze_end_clear(AnEnd *e, slong npoints);
 /* metric.c: curvature and arc length, with set's coordinates */
 void analyze_metric(AnCurve *c, const AnPolys *p, const fmpq *lo,
                     const fmpq *hi, const AnSet *set);
-/* implicit.c: c->implicit of the plane curve over three points */
-void analyze_implicit(AnCurve *c, const AnPolys *p, const Derived *d);
+/* implicit.c: c->implicit of the plane curve over three points, and with
+ * set's exact plane coordinates of them, c->implicit_xy */
+void analyze_implicit(AnCurve *c, const AnPolys *p, const Derived *d,
+                      const AnSet *set);
 
 #endif

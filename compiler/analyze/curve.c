@@ -326,7 +326,7 @@ static void passages(AnCurve *c, const AnPolys *p, const fmpq *lo,
 
 /* everything about a point curve but its poles and ends */
 static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
-                        const fmpq *hi, const Derived *d)
+                        const fmpq *hi, const Derived *d, const AnSet *set)
 {
     c->index = trace_index(p);
     c->order = c->index ? c->degree / c->index : 0;
@@ -341,7 +341,7 @@ static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
         fmpz_poly_mul(excl, g, p->den);
         inflections(c, p, lo, hi, excl);
         if (p->len == 3 && c->order >= 2)
-            analyze_implicit(c, p, d);
+            analyze_implicit(c, p, d, set);
     }
     passages(c, p, lo, hi);
     fmpz_poly_clear(excl);
@@ -406,7 +406,7 @@ static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq,
     if (fmpz_poly_degree(p.den) >= 1)
         roots_real(&c->poles, p.den, plo, phi, NULL);
     if (c->kind == KIND_POINT)
-        point_curve(c, &p, plo, phi, d);
+        point_curve(c, &p, plo, phi, d, set);
     analyze_ends(c, &p, plo, phi, d->npoints);
     analyze_metric(c, &p, plo, phi, set);
     fmpq_clear(hi);
@@ -545,7 +545,8 @@ Analysis *analyze_derived(const Derived *d, const int *sel, int nsel,
     const_values(a, set);
     unsigned char *all = pc_xmalloc((size_t)d->nconsts + 1);
     memset(all, 1, (size_t)d->nconsts + 1);
-    AnSet full = {all, a->cvalue, set ? set->dim : 0, set ? set->pt : NULL};
+    AnSet full = {all, a->cvalue, set ? set->dim : 0, set ? set->pt : NULL,
+                  set ? set->qpt : NULL};
     slong n = sel ? nsel : d->noutputs;
     a->curves = pc_xcalloc((size_t)n + 1, sizeof *a->curves);
     a->ncurves = n;
@@ -583,6 +584,10 @@ void analysis_free(Analysis *a)
         pc_free(c->pass);
         pc_free(c->implicit);
         pc_free(c->implicit_j);
+        pc_free(c->implicit_tex);
+        pc_free(c->implicit_xy);
+        pc_free(c->implicit_xy_j);
+        pc_free(c->implicit_xy_tex);
         pc_free(c->functions);
         pc_free(c->num_why);
     }

@@ -365,6 +365,9 @@ static void curve_text(FILE *out, const AnCurve *c, const Derived *d)
     if (c->implicit)
         fprintf(out, "  implicit, in barycentric coordinates: %s = 0\n",
                 c->implicit);
+    if (c->implicit_xy)
+        fprintf(out, "  implicit, in Cartesian coordinates (x, y): %s = 0\n",
+                c->implicit_xy);
     metric_text(out, c, t);
 }
 
@@ -621,6 +624,10 @@ static void curve_json(FILE *out, const AnCurve *c, const Derived *d)
         json_string(out, c->implicit_j);
     else
         fputs("null", out);
+    if (c->implicit_xy_j) {
+        fputs(", \"implicit_xy\": ", out);
+        json_string(out, c->implicit_xy_j);
+    }
     if (c->has_metric)
         metric_json(out, c);
     fputs("}", out);
