@@ -185,7 +185,10 @@ static Stmt *stmt_word(Parser *p, const char *w, Span ws, Node *lhs, Node *rhs,
     int is_int = strcmp(w, "int") == 0, is_def = strcmp(w, "def") == 0;
     if (rhs && at && (is_int || is_def)) {
         diag_error(p->diag, at->span,
-                   "unexpected 'at' after '%s %s': 'at' belongs to a check",
+                   at->lhs ? "unexpected 'at' after '%s %s': 'at' belongs to "
+                             "a check"
+                           : "unexpected 'for' after '%s %s': 'for i in "
+                             "a..b' after a statement belongs to a check",
                    w, lhs->text ? lhs->text : "...");
         return NULL;
     }
