@@ -1237,6 +1237,23 @@ import json
 c=json.load(open('$tmp/cline.json'))['checks']
 assert c==[{'line': 4, 'kind': 'contact', 'order': 1, 'found': 1, 'verdict': 'pass'}], c
 "
+# a curve with functions and --at: the ellipse of 2.1.1.1 with a = 2, b = 1
+# (C = (0, 0), A = (2, 0), B = (0, 1)) over [0, 2 pi]: the curvature a/b^2
+# = 2 at the vertex A (both ends), b/a^2 = 1/4 at B (phi = pi/2), and the
+# perimeter 4 a E(e^2 = 3/4) = 9.688448220547676 (mpmath)
+"$PC" analyze examples/ellipse_central_angle.pcs --set a=2 --set b=1 --at C=0,0 --at A=2,0 --at B=0,1 --format json >"$tmp/anell.json"
+check "analyze: a curve with functions, its curvature and arc length" python3 -c "
+import json, math
+o=json.load(open('$tmp/anell.json'))['outputs'][0]
+assert o['numeric'] and o['range'][1]==2*math.pi, o
+k0, k1 = o['curvature_ends']
+assert abs(k0-2) < 1e-12 and abs(k1-2) < 1e-12, o
+assert abs(o['curvature_max']-2) < 1e-12 and abs(o['curvature_min']-0.25) < 1e-12, o
+assert abs(o['curvature_min_at']-math.pi/2) < 1e-6, o
+assert abs(o['arc_length']-9.688448220547676) < 1e-12*9.69, o
+assert [p['point'] for p in o['passes']]==['A', 'B'], o
+assert abs(o['passes'][1]['t'][0]-math.pi/2) < 1e-15*2, o
+"
 # every example: each output analysed (exit 0), none skipped but what is
 # no curve (a scalar, a constant point, a surface in several params)
 for f in examples/*.pcs; do

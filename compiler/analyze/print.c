@@ -321,6 +321,7 @@ static void num_curve_text(FILE *out, const AnCurve *c, const Derived *d)
         roots_text(out, "stop points", &c->stops, t);
     if (c->has_infl)
         roots_text(out, "inflections", &c->infl, t);
+    metric_text(out, c, t);
 }
 
 static void curve_text(FILE *out, const AnCurve *c, const Derived *d)
@@ -571,7 +572,10 @@ static void num_curve_json(FILE *out, const AnCurve *c, const Derived *d)
         }
         fputs("}", out);
     }
-    fputs("], \"implicit\": null}", out);
+    fputs("], \"implicit\": null", out);
+    if (c->has_metric)
+        metric_json(out, c);
+    fputs("}", out);
 }
 
 static void curve_json(FILE *out, const AnCurve *c, const Derived *d)

@@ -37,20 +37,24 @@
 #include "base/mem.h"
 #include "base/numfmt.h"
 #include "codegen/lower.h"
+#include "compiler/algebra/kernel.h"
 #include "compiler/analyze/analyze.h"
 #include "runtime/plot.h"
 
 enum { AN_SAMPLES = 2048, AN_GOLDEN_MAX = 200 };
 #define AN_ZERO 1e-9 // a minimum this small (relative) is a zero
+#define AN_PI 3.14159265358979323846
 
 typedef struct Num {
     PlotEnv env;
-    int o;          // the plan's output
-    int n;          // its terms
-    const int *pt;  // term -> base point
-    double (*w)[3]; // the weights at the last jet (n rows)
-    double *u[2];   // a plane curve: an orthonormal basis of its plane
-                    // (n each), for NF_CROSS
+    int o;               // the plan's output
+    int n;               // its terms
+    const int *pt;       // term -> base point
+    double (*w)[3];      // the weights at the last jet (n rows)
+    double *u[2];        // a plane curve: an orthonormal basis of its plane
+                         // (n each), for NF_CROSS
+    const PlotEnv *menv; // env when it has --at's coordinates of every
+                         // point (the curvature, the arc length), or NULL
 } Num;
 
 /* what is minimised */
@@ -485,19 +489,47 @@ static void undefined(AnCurve *c, Num *N, const double *ts, int ns)
         }
 }
 
+/* p at the values of its variables: pi for the kernel pi, nothing else
+ * (a declared range's end such as 2*pi); NAN otherwise */
+static double poly_value(const fmpz_mpoly_t p, const Derived *d)
+{
+    const fmpz_mpoly_ctx_struct *ctx = d->ring.ctx;
+    slong nv = ctx->minfo->nvars;
+    ulong *e = pc_xmalloc((size_t)(nv + 1) * sizeof *e);
+    double v = 0;
+    for (slong i = 0; i < fmpz_mpoly_length(p, ctx) && !isnan(v); i++) {
+        fmpz_mpoly_get_term_exp_ui(e, p, i, ctx);
+        double term = fmpz_get_d(p->coeffs + i);
+        for (slong x = 0; x < nv && !isnan(v); x++) {
+            const Kernel *k =
+                e[x] && d->kernels ? kernels_of_var(d->kernels, x) : NULL;
+            if (e[x] && (!k || k->fn != KF_PI))
+                v = NAN;
+            term *= pow(AN_PI, (double)e[x]);
+        }
+        v += term;
+    }
+    pc_free(e);
+    return v;
+}
+
+/* the declared range's ends as numbers (2*pi too) into lo, hi */
+static void range_values(double *lo, double *hi, const AnCurve *c,
+                         const Derived *d)
+{
+    const RatFunStruct *r = d->range + 2 * c->param;
+    for (int e = 0; e < 2; e++) {
+        double v = poly_value(r[e].num, d) / poly_value(r[e].den, d);
+        if (isfinite(v))
+            *(e ? hi : lo) = v;
+    }
+}
+
 static void num_curve(AnCurve *c, Num *N, const Derived *d)
 {
     double lo = -10, hi = 10;
-    if (c->bounded) {
-        fmpq_t q;
-        fmpq_init(q);
-        RatFunStruct *r = d->range + 2 * c->param;
-        if (ratfun_get_fmpq(q, r, &d->ring))
-            lower_q_to_double(&lo, q);
-        if (ratfun_get_fmpq(q, r + 1, &d->ring))
-            lower_q_to_double(&hi, q);
-        fmpq_clear(q);
-    }
+    if (c->bounded)
+        range_values(&lo, &hi, c, d);
     double *knots = NULL;
     size_t nk = c->bounded ? 0 : plot_knots(&N->env, N->o, lo, hi, &knots);
     if (nk) { /* no range: the knots and one unit beyond */
@@ -522,6 +554,8 @@ static void num_curve(AnCurve *c, Num *N, const Derived *d)
         end_at(c->ends + 0, N, lo, 1, d->npoints);
         end_at(c->ends + 1, N, hi, -1, d->npoints);
     }
+    if (N->menv && c->bounded)
+        analyze_num_metric(c, N->menv, N->o, ts, ns);
     pc_free(ts);
     c->num_done = 1;
 }
@@ -576,7 +610,12 @@ void analyze_numeric(Analysis *a, const AnSet *set)
             p->outputs[o].nterms,
             p->outputs[o].point,
             NULL,
-            {0}};
+            {0},
+            NULL};
+        if (dim == (set ? set->dim : 0)) /* coordinates() took --at's */
+            N.menv = &N.env;
+        else if (set && set->dim)
+            c->metric_missing = 1;
         N.w = pc_xmalloc(sizeof *N.w * (size_t)(N.n + 1));
         num_curve(c, &N, d);
         pc_free(N.u[0]);
