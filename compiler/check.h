@@ -8,6 +8,9 @@
  *   check parallel(U, V)                     parallel (collinear) vectors
  *   check tangent(M at t = v, line(A, B))    tangency of a curve to a line
  *   check contact(k, M at t = a, N at u = b) contact of order exactly k
+ *   check contact(k, M at t = a, line(A, B))  the same with a line: M(a) on
+ *                                            it, M' .. M^(k) along it, and
+ *                                            M^(k+1) not
  *   check Ck(M at t = a, N at u = b)         C^k at a joint (k = 0..8)
  *   check Gk(M at t = a, N at u = b)         G^k at a joint
  *   check order(M, t) = n                    the degree of M in t (its
@@ -17,6 +20,10 @@
  *   check Ck(M at t = a), Gk(M at t = a)     the same at a knot of one
  *                                            composite curve (abs, sign):
  *                                            its left side against its right
+ *
+ * `check CLAIM [at ...] for i in a..b` is one claim per i (expand.c;
+ * sum's index semantics), each failure naming its i; `Ck`, `Gk` may
+ * take an int (or such an index) k.
  *
  * `at t = v` after a claim substitutes into every value of it (after the
  * derivatives it takes); `M at t = v` among the arguments names the curve
@@ -43,15 +50,16 @@ enum { CHECK_MAX_ORDER = 8 };
 
 /* X-macro: kind, its name in JSON */
 #define PC_CHECK_KINDS(X)                                                      \
-    X(CK_EQUAL, "equal")       /* ops L, R */                                  \
-    X(CK_ON_LINE, "on_line")   /* ops P, A, B */                               \
-    X(CK_ON_PLANE, "on_plane") /* ops P, A, B, C */                            \
-    X(CK_PARALLEL, "parallel") /* ops U, V */                                  \
-    X(CK_TANGENT, "tangent")   /* ops A, B, then M's jet 0..order */           \
-    X(CK_CONTACT, "contact")   /* ops M's jet 0..order+1, N's jet */           \
-    X(CK_C, "C")               /* ops M's jet 0..order, N's jet 0..order */    \
-    X(CK_G, "G")               /* the same */                                  \
-    X(CK_ORDER, "order")       /* ops M; order n, knot_var t */
+    X(CK_EQUAL, "equal")          /* ops L, R */                               \
+    X(CK_ON_LINE, "on_line")      /* ops P, A, B */                            \
+    X(CK_ON_PLANE, "on_plane")    /* ops P, A, B, C */                         \
+    X(CK_PARALLEL, "parallel")    /* ops U, V */                               \
+    X(CK_TANGENT, "tangent")      /* ops A, B, then M's jet 0..order */        \
+    X(CK_CONTACT, "contact")      /* ops M's jet 0..order+1, N's jet */        \
+    X(CK_CONTACT_LINE, "contact") /* ops A, B, M's jet 0..order+1 */           \
+    X(CK_C, "C")                  /* ops M's jet 0..order, N's jet 0..order */ \
+    X(CK_G, "G")                  /* the same */                               \
+    X(CK_ORDER, "order")          /* ops M; order n, knot_var t */
 
 typedef enum CheckKind {
 #define X(k, s) k,

@@ -292,6 +292,18 @@ static int resolve_claim(Resolver *R, CheckInfo *c, Node *call)
                      "Ck(M at t = a, N at u = b) or Ck(M at t = a)")) {
         return -1;
     }
+    if (contact) { /* contact(k, M at t = a, line(A, B)) */
+        add_flat(R, nth(call, 2), &n);
+        if (n == 2) {
+            c->kind = CK_CONTACT_LINE;
+            c->order = k;
+            c->jet0 = 2;
+            c->jetlen = k + 2;
+            c->what[0] = nth(call, 1)->span;
+            return add_jet(R, nth(call, 1), c->jetlen, NULL);
+        }
+        R->nops = 0; /* plane(...): no line, the ops it added dropped */
+    }
     c->kind = contact ? CK_CONTACT : f[0] == 'C' ? CK_C : CK_G;
     c->order = k;
     c->jetlen = k + 1 + contact;
@@ -400,6 +412,10 @@ static void push_check(SemaInfo *I, Stmt *st, Arena *a)
 int check_resolve(SemaInfo *I, Stmt *st, Arena *a, Diag *d,
                   int (*type)(void *, Node *), void *ctx)
 {
+    if (st->bad) /* its expansion failed (reported), or the template of
+                    `check ... for i in a..b` (expand.c: its instances
+                    follow it) */
+        return -1;
     Resolver R = {.st = st, .a = a, .d = d, .type = type, .ctx = ctx};
     CheckInfo *c = arena_new(a, CheckInfo);
     c->knot_var = -1;

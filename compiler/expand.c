@@ -16,6 +16,7 @@
 #include "base/budget.h"
 #include "base/mem.h"
 #include "base/stack.h"
+#include "compiler/check.h"
 #include "compiler/expand_int.h"
 #include "compiler/sema.h"
 
@@ -733,19 +734,99 @@ static void expand_solve(Expander *E, Stmt *st)
     st->names = refer_names(E, st->names);
 }
 
+/* `check Ck(...)`, `Gk(...)` with k an int (or a comprehension's index):
+ * the claim renamed C3, G2 ...; 0, or -1 after an error */
+static int check_order_name(Expander *E, Node *call)
+{
+    const char *f = call->text;
+    if ((f[0] != 'C' && f[0] != 'G') || !isalpha((unsigned char)f[1]) ||
+        (!ex_find_binding(E, f + 1) && !ex_find_int(E, f + 1)))
+        return 0;
+    Node k = {.kind = ND_NAME, .text = f + 1, .span = call->name_span};
+    k.span.start++;
+    slong v;
+    if (ex_eval_int(E, &k, &v) < 0)
+        return -1;
+    if (v < 0 || v > CHECK_MAX_ORDER) {
+        diag_error(E->d, call->name_span,
+                   "%s is %c%ld: the order of continuity goes from 0 to %d", f,
+                   f[0], (long)v, CHECK_MAX_ORDER);
+        return -1;
+    }
+    char name[32];
+    snprintf(name, sizeof name, "%c%ld", f[0], (long)v);
+    call->text = arena_strdup(E->a, name);
+    return 0;
+}
+
 /* a check (compiler/check.h): its values, the claim's arguments but not
  * the claim itself (a user function called on() does not replace the
  * claim on()), and the values of its `at` bindings */
-static void expand_check(Expander *E, Stmt *st)
+static void expand_claim(Expander *E, Stmt *st)
 {
     int bad = 0;
     if (st->rhs)
         bad = ex_rewrite(E, &st->expr) < 0 || ex_rewrite(E, &st->rhs) < 0;
     else if (st->expr->kind == ND_CALL && !ex_too_deep(st->expr))
-        bad = ex_rewrite_args(E, st->expr) < 0;
+        bad = check_order_name(E, st->expr) < 0 ||
+              ex_rewrite_args(E, st->expr) < 0;
     for (Equation *b = st->eqs; b; b = b->next)
         bad |= ex_rewrite(E, &b->rhs) < 0;
     st->bad = bad;
+}
+
+/* an instance of a check's comprehension: a copy of st, with i = k told
+ * in its name (for the messages) */
+static Stmt *check_instance(Expander *E, const Stmt *st, const char *var,
+                            slong k)
+{
+    Stmt *c = ast_new_stmt(E->a, ST_CHECK, st->span);
+    c->expr = ex_clone(E, st->expr);
+    c->rhs = st->rhs ? ex_clone(E, st->rhs) : NULL;
+    Equation **tail = &c->eqs;
+    for (const Equation *b = st->eqs; b; b = b->next) {
+        *tail = ast_new_equation(E->a, ex_clone(E, b->lhs), ex_clone(E, b->rhs),
+                                 b->span);
+        tail = &(*tail)->next;
+    }
+    char text[64];
+    snprintf(text, sizeof text, "%s = %ld", var, (long)k);
+    c->name = ast_new_namelist(E->a, arena_strdup(E->a, text), st->span);
+    return c;
+}
+
+/* a check, or `check ... for i in a..b`: one claim per i, in order, each
+ * after the one before (sum's index semantics: a..b inclusive, none when
+ * b < a).  Returns the last statement it leaves in the list. */
+static Stmt *expand_check(Expander *E, Stmt *st)
+{
+    Equation *f = st->eqs, **link = &st->eqs;
+    while (f && f->lhs)
+        link = &f->next, f = f->next;
+    if (!f) {
+        expand_claim(E, st);
+        return st;
+    }
+    *link = NULL; /* the comprehension: the last "binding" */
+    slong lo, hi;
+    if (ex_check_free(E, f->var, f->var_span, 1) < 0 ||
+        ex_eval_int(E, f->lo, &lo) < 0 || ex_eval_int(E, f->hi, &hi) < 0 ||
+        budget_members(E, f->span, hi - lo + 1) < 0) {
+        st->bad = 1;
+        return st;
+    }
+    Stmt *last = st, *next = st->next;
+    for (slong k = lo; k <= hi; k++) {
+        Stmt *c = check_instance(E, st, f->var, k);
+        ex_bind(E, f->var, NULL, k);
+        expand_claim(E, c);
+        E->nbinds--;
+        last->next = c;
+        last = c;
+    }
+    last->next = next;
+    st->bad = 1; /* the template itself is no claim: skipped, silently */
+    return last;
 }
 
 int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
@@ -794,7 +875,7 @@ int expand_scheme(Scheme *s, Arena *a, Diag *diag, const char *const *defines,
             st->names = refer_names(&E, st->names);
             break;
         case ST_CHECK:
-            expand_check(&E, st);
+            st = expand_check(&E, st);
             break;
         case ST_FIT: /* its names may be members: fit M[2] to f ... */
             st->names = refer_names(&E, st->names);

@@ -127,7 +127,9 @@ struct Stmt {
     Stmt *next;
     Name *names;          // ST_POINT/PARAM/CONST/UNKNOWN/OUTPUT/SOLVE(for ...),
                           // ST_FUNC: the parameters
-    Name *name;           // ST_SCHEME, ST_DEF, ST_FUNC: the defined name
+    Name *name;           // ST_SCHEME, ST_DEF, ST_FUNC: the defined name;
+                          // ST_CHECK: `i = 3` of an instance of `check
+                          // ... for i in a..b` (expand.c), else NULL
     Node *expr;           // ST_DEF, ST_FUNC (the body); ST_FIT: samples
                           // (NULL: the default)
     Node *lo, *hi;        // ST_PARAM range (both NULL when absent); ST_FIT:

@@ -185,7 +185,10 @@ static Stmt *stmt_word(Parser *p, const char *w, Span ws, Node *lhs, Node *rhs,
     int is_int = strcmp(w, "int") == 0, is_def = strcmp(w, "def") == 0;
     if (rhs && at && (is_int || is_def)) {
         diag_error(p->diag, at->span,
-                   "unexpected 'at' after '%s %s': 'at' belongs to a check",
+                   at->lhs ? "unexpected 'at' after '%s %s': 'at' belongs to "
+                             "a check"
+                           : "unexpected 'for' after '%s %s': 'for i in "
+                             "a..b' after a statement belongs to a check",
                    w, lhs->text ? lhs->text : "...");
         return NULL;
     }
@@ -263,7 +266,7 @@ static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
 
 %type <Node *> expr args arg fit_samples
 %type <Name *> names name
-%type <Equation *> at_opt bindings
+%type <Equation *> at_opt bindings check_for
 %type <Stmt *> stmt
 %type <int> lbr rbr
 
@@ -340,10 +343,22 @@ stmt:
                       p->seqs = NULL; p->snames = NULL; }
 ;
 
-/* a check's `at t = 0, u = 1`, or nothing */
+/* a check's `at t = 0, u = 1`, or nothing; then `for i in a..b` (a
+ * comprehension: one claim per i), kept as a last binding without sides */
 at_opt:
   %empty            { $$ = NULL; }
 | IDENT bindings    { $$ = at_clause(p, $1, @1, $2); }
+| check_for         { $$ = $1; }
+| IDENT bindings check_for
+                    { $$ = at_clause(p, $1, @1, $2);
+                      if ($$)
+                          $$ = ast_append_equation($$, $3); }
+;
+
+check_for:
+  FOR IDENT IN expr DOTDOT expr
+                    { $$ = ast_new_equation(p->arena, NULL, NULL, @$);
+                      $$->var = $2; $$->var_span = @2; $$->lo = $4; $$->hi = $6; }
 ;
 
 bindings:

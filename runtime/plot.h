@@ -80,6 +80,11 @@ void plot_project(const PlotView *v, const double *P, int dim, double *x,
 int plot_jet(const PlotEnv *env, int o, double t, double *pos, double *d1,
              double *d2);
 
+/* The weight of every term k of output o (p->outputs[o].point[k]) at t,
+ * with its first two derivatives: w[k][0..2] (nterms rows).  Returns the
+ * status as plot_jet does. */
+int plot_jet_terms(const PlotEnv *env, int o, double t, double (*w)[3]);
+
 typedef struct PlotLimits {
     int initial;        // uniform segments (>= 1)
     int max_depth;      // bisections per initial segment

@@ -224,3 +224,23 @@ int plot_jet(const PlotEnv *env, int o, double t, double *pos, double *d1,
     pc_free(r);
     return st ? st : finite ? 0 : 3;
 }
+
+int plot_jet_terms(const PlotEnv *env, int o, double t, double (*w)[3])
+{
+    const Plan *p = env->plan;
+    const PlanOutput *po = &p->outputs[o];
+    unsigned char *live = pc_xmalloc((size_t)p->nins + 1);
+    double(*r)[3] = pc_xmalloc(sizeof *r * (size_t)(p->nins + 1));
+    plan_live(p, o, live);
+    plot_jet_run(env, live, t, r);
+    int finite = 1;
+    for (int j = 0; j < po->nterms; j++)
+        for (int k = 0; k < 3; k++) {
+            w[j][k] = r[po->reg[j]][k];
+            finite &= isfinite(w[j][k]);
+        }
+    int st = po->bad >= 0 ? (int)plan_status(r[po->bad][0]) : 0;
+    pc_free(live);
+    pc_free(r);
+    return st ? st : finite ? 0 : 3;
+}

@@ -1147,14 +1147,127 @@ printf 'point A, B\nparam t in [0, 1]\nconst k\nM = along(A, B, t/(k - t))\n' >"
 "$PC" analyze "$tmp/anset.pcs" --set k=1/2 >"$tmp/out" 2>"$tmp/err"
 check "analyze --set k=1/2: the pole t = 1/2" grep -qx '  poles: t = 1/2' "$tmp/out"
 "$PC" analyze "$tmp/anset.pcs" >"$tmp/out" 2>"$tmp/err"
-check "analyze without --set: not analysed" grep -qx 'M: not analysed: depends on k, not only on a param' "$tmp/out"
+check "analyze without --set: k at its generic value, said" grep -qx 'consts without --set, at generic values: k = 11/7 (what holds for all values but a few: degree, order, dim; the rest is for these values)' "$tmp/out"
+check "analyze without --set: the pole t = 11/7 is out of [0, 1]" grep -qx '  poles: none' "$tmp/out"
 "$PC" analyze "$tmp/anset.pcs" --format json >"$tmp/anset.json"
-check "analyze --format json: a skipped output keeps the keys, null" python3 -c "
+check "analyze --format json: generic_consts, and the curve analysed" python3 -c "
 import json
-o=json.load(open('$tmp/anset.json'))['outputs'][0]
-assert o['skipped']=='depends on k, not only on a param', o
-assert all(o[k] is None for k in ('degree','poles','stop_points','inflections')), o
+j=json.load(open('$tmp/anset.json'))
+assert j['generic_consts']=={'k': '11/7'}, j
+o=j['outputs'][0]
+assert 'skipped' not in o and o['degree']==1 and o['poles']==[], o
 "
+# curves with functions, found numerically (driver/cli/analyze_num.c);
+# every value derived by hand: M = A + t (B - A) + sin t (C - A) is the
+# graph y = sin x in the frame A, B, C (inflections at 0 and pi); L is
+# A + sin t (B - A) (at A where sin t = 0, at B and still where sin t = 1);
+# P has the pole t = 1 of sin t/(t - 1); S = A + sqrt(t + 1) (B - A)
+# starts at A with an infinite derivative and reaches B at t = 0
+printf 'point A, B, C\nparam t in [-1, 4]\nM = A + t*(B - A) + sin(t)*(C - A)\nL = along(A, B, sin(t))\nP = along(A, B, sin(t)/(t - 1))\nS = along(A, B, sqrt(t + 1))\noutput M, L, P, S\n' >"$tmp/annum.pcs"
+"$PC" analyze "$tmp/annum.pcs" --format json >"$tmp/annum.json"
+check "analyze: curves with sin and sqrt, found numerically to 1e-15" python3 -c "
+import json, math
+o={c['name']: c for c in json.load(open('$tmp/annum.json'))['outputs']}
+def near(xs, want):
+    assert len(xs)==len(want), (xs, want)
+    for x, w in zip(xs, want):
+        assert abs(x-w) <= 1e-15*max(1, abs(w)), (x, w)
+M, L, P, S = o['M'], o['L'], o['P'], o['S']
+assert M['numeric'] and M['degree']=='transcendental' and M['dim']==2, M
+near(M['inflections'], [0, math.pi]); near(M['stop_points'], []); near(M['poles'], [])
+assert [p['point'] for p in M['passes']]==['A'], M; near(M['passes'][0]['t'], [0])
+e=M['ends'][0]; assert e['t']=='-1'
+near([e['point']['A'], e['point']['B'], e['point']['C']], [2+math.sin(1), -1, -math.sin(1)])
+near([e['derivative']['A'], e['derivative']['B'], e['derivative']['C']], [-1-math.cos(1), 1, math.cos(1)])
+assert L['dim']==1 and L['inflections'] is None, L
+near(L['stop_points'], [math.pi/2])
+near(L['passes'][0]['t'], [0, math.pi]); near(L['passes'][1]['t'], [math.pi/2])
+near(P['poles'], [1])
+assert S['degree']=='algebraic', S
+near(S['passes'][0]['t'], [-1]); near(S['passes'][1]['t'], [0])
+assert 'derivative' not in S['ends'][0], S
+"
+"$PC" analyze "$tmp/annum.pcs" >"$tmp/out"
+check "analyze text: a curve found numerically" grep -qx 'M: a point curve in t in \[-1, 4\], transcendental: no degree or order, a plane curve; it has sin' "$tmp/out"
+check "analyze text: its inflections" grep -qx '  inflections: t = 0, t = 3.141592653589793' "$tmp/out"
+# the book's polyline of 2.2 (abs): through its vertices O, A, B, C at
+# t = 0, 1, 2, 3 and back to O at 4, with no stop
+"$PC" analyze examples/dolya_2_2_polyline.pcs >"$tmp/out"
+check "analyze: the polyline of 2.2 passes its vertices" grep -qx '  passes through: O at t = 0, 4; A at t = 1; B at t = 2; C at t = 3' "$tmp/out"
+# --format latex (the book's LaTeX, as derive --format latex), pinned by
+# hand for the Desargues arc M: the ends A and D, the tangents C - A and
+# D - B, smoothness order 1
+"$PC" analyze examples/desargues_arc.pcs --output M --format latex >"$tmp/out"
+check "analyze --format latex: the heading" grep -qxF '\paragraph{$M$} A point curve in $t \in [0, 1]$, degree 3, order 3, proper, a space curve.' "$tmp/out"
+check "analyze --format latex: an end" grep -qxF '\[ t = 0\colon\quad M = A, \quad \frac{\mathrm{d}M}{\mathrm{d}t} = C - A \quad (\text{smoothness order } 1) \]' "$tmp/out"
+check "analyze --format latex: the passages" grep -qxF 'Passes through: $A$ at $t = 0$; $D$ at $t = 1$.' "$tmp/out"
+# roots as \sqrt and \frac: the poles of 1/(t^2 - 2) and 1/(t^2 - t - 1)
+# in [0, 2] are sqrt(2) and (1 + sqrt(5))/2
+printf 'point A, B\nparam t in [0, 2]\nP = along(A, B, 1/(t^2 - 2))\nQ = along(A, B, 1/(t^2 - t - 1))\noutput P, Q\n' >"$tmp/anroot.pcs"
+"$PC" analyze "$tmp/anroot.pcs" --format latex >"$tmp/out"
+check "analyze --format latex: a root as \\sqrt" grep -qxF 'Poles: $t = \sqrt{2}$.' "$tmp/out"
+check "analyze --format latex: a root as \\frac" grep -qxF 'Poles: $t = \frac{1 + \sqrt{5}}{2}$.' "$tmp/out"
+# the implicit equation in Cartesian coordinates (--at): the parabola
+# N = A (1-t)^2 + 2 C t (1-t) + B t^2 with A = (0, 0), C = (1, 1),
+# B = (2, 0) is x = 2t, y = 2t(1 - t), i.e. x^2 - 2x + 2y = 0 (by hand:
+# the barycentric C^2 = 4AB with A = 1 - (x + y)/2, B = (x - y)/2, C = y)
+printf 'point A, C, B\nparam t in [0, 1]\nN = along(along(A, C, t), along(C, B, t), t)\n' >"$tmp/anxy.pcs"
+"$PC" analyze "$tmp/anxy.pcs" --at A=0,0 --at C=1,1 --at B=2,0 >"$tmp/out"
+check "analyze --at: the implicit equation in x, y" grep -qxF '  implicit, in Cartesian coordinates (x, y): x^2 - 2*x + 2*y = 0' "$tmp/out"
+"$PC" analyze "$tmp/anxy.pcs" --at A=0,0 --at C=0.5,0.5 --at B=1,0 --format json >"$tmp/anxy.json"
+check "analyze --at, JSON: implicit_xy from decimals read exactly (x^2 - x + y)" python3 -c "
+import json
+o=json.load(open('$tmp/anxy.json'))['outputs'][0]
+assert o['implicit_xy']=='x^2-x+y', o
+"
+"$PC" analyze "$tmp/anxy.pcs" --at A=0,0 --at C=1,1 --at B=2,0 --format latex >"$tmp/out"
+check "analyze --at --format latex: the Cartesian equation" grep -qxF '\[ x^{2} - 2 x + 2 y = 0 \]' "$tmp/out"
+# contact with a plane is no claim: the third argument must be a curve at
+# its point or a line
+printf 'point A, B, C\nparam t\nN = bezier(t, A, C, B)\ncheck contact(1, N at t = 0, plane(A, B, C))\n' >"$tmp/cplane.pcs"
+"$PC" derive "$tmp/cplane.pcs" >"$tmp/out" 2>"$tmp/err"
+check "check contact with a plane: exit 1" test $? -eq 1
+check "check contact with a plane: located" grep -qF "cplane.pcs:4:30: error: expected a curve at its point, 'M at t = VALUE' (or one 'at t = VALUE' after the claim)" "$tmp/err"
+# contact with a line in derive's JSON: kind contact, the order claimed
+# and found (N''(0) = 2(A + B - 2C) leaves AC: order 1)
+printf 'point A, B, C\nparam t\nN = bezier(t, A, C, B)\ncheck contact(1, N at t = 0, line(A, C))\n' >"$tmp/cline.pcs"
+"$PC" derive "$tmp/cline.pcs" --format json >"$tmp/cline.json"
+check "check contact with a line: JSON verdict" python3 -c "
+import json
+c=json.load(open('$tmp/cline.json'))['checks']
+assert c==[{'line': 4, 'kind': 'contact', 'order': 1, 'found': 1, 'verdict': 'pass'}], c
+"
+# a curve with functions and --at: the ellipse of 2.1.1.1 with a = 2, b = 1
+# (C = (0, 0), A = (2, 0), B = (0, 1)) over [0, 2 pi]: the curvature a/b^2
+# = 2 at the vertex A (both ends), b/a^2 = 1/4 at B (phi = pi/2), and the
+# perimeter 4 a E(e^2 = 3/4) = 9.688448220547676 (mpmath)
+"$PC" analyze examples/ellipse_central_angle.pcs --set a=2 --set b=1 --at C=0,0 --at A=2,0 --at B=0,1 --format json >"$tmp/anell.json"
+check "analyze: a curve with functions, its curvature and arc length" python3 -c "
+import json, math
+o=json.load(open('$tmp/anell.json'))['outputs'][0]
+assert o['numeric'] and o['range'][1]==2*math.pi, o
+k0, k1 = o['curvature_ends']
+assert abs(k0-2) < 1e-12 and abs(k1-2) < 1e-12, o
+assert abs(o['curvature_max']-2) < 1e-12 and abs(o['curvature_min']-0.25) < 1e-12, o
+assert abs(o['curvature_min_at']-math.pi/2) < 1e-6, o
+assert abs(o['arc_length']-9.688448220547676) < 1e-12*9.69, o
+assert [p['point'] for p in o['passes']]==['A', 'B'], o
+assert abs(o['passes'][1]['t'][0]-math.pi/2) < 1e-15*2, o
+"
+# every example: each output analysed (exit 0), none skipped but what is
+# no curve (a scalar, a constant point, a surface in several params)
+for f in examples/*.pcs; do
+    "$PC" analyze "$f" --format json >"$tmp/ex.json" 2>"$tmp/err" ||
+        echo "$f: exit $?" >>"$tmp/anall"
+    python3 -c "
+import json, sys
+ok=('a scalar, not a curve', 'a constant, not a curve', 'depends on more than one param')
+for o in json.load(open('$tmp/ex.json'))['outputs']:
+    if o.get('skipped') not in (None,)+ok:
+        print('$f', o['name'], o['skipped'])
+" >>"$tmp/anall" 2>&1
+done
+check "analyze: every example curve analysed, none skipped" test ! -s "$tmp/anall"
 "$PC" analyze "$tmp/anset.pcs" --set q=1 >"$tmp/out" 2>"$tmp/err"
 check "analyze --set of no const exits 2" test $? -eq 2
 check "analyze --set of no const says so" grep -q "pointcalc: --set 'q=1': 'q' is not a const of the scheme" "$tmp/err"

@@ -55,6 +55,10 @@ typedef struct AnEnd {
     slong parallel;  // derivatives first..parallel are parallel to it; -1:
                      // every one (a straight line)
     slong vanishing; // derivatives 1..first-1 vanish: first - 1
+    double *num;     // a curve found numerically (AnCurve.numeric): the
+    double *num_tan; // end point's and first derivative's weights
+                     // (npoints each; d->npoints), owned; point, tangent
+                     // NULL
 } AnEnd;
 
 /* A base point the curve passes through, and where. */
@@ -81,9 +85,13 @@ typedef struct AnCurve {
     AnEnd ends[2];
     slong npass; // points: the base points it passes through in the range
     AnPass *pass;
-    char *implicit;   // plane curves over three base points: F, in the
-                      // points' names as coordinates (text), or NULL
-    char *implicit_j; // the same in the JSON form (products with '*')
+    char *implicit;        // plane curves over three base points: F, in the
+                           // points' names as coordinates (text), or NULL
+    char *implicit_j;      // the same in the JSON form (products with '*')
+    char *implicit_tex;    // and in LaTeX
+    char *implicit_xy;     // with exact plane coordinates of the three points
+    char *implicit_xy_j;   // (AnSet.qpt, dim 2): G(x, y) = 0 in Cartesian
+    char *implicit_xy_tex; // coordinates, text, JSON, LaTeX; else NULL
     /* with coordinates (AnSet.dim; metric.c), points on a bounded range
      * without poles: */
     int has_metric;        // 1: the values below were computed
@@ -93,6 +101,18 @@ typedef struct AnCurve {
     double kappa_ext_t[2]; // and where
     int has_kappa_ext[2];
     double length; // the arc length over the range
+    /* a curve whose weights have functions (sin, sqrt, abs = x sign(x),
+     * pi, dist ...): found numerically by analyze_numeric (driver/cli/
+     * analyze_num.c: the runtime's Plan with exact derivatives), every
+     * AnRoot a number */
+    int numeric;           // 1: such a curve (degree, order, index unused)
+    const char *nature;    // "piecewise", "algebraic" or "transcendental"
+    char *functions;       // owned: the functions it has, "sin(t), pi"
+    int num_done;          // 1: analyze_numeric filled what follows
+    char *num_why;         // owned: why it could not be evaluated, or NULL
+    double num_lo, num_hi; // the interval sampled
+    double undefined[2];   // the first and last sample where a function is
+                           // undefined (NAN: none)
 } AnCurve;
 
 /* A definition (derive's steps) in one param, and its poles in range. */
@@ -109,7 +129,16 @@ typedef struct Analysis {
     AnCurve *curves;
     slong ndefs;
     AnDef *defs;
+    fmpq *cvalue;          // d->nconsts: the value each const was analysed
+                           // with (given, or the generic rule below)
+    unsigned char *cgiven; // 1: from AnSet (--set); 0: the generic value
+    unsigned char *cused;  // 1: an analysed output depends on it
 } Analysis;
+
+/* The value of const k that has none from --set: a generic one, chosen
+ * so that nothing special happens there (docs/analyze.md, "Consts"):
+ * (k + 11)/(k + 7), i.e. 11/7, 3/2, 13/9, 7/5, ... */
+void analyze_generic_value(fmpq_t res, slong k);
 
 /* Values of consts (analyze --set k=VALUE): for const k (0 ..
  * d->nconsts - 1), given[k] = 1 and value[k] its exact value, which every
@@ -122,6 +151,8 @@ typedef struct AnSet {
     int dim;                 // coordinates (analyze --at): 0 none, else
     const double *const *pt; // pt[i] the dim coordinates of base point i,
                              // or NULL (not given)
+    const fmpq *const *qpt;  // the same exactly, as typed (NULL: none, or
+                             // qpt[i] NULL): the Cartesian implicit equation
 } AnSet;
 
 /* Analyses the outputs sel[0..nsel-1] of d (indices into d->outputs; sel
@@ -136,6 +167,7 @@ void analysis_free(Analysis *a);
 /* the report: text for people, JSON for programs (docs/analyze.md) */
 void analyze_print_text(FILE *out, const Analysis *a);
 void analyze_print_json(FILE *out, const Analysis *a);
+void analyze_print_latex(FILE *out, const Analysis *a);
 
 /* ---- inside compiler/analyze/ ------------------------------------------ */
 
@@ -155,7 +187,9 @@ void analyze_end_clear(AnEnd *e, slong npoints);
 /* metric.c: curvature and arc length, with set's coordinates */
 void analyze_metric(AnCurve *c, const AnPolys *p, const fmpq *lo,
                     const fmpq *hi, const AnSet *set);
-/* implicit.c: c->implicit of the plane curve over three points */
-void analyze_implicit(AnCurve *c, const AnPolys *p, const Derived *d);
+/* implicit.c: c->implicit of the plane curve over three points, and with
+ * set's exact plane coordinates of them, c->implicit_xy */
+void analyze_implicit(AnCurve *c, const AnPolys *p, const Derived *d,
+                      const AnSet *set);
 
 #endif

@@ -6,12 +6,15 @@
  */
 #include "compiler/analyze/analyze.h"
 
+#include <ctype.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <flint/fmpz_mat.h>
 
 #include "base/mem.h"
+#include "base/strbuf.h"
+#include "compiler/algebra/kernel.h"
 
 /* ---- the curve as polynomials in one param ------------------------------ */
 
@@ -27,27 +30,89 @@ static void mark_vars(unsigned char *used, const fmpz_mpoly_t p, const Ring *r)
     pc_free(deg);
 }
 
+/* what the functions fns (", "-separated kernel names) make of a curve:
+ * "transcendental" (sin, exp, pi, ...), "algebraic" (roots), "piecewise"
+ * (sign, from abs), else "metric" (dist, coord: numbers of the
+ * coordinates) */
+static const char *nature_of(const char *fns)
+{
+    static const char *const trans[] = {"sin",  "cos",  "tan",  "exp",  "ln",
+                                        "log",  "asin", "acos", "atan", "sinh",
+                                        "cosh", "tanh", "pi"};
+    for (size_t i = 0; i < sizeof trans / sizeof *trans; i++)
+        for (const char *q = strstr(fns, trans[i]); q;
+             q = strstr(q + 1, trans[i]))
+            if ((q == fns || !isalnum((unsigned char)q[-1])) &&
+                !isalnum((unsigned char)q[strlen(trans[i])]))
+                return "transcendental";
+    if (strstr(fns, "sqrt") || strstr(fns, "root"))
+        return "algebraic";
+    if (strstr(fns, "sign"))
+        return "piecewise";
+    return "metric";
+}
+
 /* the one param the polynomials depend on: its index; -1 none (a
- * constant); -2 something else (why in *why, owned) */
+ * constant); -2 something else (why in *why, owned).  Functions (kernels)
+ * are listed in *fns (owned; NULL: none) */
 static slong one_param(const fmpz_mpoly_struct *const *p, slong np,
-                       const Derived *d, char **why)
+                       const Derived *d, char **why, char **fns)
 {
     const Ring *r = &d->ring;
     slong nv = r->ctx->minfo->nvars;
+    slong first_fn = d->nparams + d->nconsts + d->nextra;
     unsigned char *used = pc_xcalloc((size_t)nv, 1);
     for (slong i = 0; i < np; i++)
         mark_vars(used, p[i], r);
+    /* the params (and consts: they have values) inside the functions */
+    unsigned char *inner = pc_xcalloc((size_t)nv, 1);
+    for (slong v = nv - 1; v >= first_fn && d->kernels; v--) {
+        const Kernel *k =
+            (used[v] || inner[v]) ? kernels_of_var(d->kernels, v) : NULL;
+        if (!k || k->fn == KF_PI)
+            continue;
+        mark_vars(inner, k->arg->num, r);
+        mark_vars(inner, k->arg->den, r);
+        if (k->fn == KF_ATAN2) {
+            mark_vars(inner, k->arg2->num, r);
+            mark_vars(inner, k->arg2->den, r);
+        }
+    }
+    for (slong v = 0; v < d->nparams; v++)
+        used[v] |= inner[v];
+    for (slong v = first_fn; v < nv; v++)
+        used[v] |= inner[v];
+    pc_free(inner);
     slong param = -1, n = 0;
+    StrBuf b = {0};
     for (slong v = 0; v < nv; v++) {
         if (!used[v])
             continue;
-        n++;
+        const char *name = v < r->nvars ? r->names[v] : "a function";
+        if (v >= first_fn) { /* its function's name, once */
+            size_t len = strcspn(name, "(");
+            char *fn = len ? pc_xstrndup(name, len) : pc_xstrdup("root");
+            len = strlen(fn);
+            const char *q = b.len ? strstr(b.s, fn) : NULL;
+            while (q && ((q > b.s && q[-1] != ' ') ||
+                         (q[len] != ',' && q[len] != 0)))
+                q = strstr(q + 1, fn);
+            if (!q) {
+                sb_puts(&b, b.len ? ", " : "");
+                sb_puts(&b, fn);
+            }
+            pc_free(fn);
+            continue;
+        }
         if (v >= d->nparams && !*why)
-            *why = pc_xasprintf("depends on %s, not only on a param",
-                                v < r->nvars ? r->names[v] : "a function");
-        param = v;
+            *why = pc_xasprintf("depends on %s, not only on a param", name);
+        if (v < d->nparams) {
+            n++;
+            param = v;
+        }
     }
     pc_free(used);
+    *fns = b.len ? sb_take(&b) : NULL;
     if (!*why && n > 1)
         *why = pc_xstrdup("depends on more than one param");
     return *why ? -2 : param;
@@ -261,7 +326,7 @@ static void passages(AnCurve *c, const AnPolys *p, const fmpq *lo,
 
 /* everything about a point curve but its poles and ends */
 static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
-                        const fmpq *hi, const Derived *d)
+                        const fmpq *hi, const Derived *d, const AnSet *set)
 {
     c->index = trace_index(p);
     c->order = c->index ? c->degree / c->index : 0;
@@ -276,7 +341,7 @@ static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
         fmpz_poly_mul(excl, g, p->den);
         inflections(c, p, lo, hi, excl);
         if (p->len == 3 && c->order >= 2)
-            analyze_implicit(c, p, d);
+            analyze_implicit(c, p, d, set);
     }
     passages(c, p, lo, hi);
     fmpz_poly_clear(excl);
@@ -318,12 +383,18 @@ static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq,
     for (slong i = 0; i < eq->len; i++)
         ps[i] = eq->terms[i].num;
     ps[np - 1] = eq->den;
-    c->param = one_param(ps, np, d, &c->skip);
+    c->param = one_param(ps, np, d, &c->skip, &c->functions);
     pc_free(ps);
     if (c->param == -1)
         c->skip = pc_xstrdup("a constant, not a curve");
     if (c->skip)
         return;
+    if (c->functions) { /* analyze_numeric's */
+        c->numeric = 1;
+        c->nature = nature_of(c->functions);
+        c->bounded = d->has_range && d->has_range[c->param];
+        return;
+    }
     AnPolys p;
     polys_from_pteq(&p, eq, c->param, &d->ring);
     fmpq_t lo, hi;
@@ -335,7 +406,7 @@ static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq,
     if (fmpz_poly_degree(p.den) >= 1)
         roots_real(&c->poles, p.den, plo, phi, NULL);
     if (c->kind == KIND_POINT)
-        point_curve(c, &p, plo, phi, d);
+        point_curve(c, &p, plo, phi, d, set);
     analyze_ends(c, &p, plo, phi, d->npoints);
     analyze_metric(c, &p, plo, phi, set);
     fmpq_clear(hi);
@@ -371,10 +442,11 @@ static int def_poles(AnDef *a, const Derived *d, const fmpz_mpoly_struct **ps,
                      slong np)
 {
     const fmpz_mpoly_struct *den = ps[np - 1];
-    char *why = NULL;
-    slong param = one_param(ps, np, d, &why);
+    char *why = NULL, *fns = NULL;
+    slong param = one_param(ps, np, d, &why, &fns);
     pc_free(why);
-    if (param < 0)
+    pc_free(fns);
+    if (param < 0 || fns)
         return 0;
     a->param = param;
     roots_init(&a->poles);
@@ -424,21 +496,74 @@ static int analyze_def(AnDef *a, const Derived *d, const DerivedOutput *v,
     return ok;
 }
 
+void analyze_generic_value(fmpq_t res, slong k)
+{
+    fmpq_set_si(res, k + 11, (ulong)(k + 7));
+}
+
+/* marks in a->cused the consts the output o depends on */
+static void mark_consts(Analysis *a, const DerivedOutput *o)
+{
+    const Derived *d = a->d;
+    slong nv = d->ring.ctx->minfo->nvars;
+    unsigned char *used = pc_xcalloc((size_t)nv, 1);
+    if (o->kind == KIND_SCALAR) {
+        mark_vars(used, o->scalar->num, &d->ring);
+        mark_vars(used, o->scalar->den, &d->ring);
+    } else {
+        mark_vars(used, o->eq->den, &d->ring);
+        for (slong i = 0; i < o->eq->len; i++)
+            mark_vars(used, o->eq->terms[i].num, &d->ring);
+    }
+    for (slong k = 0; k < d->nconsts; k++)
+        a->cused[k] |= used[d->nparams + k];
+    pc_free(used);
+}
+
+/* every const's value: set's, or the generic one */
+static void const_values(Analysis *a, const AnSet *set)
+{
+    const Derived *d = a->d;
+    a->cvalue = pc_xmalloc((size_t)(d->nconsts + 1) * sizeof *a->cvalue);
+    a->cgiven = pc_xcalloc((size_t)d->nconsts + 1, 1);
+    a->cused = pc_xcalloc((size_t)d->nconsts + 1, 1);
+    for (slong k = 0; k < d->nconsts; k++) {
+        fmpq_init(a->cvalue + k);
+        a->cgiven[k] = set && set->given && set->given[k];
+        if (a->cgiven[k])
+            fmpq_set(a->cvalue + k, set->value + k);
+        else
+            analyze_generic_value(a->cvalue + k, k);
+    }
+}
+
 Analysis *analyze_derived(const Derived *d, const int *sel, int nsel,
                           const AnSet *set)
 {
     Analysis *a = pc_xcalloc(1, sizeof *a);
     a->d = d;
+    const_values(a, set);
+    unsigned char *all = pc_xmalloc((size_t)d->nconsts + 1);
+    memset(all, 1, (size_t)d->nconsts + 1);
+    AnSet full = {all, a->cvalue, set ? set->dim : 0, set ? set->pt : NULL,
+                  set ? set->qpt : NULL};
     slong n = sel ? nsel : d->noutputs;
     a->curves = pc_xcalloc((size_t)n + 1, sizeof *a->curves);
     a->ncurves = n;
-    for (slong i = 0; i < n; i++)
-        analyze_curve(a->curves + i, d, d->outputs + (sel ? sel[i] : i), set);
+    for (slong i = 0; i < n; i++) {
+        const DerivedOutput *o = d->outputs + (sel ? sel[i] : i);
+        analyze_curve(a->curves + i, d, o, &full);
+        if (a->curves[i].numeric) /* consts inside its functions too */
+            memset(a->cused, 1, (size_t)d->nconsts + 1);
+        else if (!a->curves[i].skip)
+            mark_consts(a, o);
+    }
     a->defs = pc_xcalloc((size_t)d->nsteps + 1, sizeof *a->defs);
     for (slong i = 0; i < d->nsteps; i++)
         if (!d->steps[i].pending &&
-            analyze_def(a->defs + a->ndefs, d, &d->steps[i].value, set))
+            analyze_def(a->defs + a->ndefs, d, &d->steps[i].value, &full))
             a->ndefs++;
+    pc_free(all);
     return a;
 }
 
@@ -459,7 +584,18 @@ void analysis_free(Analysis *a)
         pc_free(c->pass);
         pc_free(c->implicit);
         pc_free(c->implicit_j);
+        pc_free(c->implicit_tex);
+        pc_free(c->implicit_xy);
+        pc_free(c->implicit_xy_j);
+        pc_free(c->implicit_xy_tex);
+        pc_free(c->functions);
+        pc_free(c->num_why);
     }
+    for (slong k = 0; k < a->d->nconsts; k++)
+        fmpq_clear(a->cvalue + k);
+    pc_free(a->cvalue);
+    pc_free(a->cgiven);
+    pc_free(a->cused);
     for (slong i = 0; i < a->ndefs; i++)
         roots_clear(&a->defs[i].poles);
     pc_free(a->defs);

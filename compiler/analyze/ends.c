@@ -44,6 +44,8 @@ void analyze_end_clear(AnEnd *e, slong npoints)
     pc_free(e->t);
     vec_free(e->point, npoints);
     vec_free(e->tangent, npoints);
+    pc_free(e->num);
+    pc_free(e->num_tan);
     memset(e, 0, sizeof *e);
 }
 

@@ -395,3 +395,13 @@ void roots_real(AnRoots *res, const fmpz_poly_t p, const fmpq *lo,
     if (res->n > 1) /* qsort takes no NULL, even for 0 elements */
         qsort(res->v, (size_t)res->n, sizeof *res->v, cmp_root);
 }
+
+void roots_push_value(AnRoots *r, double x, slong mult)
+{
+    push_root(r, NULL, x, mult);
+    for (slong i = r->n - 1; i > 0 && r->v[i - 1].value > x; i--) {
+        AnRoot t = r->v[i - 1];
+        r->v[i - 1] = r->v[i];
+        r->v[i] = t;
+    }
+}

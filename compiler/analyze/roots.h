@@ -13,6 +13,10 @@
 #include <flint/fmpq.h>
 #include <flint/fmpz_poly.h>
 
+/* AnRoot.mult of a number found numerically where it holds on a whole
+ * interval: this root starts it, the next one (AN_RUN_END) ends it */
+enum { AN_RUN_START = -1, AN_RUN_END = -2 };
+
 typedef struct AnRoot {
     char *exact;  // owned: "1/2", "(1 - sqrt(5))/2"; NULL: isolated only
     double value; // the root (nearest double of the isolating interval)
@@ -33,5 +37,9 @@ void roots_clear(AnRoots *r);
  * res by value. */
 void roots_real(AnRoots *res, const fmpz_poly_t p, const fmpq *lo,
                 const fmpq *hi, const fmpz_poly_t excl);
+
+/* Appends the root x (a number, not exact; mult 1 or AN_RUN_*) to r,
+ * kept sorted. */
+void roots_push_value(AnRoots *r, double x, slong mult);
 
 #endif

@@ -160,7 +160,11 @@ static int parallel(Checker *K, const Value *u, const Value *v, RatFun lambda)
 /* a failed claim: the message (consumed) at the statement, and kept */
 static void fail(Checker *K, DerivedCheck *out, char *msg)
 {
-    diag_error(K->D->diag, K->st->span, "check failed: %s", msg);
+    if (K->st->name) /* an instance of `check ... for i in a..b` */
+        diag_error(K->D->diag, K->st->span, "check failed (for %s): %s",
+                   K->st->name->text, msg);
+    else
+        diag_error(K->D->diag, K->st->span, "check failed: %s", msg);
     out->pass = 0;
     out->detail = msg;
 }
@@ -372,6 +376,44 @@ static void claim_tangent(Checker *K, DerivedCheck *out)
         char *pre = pc_xasprintf("the curve is not tangent to the line: its "
                                  "derivative of order %d is ",
                                  j);
+        fail2(K, out, pre, mj, ", not a multiple of the line's direction ",
+              &dir, "");
+        pc_free(pre);
+    }
+    K->error |= rc < 0;
+    derive_value_clear(&dir, K->D->r);
+}
+
+/* contact(k, M at t = a, line(A, B)): M(a) on the line, and the first
+ * derivative of M there that is not along the line (zero counts as along)
+ * is of order k + 1: the contact is of order k */
+static void claim_contact_line(Checker *K, DerivedCheck *out)
+{
+    const CheckInfo *c = K->c;
+    const Value *m0 = op(K, c->jet0);
+    if (!m0 || on_line(K, out, m0, 0, "the curve's point") != 1)
+        return;
+    Value dir;
+    derive_value_init(&dir, K->D->r);
+    int rc = diff_from(K, &dir, op(K, 1), op(K, 0)) < 0 ? -1 : 1, j = 1;
+    const Value *mj = NULL;
+    for (; rc == 1 && j < c->jetlen; j++) {
+        mj = op(K, c->jet0 + j);
+        rc = !mj ? -1 : is_zero(mj, K->D->r) ? 1 : parallel(K, &dir, mj, NULL);
+        if (rc != 1)
+            break;
+    }
+    out->found = j - 1;
+    if (rc == 1)
+        fail(K, out,
+             pc_xasprintf("the contact with the line is of order %d or "
+                          "more, not %d",
+                          j - 1, c->order));
+    else if (rc == 0 && j - 1 != c->order) {
+        char *pre = pc_xasprintf("the contact with the line is of order %d, "
+                                 "not %d: the curve's derivative of order %d "
+                                 "is ",
+                                 j - 1, c->order, j);
         fail2(K, out, pre, mj, ", not a multiple of the line's direction ",
               &dir, "");
         pc_free(pre);
@@ -711,6 +753,9 @@ static void run_check(Checker *K, DerivedCheck *out)
         break;
     case CK_ORDER:
         claim_order(K, out);
+        break;
+    case CK_CONTACT_LINE:
+        claim_contact_line(K, out);
         break;
     }
 }

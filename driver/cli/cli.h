@@ -54,6 +54,20 @@ Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
  * help_usage give a command's full help and its synopsis (for usage
  * errors), NULL for a name that is no command. */
 extern const char cli_usage[];
+/* analyze_num.c: the curves of a whose weights have functions
+ * (AnCurve.numeric), found numerically; set's coordinates (--at) for
+ * dist and coord when it gives every point */
+struct Analysis;
+struct AnSet;
+void analyze_numeric(struct Analysis *a, const struct AnSet *set);
+/* analyze_num_metric.c: the curvature at the ends, its extremes and the
+ * arc length of such a curve c (plan output o) over the samples ts[0..ns-1]
+ * (its range, the knots among them), env with every point's coordinates */
+struct AnCurve;
+struct PlotEnv;
+void analyze_num_metric(struct AnCurve *c, const struct PlotEnv *env, int o,
+                        const double *ts, int ns);
+
 const char *help_text(const char *cmd);
 const char *help_usage(const char *cmd);
 

@@ -18,7 +18,7 @@
 #include "runtime/sample.h"
 
 typedef struct AnalyzeArgs {
-    int json;         // --format json
+    int json;         // --format json (1) or latex (2)
     NameList outputs; // --output
     NameList set;     // --set NAME=VALUE, as typed
     EvalArgs ev;      // --at A=x,y,... (eval's parsing; only at is used)
@@ -58,9 +58,12 @@ static int analyze_option(void *ctx, int argc, char **argv, int i, FILE *err)
         a->json = 0;
     else if (strcmp(v, "json") == 0)
         a->json = 1;
+    else if (strcmp(v, "latex") == 0)
+        a->json = 2;
     else {
         args_usage_error(err, a->usage,
-                         "unknown format '%s'; expected text or json", v);
+                         "unknown format '%s'; expected text, json or latex",
+                         v);
         return -1;
     }
     return 2;
@@ -164,6 +167,41 @@ static int coordinates(double **pt, int *dim, const AnalyzeArgs *a,
     return 0;
 }
 
+/* typed ("1/3,0.25") as dim exact numbers, or NULL when it is not */
+static fmpq *exact_point(const char *typed, int dim, const Derived *d)
+{
+    fmpq *q = pc_xmalloc((size_t)(dim + 1) * sizeof *q);
+    for (int j = 0; j < dim; j++)
+        fmpq_init(q + j);
+    RatFun x;
+    ratfun_init(x, &d->ring);
+    char *text = pc_xstrdup(typed), *save = NULL;
+    int n = 0, ok = 1;
+    for (char *c = strtok_r(text, ",", &save); c && ok;
+         c = strtok_r(NULL, ",", &save), n++)
+        ok = n < dim && ratfun_set_str(x, c, &d->ring) == RATFUN_OK &&
+             ratfun_get_fmpq(q + n, x, &d->ring);
+    pc_free(text);
+    ratfun_clear(x, &d->ring);
+    if (ok && n == dim)
+        return q;
+    for (int j = 0; j < dim; j++)
+        fmpq_clear(q + j);
+    pc_free(q);
+    return NULL;
+}
+
+/* --at's coordinates exactly, as typed (qpt[k]: dim values, or NULL when
+ * not given or not numbers such as 1/3 or 0.25) */
+static void exact_coordinates(fmpq **qpt, int dim, const AnalyzeArgs *a,
+                              const Derived *d)
+{
+    for (int i = 0; i < a->ev.nat; i++) {
+        slong k = derived_find_point(d, a->ev.at[i].name);
+        qpt[k] = exact_point(a->ev.at[i].text, dim, d);
+    }
+}
+
 /* the report, made in memory and written in one piece (as derive's) */
 static void report(FILE *out, const AnalyzeArgs *a, const Derived *d,
                    const int *sel, int nsel, const AnSet *set)
@@ -172,8 +210,11 @@ static void report(FILE *out, const AnalyzeArgs *a, const Derived *d,
     size_t len = 0;
     FILE *m = pc_xopen_memstream(&text, &len);
     Analysis *an = analyze_derived(d, sel, nsel, set);
-    if (a->json)
+    analyze_numeric(an, set);
+    if (a->json == 1)
         analyze_print_json(m, an);
+    else if (a->json == 2)
+        analyze_print_latex(m, an);
     else
         analyze_print_text(m, an);
     analysis_free(an);
@@ -220,8 +261,12 @@ int cli_analyze(int argc, char **argv, FILE *out, FILE *err)
     rc = nsel < 0 ? 2 : set_values(given, value, &a, d, err);
     if (!rc)
         rc = coordinates(pt, &dim, &a, d, err);
+    fmpq **qpt = pc_xcalloc((size_t)d->npoints + 1, sizeof *qpt);
+    if (!rc)
+        exact_coordinates(qpt, dim, &a, d);
     if (!rc) {
-        AnSet set = {given, value, dim, (const double *const *)pt};
+        AnSet set = {given, value, dim, (const double *const *)pt,
+                     (const fmpq *const *)qpt};
         /* the analysis has its own budget: root isolation and factoring
          * of a big curve are not bounded by themselves */
         budget_arm(bo.max_seconds, bo.max_memory);
@@ -229,8 +274,13 @@ int cli_analyze(int argc, char **argv, FILE *out, FILE *err)
         report(out, &a, d, sel, nsel, &set);
         budget_disarm();
     }
-    for (slong k = 0; k < d->npoints; k++)
+    for (slong k = 0; k < d->npoints; k++) {
         pc_free(pt[k]);
+        for (int j = 0; qpt[k] && j < dim; j++)
+            fmpq_clear(qpt[k] + j);
+        pc_free(qpt[k]);
+    }
+    pc_free(qpt);
     pc_free(pt);
     for (slong k = 0; k < d->nconsts; k++)
         fmpq_clear(value + k);

@@ -29,7 +29,8 @@ const char cli_usage[] =
     "                        [--law linear|quadratic|cubic]  (pointcalc help "
     "natural)\n"
     "       pointcalc analyze FILE [--output NAME,...] [--set k=VALUE ...]\n"
-    "                        [--format text|json]  (pointcalc help analyze)\n"
+    "                        [--format text|json|latex]  (pointcalc help "
+    "analyze)\n"
     "       pointcalc help [derive|emit-c|eval|plot|fit|natural|analyze]\n"
     "       pointcalc CMD --help;  pointcalc --version\n"
     "\n"
@@ -93,7 +94,7 @@ const char cli_usage[] =
 #define ANALYZE_USAGE                                                          \
     "usage: pointcalc analyze FILE [--output NAME[,NAME...]] ... "             \
     "[--set k=VALUE ...]\n"                                                    \
-    "                         [--format text|json]\n"
+    "                         [--format text|json|latex]\n"
 
 #define HELP_USAGE                                                             \
     "usage: pointcalc help [derive|emit-c|eval|plot|fit|analyze]\n"
@@ -219,6 +220,9 @@ static const char analyze_help[] = ANALYZE_USAGE
     "rational or quadratic, else isolated to 1e-15; the implicit equation "
     "of a\n"
     "plane curve over three base points; the poles of every definition.\n"
+    "A const without --set is taken at a generic value (said in the "
+    "report);\n"
+    "a curve with functions (sin, sqrt, abs, ...) is analysed numerically.\n"
     "\n"
     "  --output NAMES      which outputs, repeatable or comma-separated "
     "(default: all)\n"
@@ -227,9 +231,13 @@ static const char analyze_help[] = ANALYZE_USAGE
     "  --at A=x,y,...      coordinates of base points: then also the "
     "curvature at the\n"
     "                      ends, its largest and smallest value and the arc "
-    "length\n"
-    "  --format text|json  the report for people (default) or "
-    "programs\n" COMMON_HELP;
+    "length,\n"
+    "                      and the implicit equation in x, y (exact "
+    "coordinates)\n"
+    "  --format FORMAT     text (for people, the default), json (for "
+    "programs) or\n"
+    "                      latex (the formulas as derive --format "
+    "latex)\n" COMMON_HELP;
 
 static const char help_help[] =
     HELP_USAGE "\nPrints the general usage, or the help of one command.\n";

@@ -46,6 +46,7 @@ static inline void exercise_analyze(FILE *m, const Derived *d)
     Analysis *a = analyze_derived(d, NULL, 0, NULL);
     analyze_print_text(m, a);
     analyze_print_json(m, a);
+    analyze_print_latex(m, a);
     analysis_free(a);
     unsigned char *given = calloc((size_t)d->nconsts + 1, 1);
     fmpq *value = calloc((size_t)d->nconsts + 1, sizeof *value);
