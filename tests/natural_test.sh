@@ -297,5 +297,50 @@ for (s, x, y), g in zip(want, got):
 "$PC" natural --from 0,0,0 --to 1,1,0 --scheme "$tmp/x.pcs" --name 9x >"$tmp/o" 2>"$tmp/e"
 check "--scheme: a bad --name is a usage error" test $? -eq 2 -a ! -s "$tmp/o" -a ! -e "$tmp/x.pcs"
 
+# analyze reads the same curves numerically from their exact derivatives:
+# the arc length is the param's range and the curvature is the law's
+# (|k| at the ends, its zeros the inflections), an independent check of
+# the kernel's derivatives and of the --scheme placement
+"$PC" analyze examples/natural_clothoid.pcs --output M --at O=0,0 --at E1=1,0 --at E2=0,1 \
+    --format json >"$tmp/an1.json"
+check "analyze of the clothoid: k(s) = s, arc length 3.5" python3 -c "
+import json
+o = json.load(open('$tmp/an1.json'))['outputs'][0]
+assert o['degree'] == 'transcendental'
+a, b = o['curvature_ends']
+assert abs(a) < 1e-9 and abs(b - 3.5) < 1e-9, (a, b)
+assert abs(o['arc_length'] - 3.5) < 1e-12
+"
+"$PC" analyze examples/natural_g2_scheme.pcs --output M --at O=0,0 --at E1=1,0 --at E2=0,1 \
+    --format json >"$tmp/an2.json"
+"$PC" natural --from 0,0,0.8 --through 3,1,-0.2 --to 6,0,-0.6 --law quadratic --format json >"$tmp/fit2.json"
+check "analyze of the --scheme curve: the fit's laws, lengths and inflections" python3 -c "
+import json, math
+o = json.load(open('$tmp/an2.json'))['outputs'][0]
+f = json.load(open('$tmp/fit2.json'))
+segs = f['segments']
+total = sum(g['length'] for g in segs)
+assert abs(o['arc_length'] - total) < 1e-12, (o['arc_length'], total)
+k = lambda g, s: sum(c * s ** j for j, c in enumerate(g['k']))
+a, b = o['curvature_ends']
+assert abs(a - abs(k(segs[0], 0))) < 1e-9 and abs(b - abs(k(segs[-1], segs[-1]['length']))) < 1e-9
+# the zeros of each segment's law inside it, by bisection on the law
+zeros, off = [], 0.0
+for g in segs:
+    n = 2000
+    for i in range(n):
+        s0, s1 = g['length'] * i / n, g['length'] * (i + 1) / n
+        if k(g, s0) * k(g, s1) < 0:
+            for _ in range(80):
+                m = (s0 + s1) / 2
+                if k(g, s0) * k(g, m) <= 0: s1 = m
+                else: s0 = m
+            zeros.append(off + s0)
+    off += g['length']
+got = o['inflections']
+assert len(got) == len(zeros), (got, zeros)
+assert all(abs(x - y) < 1e-9 for x, y in zip(got, zeros)), (got, zeros)
+"
+
 echo "natural_test: $pass passed, $fail failed"
 test $fail -eq 0

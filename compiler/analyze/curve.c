@@ -31,14 +31,14 @@ static void mark_vars(unsigned char *used, const fmpz_mpoly_t p, const Ring *r)
 }
 
 /* what the functions fns (", "-separated kernel names) make of a curve:
- * "transcendental" (sin, exp, pi, ...), "algebraic" (roots), "piecewise"
+ * "transcendental" (sin, exp, pi, natx, ...), "algebraic" (roots), "piecewise"
  * (sign, from abs), else "metric" (dist, coord: numbers of the
  * coordinates) */
 static const char *nature_of(const char *fns)
 {
     static const char *const trans[] = {"sin",  "cos",  "tan",  "exp",  "ln",
                                         "log",  "asin", "acos", "atan", "sinh",
-                                        "cosh", "tanh", "pi"};
+                                        "cosh", "tanh", "pi",   "natx", "naty"};
     for (size_t i = 0; i < sizeof trans / sizeof *trans; i++)
         for (const char *q = strstr(fns, trans[i]); q;
              q = strstr(q + 1, trans[i]))
