@@ -731,6 +731,9 @@ static void expand_solve(Expander *E, Stmt *st)
     }
     st->eqs = out;
     st->names = refer_names(E, st->names);
+    for (Equation *b = st->start; b; b = b->next) /* `near k = n/2` */
+        if (ex_rewrite(E, &b->rhs) < 0)
+            st->bad = 1;
 }
 
 /* a check (compiler/check.h): its values, the claim's arguments but not

@@ -45,6 +45,7 @@ typedef struct Parser {
     Stmt *tail; // last statement, for appending
     Equation *seqs; // the solve being parsed: its equations so far
     Name *snames;   // ... and its unknowns
+    Equation *sstart; // ... and the starts of a numeric solve (`near`)
 } Parser;
 
 /* a span from the first to the last right-hand-side symbol (jq's rule) */
@@ -231,6 +232,19 @@ static Equation *at_clause(Parser *p, const char *w, Span ws, Equation *binds)
     return NULL;
 }
 
+/* a numeric solve's `near a = 1, b = 0` (near is a keyword only here) */
+static Equation *near_clause(Parser *p, const char *w, Span ws,
+                             Equation *starts)
+{
+    if (strcmp(w, "near") == 0)
+        return starts;
+    diag_error(p->diag, ws,
+               "unexpected '%s'; expected 'near NAME = VALUE, ...' (the "
+               "start of a numeric solve) or the end of the line",
+               w);
+    return NULL;
+}
+
 /* `E at t = v` among a call's arguments: subst(E, t, v) (at is a keyword
  * only here) */
 static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
@@ -263,7 +277,7 @@ static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
 
 %type <Node *> expr args arg fit_samples
 %type <Name *> names name
-%type <Equation *> at_opt bindings
+%type <Equation *> at_opt bindings near_opt
 %type <Stmt *> stmt
 %type <int> lbr rbr
 
@@ -335,9 +349,10 @@ stmt:
                           $$->hi = $9;
                           $$->expr = $11;
                       } }
-| SOLVE             { p->seqs = NULL; p->snames = NULL; }
+| SOLVE             { p->seqs = NULL; p->snames = NULL; p->sstart = NULL; }
   solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;
-                      p->seqs = NULL; p->snames = NULL; }
+                      $$->start = p->sstart;
+                      p->seqs = NULL; p->snames = NULL; p->sstart = NULL; }
 ;
 
 /* a check's `at t = 0, u = 1`, or nothing */
@@ -398,14 +413,21 @@ solve_eqs:
 ;
 
 solve_tail:
-  FOR names         { p->snames = $2; }
+  FOR names near_opt { p->snames = $2; p->sstart = $3; }
 | ',' solve_eqs
 | compr solve_tail2
 ;
 
 solve_tail2:
-  FOR names         { p->snames = $2; }
+  FOR names near_opt { p->snames = $2; p->sstart = $3; }
 | ',' solve_eqs
+;
+
+/* a numeric solve's starts, `near a = 1, b = 0`, or nothing (an exact
+ * solve) */
+near_opt:
+  %empty            { $$ = NULL; }
+| IDENT bindings    { $$ = near_clause(p, $1, @1, $2); }
 ;
 
 equation:

@@ -20,6 +20,7 @@
 
 #include "base/mem.h"
 #include "base/numfmt.h"
+#include "codegen/numsolve.h"
 #include "compiler/expand.h"
 #include "compiler/print/book.h"
 #include "compiler/sema.h"
@@ -409,7 +410,8 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
     DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS,
                          .defines = o->defines,
                          .ndefines = o->ndefines,
-                         .bad_define = &bad_define};
+                         .bad_define = &bad_define,
+                         .numeric = numsolve_run};
     Derived *d = derive_source_ex(path, text, len, err, NULL, &opt);
     pc_free(text);
     if (bad_define) { // a usage error, as for derive
