@@ -173,7 +173,8 @@ static double sumsq(const double *r, int m)
     return s;
 }
 
-/* Gauss-Newton steps from s->u (least squares: the normal equations),
+/* Gauss-Newton steps from s->u (the normal equations; for a square
+ * system, Newton's steps),
  * while they do not raise the cost: Levenberg-Marquardt stops with its
  * damping still on, some digits short of the minimum */
 static void polish(NumEval *e, NumericSystem *s)
@@ -246,8 +247,11 @@ int numsolve_run(NumericSystem *s)
     o.max_iter = s->max_iter > 0 ? s->max_iter : 200;
     if (s->m == s->n) {
         o.gtol = 0; /* a root: stop on the step, checked after */
+        o.xtol = 1e-15;
         s->method = "damped Newton";
         lsq_newton(s->u, s->n, numsolve_eval, e, &o, &lr);
+        if (lr.stop != LSQ_STOP_EVAL && lr.stop != LSQ_STOP_MAXITER)
+            polish(e, s);
     } else {
         s->method = "Levenberg-Marquardt";
         lsq_solve(s->u, s->n, (size_t)s->m, numsolve_eval, e, &o, &lr);

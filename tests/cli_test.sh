@@ -1175,5 +1175,44 @@ assert o['curvature_max'] >= 1/math.sqrt(2) and o['arc_length'] > math.sqrt(2), 
 check "analyze --at of two dimensions exits 2" test $? -eq 2
 check "analyze --help" sh -c "'$PC' analyze --help | grep -q '^usage: pointcalc analyze FILE'"
 
+# a numeric solve (docs/language.md, Numeric solve): the values flow into
+# eval and the generated C.  Circle x^2 + y^2 = 1 and line y = 2x - 1/2
+# from (1, 1): x = (2 + sqrt(19))/10; P = A + (B - A) x + (C - A) y is
+# (x, y) in the frame A = (0,0), B = (1,0), C = (0,1)
+printf 'point A, B, C\nunknown scalar x, y\nsolve x^2 + y^2 = 1, y = 2*x - 1/2 for x, y near x = 1, y = 1\nP = A + (B - A)*x + (C - A)*y\noutput P\n' >"$tmp/num.pcs"
+"$PC" eval "$tmp/num.pcs" --at A=0,0 --at B=1,0 --at C=0,1 >"$tmp/num.csv"
+check "numeric solve: eval gives the root" python3 -c "
+import math
+row=open('$tmp/num.csv').read().split()[1].split(',')
+x=(2+math.sqrt(19))/10
+assert abs(float(row[0])-x) < 1e-15 and abs(float(row[1])-(2*x-0.5)) < 1e-15, row
+"
+"$PC" emit-c "$tmp/num.pcs" -o "$tmp/num.c" --header "$tmp/num.h"
+cat >"$tmp/num_main.c" <<'NUMEOF'
+#include <stdio.h>
+#include "num.h"
+int main(void)
+{
+    double A[2] = {0, 0}, B[2] = {1, 0}, C[2] = {0, 1}, out[2];
+    num_P(A, B, C, 2, out);
+    printf("%.17g %.17g\n", out[0], out[1]);
+    return 0;
+}
+NUMEOF
+check "numeric solve: emit-c compiles" cc -std=c99 -Wall -Wextra -Werror -I"$tmp" -o "$tmp/num_run" "$tmp/num_main.c" "$tmp/num.c" -lm
+check "numeric solve: the generated C gives the root" python3 -c "
+import math, subprocess
+x, y = map(float, subprocess.check_output(['$tmp/num_run']).split())
+r=(2+math.sqrt(19))/10
+assert abs(x-r) < 1e-15 and abs(y-(2*r-0.5)) < 1e-15, (x, y)
+"
+"$PC" derive "$tmp/num.pcs" --steps >"$tmp/out"
+check "numeric solve: the steps show the values" grep -qx '    x = 3179449471770337/5000000000000000' "$tmp/out"
+printf 'unknown scalar a\nsolve (a - 1)^2 + 1/100 = 0 for a near a = 3\nb = 2*a\n' >"$tmp/nonum.pcs"
+"$PC" derive "$tmp/nonum.pcs" >"$tmp/out" 2>"$tmp/err"
+check "numeric solve without a root exits 1" test $? -eq 1
+check "numeric solve without a root prints nothing" test ! -s "$tmp/out"
+check "numeric solve: what was reached" grep -q "nonum.pcs:2:1: error: the numeric solve did not converge (damped Newton, 200 iterations): it reached max |residual| 0.01" "$tmp/err"
+
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0
