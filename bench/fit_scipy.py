@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""fit_scipy.py N ... - SciPy's least_squares on pointcalc fit's problem
+"""fit_scipy.py [-r ROUNDS] N ... - SciPy's least_squares on pointcalc fit's problem
 (bench/bench_fit.c, docs/fit.md): Runge's function 1/(1 + 25x^2) on
 [-1, 1], the order-(N-1) interpolation curve through N nodes at t = k/(N-1),
 m = 100 (t_i = i/m, i = 0..m), residuals r_i = f(x(t_i)) - y(t_i), the same
@@ -111,5 +111,8 @@ def run(n, rounds=5):
 
 
 if __name__ == "__main__":
-    for a in sys.argv[1:] or ["6", "11"]:
-        run(int(a))
+    args, rounds = sys.argv[1:], 5
+    if args[:1] == ["-r"]:
+        rounds, args = int(args[1]), args[2:]
+    for a in args or ["6", "11"]:
+        run(int(a), rounds)
