@@ -105,9 +105,9 @@ def run(n, rounds=5):
                 best = (mse, nodes(r.x)[0])
         times.append((time.perf_counter() - t0) * 1e3)
     times.sort()
-    print("  %2d nodes: scipy %8.3f ms [%.3f..%.3f] (10 starts), MSE %.6g, "
+    print("  %2d nodes: scipy %8.3f ms [%.3f..%.3f] (10 starts), MSE %.17g, "
           "nodes %s" % (n, times[len(times) // 2], times[0], times[-1],
-                        best[0], " ".join("%.6f" % v for v in best[1])))
+                        best[0], " ".join("%.17g" % v for v in best[1])))
 
 
 if __name__ == "__main__":
