@@ -146,6 +146,28 @@ static Stmt *stmt_fit(Parser *p, const char *const *kw, const Span *kws,
     return s;
 }
 
+/* `fit X to data "FILE.csv" on [lo, hi]`: the target is data (data is a
+ * keyword only here) */
+static Stmt *stmt_fit_data(Parser *p, const char *const *kw, const Span *kws,
+                           Node *xn, const char *file, Span span)
+{
+    static const char *const want[4] = {"fit", "to", "data", "on"};
+    for (int i = 0; i < 4; i++)
+        if (strcmp(kw[i], want[i]) != 0) {
+            diag_error(p->diag, kws[i],
+                       "unexpected '%s'; expected 'fit X to data \"FILE.csv\" "
+                       "on [LO, HI]' (a curve fitted to data, docs/fit.md)",
+                       kw[i]);
+            return NULL;
+        }
+    Name *x = fit_name(p, xn);
+    if (!x)
+        return NULL;
+    Stmt *s = stmt_names(p, ST_FIT, x, span);
+    s->data = file;
+    return s;
+}
+
 /* `def NAME(a, b) = ...`: the call's arguments must be plain names */
 static Stmt *stmt_func(Parser *p, Node *call, Node *body, Span span)
 {
@@ -265,6 +287,7 @@ static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
 
 %token <const char *> IDENT "identifier"
 %token <const char *> NUMBER "number"
+%token <const char *> STRING "string"
 %token NEWLINE "end of line"
 %token SCHEME "'scheme'" POINT "'point'" PARAM "'param'" CONST "'const'"
 %token UNKNOWN "'unknown'" SOLVE "'solve'" FOR "'for'" OUTPUT "'output'"
@@ -348,6 +371,16 @@ stmt:
                           $$->lo = $7;
                           $$->hi = $9;
                           $$->expr = $11;
+                      } }
+| IDENT expr IDENT IDENT STRING IDENT '[' expr ',' expr ']' fit_samples
+                    /* `fit X to data "FILE.csv" on [-1, 1]` (docs/fit.md) */
+                    { const char *kw[4] = {$1, $3, $4, $6};
+                      Span kws[4] = {@1, @3, @4, @6};
+                      $$ = stmt_fit_data(p, kw, kws, $2, $5, @$);
+                      if ($$) {
+                          $$->lo = $8;
+                          $$->hi = $10;
+                          $$->expr = $12;
                       } }
 | SOLVE             { p->seqs = NULL; p->snames = NULL; p->sstart = NULL; }
   solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;

@@ -1055,6 +1055,24 @@ d=json.load(open('$tmp/fitd.json'))
 want=[-1, -0.233198, -0.0605405, 0.0605405, 0.233198, 1]
 assert all(abs(a-b) < 1e-4 for a, b in zip(d['nodes'], want)), d['nodes']
 "
+# the statement form of the data: `fit X to data "FILE.csv"`, the file in
+# the scheme's folder; the same problem as --data, so the same nodes
+printf 'int n = 5\npoint M[1..n+1]\nparam t in [0, 1]\nunknown C[2..n]\nX = bezier(t, M[1], C[2..n], M[n+1])\nsolve subst(X, t, (i-1)/n) = M[i] for i in 2..n for C[2..n]\nfit X to data "runge.csv" on [-1, 1]\noutput X\n' >"$tmp/fitdata.pcs"
+"$PC" fit "$tmp/fitdata.pcs" --format json >"$tmp/fitds.json" # (from the repository: the file is found in the scheme's folder)
+check "fit X to data FILE: the nodes of --data" python3 -c "
+import json
+a=json.load(open('$tmp/fitds.json')); b=json.load(open('$tmp/fitd.json'))
+assert a['nodes']==b['nodes'] and a['mse']==b['mse'], (a['nodes'], b['nodes'])
+assert a['target'].endswith('/runge.csv'), a['target']
+"
+sed 's/to data "runge.csv"/to dat "runge.csv"/' "$tmp/fitdata.pcs" >"$tmp/fitdk.pcs"
+"$PC" fit "$tmp/fitdk.pcs" >"$tmp/out" 2>"$tmp/err"
+check "fit X to dat: exit 1" test $? -eq 1
+check "fit X to dat: nothing on stdout" test ! -s "$tmp/out"
+check "fit X to dat: located" grep -q "fitdk.pcs:7:10: error: unexpected 'dat'; expected 'fit X to data \"FILE.csv\" on \[LO, HI\]'" "$tmp/err"
+sed 's/"runge.csv" on/"runge.csv on/' "$tmp/fitdata.pcs" >"$tmp/fitdu.pcs"
+"$PC" derive "$tmp/fitdu.pcs" >"$tmp/out" 2>"$tmp/err"
+check "an unterminated string is located" grep -q "fitdu.pcs:7:15: error: unterminated string; expected '\"' before the end of the line" "$tmp/err"
 printf 'point A, B\nparam t\nX = along(A, B, t)\nfit X to X on [0, 1]\n' >"$tmp/fitbad.pcs"
 "$PC" fit "$tmp/fitbad.pcs" >"$tmp/fitbad.out" 2>"$tmp/fitbad.err"
 check "fit FILE: a kind error exits 1" test $? -eq 1
