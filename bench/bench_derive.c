@@ -31,6 +31,7 @@
 
 #include "bench/bench_util.h"
 
+#include "codegen/numsolve.h"
 #include "compiler/derive.h"
 #include "compiler/print/format.h"
 
@@ -238,7 +239,9 @@ int main(int argc, char **argv)
         if (!buf)
             continue;
         double t0 = bench_now_ms();
-        Derived *dv = derive_source(path, buf, len, stderr, NULL);
+        /* (with the numeric back end: examples/numeric_kepler.pcs) */
+        DeriveOptions nopt = {.max_seconds = 60, .numeric = numsolve_run};
+        Derived *dv = derive_source_ex(path, buf, len, stderr, NULL, &nopt);
         double first = bench_now_ms() - t0;
         if (!dv) {
             printf("%-34s %10s\n", names[i], "ERROR");
@@ -270,7 +273,7 @@ int main(int argc, char **argv)
         double *t = malloc(sizeof(double) * (size_t)runs);
         for (int k = 0; k < runs; k++) {
             double s = bench_now_ms();
-            dv = derive_source(path, buf, len, NULL, NULL);
+            dv = derive_source_ex(path, buf, len, NULL, NULL, &nopt);
             t[k] = bench_now_ms() - s;
             derived_free(dv);
         }

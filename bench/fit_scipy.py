@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""fit_scipy.py N ... - SciPy's least_squares on pointcalc fit's problem
+"""fit_scipy.py [-r ROUNDS] N ... - SciPy's least_squares on pointcalc fit's problem
 (bench/bench_fit.c, docs/fit.md): Runge's function 1/(1 + 25x^2) on
 [-1, 1], the order-(N-1) interpolation curve through N nodes at t = k/(N-1),
 m = 100 (t_i = i/m, i = 0..m), residuals r_i = f(x(t_i)) - y(t_i), the same
@@ -105,11 +105,14 @@ def run(n, rounds=5):
                 best = (mse, nodes(r.x)[0])
         times.append((time.perf_counter() - t0) * 1e3)
     times.sort()
-    print("  %2d nodes: scipy %8.3f ms [%.3f..%.3f] (10 starts), MSE %.6g, "
+    print("  %2d nodes: scipy %8.3f ms [%.3f..%.3f] (10 starts), MSE %.17g, "
           "nodes %s" % (n, times[len(times) // 2], times[0], times[-1],
-                        best[0], " ".join("%.6f" % v for v in best[1])))
+                        best[0], " ".join("%.17g" % v for v in best[1])))
 
 
 if __name__ == "__main__":
-    for a in sys.argv[1:] or ["6", "11"]:
-        run(int(a))
+    args, rounds = sys.argv[1:], 5
+    if args[:1] == ["-r"]:
+        rounds, args = int(args[1]), args[2:]
+    for a in args or ["6", "11"]:
+        run(int(a), rounds)

@@ -182,6 +182,45 @@ typedef struct Derived {
     DerivedCheck *checks; // (owned; NULL when there are none)
 } Derived;
 
+/* A numeric solve (`solve ... for a, b near a = 1, b = 0`, docs/language.md
+ * "Numeric solve"): the compiler derives the residuals of its equations and
+ * their Jacobian exactly, and a back end that can evaluate them
+ * (DeriveOptions.numeric: codegen/numsolve.h lowers them to a Plan and runs
+ * runtime/lsq.h) finds the values, which the derivation then takes as exact
+ * decimals. */
+typedef enum NumericStatus {
+    NUMERIC_OK,        // converged: u holds the values
+    NUMERIC_NOCONV,    // no convergence (iteration limit, or no step lowers
+                       // the residual): u holds what was reached
+    NUMERIC_SINGULAR,  // the Jacobian is singular at u (its rank: rank)
+    NUMERIC_EVAL,      // the residuals cannot be evaluated at the start (a
+                       // pole, or a function outside its domain)
+    NUMERIC_NONUMBERS, // the residuals cannot be evaluated in double
+                       // precision (a coefficient beyond a double)
+} NumericStatus;
+
+typedef struct NumericSystem {
+    const Derived *view; // scalar outputs: the m residuals r_i, then the m*n
+                         // Jacobian entries dr_i/du_j (output m + i*n + j);
+                         // its params are the ring's variables before the
+                         // kernels (borrowed from the derivation)
+    int n, m;            // unknowns, residuals (m >= n; m > n: least squares)
+    const int *input;    // unknown j is the view's param input[j]
+    double *u;           // in: the start; out: the values (or what was
+                         // reached)
+    int max_iter;        // iterations at most
+    /* filled by the solver */
+    NumericStatus status;
+    int iterations;
+    int rank;           // NUMERIC_SINGULAR: the rank of the Jacobian found
+    double max_resid;   // max |r_i| at u
+    double rms_resid;   // sqrt(sum r_i^2 / m) at u
+    const char *method; // "damped Newton" or "Levenberg-Marquardt" (static)
+} NumericSystem;
+
+/* Finds s->u; returns 0 (and s->status NUMERIC_OK) when converged. */
+typedef int DeriveNumericFn(NumericSystem *s);
+
 /* How a derivation runs (budget.h): a wall-clock budget checked between
  * operations (0: none; derive_source uses BUDGET_DEFAULT_SECONDS), and a
  * stream for progress: per definition, its line, the time it took and the
@@ -199,10 +238,13 @@ typedef struct DeriveOptions {
     int keep_abs;    // 1: the declared ranges of params decide no sign, so
                      // abs(t - a) stays abs on param t in [lo, hi]
                      // (--keep-abs); the bounds of consts still do
-    int keep_failed_checks; // 1: a scheme whose only errors are failed
-                            // checks still returns its Derived (with
-                            // *nerrors > 0), so that derive --format json
-                            // can list every verdict
+    int keep_failed_checks;   // 1: a scheme whose only errors are failed
+                              // checks still returns its Derived (with
+                              // *nerrors > 0), so that derive --format json
+                              // can list every verdict
+    DeriveNumericFn *numeric; // solves the numeric solves (`near`):
+                              // numsolve_run (codegen/numsolve.h), or NULL:
+                              // a scheme with one is an error
 } DeriveOptions;
 
 /* Derive a scheme from source text.  Diagnostics (contract section 4 format)

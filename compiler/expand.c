@@ -732,6 +732,9 @@ static void expand_solve(Expander *E, Stmt *st)
     }
     st->eqs = out;
     st->names = refer_names(E, st->names);
+    for (Equation *b = st->start; b; b = b->next) /* `near k = n/2` */
+        if (ex_rewrite(E, &b->rhs) < 0)
+            st->bad = 1;
 }
 
 /* `check Ck(...)`, `Gk(...)` with k an int (or a comprehension's index):

@@ -789,11 +789,11 @@ static void check_fit(Sema *S, Stmt *st)
 {
     static const char *const role[2] = {"a point definition (the curve)",
                                         "a scalar definition (the target)"};
-    int i = 0;
+    int i = 0, want = st->data ? 1 : 2; /* X, or X and f */
     long long m;
     for (Name *nm = st->names; nm; nm = nm->next, i++) {
         Sym *s = lookup(S, nm->text);
-        if (i > 1) {
+        if (i >= want) {
             diag_error(S->diag, nm->span,
                        "fit names one curve and one target; expected 'fit X "
                        "to f', found more names");
@@ -812,7 +812,7 @@ static void check_fit(Sema *S, Stmt *st)
                                           : "a scalar definition",
                        role[i]);
     }
-    if (i < 2 && st->names)
+    if (i < want && st->names)
         diag_error(S->diag, st->span,
                    "fit names one curve and one target; expected 'fit X "
                    "to f'");

@@ -19,6 +19,7 @@
 #include "base/mem.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "codegen/numsolve.h"
 #include "compiler/derive.h"
 #include "driver/cli/budget.h"
 #include "runtime/eval.h"
@@ -63,7 +64,8 @@ static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
 
 static DeriveOptions derive_options(const pc_options *opt)
 {
-    DeriveOptions o = {.max_seconds = BUDGET_DEFAULT_SECONDS};
+    DeriveOptions o = {.max_seconds = BUDGET_DEFAULT_SECONDS,
+                       .numeric = numsolve_run};
     if (opt != NULL) {
         o.max_seconds = opt->max_seconds;
         o.defines = opt->defines;

@@ -297,6 +297,13 @@ void ast_dump(FILE *out, const Scheme *s)
             }
             fputc(')', out);
         }
+        for (const Equation *e = st->start; e; e = e->next) {
+            fputs(" (near ", out);
+            dump_node(out, e->lhs);
+            fputc(' ', out);
+            dump_node(out, e->rhs);
+            fputc(')', out);
+        }
         fputs(")\n", out);
     }
 }

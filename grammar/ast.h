@@ -140,6 +140,11 @@ struct Stmt {
                           // ('(' or ')', '>' or '<')
     Equation *eqs;        // ST_SOLVE; ST_CHECK: the bindings `at t = v`
                           // (lhs the name, rhs the value)
+    const char *data;     // ST_FIT: the file of `to data "FILE.csv"` (arena),
+                          // or NULL: the target is the name f
+    Equation *start;      // ST_SOLVE: a numeric solve's starts, `near a = 1,
+                          // b = 0` (lhs the name, rhs the value); NULL: an
+                          // exact solve
     Node *rhs;            // ST_CHECK: R of `check L = R`, or NULL
     Equation *joints;     // ST_DEF: where the segments of a join() must meet
                           // (expand.c; derive checks them)

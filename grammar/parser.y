@@ -45,6 +45,7 @@ typedef struct Parser {
     Stmt *tail; // last statement, for appending
     Equation *seqs; // the solve being parsed: its equations so far
     Name *snames;   // ... and its unknowns
+    Equation *sstart; // ... and the starts of a numeric solve (`near`)
 } Parser;
 
 /* a span from the first to the last right-hand-side symbol (jq's rule) */
@@ -145,6 +146,28 @@ static Stmt *stmt_fit(Parser *p, const char *const *kw, const Span *kws,
     return s;
 }
 
+/* `fit X to data "FILE.csv" on [lo, hi]`: the target is data (data is a
+ * keyword only here) */
+static Stmt *stmt_fit_data(Parser *p, const char *const *kw, const Span *kws,
+                           Node *xn, const char *file, Span span)
+{
+    static const char *const want[4] = {"fit", "to", "data", "on"};
+    for (int i = 0; i < 4; i++)
+        if (strcmp(kw[i], want[i]) != 0) {
+            diag_error(p->diag, kws[i],
+                       "unexpected '%s'; expected 'fit X to data \"FILE.csv\" "
+                       "on [LO, HI]' (a curve fitted to data, docs/fit.md)",
+                       kw[i]);
+            return NULL;
+        }
+    Name *x = fit_name(p, xn);
+    if (!x)
+        return NULL;
+    Stmt *s = stmt_names(p, ST_FIT, x, span);
+    s->data = file;
+    return s;
+}
+
 /* `def NAME(a, b) = ...`: the call's arguments must be plain names */
 static Stmt *stmt_func(Parser *p, Node *call, Node *body, Span span)
 {
@@ -234,6 +257,19 @@ static Equation *at_clause(Parser *p, const char *w, Span ws, Equation *binds)
     return NULL;
 }
 
+/* a numeric solve's `near a = 1, b = 0` (near is a keyword only here) */
+static Equation *near_clause(Parser *p, const char *w, Span ws,
+                             Equation *starts)
+{
+    if (strcmp(w, "near") == 0)
+        return starts;
+    diag_error(p->diag, ws,
+               "unexpected '%s'; expected 'near NAME = VALUE, ...' (the "
+               "start of a numeric solve) or the end of the line",
+               w);
+    return NULL;
+}
+
 /* `E at t = v` among a call's arguments: subst(E, t, v) (at is a keyword
  * only here) */
 static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
@@ -254,6 +290,7 @@ static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
 
 %token <const char *> IDENT "identifier"
 %token <const char *> NUMBER "number"
+%token <const char *> STRING "string"
 %token NEWLINE "end of line"
 %token SCHEME "'scheme'" POINT "'point'" PARAM "'param'" CONST "'const'"
 %token UNKNOWN "'unknown'" SOLVE "'solve'" FOR "'for'" OUTPUT "'output'"
@@ -266,7 +303,7 @@ static Node *arg_at(Parser *p, Node *e, const char *w, Span ws, Node *var,
 
 %type <Node *> expr args arg fit_samples
 %type <Name *> names name
-%type <Equation *> at_opt bindings check_for
+%type <Equation *> at_opt bindings check_for near_opt
 %type <Stmt *> stmt
 %type <int> lbr rbr
 
@@ -338,9 +375,20 @@ stmt:
                           $$->hi = $9;
                           $$->expr = $11;
                       } }
-| SOLVE             { p->seqs = NULL; p->snames = NULL; }
+| IDENT expr IDENT IDENT STRING IDENT '[' expr ',' expr ']' fit_samples
+                    /* `fit X to data "FILE.csv" on [-1, 1]` (docs/fit.md) */
+                    { const char *kw[4] = {$1, $3, $4, $6};
+                      Span kws[4] = {@1, @3, @4, @6};
+                      $$ = stmt_fit_data(p, kw, kws, $2, $5, @$);
+                      if ($$) {
+                          $$->lo = $8;
+                          $$->hi = $10;
+                          $$->expr = $12;
+                      } }
+| SOLVE             { p->seqs = NULL; p->snames = NULL; p->sstart = NULL; }
   solve_eqs         { $$ = stmt_names(p, ST_SOLVE, p->snames, @$); $$->eqs = p->seqs;
-                      p->seqs = NULL; p->snames = NULL; }
+                      $$->start = p->sstart;
+                      p->seqs = NULL; p->snames = NULL; p->sstart = NULL; }
 ;
 
 /* a check's `at t = 0, u = 1`, or nothing; then `for i in a..b` (a
@@ -413,14 +461,21 @@ solve_eqs:
 ;
 
 solve_tail:
-  FOR names         { p->snames = $2; }
+  FOR names near_opt { p->snames = $2; p->sstart = $3; }
 | ',' solve_eqs
 | compr solve_tail2
 ;
 
 solve_tail2:
-  FOR names         { p->snames = $2; }
+  FOR names near_opt { p->snames = $2; p->sstart = $3; }
 | ',' solve_eqs
+;
+
+/* a numeric solve's starts, `near a = 1, b = 0`, or nothing (an exact
+ * solve) */
+near_opt:
+  %empty            { $$ = NULL; }
+| IDENT bindings    { $$ = near_clause(p, $1, @1, $2); }
 ;
 
 equation:

@@ -387,22 +387,21 @@ int plan_output_uses_point(const Plan *p, int o, int point)
     return 0;
 }
 
-size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
-                 const double *consts, const double *const *points, int dim,
-                 double *out, unsigned char *status)
+/* output o of p at n samples with the prepared program g */
+static size_t eval_prog(const Prog *g, const Plan *p, int o, size_t n,
+                        const double *const *params,
+                        const double *const *points, int dim, double *out,
+                        unsigned char *status)
 {
-    assert(o >= 0 && o < p->noutputs);
     const PlanOutput *po = &p->outputs[o];
-    Prog g;
     size_t nbad = 0;
     _Alignas(64) double cols[3][BL]; // dims 2, 3: columns, then interleaved
-    prog_init(&g, p, o, consts, points, dim);
     int scalar = po->kind == KIND_SCALAR;
     int ncols = scalar ? 1 : dim;
     for (size_t i0 = 0; i0 < n; i0 += BL) {
         size_t m = n - i0 < BL ? n - i0 : BL;
-        run_block(&g, p, params, i0, m);
-        const double *bad = po->bad >= 0 ? reg(&g, po->bad) : NULL;
+        run_block(g, p, params, i0, m);
+        const double *bad = po->bad >= 0 ? reg(g, po->bad) : NULL;
         int direct = m == BL && (ncols == 2 || ncols == 3);
         for (int c = 0; c < ncols; c++) {
             double *acc = direct ? cols[c] : cols[0];
@@ -411,11 +410,11 @@ size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
             } else {
                 for (int k = 0; k < po->nterms; k++) {
                     double coord =
-                        g.coef[k] * (scalar ? 1.0 : points[po->point[k]][c]);
+                        g->coef[k] * (scalar ? 1.0 : points[po->point[k]][c]);
                     if (k == 0)
-                        k_scale(acc, reg(&g, g.root[k]), coord);
+                        k_scale(acc, reg(g, g->root[k]), coord);
                     else
-                        k_axpy(acc, reg(&g, g.root[k]), coord);
+                        k_axpy(acc, reg(g, g->root[k]), coord);
                 }
             }
             if (direct)
@@ -442,6 +441,52 @@ size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
             for (size_t j = 0; j < m; j++)
                 status[i0 + j] = (unsigned char)(bad ? plan_status(bad[j]) : 0);
     }
+    return nbad;
+}
+
+size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
+                 const double *consts, const double *const *points, int dim,
+                 double *out, unsigned char *status)
+{
+    assert(o >= 0 && o < p->noutputs);
+    Prog g;
+    prog_init(&g, p, o, consts, points, dim);
+    size_t nbad = eval_prog(&g, p, o, n, params, points, dim, out, status);
     prog_clear(&g);
     return nbad;
+}
+
+struct PlanProg {
+    Prog g;
+    const Plan *p;
+    int o, dim;
+    const double *const *points;
+};
+
+PlanProg *plan_prog_new(const Plan *p, int o, const double *consts,
+                        const double *const *points, int dim)
+{
+    assert(o >= 0 && o < p->noutputs);
+    PlanProg *pp = pc_xmalloc(sizeof *pp);
+    prog_init(&pp->g, p, o, consts, points, dim);
+    pp->p = p;
+    pp->o = o;
+    pp->dim = dim;
+    pp->points = points;
+    return pp;
+}
+
+size_t plan_prog_eval(const PlanProg *pp, size_t n, const double *const *params,
+                      double *out, unsigned char *status)
+{
+    return eval_prog(&pp->g, pp->p, pp->o, n, params, pp->points, pp->dim, out,
+                     status);
+}
+
+void plan_prog_free(PlanProg *pp)
+{
+    if (!pp)
+        return;
+    prog_clear(&pp->g);
+    pc_free(pp);
 }

@@ -33,6 +33,19 @@ size_t plan_eval(const Plan *p, int o, size_t n, const double *const *params,
                  const double *consts, const double *const *points, int dim,
                  double *out, unsigned char *status);
 
+/* A prepared evaluation of output o with the consts and points fixed:
+ * what plan_eval does once per call (liveness, the uniform registers,
+ * the register slots) done once, for a caller that evaluates one output
+ * many times (fit, the numeric solve).  p, consts and points must stay
+ * valid and unchanged while it is used. */
+typedef struct PlanProg PlanProg;
+PlanProg *plan_prog_new(const Plan *p, int o, const double *consts,
+                        const double *const *points, int dim);
+/* plan_eval of the prepared output at n samples */
+size_t plan_prog_eval(const PlanProg *g, size_t n, const double *const *params,
+                      double *out, unsigned char *status);
+void plan_prog_free(PlanProg *g);
+
 /* 1 if output o has a non-zero weight on base point `point`. */
 int plan_output_uses_point(const Plan *p, int o, int point);
 

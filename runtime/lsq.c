@@ -33,6 +33,7 @@ void lsq_options_default(LsqOptions *o)
     o->ftol = 1e-15;
     o->gtol = 1e-12;
     o->lambda0 = 1e-3;
+    o->geodesic = 0;
     o->monitor = NULL;
     o->monitor_ctx = NULL;
 }
@@ -102,6 +103,23 @@ static void normal_equations(double *A, double *g, const double *J,
             A[j * n + k] = A[k * n + j];
 }
 
+/* x = (L L^T)^-1 b, L lower triangular (n x n) */
+static void cholesky_apply(double *x, const double *L, const double *b, int n)
+{
+    for (int j = 0; j < n; j++) {
+        double s = b[j];
+        for (int p = 0; p < j; p++)
+            s -= L[j * n + p] * x[p];
+        x[j] = s / L[j * n + j];
+    }
+    for (int j = n - 1; j >= 0; j--) {
+        double s = x[j];
+        for (int p = j + 1; p < n; p++)
+            s -= L[p * n + j] * x[p];
+        x[j] = s / L[j * n + j];
+    }
+}
+
 /* Solves M x = b for symmetric M (n x n) by Cholesky, into x; L is n*n
  * scratch.  Returns 0, or -1 when M is not positive definite. */
 static int cholesky_solve(double *x, const double *M, const double *b,
@@ -121,18 +139,7 @@ static int cholesky_solve(double *x, const double *M, const double *b,
             }
         }
     }
-    for (int j = 0; j < n; j++) {
-        double s = b[j];
-        for (int p = 0; p < j; p++)
-            s -= L[j * n + p] * x[p];
-        x[j] = s / L[j * n + j];
-    }
-    for (int j = n - 1; j >= 0; j--) {
-        double s = x[j];
-        for (int p = j + 1; p < n; p++)
-            s -= L[p * n + j] * x[p];
-        x[j] = s / L[j * n + j];
-    }
+    cholesky_apply(x, L, b, n);
     return 0;
 }
 
@@ -163,6 +170,7 @@ static double max_abs(const double *v, size_t n)
 /* the solvers' scratch */
 typedef struct Work {
     double *r, *rt, *J, *A, *Ad, *L, *g, *h, *ut, *D;
+    double *rvv, *acc; // geodesic acceleration: r'' along h, and its step
 } Work;
 
 static void work_init(Work *w, size_t m, int n)
@@ -178,6 +186,8 @@ static void work_init(Work *w, size_t m, int n)
     w->h = pc_xmalloc(sizeof *w->h * (size_t)n);
     w->ut = pc_xmalloc(sizeof *w->ut * (size_t)n);
     w->D = pc_xcalloc((size_t)n, sizeof *w->D);
+    w->rvv = pc_xmalloc(sizeof *w->rvv * m);
+    w->acc = pc_xmalloc(sizeof *w->acc * (size_t)n);
 }
 
 static void work_clear(Work *w)
@@ -192,6 +202,8 @@ static void work_clear(Work *w)
     pc_free(w->h);
     pc_free(w->ut);
     pc_free(w->D);
+    pc_free(w->rvv);
+    pc_free(w->acc);
 }
 
 /* the LM state between iterations */
@@ -200,6 +212,45 @@ typedef struct LmState {
     double lambda; // damping
     double nu;     // growth of lambda after a rejected step
 } LmState;
+
+/* Geodesic acceleration (Transtrum & Sethna, "Improvements to the
+ * Levenberg-Marquardt algorithm for nonlinear least-squares
+ * minimization", 2012): the residuals' second directional derivative
+ * along the step h, r_vv = 2/e ((r(u + e h) - r(u))/e - J h) with e =
+ * 0.1, gives the second-order correction a = -(A + lambda D)^-1 J^T r_vv
+ * (the factor L of the step's own system), and the trial point becomes
+ * u + h + a/2 (in w->ut) when |a| <= 0.75 |h|: the step bends along a
+ * curved valley instead of leaving it.  One residual evaluation more. */
+static void geodesic(const double *u, int n, size_t m, LsqFn *fn, void *ctx,
+                     Work *w, LsqResult *res)
+{
+    const double e = 0.1;
+    for (int j = 0; j < n; j++)
+        w->ut[j] = u[j] + e * w->h[j];
+    res->evaluations++;
+    if (fn(ctx, w->ut, w->rt, NULL) != 0) {
+        for (int j = 0; j < n; j++)
+            w->ut[j] = u[j] + w->h[j];
+        return;
+    }
+    for (size_t i = 0; i < m; i++) {
+        const double *row = w->J + i * (size_t)n;
+        double jh = 0;
+        for (int j = 0; j < n; j++)
+            jh += row[j] * w->h[j];
+        w->rvv[i] = 2 / e * ((w->rt[i] - w->r[i]) / e - jh);
+    }
+    for (int j = 0; j < n; j++) {
+        double s = 0;
+        for (size_t i = 0; i < m; i++)
+            s -= w->J[i * (size_t)n + (size_t)j] * w->rvv[i];
+        w->rt[j] = s; /* (scratch: -J^T r_vv) */
+    }
+    cholesky_apply(w->acc, w->L, w->rt, n);
+    int keep = 2 * norm2(w->acc, n) <= 0.75 * norm2(w->h, n);
+    for (int j = 0; j < n; j++)
+        w->ut[j] = u[j] + w->h[j] + (keep ? 0.5 * w->acc[j] : 0);
+}
 
 /* one Levenberg-Marquardt iteration from u (r, J, A, g current): tries
  * steps until one is accepted (then u, r, F move) or the damping runs
@@ -235,6 +286,8 @@ static LsqStop lm_step(double *u, int n, size_t m, LsqFn *fn, void *ctx,
             hAh += w->h[j] * a;
         }
         double pred = -gh - 0.5 * hAh;
+        if (o->geodesic)
+            geodesic(u, n, m, fn, ctx, w, res);
         res->evaluations++;
         int bad = fn(ctx, w->ut, w->rt, NULL);
         double Ft = bad ? INFINITY : 0.5 * sumsq(w->rt, m);

@@ -41,6 +41,8 @@ typedef struct LsqOptions {
                          // cosine of residual and Jacobian columns); Newton:
                          // max |r_i| <= gtol
     double lambda0;      // initial damping, relative to diag(J^T J)
+    int geodesic;        // 1: geodesic acceleration (LM; lsq.c), one
+                         // residual evaluation more a trial step
     LsqMonitor *monitor; // or NULL
     void *monitor_ctx;
 } LsqOptions;

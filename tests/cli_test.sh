@@ -1055,6 +1055,24 @@ d=json.load(open('$tmp/fitd.json'))
 want=[-1, -0.233198, -0.0605405, 0.0605405, 0.233198, 1]
 assert all(abs(a-b) < 1e-4 for a, b in zip(d['nodes'], want)), d['nodes']
 "
+# the statement form of the data: `fit X to data "FILE.csv"`, the file in
+# the scheme's folder; the same problem as --data, so the same nodes
+printf 'int n = 5\npoint M[1..n+1]\nparam t in [0, 1]\nunknown C[2..n]\nX = bezier(t, M[1], C[2..n], M[n+1])\nsolve subst(X, t, (i-1)/n) = M[i] for i in 2..n for C[2..n]\nfit X to data "runge.csv" on [-1, 1]\noutput X\n' >"$tmp/fitdata.pcs"
+"$PC" fit "$tmp/fitdata.pcs" --format json >"$tmp/fitds.json" # (from the repository: the file is found in the scheme's folder)
+check "fit X to data FILE: the nodes of --data" python3 -c "
+import json
+a=json.load(open('$tmp/fitds.json')); b=json.load(open('$tmp/fitd.json'))
+assert a['nodes']==b['nodes'] and a['mse']==b['mse'], (a['nodes'], b['nodes'])
+assert a['target'].endswith('/runge.csv'), a['target']
+"
+sed 's/to data "runge.csv"/to dat "runge.csv"/' "$tmp/fitdata.pcs" >"$tmp/fitdk.pcs"
+"$PC" fit "$tmp/fitdk.pcs" >"$tmp/out" 2>"$tmp/err"
+check "fit X to dat: exit 1" test $? -eq 1
+check "fit X to dat: nothing on stdout" test ! -s "$tmp/out"
+check "fit X to dat: located" grep -q "fitdk.pcs:7:10: error: unexpected 'dat'; expected 'fit X to data \"FILE.csv\" on \[LO, HI\]'" "$tmp/err"
+sed 's/"runge.csv" on/"runge.csv on/' "$tmp/fitdata.pcs" >"$tmp/fitdu.pcs"
+"$PC" derive "$tmp/fitdu.pcs" >"$tmp/out" 2>"$tmp/err"
+check "an unterminated string is located" grep -q "fitdu.pcs:7:15: error: unterminated string; expected '\"' before the end of the line" "$tmp/err"
 printf 'point A, B\nparam t\nX = along(A, B, t)\nfit X to X on [0, 1]\n' >"$tmp/fitbad.pcs"
 "$PC" fit "$tmp/fitbad.pcs" >"$tmp/fitbad.out" 2>"$tmp/fitbad.err"
 check "fit FILE: a kind error exits 1" test $? -eq 1
@@ -1287,6 +1305,45 @@ assert o['curvature_max'] >= 1/math.sqrt(2) and o['arc_length'] > math.sqrt(2), 
 "$PC" analyze examples/desargues_arc.pcs --at A=0,0 --at B=1,0,0 >"$tmp/out" 2>"$tmp/err"
 check "analyze --at of two dimensions exits 2" test $? -eq 2
 check "analyze --help" sh -c "'$PC' analyze --help | grep -q '^usage: pointcalc analyze FILE'"
+
+# a numeric solve (docs/language.md, Numeric solve): the values flow into
+# eval and the generated C.  Circle x^2 + y^2 = 1 and line y = 2x - 1/2
+# from (1, 1): x = (2 + sqrt(19))/10; P = A + (B - A) x + (C - A) y is
+# (x, y) in the frame A = (0,0), B = (1,0), C = (0,1)
+printf 'point A, B, C\nunknown scalar x, y\nsolve x^2 + y^2 = 1, y = 2*x - 1/2 for x, y near x = 1, y = 1\nP = A + (B - A)*x + (C - A)*y\noutput P\n' >"$tmp/num.pcs"
+"$PC" eval "$tmp/num.pcs" --at A=0,0 --at B=1,0 --at C=0,1 >"$tmp/num.csv"
+check "numeric solve: eval gives the root" python3 -c "
+import math
+row=open('$tmp/num.csv').read().split()[1].split(',')
+x=(2+math.sqrt(19))/10
+assert abs(float(row[0])-x) < 1e-15 and abs(float(row[1])-(2*x-0.5)) < 1e-15, row
+"
+"$PC" emit-c "$tmp/num.pcs" -o "$tmp/num.c" --header "$tmp/num.h"
+cat >"$tmp/num_main.c" <<'NUMEOF'
+#include <stdio.h>
+#include "num.h"
+int main(void)
+{
+    double A[2] = {0, 0}, B[2] = {1, 0}, C[2] = {0, 1}, out[2];
+    num_P(A, B, C, 2, out);
+    printf("%.17g %.17g\n", out[0], out[1]);
+    return 0;
+}
+NUMEOF
+check "numeric solve: emit-c compiles" cc -std=c99 -Wall -Wextra -Werror -I"$tmp" -o "$tmp/num_run" "$tmp/num_main.c" "$tmp/num.c" -lm
+check "numeric solve: the generated C gives the root" python3 -c "
+import math, subprocess
+x, y = map(float, subprocess.check_output(['$tmp/num_run']).split())
+r=(2+math.sqrt(19))/10
+assert abs(x-r) < 1e-15 and abs(y-(2*r-0.5)) < 1e-15, (x, y)
+"
+"$PC" derive "$tmp/num.pcs" --steps >"$tmp/out"
+check "numeric solve: the steps show the values" grep -qx '    x = 3179449471770337/5000000000000000' "$tmp/out"
+printf 'unknown scalar a\nsolve (a - 1)^2 + 1/100 = 0 for a near a = 3\nb = 2*a\n' >"$tmp/nonum.pcs"
+"$PC" derive "$tmp/nonum.pcs" >"$tmp/out" 2>"$tmp/err"
+check "numeric solve without a root exits 1" test $? -eq 1
+check "numeric solve without a root prints nothing" test ! -s "$tmp/out"
+check "numeric solve: what was reached" grep -q "nonum.pcs:2:1: error: the numeric solve did not converge (damped Newton, 200 iterations): it reached max |residual| 0.01" "$tmp/err"
 
 echo "cli: $pass passed, $fail failed"
 test "$fail" -eq 0

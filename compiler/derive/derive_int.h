@@ -63,10 +63,13 @@ typedef struct Deriver {
     slong *uvar;        // per unknown scalar: its ring variable (else -1)
     int *usolved;       // per unknown: 1 once its solve succeeded
     Kernels *K;         // functions and pi (kernel.h), or NULL: none used
-    unsigned char **dassume; // per definition and per unknown: the ends of
-    unsigned char **uassume; // declared bounds its value rests on (K->cur
-                             // while it was derived, and its names'), or
-                             // NULL: none
+    unsigned char **dassume;  // per definition and per unknown: the ends of
+    unsigned char **uassume;  // declared bounds its value rests on (K->cur
+                              // while it was derived, and its names'), or
+                              // NULL: none
+    DeriveNumericFn *numeric; // DeriveOptions.numeric
+    const Derived *d;         // the result being derived (its names, for
+                              // the numeric solve's view)
 } Deriver;
 
 /* values that kernel operations take: beyond this many terms they are
@@ -125,6 +128,15 @@ void deriver_init(Deriver *D, Derived *d, SemaInfo *info, Diag *diag,
 void deriver_clear(Deriver *D);
 void derive_all(Deriver *D, Derived *d);
 void derive_solve(Deriver *D, Stmt *st);
+/* solve_num.c: a `solve ... near ...` of unknown scalars; eqs/seqs as
+ * derive_solve evaluated them (seqs[e] when scalar_eq[e], else eqs[e]) */
+void derive_solve_numeric(Deriver *D, Stmt *st, PointEq *eqs,
+                          RatFunStruct *seqs, const char *scalar_eq,
+                          Equation **eqn, slong neq, Sym **syms, slong nunk);
+/* solve_stmt.c: the unknown scalar var solved by v, substituted into
+ * every value derived so far */
+void derive_substitute_scalar(Deriver *D, slong var, const RatFun v,
+                              const Stmt *st);
 
 /* ---- check.c ------------------------------------------------------------ */
 

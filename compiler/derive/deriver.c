@@ -262,6 +262,8 @@ void deriver_init(Deriver *D, Derived *d, SemaInfo *info, Diag *diag,
     D->keep_abs = opt->keep_abs;
     D->deadline = opt->max_seconds > 0 ? start + opt->max_seconds : 0;
     D->verbose = opt->verbose;
+    D->numeric = opt->numeric;
+    D->d = d;
     D->defs =
         pc_xmalloc(sizeof(Value) * (size_t)(info->ndefs ? info->ndefs : 1));
     D->state = pc_xcalloc((size_t)(info->ndefs ? info->ndefs : 1), sizeof(int));

@@ -40,8 +40,8 @@ static Span s_span(const Deriver *D, int i)
 /* replaces the unknown scalar var by its solution v in every value derived
  * so far (a value whose denominator vanishes then keeps its form: its
  * definition was generic in var, and the outputs are checked later) */
-static void substitute_solved_scalar(Deriver *D, slong var, const RatFun v,
-                                     const Stmt *st)
+void derive_substitute_scalar(Deriver *D, slong var, const RatFun v,
+                              const Stmt *st)
 {
     const Ring *r = D->r;
     for (int i = 0; i < D->info->ndefs; i++) {
@@ -367,7 +367,7 @@ static void mixed_solve(Deriver *D, Stmt *st, const Mixed *M, RatFunStruct *A,
         for (slong m = 0; m < nk; m++) {
             Sym *u = syms[ksym[m]];
             D->usolved[u->index] = 1;
-            substitute_solved_scalar(D, kvar[m], D->ssol + u->index, st);
+            derive_substitute_scalar(D, kvar[m], D->ssol + u->index, st);
         }
         Sym **xs = pc_xmalloc(sizeof(Sym *) * (size_t)(nx ? nx : 1));
         for (slong xi = 0; xi < nx; xi++) {
@@ -704,7 +704,9 @@ void derive_solve(Deriver *D, Stmt *st)
         pteq_init(eqs[e], r);
         ok &= solve_equation(D, q, eqs[e], seqs + e, scalar_eq + e, sl, sr);
     }
-    if (ok && nsc > 0)
+    if (ok && st->start)
+        derive_solve_numeric(D, st, eqs, seqs, scalar_eq, eqn, neq, syms, nunk);
+    else if (ok && nsc > 0)
         solve_split_mixed(D, st, &S);
     else if (ok)
         solve_points_stmt(D, st, &S);

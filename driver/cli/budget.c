@@ -21,6 +21,7 @@
 #include "base/diag.h"
 #include "base/mem.h"
 #include "base/numfmt.h"
+#include "codegen/numsolve.h"
 
 /* the messages, each around the phase: HEAD PHASE TAIL */
 static char time_head[96], mem_head[96];
@@ -207,6 +208,7 @@ DeriveOptions derive_options_cli(const BudgetOptions *b, FILE *err,
                        .defines = b->defines,
                        .ndefines = b->ndefines,
                        .bad_define = bad_define,
-                       .keep_abs = b->keep_abs};
+                       .keep_abs = b->keep_abs,
+                       .numeric = numsolve_run};
     return o;
 }

@@ -311,8 +311,11 @@ static void not_converged(FILE *err, const Fit *f, const FitResult *r)
     pc_fprintf(err,
                "pointcalc: fit: did not converge: %s after %d iterations "
                "(best start: %s); reached MSE %.6g, max gradient %.3g, nodes",
-               lsq_stop_text(r->lsq.stop), r->lsq.iterations, r->start, r->mse,
-               r->lsq.gnorm);
+               r->lsq.stop == LSQ_STOP_CALLER
+                   ? "every start ran into two nodes merging (within 1e-8 "
+                     "of the interval: fewer nodes fit better)"
+                   : lsq_stop_text(r->lsq.stop),
+               r->lsq.iterations, r->start, r->mse, r->lsq.gnorm);
     for (int k = 0; k < f->n; k++)
         pc_fprintf(err, "%s %.9g", k ? "," : "", r->nodes[k]);
     fputc('\n', err);

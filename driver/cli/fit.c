@@ -187,8 +187,11 @@ void fit_target_at(const Fit *f, int o, size_t n, const double *x, double *v,
         return;
     }
     f->tpar[t->param] = x;
-    plan_eval(t->plan, o ? t->fp_out : t->f_out, n, f->tpar, t->consts, NULL, 0,
-              v, st);
+    if (f->prog[o ? 1 : 0])
+        plan_prog_eval(f->prog[o ? 1 : 0], n, f->tpar, v, st);
+    else
+        plan_eval(t->plan, o ? t->fp_out : t->f_out, n, f->tpar, t->consts,
+                  NULL, 0, v, st);
 }
 
 /* f on CHECK_SAMPLES points of [lo, hi], ends included: defined and
@@ -307,6 +310,12 @@ Fit *fit_new_from(const FitOptions *o, FitTarget *t, double *phi, double *coef,
     f->fpx = pc_xmalloc(sizeof *f->fpx * ne);
     f->st = pc_xmalloc(ne);
     f->jx = pc_xmalloc(sizeof *f->jx * f->ns * n);
+    f->rlast = pc_xmalloc(sizeof *f->rlast * f->ns);
+    f->xlast = pc_xmalloc(sizeof *f->xlast * n);
+    if (t->plan && !o->legacy) {
+        f->prog[0] = plan_prog_new(t->plan, t->f_out, t->consts, NULL, 0);
+        f->prog[1] = plan_prog_new(t->plan, t->fp_out, t->consts, NULL, 0);
+    }
     if (check_target(f, err) != 0) {
         fit_free(f);
         return NULL;
@@ -338,7 +347,11 @@ void fit_free(Fit *f)
 {
     if (!f)
         return;
+    plan_prog_free(f->prog[0]);
+    plan_prog_free(f->prog[1]);
     target_clear(&f->tg);
+    pc_free(f->rlast);
+    pc_free(f->xlast);
     pc_free(f->tpar);
     pc_free(f->tzero);
     pc_free(f->phi);
@@ -382,15 +395,26 @@ int fit_residuals_x(Fit *f, const double *xin, double *r, double *J)
         f->xs[f->ns - 1] = f->o.hi;
     }
     memcpy(f->xs + f->ns, f->x, sizeof *f->x * (size_t)n);
-    if (target_eval(f, 0, f->fx) != 0)
-        return -1;
-    const double *fk = f->fx + f->ns;
-    for (size_t i = 0; i < f->ns; i++) {
-        const double *ph = f->phi + i * (size_t)n;
-        double y = 0;
-        for (int k = 0; k < n; k++)
-            y += fk[k] * ph[k];
-        r[i] = f->fx[i] - y;
+    /* (only with the Jacobian: a call for r alone leaves f->fx as its
+     * callers read it, f at the samples and the nodes) */
+    if (J && f->rvalid &&
+        memcmp(f->xlast, f->x, sizeof *f->x * (size_t)n) == 0) {
+        memcpy(r, f->rlast, sizeof *r * f->ns);
+    } else {
+        f->rvalid = 0;
+        if (target_eval(f, 0, f->fx) != 0)
+            return -1;
+        const double *fk = f->fx + f->ns;
+        for (size_t i = 0; i < f->ns; i++) {
+            const double *ph = f->phi + i * (size_t)n;
+            double y = 0;
+            for (int k = 0; k < n; k++)
+                y += fk[k] * ph[k];
+            r[i] = f->fx[i] - y;
+        }
+        memcpy(f->rlast, r, sizeof *r * f->ns);
+        memcpy(f->xlast, f->x, sizeof *f->x * (size_t)n);
+        f->rvalid = !f->o.legacy;
     }
     if (!J)
         return 0;
@@ -573,13 +597,22 @@ static void start_name(char *buf, size_t cap, int s)
 }
 
 /* the multistart's monitor: a start whose nodes come within JOIN of
- * the best converged start's has joined its basin and is abandoned
- * (starts that reach one optimum would only repeat its iterations) */
+ * those of a start that converged before (the best one, or a local
+ * minimum) has joined that basin and is abandoned (starts that reach one
+ * minimum would only repeat its iterations; a joined minimum that is not
+ * the best cannot become the best).  A start two of whose nodes come
+ * within MERGE of each other is abandoned too (b->merged): it is running
+ * to the boundary of the admissible nodes, where two coincide (a log-gap
+ * to -infinity), a limit that is no fit with N distinct nodes and that
+ * Levenberg-Marquardt approaches only linearly (hundreds of steps) */
 #define FIT_JOIN 1e-3
+#define FIT_MERGE 1e-8
+#define FIT_BASINS 16
 typedef struct Basin {
     Fit *f;
     int have;
-    double best[LSQ_MAX_UNKNOWNS + 2];
+    int merged; // the monitor stopped a start whose nodes were merging
+    double best[FIT_BASINS][LSQ_MAX_UNKNOWNS + 2];
 } Basin;
 
 static int joined(void *ctx, const double *u, double cost)
@@ -587,18 +620,36 @@ static int joined(void *ctx, const double *u, double cost)
     Basin *b = ctx;
     double x[LSQ_MAX_UNKNOWNS + 2];
     (void)cost;
-    if (!b->have)
+    if (!b->have && b->f->o.legacy)
         return 0;
     fit_nodes_of_u(b->f, u, x);
-    for (int k = 1; k < b->f->n - 1; k++)
-        if (fabs(x[k] - b->best[k]) > FIT_JOIN * (b->f->o.hi - b->f->o.lo))
-            return 0;
-    return 1;
+    for (int k = 1; k < b->f->n && !b->f->o.legacy; k++)
+        if (x[k] - x[k - 1] < FIT_MERGE * (b->f->o.hi - b->f->o.lo)) {
+            b->merged = 1;
+            return 1;
+        }
+    for (int m = 0; m < b->have; m++) {
+        int k;
+        for (k = 1; k < b->f->n - 1; k++)
+            if (fabs(x[k] - b->best[m][k]) >
+                FIT_JOIN * (b->f->o.hi - b->f->o.lo))
+                break;
+        if (k == b->f->n - 1)
+            return 1;
+    }
+    return 0;
+}
+
+/* a converged start's minimum, for joined() */
+static void basin_add(Basin *b, const double *u)
+{
+    if (b->have < FIT_BASINS)
+        fit_nodes_of_u(b->f, u, b->best[b->have++]);
 }
 
 int fit_run(Fit *f, FitResult *res)
 {
-    int nu = f->nu, best = -1;
+    int nu = f->nu, best = -1, best_merged = 0;
     double u[LSQ_MAX_UNKNOWNS], ubest[LSQ_MAX_UNKNOWNS];
     double *r = pc_xmalloc(sizeof *r * f->ns);
     Basin basin = {.f = f};
@@ -606,6 +657,7 @@ int fit_run(Fit *f, FitResult *res)
     lsq_options_default(&o);
     o.max_iter = f->o.max_iter > 0 ? f->o.max_iter : 3000;
     o.lambda0 = 1;
+    o.geodesic = !f->o.legacy;
     o.monitor = joined;
     o.monitor_ctx = &basin;
     memset(res, 0, sizeof *res);
@@ -620,22 +672,30 @@ int fit_run(Fit *f, FitResult *res)
                                     : NAN;
         lsq_solve(u, nu, f->ns, fit_residuals_u, f, &o, &lr);
         res->starts_run++;
-        if (lr.stop == LSQ_STOP_CALLER) {
+        res->iterations_all += lr.iterations;
+        res->evaluations_all += lr.evaluations;
+        int merged = basin.merged;
+        basin.merged = 0;
+        res->starts_merged += merged;
+        if (lr.stop == LSQ_STOP_CALLER && !merged) {
             res->starts_joined++;
             continue;
         }
         double mse = 2 * lr.cost / (double)f->ns;
-        /* the best: the lowest cost (ties: the earlier start) */
-        if (isfinite(mse) && (best < 0 || mse < res->mse)) {
+        /* the best: the lowest cost (ties: the earlier start); a start
+         * stopped on merging nodes only when no other start has a value */
+        if (isfinite(mse) && (best < 0 || (best_merged && !merged) ||
+                              (best_merged == merged && mse < res->mse))) {
             best = s;
+            best_merged = merged;
             res->mse = mse;
             res->lsq = lr;
             memcpy(ubest, u, sizeof *u * (size_t)nu);
-            if (lr.converged) {
-                fit_nodes_of_u(f, u, basin.best);
-                basin.have = 1;
-            }
         }
+        if (lr.converged && f->o.legacy && best == s)
+            basin.have = 0; /* (stop 28 kept the best one only) */
+        if (lr.converged && (best == s || !f->o.legacy))
+            basin_add(&basin, u);
     }
     if (best >= 0) {
         fit_nodes_of_u(f, ubest, res->nodes);

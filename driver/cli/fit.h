@@ -28,6 +28,7 @@
 #include <stdio.h>
 
 #include "driver/cli/cli.h"
+#include "runtime/eval.h"
 #include "runtime/lsq.h"
 
 CliCommand cli_fit; // cmd_fit.c: pointcalc fit --target EXPR ...
@@ -48,6 +49,10 @@ typedef struct FitOptions {
     int samples;   // m (--samples; default 100): t_i = i/m, i = 0..m
     int starts;    // seeded random starts after Chebyshev and uniform
     int max_iter;  // iterations a start at most (--max-iter; 0: 3000)
+    int legacy;    // bench_fit's "before": the solver of stop 28 (plain
+                   // Levenberg-Marquardt, plan_eval per call, the
+                   // residuals computed again with the Jacobian, only the
+                   // best start's basin joined)
     /* the scheme form only: --set NAME=VALUE for its consts, -D NAME=INT
      * for its ints (argv's strings) */
     const char *const *sets;
@@ -95,11 +100,18 @@ typedef struct Fit {
     int ends_exact; // phi_1 = 1 at t = 0 and phi_N = 1 at t = 1: x(0) and
                     // x(1) are set to LO and HI exactly
     const double **tpar; // scratch: the params of the target's plan
+    PlanProg *prog[2];   // f and f' prepared (runtime/eval.h), or NULL
     double *tzero;       // ... the zeros of those that are not x
     /* scratch for the residuals */
     double *x, *xs, *fx, *fpx;
     unsigned char *st;
     double *jx;
+    /* the residuals at the last nodes they were computed for: the
+     * Jacobian is asked at the point just accepted, whose residuals the
+     * solver has (the callback computes them again); f->fx is then not
+     * computed */
+    double *rlast, *xlast;
+    int rvalid;
 } Fit;
 
 /* the outcome of fit_run */
@@ -111,6 +123,9 @@ typedef struct FitResult {
     char start[24];     // "chebyshev", "uniform", "random 3", ...
     int starts_run;
     int starts_joined;        // abandoned on joining the best start's basin
+    int starts_merged;        // abandoned on two nodes merging (fit.c)
+    int iterations_all;       // the solver's iterations over every start
+    int evaluations_all;      // and its residual evaluations
     LsqResult lsq;            // the winning start's solver report
     double start_mse[2];      // MSE at the Chebyshev and uniform starts
     double cheb_lagrange_mse; // the baseline: Lagrange interpolation of f

@@ -20,6 +20,7 @@
 
 #include "base/mem.h"
 #include "base/numfmt.h"
+#include "codegen/numsolve.h"
 #include "compiler/expand.h"
 #include "compiler/print/book.h"
 #include "compiler/sema.h"
@@ -36,6 +37,8 @@ typedef struct FitStmt {
     Span xs, fs; // the names X and f as written
     double lo, hi;
     int samples; // 0: the default
+    char *data;  // `to data "FILE.csv"`: the file, relative to the scheme's
+                 // folder (owned), or NULL: the target is the name f
 } FitStmt;
 
 /* the value of a constant number (sema checked its shape) */
@@ -73,6 +76,8 @@ static void front_clear(FitFront *F)
     for (int j = 0; j < F->nparams; j++)
         pc_free(F->params[j]);
     pc_free(F->params);
+    for (int i = 0; i < F->nfits; i++)
+        pc_free(F->fits[i].data);
     pc_free(F->fits);
     pc_free(F->outputs);
     pc_free(F->text);
@@ -99,8 +104,19 @@ static char *read_text(const char *path, size_t *len, FILE *err)
     return s;
 }
 
+/* a statement's data file: as written when absolute, else in the folder
+ * of the scheme (owned) */
+static char *data_path(const char *scheme, const char *file)
+{
+    const char *slash = strrchr(scheme, '/');
+    if (file[0] == '/' || !slash)
+        return pc_xasprintf("%s", file);
+    return pc_xasprintf("%.*s/%s", (int)(slash - scheme), scheme, file);
+}
+
 /* the statements of the scheme's checked AST into F */
-static void collect(FitFront *F, const Scheme *sc, const SemaInfo *I)
+static void collect(FitFront *F, const Scheme *sc, const SemaInfo *I,
+                    const char *path)
 {
     for (const Stmt *st = sc->stmts; st; st = st->next) {
         if (st->kind == ST_OUTPUT) {
@@ -115,7 +131,8 @@ static void collect(FitFront *F, const Scheme *sc, const SemaInfo *I)
         FitStmt *s = &F->fits[F->nfits++];
         s->span = st->span;
         s->xs = st->names->span;
-        s->fs = st->names->next->span;
+        s->fs = st->data ? st->span : st->names->next->span;
+        s->data = st->data ? data_path(path, st->data) : NULL;
         s->lo = const_value(st->lo);
         s->hi = const_value(st->hi);
         s->samples = st->expr ? (int)const_value(st->expr) : 0;
@@ -150,7 +167,7 @@ static int front(FitFront *F, const char *path, const FitOptions *o, FILE *err)
     pc_free(used);
     SemaInfo *I = diag.nerrors == 0 ? sema_check(sc, &arena, &diag) : NULL;
     if (diag.nerrors == 0)
-        collect(F, sc, I);
+        collect(F, sc, I, path);
     int rc = diag.nerrors ? 1 : 0;
     diag_flush(&diag);
     source_clear(&src);
@@ -171,7 +188,12 @@ static char *fit_text(const FitFront *F, const FitStmt *s, size_t *len)
                 t[b] = ' ';
     int xl = s->xs.end - s->xs.start, fl = s->fs.end - s->fs.start;
     const char *X = F->text + s->xs.start, *f = F->text + s->fs.start;
-    char *all = pc_xasprintf("%s\n", t);
+    /* a data target: a stand-in f (the data replace it, run_one) */
+    char *all = pc_xasprintf(s->data ? "%s\n__fit_data = 0\n" : "%s\n", t);
+    if (s->data) {
+        f = "__fit_data";
+        fl = (int)strlen(f);
+    }
     pc_free(t);
     for (int j = 0; j < F->nparams; j++) {
         char *next = pc_xasprintf(
@@ -324,7 +346,7 @@ static int find_params(const Derived *d, const FitFront *F, const FitStmt *s,
 {
     int np = F->nparams;
     const char *X = d->outputs[0].name, *f = d->outputs[1].name;
-    *fp = the_param(d, 2, np);
+    *fp = s->data ? 0 : the_param(d, 2, np);
     *xp = the_param(d, 2 + np, np);
     if (*xp < 0)
         derived_error(d, err, s->span,
@@ -406,10 +428,13 @@ static int run_one(const FitFront *F, const FitStmt *s, const char *path,
     size_t len;
     char *text = fit_text(F, s, &len);
     int bad_define = 0;
+    if (!data) /* --data replaces the statement's target */
+        data = s->data;
     DeriveOptions opt = {.max_seconds = BUDGET_DEFAULT_SECONDS,
                          .defines = o->defines,
                          .ndefines = o->ndefines,
-                         .bad_define = &bad_define};
+                         .bad_define = &bad_define,
+                         .numeric = numsolve_run};
     Derived *d = derive_source_ex(path, text, len, err, NULL, &opt);
     pc_free(text);
     if (bad_define) { // a usage error, as for derive

@@ -46,6 +46,7 @@
 #include "codegen/collapse.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "codegen/numsolve.h"
 #include "compiler/derive.h"
 #include "tests/unit/emit_harness.h"
 
@@ -243,8 +244,10 @@ static double check_output(const Derived *d, const Plan *p, const Collapse *col,
 static int check_scheme(const char *path, const char *text, const char *define)
 {
     const char *defs[1] = {define};
-    DeriveOptions opt = {
-        .max_seconds = 60, .defines = defs, .ndefines = define ? 1 : 0};
+    DeriveOptions opt = {.max_seconds = 60,
+                         .defines = defs,
+                         .ndefines = define ? 1 : 0,
+                         .numeric = numsolve_run};
     Derived *d =
         text ? derive_source_ex(path, text, strlen(text), stderr, NULL, &opt)
              : derive_file_ex(path, stderr, NULL, &opt);

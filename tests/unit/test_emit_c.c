@@ -40,6 +40,7 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "codegen/numsolve.h"
 #include "compiler/algebra/kernel.h"
 #include "compiler/derive.h"
 #include "runtime/eval.h"
@@ -521,8 +522,10 @@ static void check_derived(const Derived *d, const Plan *p, const Compiled *c)
 static void check_scheme_text(const char *name, const char *text)
 {
     int nerr = 0;
-    Derived *d = text ? derive_source(name, text, strlen(text), stderr, &nerr)
-                      : derive_file(name, stderr, &nerr);
+    DeriveOptions opt = {.max_seconds = 60, .numeric = numsolve_run};
+    Derived *d =
+        text ? derive_source_ex(name, text, strlen(text), stderr, &nerr, &opt)
+             : derive_file_ex(name, stderr, &nerr, &opt);
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);
     assert_non_null(p);
@@ -585,8 +588,10 @@ static void check_nodes_ex(const char *path, const char *define, int o, int nn,
                            const double *cst)
 {
     const char *defs[1] = {define};
-    DeriveOptions opt = {
-        .max_seconds = 60, .defines = defs, .ndefines = define ? 1 : 0};
+    DeriveOptions opt = {.max_seconds = 60,
+                         .defines = defs,
+                         .ndefines = define ? 1 : 0,
+                         .numeric = numsolve_run};
     Derived *d = derive_file_ex(path, stderr, NULL, &opt);
     assert_non_null(d);
     Plan *p = lower_derived(d, stderr);

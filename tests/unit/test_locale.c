@@ -28,6 +28,7 @@
 
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
+#include "codegen/numsolve.h"
 #include "compiler/derive.h"
 #include "compiler/print/format.h"
 #include "driver/cli/budget.h"
@@ -139,7 +140,8 @@ static char *outputs(const char *path)
     char *text = NULL;
     size_t len = 0;
     FILE *m = open_memstream(&text, &len);
-    Derived *d = derive_file(path, m, NULL);
+    DeriveOptions opt = {.max_seconds = 60, .numeric = numsolve_run};
+    Derived *d = derive_file_ex(path, m, NULL, &opt);
     if (d != NULL) {
         format_derived(m, d, FMT_TEXT, -1);
         format_derived(m, d, FMT_LATEX, -1);

@@ -117,6 +117,47 @@ static void test_lsq_rosenbrock(void **state)
     }
 }
 
+/* Geodesic acceleration (LsqOptions.geodesic): Rosenbrock from three
+ * starts reaches (1, 1), in no more steps than without it from the
+ * classic start (-1.2, 1), whose path follows the curved valley; on a
+ * linear problem (r_vv = 0) it changes nothing but rounding: the exact
+ * line in as many steps. */
+static void test_lsq_geodesic(void **state)
+{
+    (void)state;
+    double starts[3][2] = {{-1.2, 1}, {-3, -4}, {2, 5}};
+    LsqOptions o;
+    lsq_options_default(&o);
+    o.geodesic = 1;
+    int with = 0, without = 0;
+    for (int s = 0; s < 3; s++) {
+        double u[2] = {starts[s][0], starts[s][1]};
+        LsqResult r;
+        assert_int_equal(lsq_solve(u, 2, 2, rosen_fn, NULL, &o, &r), 0);
+        assert_true(fabs(u[0] - 1) < 1e-10);
+        assert_true(fabs(u[1] - 1) < 1e-10);
+        if (s == 0) {
+            double v[2] = {starts[0][0], starts[0][1]};
+            LsqResult p;
+            assert_int_equal(lsq_solve(v, 2, 2, rosen_fn, NULL, NULL, &p), 0);
+            with = r.iterations;
+            without = p.iterations;
+        }
+    }
+    assert_true(with <= without);
+    Data d = {.m = 10};
+    for (size_t i = 0; i < d.m; i++) {
+        d.t[i] = (double)i;
+        d.y[i] = 2.5 - 0.75 * d.t[i];
+    }
+    double u[2] = {0, 0}, v[2] = {0, 0};
+    LsqResult r, p;
+    assert_int_equal(lsq_solve(u, 2, d.m, line_fn, &d, &o, &r), 0);
+    assert_int_equal(lsq_solve(v, 2, d.m, line_fn, &d, NULL, &p), 0);
+    assert_true(fabs(u[0] - 2.5) < 1e-12 && fabs(u[1] + 0.75) < 1e-12);
+    assert_int_equal(r.iterations, p.iterations);
+}
+
 /* A non-zero residual optimum: the line through noisy data equals the
  * solution of the normal equations (computed here by Cramer's rule). */
 static void test_lsq_line_noisy_matches_normal_equations(void **state)
@@ -311,6 +352,7 @@ int main(void)
         cmocka_unit_test(test_lsq_line_exact_data),
         cmocka_unit_test(test_lsq_exponential_exact_data),
         cmocka_unit_test(test_lsq_rosenbrock),
+        cmocka_unit_test(test_lsq_geodesic),
         cmocka_unit_test(test_lsq_line_noisy_matches_normal_equations),
         cmocka_unit_test(test_lsq_random_linear_gradient_vanishes),
         cmocka_unit_test(test_lsq_newton_known_system),

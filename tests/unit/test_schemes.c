@@ -30,8 +30,17 @@
 
 #include <flint/flint.h>
 
+#include "codegen/numsolve.h"
 #include "compiler/derive.h"
 #include "compiler/print/format.h"
+
+/* derive_source with the numeric back end (numeric solves: `near`) */
+static Derived *derive_text(const char *path, const char *text, size_t len,
+                            FILE *err, int *nerrors)
+{
+    DeriveOptions opt = {.max_seconds = 60, .numeric = numsolve_run};
+    return derive_source_ex(path, text, len, err, nerrors, &opt);
+}
 
 static char *read_all(const char *path, size_t *len)
 {
@@ -143,7 +152,7 @@ static Derived *derive_with_output_ex(const char *path, const char *text,
                              want, name);
     else
         k += (size_t)sprintf(copy + k, "\noutput %s\n", name);
-    Derived *d = derive_source(path, copy, k, stderr, NULL);
+    Derived *d = derive_text(path, copy, k, stderr, NULL);
     free(copy);
     return d;
 }
@@ -157,7 +166,7 @@ static void check_expectations(const char *path)
 
     /* the scheme itself must derive */
     int nerr = 0;
-    Derived *whole = derive_source(path, text, len, stderr, &nerr);
+    Derived *whole = derive_text(path, text, len, stderr, &nerr);
     CHECK(whole != NULL, "%s: failed to derive (%d errors)", path, nerr);
     derived_free(whole);
 
@@ -307,7 +316,7 @@ static void check_errors(const char *path)
     size_t outlen = 0;
     FILE *mem = open_memstream(&out, &outlen);
     int nerr = 0;
-    Derived *d = derive_source(path, text, len, mem, &nerr);
+    Derived *d = derive_text(path, text, len, mem, &nerr);
     fclose(mem);
     int f0 = failures;
     CHECK(d == NULL, "%s: derived although errors were expected", path);
@@ -427,7 +436,7 @@ static void check_print_back(const char *path)
     size_t len;
     char *text = read_all(path, &len);
     assert_non_null(text);
-    Derived *d = derive_source(path, text, len, stderr, NULL);
+    Derived *d = derive_text(path, text, len, stderr, NULL);
     CHECK(d != NULL, "%s: does not derive", path);
     if (!d) {
         free(text);
@@ -500,7 +509,7 @@ static void check_print_back(const char *path)
     put_renamed(&copy, &k, &cap, "\noutput ", NULL, NULL, 0);
     put_renamed(&copy, &k, &cap, outs, NULL, NULL, 0);
     put_renamed(&copy, &k, &cap, "\n", NULL, NULL, 0);
-    Derived *b = derive_source(path, copy, k, stderr, NULL);
+    Derived *b = derive_text(path, copy, k, stderr, NULL);
     CHECK(b != NULL, "%s: the printed form does not read back:\n%s", path,
           copy);
     int f0 = failures;
