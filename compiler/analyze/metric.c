@@ -189,9 +189,15 @@ static void extremes(AnCurve *c, const Jet *j, double lo, double hi, double *v1,
     }
 }
 
+/* the most evaluations of |M'| an arc length may take: past it the
+ * pieces are accepted as they are and the length is not reported (a range
+ * like [0, 1e31] would otherwise refine to the depth limit everywhere) */
+enum { ARC_MAX_EVALS = 1 << 20 };
+
 typedef struct Simpson {
     const Jet *j;
     double *v1, *v2, tol;
+    long evals; // left
 } Simpson;
 
 static double simpson(Simpson *s, double a, double fa, double b, double fb,
@@ -203,7 +209,8 @@ static double simpson(Simpson *s, double a, double fa, double b, double fb,
     double left = (m - a) / 6 * (fa + 4 * flm + fm);
     double right = (b - m) / 6 * (fm + 4 * frm + fb);
     double diff = left + right - whole;
-    if (depth <= 0 || fabs(diff) <= 15 * s->tol * (b - a))
+    s->evals -= 2;
+    if (depth <= 0 || s->evals <= 0 || fabs(diff) <= 15 * s->tol * (b - a))
         return left + right + diff / 15;
     return simpson(s, a, fa, m, fm, lm, flm, left, depth - 1) +
            simpson(s, m, fm, b, fb, rm, frm, right, depth - 1);
@@ -212,7 +219,7 @@ static double simpson(Simpson *s, double a, double fa, double b, double fb,
 static double arc_length(const Jet *j, double lo, double hi, double *v1,
                          double *v2)
 {
-    Simpson s = {j, v1, v2, 0};
+    Simpson s = {j, v1, v2, 0, ARC_MAX_EVALS};
     /* a first estimate sets the tolerance relative to the length */
     double est = 0;
     for (int k = 0; k < 64; k++)
@@ -226,7 +233,7 @@ static double arc_length(const Jet *j, double lo, double hi, double *v1,
         total += simpson(&s, a, fa, b, fb, m, fm,
                          (b - a) / 6 * (fa + 4 * fm + fb), 40);
     }
-    return total;
+    return s.evals > 0 ? total : NAN;
 }
 
 void analyze_metric(AnCurve *c, const AnPolys *p, const fmpq *lo,

@@ -217,7 +217,12 @@ static void metric_text(FILE *out, const AnCurve *c, const char *t)
         if (c->has_kappa_ext[e])
             pc_fprintf(out, "  %s curvature: %.15g at %s = %.15g\n", what[e],
                        c->kappa_ext[e], t, c->kappa_ext_t[e]);
-    pc_fprintf(out, "  arc length: %.15g\n", c->length);
+    if (isnan(c->length))
+        fputs("  arc length: not found (|M'| varies too much over the range "
+              "for 2^20 evaluations)\n",
+              out);
+    else
+        pc_fprintf(out, "  arc length: %.15g\n", c->length);
 }
 
 /* what a curve found numerically is, in words */
