@@ -18,6 +18,7 @@
 
 #include "base/budget.h"
 #include "base/mem.h"
+#include "base/stack.h"
 #include "base/strbuf.h"
 #include "compiler/print/absform.h"
 #include "compiler/print/book.h"
@@ -250,7 +251,9 @@ static int arg_has_sign(const Kernels *K, const Kernel *k, int depth)
  * sin(pi*abs(t - 1)/4), not sin((t*pi*sign(t - 1) - pi*sign(t - 1))/4) */
 char *format_weight_k(const RatFun w, const Ring *r, const Kernels *K)
 {
-    if (!absform_any(K))
+    /* it recurses into nested functions' arguments: where the stack runs
+     * low (stack.h), the weight as it is, with sign() (equal, and short) */
+    if (!absform_any(K) || stack_low())
         return format_weight(w, r);
     size_t nv = (size_t)(r->nvars ? r->nvars : 1);
     unsigned char *mask = pc_xcalloc(nv, 1);
