@@ -342,8 +342,8 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
         pc_xclose_memstream(c);
         plan_free(p);
     }
-    if (text && budget_late()) { /* the C is written in one pass, then
-                                   * given up if the budget ran out */
+    /* the C is written in one pass, then given up if the budget ran out */
+    if (text && budget_late()) {
         char secs[48];
         budget_format_seconds(secs, sizeof secs, s->max_seconds);
         diag_fput_escaped(m, s->d->filename);
