@@ -6,6 +6,7 @@
 # each ran: executions, the rate, coverage (cov, ft) and its findings.
 #   FUZZ_RUNS     executions per target (default 10^6)
 #   FUZZ_SECONDS  wall-clock bound per target (default 120)
+#   FUZZ_TIMEOUT  seconds for one input before it is a finding (default 10)
 #   FUZZ_CPU      the core to run on (default the last one)
 #   FUZZ_NOREPLAY set: skip the replay
 # Crashes, leaks and timeouts land in build-fuzz/artifacts/TARGET-*; the
@@ -14,6 +15,7 @@ set -u
 B=build-fuzz
 RUNS=${FUZZ_RUNS:-1000000}
 SECONDS_MAX=${FUZZ_SECONDS:-120}
+TIMEOUT=${FUZZ_TIMEOUT:-10}
 CPU=${FUZZ_CPU:-$(($(nproc) - 1))}
 [ $# -gt 0 ] || set -- fuzz_light fuzz_derive fuzz_eval_args
 ON_CORE="taskset -c $CPU nice -n 19"
@@ -60,7 +62,7 @@ for t in "$@"; do
     esac
     echo "== $t: up to $RUNS executions or $SECONDS_MAX s (log $B/log/$t.log)"
     # shellcheck disable=SC2086
-    $ON_CORE $B/$t -runs=$RUNS -max_total_time=$SECONDS_MAX -timeout=10 \
+    $ON_CORE $B/$t -runs=$RUNS -max_total_time=$SECONDS_MAX -timeout=$TIMEOUT \
         $common -artifact_prefix=$B/artifacts/$t- $args \
         > $B/log/$t.log 2>&1 &
 done
