@@ -49,7 +49,7 @@ void budget_where(const Source **src, Span *span)
     *span = w->span;
 }
 
-static _Thread_local double deadline_at, deadline_s;
+static _Thread_local double deadline_at, deadline_s, derive_at;
 
 static double now_seconds(void)
 {
@@ -66,7 +66,16 @@ void budget_deadline_set(double seconds)
 
 int budget_late(void)
 {
-    return deadline_at > 0 && now_seconds() > deadline_at;
+    if (deadline_at == 0 && derive_at == 0)
+        return 0;
+    double now = now_seconds();
+    return (deadline_at > 0 && now > deadline_at) ||
+           (derive_at > 0 && now > derive_at);
+}
+
+void budget_derive_until(double at)
+{
+    derive_at = at > 0 ? at : 0;
 }
 
 double budget_deadline_seconds(void)

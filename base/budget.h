@@ -57,6 +57,11 @@ const char *budget_phase_now(void);
 void budget_deadline_set(double seconds);
 int budget_late(void);
 double budget_deadline_seconds(void);
+/* The derivation's own deadline, for the loops below it that have no
+ * Deriver to ask (meet_ff.c): derive_source_ex sets it (CLOCK_MONOTONIC
+ * seconds, 0: none) for its duration and clears it; budget_late() is 1
+ * past it too. */
+void budget_derive_until(double at);
 
 /* "60 s", "2 GiB", "512 MiB": the budgets as the messages write them */
 void budget_format_seconds(char *buf, size_t cap, double s);

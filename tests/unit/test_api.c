@@ -705,6 +705,34 @@ static void test_api_budget_after_derive(void **state)
     free(text);
 }
 
+/* the time budget inside meet(): a meet whose fraction-free products
+ * each pass the size guard but add up to seconds (tests/fuzz/regressions/
+ * timeout-meet-big-result.pcs: 6 s natively, 111 s under ASan with a
+ * budget of 0.25 s) stops at the next product past the budget, at the
+ * meet (the library has no timer: the meet's loops read the clock) */
+static void test_api_budget_inside_meet(void **state)
+{
+    (void)state;
+    const char *text = "point A, B, C\nparam t, u\nconst k, h\n"
+                       "a = (t + u + k + h)^30\nb = (t / u + k - h)^40\n"
+                       "M = meet(line(A, along(B, C, a)), "
+                       "line(B, along(C, A, b)))\n";
+    char *diag = NULL;
+    pc_options o = {.max_seconds = 0.25};
+    double t0 = now_s();
+    pc_scheme *s =
+        pc_scheme_parse_opts("meet.pcs", text, strlen(text), &o, &diag);
+    double took = now_s() - t0;
+    assert_null(s);
+    assert_non_null(diag);
+    const char *want = "meet.pcs:6:5: error: the time budget of 0.25 s ran "
+                       "out while deriving this; raise it with --max-seconds\n";
+    assert_true(strncmp(diag, want, strlen(want)) == 0);
+    free(diag);
+    if (!getenv("PC_VALGRIND")) /* one product under memcheck takes long */
+        assert_true(took < 4);
+}
+
 static int teardown_group(void **state)
 {
     (void)state;
@@ -729,6 +757,7 @@ int main(void)
         cmocka_unit_test(test_api_options),
         cmocka_unit_test(test_api_thread_cleanup),
         cmocka_unit_test(test_api_budget_after_derive),
+        cmocka_unit_test(test_api_budget_inside_meet),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }
