@@ -187,34 +187,31 @@ valgrind: tests
 	    && echo "api_example: ok" || { echo "FAIL: api_example under valgrind"; fail=1; }; \
 	  exit $$fail
 
-# coverage-guided fuzzing (clang + libFuzzer + ASan/UBSan) of two targets:
-# derive_source and every back end (tests/fuzz/fuzz_derive.c), and eval's
-# command line (tests/fuzz/fuzz_eval_args.c); seeds from examples/ and
-# tests/, the language's dictionary; FUZZ_SECONDS bounds each run, FUZZ_RUNS
-# the executions.  Crashes land in build-fuzz/artifacts/.
+# coverage-guided fuzzing (clang + libFuzzer + ASan/UBSan) of three targets:
+# derive_source and every back end (tests/fuzz/fuzz_derive.c), the light
+# one (tests/fuzz/fuzz_light.c: derive, the text printer and the C; inputs
+# of at most 512 bytes, seeds without the heavy chapter-2 schemes), and
+# eval's command line (tests/fuzz/fuzz_eval_args.c); seeds from examples/
+# and tests/, the language's dictionary.  FUZZ_SECONDS bounds each run,
+# FUZZ_RUNS the executions, FUZZ_TARGETS which run (tests/fuzz/campaign.sh
+# runs them at nice 19 on one core and prints each one's executions, rate
+# and coverage).  Crashes land in build-fuzz/artifacts/.
 FUZZ_SECONDS ?= 120
 FUZZ_RUNS ?= 1000000
+FUZZ_TARGETS ?= fuzz_light fuzz_derive fuzz_eval_args
 FUZZ_CC = clang -std=c11 -D_POSIX_C_SOURCE=200809L -Wall -Wextra -Werror \
 	  -I. -Ibuild-fuzz -g -O1 -fsanitize=fuzzer,address,undefined
-FUZZ_FLAGS = -runs=$(FUZZ_RUNS) -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
-	  -rss_limit_mb=4096 -dict=tests/fuzz/pointcalc.dict \
-	  -artifact_prefix=build-fuzz/artifacts/
-fuzz:
+fuzz-build:
 	$(MAKE) B=build-fuzz CC=clang OPT=-O1 \
 	  SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer" \
 	  build-fuzz/libpointcalc.a build-fuzz/libpointcalc-cli.a
 	$(FUZZ_CC) -o build-fuzz/fuzz_derive tests/fuzz/fuzz_derive.c build-fuzz/libpointcalc.a $(LDLIBS)
+	$(FUZZ_CC) -DFUZZ_DERIVE_SECONDS=0.25 -DFUZZ_BACKEND_SECONDS=0.25 \
+	  -o build-fuzz/fuzz_light tests/fuzz/fuzz_light.c build-fuzz/libpointcalc.a $(LDLIBS)
 	$(FUZZ_CC) -o build-fuzz/fuzz_eval_args tests/fuzz/fuzz_eval_args.c build-fuzz/libpointcalc-cli.a build-fuzz/libpointcalc.a $(LDLIBS)
-	@mkdir -p build-fuzz/corpus build-fuzz/corpus_eval build-fuzz/artifacts
-	@# one seed per file, named by its folder (tests/schemes and tests/errors
-	@# share names: coord.pcs, ranges.pcs, ...)
-	for d in examples tests/schemes tests/errors; do for f in $$d/*.pcs; do \
-	  cp "$$f" "build-fuzz/corpus/$$(echo $$d | tr / _)_$$(basename $$f)"; done; done
-	cp tests/fuzz/eval_seeds/* build-fuzz/corpus_eval/
-	@# findings of earlier campaigns, replayed first (tests/fuzz/regressions/)
-	build-fuzz/fuzz_derive -timeout=120 -rss_limit_mb=4096 tests/fuzz/regressions/*
-	build-fuzz/fuzz_derive $(FUZZ_FLAGS) -max_len=4096 build-fuzz/corpus
-	build-fuzz/fuzz_eval_args $(FUZZ_FLAGS) -max_len=512 build-fuzz/corpus_eval
+fuzz: fuzz-build
+	FUZZ_RUNS=$(FUZZ_RUNS) FUZZ_SECONDS=$(FUZZ_SECONDS) \
+	  tests/fuzz/campaign.sh $(FUZZ_TARGETS)
 
 # the independent derivations (SymPy, Maxima) where they are installed
 oracle: $(B)/pointcalc
@@ -261,5 +258,5 @@ flint-static:
 clean:
 	rm -rf build build-asan build-tsan build-fuzz
 
-.PHONY: all tests check check-fast lint oracle asan tsan valgrind fuzz bench figures format clean flint-static
+.PHONY: all tests check check-fast lint oracle asan tsan valgrind fuzz fuzz-build bench figures format clean flint-static
 -include $(shell find $(B) -name '*.d' 2>/dev/null)

@@ -10,6 +10,7 @@
 #include "base/budget.h"
 
 #include <signal.h>
+#include <time.h>
 
 #include "base/numfmt.h"
 
@@ -46,6 +47,40 @@ void budget_where(const Source **src, Span *span)
     const Where *w = &slots[cur];
     *src = w->src;
     *span = w->span;
+}
+
+static _Thread_local double deadline_at, deadline_s, derive_at;
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void budget_deadline_set(double seconds)
+{
+    deadline_s = seconds > 0 ? seconds : 0;
+    deadline_at = seconds > 0 ? now_seconds() + seconds : 0;
+}
+
+int budget_late(void)
+{
+    if (deadline_at == 0 && derive_at == 0)
+        return 0;
+    double now = now_seconds();
+    return (deadline_at > 0 && now > deadline_at) ||
+           (derive_at > 0 && now > derive_at);
+}
+
+void budget_derive_until(double at)
+{
+    derive_at = at > 0 ? at : 0;
+}
+
+double budget_deadline_seconds(void)
+{
+    return deadline_s;
 }
 
 void budget_format_seconds(char *buf, size_t cap, double s)

@@ -43,6 +43,26 @@ void budget_where(const Source **src, Span *span);
 void budget_phase(const char *phase);
 const char *budget_phase_now(void);
 
+/* The time budget of this thread's work after the derivation, for a
+ * library caller that has no timer of its own (the C API, the fuzz
+ * targets): budget_deadline_set(s) gives the work from now on s seconds
+ * (0: none); budget_late() is 1 once they have passed.  The passes that
+ * recurse or loop over terms (printing, lowering, writing C) check it at
+ * each step and stop: lowering and writing with a located error ("the time
+ * budget of S ran out while lowering this"), printing by abandoning its
+ * search for shorter forms, so that what it writes is bounded too (a
+ * caller that set the deadline then discards it).  budget_deadline_seconds
+ * is the s given, for the message.  Per thread; the command line, which
+ * has its timer, sets none. */
+void budget_deadline_set(double seconds);
+int budget_late(void);
+double budget_deadline_seconds(void);
+/* The derivation's own deadline, for the loops below it that have no
+ * Deriver to ask (meet_ff.c): derive_source_ex sets it (CLOCK_MONOTONIC
+ * seconds, 0: none) for its duration and clears it; budget_late() is 1
+ * past it too. */
+void budget_derive_until(double at);
+
 /* "60 s", "2 GiB", "512 MiB": the budgets as the messages write them */
 void budget_format_seconds(char *buf, size_t cap, double s);
 void budget_format_bytes(char *buf, size_t cap, size_t b);

@@ -18,7 +18,9 @@
  */
 #include "codegen/lower.h"
 
+#include "base/budget.h"
 #include "base/mem.h"
+#include "base/stack.h"
 #include "codegen/collapse.h"
 #include "compiler/algebra/kernel.h"
 
@@ -46,7 +48,16 @@ typedef struct Lower {
     unsigned char *used; // per kernel: the current output uses it
     slong shift_var;     // horner reads this param as shift_reg (the
     int shift_reg;       // shifted form below), or -1: none
+    int stop;            // gave up: 1 the deadline (budget_late), 2 the stack
 } Lower;
+
+/* 1 when lowering must stop (sets L->stop): each recursive step asks */
+static int lower_stopped(Lower *L)
+{
+    if (!L->stop)
+        L->stop = stack_low() ? 2 : budget_late() ? 1 : 0;
+    return L->stop != 0;
+}
 
 static int kernel_reg(Lower *L, slong var);
 
@@ -416,6 +427,8 @@ static int horner_shifted(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
 static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
 {
     const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
+    if (lower_stopped(L))
+        return plan_const(L->p, 0);
     if (fmpz_mpoly_is_fmpz(P, ctx)) {
         fmpz_t c;
         fmpq_t q;
@@ -466,6 +479,8 @@ static int horner(Lower *L, const fmpz_mpoly_t P, const fmpq_t scale)
 static void factor_poly(Lower *L, Factored *F, const fmpz_mpoly_t P)
 {
     const fmpz_mpoly_ctx_struct *ctx = L->r->ctx;
+    if (lower_stopped(L))
+        return;
     fmpq_t one;
     fmpq_init(one);
     fmpq_one(one);
@@ -640,6 +655,8 @@ static int kernel_reg(Lower *L, slong var)
     slong i = var - L->K->first;
     const Kernel *k = &L->K->k[i];
     L->used[i] = 1;
+    if (lower_stopped(L))
+        return plan_const(L->p, 0);
     if (L->kreg[i] >= 0) {
         /* lowered for an earlier output: the kernels inside its argument
          * are used by this one too (their flags) */
@@ -853,6 +870,32 @@ static int uses_atoms(const Lower *L, const RatFunStruct *x)
     return found;
 }
 
+/* output out's error: lowering gave up, or a coefficient is no double */
+static void lower_error(const Lower *L, const Derived *d,
+                        const DerivedOutput *out, FILE *err)
+{
+    char secs[48];
+    budget_format_seconds(secs, sizeof secs, budget_deadline_seconds());
+    if (L->stop)
+        derived_error(d, err, out->span,
+                      L->stop == 2 ? "%s"
+                                   : "the time budget of %s ran out while "
+                                     "lowering this to numbers; raise it "
+                                     "with --max-seconds",
+                      L->stop == 2 ? STACK_MESSAGE : secs);
+    else if (L->error != LOWER_OK)
+        derived_error(d, err, out->span,
+                      L->error == LOWER_OVERFLOW
+                          ? "%s cannot be evaluated in double precision: "
+                            "scaled to integer coefficients, its equation "
+                            "has a coefficient of about 10^%ld, beyond the "
+                            "largest double"
+                          : "%s cannot be evaluated in double precision: a "
+                            "coefficient of its equation (about 10^%ld) is "
+                            "below the smallest double and would be 0",
+                      out->name, (long)L->error_exp10);
+}
+
 Plan *lower_derived(const Derived *d, FILE *err)
 {
     Lower L;
@@ -865,6 +908,7 @@ Plan *lower_derived(const Derived *d, FILE *err)
     slong nk = L.K ? L.K->n : 0;
     L.shift_var = -1;
     L.shift_reg = -1;
+    L.stop = 0;
     L.kreg = pc_xmalloc(sizeof(int) * (size_t)(nk ? nk : 1));
     L.kbad = pc_xmalloc(sizeof(int) * (size_t)(nk ? nk : 1));
     L.used = pc_xcalloc((size_t)(nk ? nk : 1), 1);
@@ -931,20 +975,10 @@ Plan *lower_derived(const Derived *d, FILE *err)
             }
             pc_free(added);
             bad = bound_flags(&L, d, out, bad);
-            if (L.error != LOWER_OK)
-                derived_error(
-                    d, err, out->span,
-                    L.error == LOWER_OVERFLOW
-                        ? "%s cannot be evaluated in double precision: "
-                          "scaled to integer coefficients, its equation has "
-                          "a coefficient of about 10^%ld, beyond the largest "
-                          "double"
-                        : "%s cannot be evaluated in double precision: a "
-                          "coefficient of its equation (about 10^%ld) is "
-                          "below the smallest double and would be 0",
-                    out->name, (long)L.error_exp10);
+            lower_error(&L, d, out, err);
         }
-        if (atoms || degree < 0 || degree > DEGREE_MAX || L.error != LOWER_OK) {
+        if (atoms || degree < 0 || degree > DEGREE_MAX || L.error != LOWER_OK ||
+            L.stop) {
             pc_free(ws);
             pc_free(point);
             pc_free(reg);

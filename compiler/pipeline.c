@@ -110,6 +110,7 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
 {
     Compilation c;
     compilation_init(&c, filename, text, len, err, opt);
+    budget_derive_until(opt->max_seconds > 0 ? c.start + opt->max_seconds : 0);
     budget_phase("lexing and parsing the scheme");
     budget_statement(&c.src, BUDGET_WHOLE_FILE);
     c.scheme = parse_scheme(&c.src, &c.arena, &c.diag);
@@ -143,5 +144,6 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
         }
         deriver_clear(&D);
     }
+    budget_derive_until(0);
     return compilation_finish(&c, nerrors);
 }

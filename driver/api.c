@@ -16,6 +16,8 @@
 
 #include <flint/flint.h>
 
+#include "base/budget.h"
+#include "base/diag.h"
 #include "base/mem.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
@@ -26,7 +28,9 @@
 #include "runtime/natural.h"
 
 struct pc_scheme {
-    Derived *d; // owned
+    Derived *d;         // owned
+    double max_seconds; // pc_options.max_seconds: also each pc_compile's and
+                        // pc_emit_c's budget (budget_deadline_set)
 };
 
 struct pc_plan {
@@ -42,7 +46,8 @@ static char *copy_str(const char *s)
 }
 
 /* wraps d; the captured diagnostics go to *diagnostics on failure */
-static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
+static pc_scheme *wrap(Derived *d, double max_seconds, char *msg,
+                       char **diagnostics)
 {
     if (diagnostics && !d) {
         *diagnostics = mem_disown(msg);
@@ -59,6 +64,7 @@ static pc_scheme *wrap(Derived *d, char *msg, char **diagnostics)
         return NULL;
     }
     s->d = d;
+    s->max_seconds = max_seconds;
     return s;
 }
 
@@ -84,7 +90,7 @@ pc_scheme *pc_scheme_parse_opts(const char *name, const char *text, size_t len,
     Derived *d =
         derive_source_ex(name ? name : "<string>", text, len, m, NULL, &o);
     pc_xclose_memstream(m);
-    return wrap(d, msg, diagnostics);
+    return wrap(d, o.max_seconds, msg, diagnostics);
 }
 
 pc_scheme *pc_scheme_parse(const char *name, const char *text, size_t len,
@@ -102,7 +108,7 @@ pc_scheme *pc_scheme_load_opts(const char *path, const pc_options *opt,
     FILE *m = pc_xopen_memstream(&msg, &mlen);
     Derived *d = derive_file_ex(path, m, NULL, &o);
     pc_xclose_memstream(m);
-    return wrap(d, msg, diagnostics);
+    return wrap(d, o.max_seconds, msg, diagnostics);
 }
 
 pc_scheme *pc_scheme_load(const char *path, char **diagnostics)
@@ -246,7 +252,9 @@ pc_plan *pc_compile(const pc_scheme *s, char **diagnostics)
     char *msg = NULL;
     size_t mlen = 0;
     FILE *m = pc_xopen_memstream(&msg, &mlen);
+    budget_deadline_set(s->max_seconds);
     Plan *p = lower_derived(s->d, m);
+    budget_deadline_set(0);
     hand_over(m, &msg, p != NULL, diagnostics);
     if (!p)
         return NULL;
@@ -318,6 +326,7 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
     size_t mlen = 0;
     FILE *m = pc_xopen_memstream(&msg, &mlen);
     Plan *p = NULL;
+    budget_deadline_set(s->max_seconds);
     if (prefix && !emit_c_valid_prefix(prefix))
         fprintf(m, "pointcalc: prefix '%s' is not a usable C identifier\n",
                 prefix);
@@ -327,16 +336,29 @@ char *pc_emit_c(const pc_scheme *s, const char *prefix, char **diagnostics)
         plan_free(p);
         p = NULL;
     }
-    hand_over(m, &msg, p != NULL, diagnostics);
-    if (!p)
-        return NULL;
     char *text = NULL;
     size_t len = 0;
-    FILE *c = pc_xopen_memstream(&text, &len);
-    emit_c(c, p, prefix, s->d->filename);
-    pc_xclose_memstream(c);
-    plan_free(p);
-    return mem_disown(text);
+    if (p) {
+        FILE *c = pc_xopen_memstream(&text, &len);
+        emit_c(c, p, prefix, s->d->filename);
+        pc_xclose_memstream(c);
+        plan_free(p);
+    }
+    /* the C is written in one pass, then given up if the budget ran out */
+    if (text && budget_late()) {
+        char secs[48];
+        budget_format_seconds(secs, sizeof secs, s->max_seconds);
+        diag_fput_escaped(m, s->d->filename);
+        fprintf(m,
+                ": error: the time budget of %s ran out while writing the "
+                "C; raise it with --max-seconds\n",
+                secs);
+        pc_free(text);
+        text = NULL;
+    }
+    budget_deadline_set(0);
+    hand_over(m, &msg, text != NULL, diagnostics);
+    return text ? mem_disown(text) : NULL;
 }
 
 void pc_cleanup(void)

@@ -117,6 +117,8 @@ enum {
     KERNEL_EZERO = -12,   // a denominator vanishes by the identities
     KERNEL_EBIG = -13,    // a power or an argument beyond the size limits
     KERNEL_ETIME = -14,   // the time budget ran out inside an operation
+    KERNEL_ESTACK = -15,  // the thread's stack ran low (base/stack.h) in
+                          // a recursion over nested functions
 };
 
 /* intermediate polynomials of the normal form and of substitution stop

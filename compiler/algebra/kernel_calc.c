@@ -14,6 +14,7 @@
 #include <stdlib.h>
 
 #include "base/mem.h"
+#include "base/stack.h"
 
 /* ---- dependence, derivatives ------------------------------------------- */
 
@@ -167,6 +168,8 @@ done:
 int kernel_derivative(Kernels *K, RatFun res, const RatFun x, slong var)
 {
     const Ring *r = K->r;
+    if (stack_low()) /* d sin(sin(...)) recurses through kernel_dk */
+        return KERNEL_ESTACK;
     RatFun acc, part, dk;
     ratfun_init(acc, r);
     ratfun_init(part, r);

@@ -37,6 +37,7 @@
  */
 #include "compiler/algebra/meet_ff.h"
 
+#include "base/budget.h"
 #include "base/check.h"
 
 #include <stdio.h>
@@ -80,10 +81,13 @@ static const fmpz_mpoly_struct *num_at(const PointEq x, slong pt)
     return NULL;
 }
 
-/* 1 when the product a*b could exceed the limit of one intermediate */
+/* 1 when the product a*b could exceed the limit of one intermediate, or
+ * the derivation's time has run out (budget_late: the caller then reports
+ * the time budget, not the size) */
 static int too_big(const fmpz_mpoly_t a, const fmpz_mpoly_t b, const Ring *r)
 {
-    return ratfun_poly_log2_bits_mul(a, b, r) > MEET_MAX_LOG2_BITS;
+    return budget_late() ||
+           ratfun_poly_log2_bits_mul(a, b, r) > MEET_MAX_LOG2_BITS;
 }
 
 /* The minor of rows sel[0..|mask|-1] and the columns in mask (bits index

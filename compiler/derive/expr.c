@@ -98,11 +98,12 @@ static int meet_report(Deriver *D, MeetStatus ms, const Node *n, const Node *fa,
                          : "lines in meet() are skew (not coplanar): "
                            "they do not meet");
         break;
-    case MEET_TOO_BIG:
-        diag_error(D->diag, n->span,
-                   "expression too large to compute exactly: an "
-                   "intermediate product of meet() could need more than "
-                   "128 MB of coefficients");
+    case MEET_TOO_BIG: /* or stopped by the time budget (meet_ff.c) */
+        if (!derive_out_of_time(D, n))
+            diag_error(D->diag, n->span,
+                       "expression too large to compute exactly: an "
+                       "intermediate product of meet() could need more than "
+                       "128 MB of coefficients");
         break;
     case MEET_FAILED:
         derive_kernel_error(D, nf->err, n, NULL);

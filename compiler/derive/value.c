@@ -16,6 +16,7 @@
 
 #include "base/budget.h"
 #include "base/mem.h"
+#include "base/stack.h"
 
 /* the ring variable of a param, a const or an unknown scalar */
 slong derive_scalar_var(const Deriver *D, const Sym *s)
@@ -264,6 +265,9 @@ int derive_kernel_error_at(Deriver *D, int rc, Span at, Span arg)
             diag_error(D->diag, at,
                        "the time budget ran out while "
                        "deriving this");
+        break;
+    case KERNEL_ESTACK:
+        diag_error(D->diag, at, "%s", STACK_MESSAGE);
         break;
     case KERNEL_EBIG:
         diag_error(D->diag, at,

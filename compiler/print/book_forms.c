@@ -22,6 +22,7 @@
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_vec.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "compiler/algebra/polyfactor.h"
 #include "compiler/algebra/ring.h"
@@ -465,7 +466,9 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     size_t blen = (size_t)-1;
     *c->work += len;
     if (len < 2)
-        return best; /* a monomial: expanded is factored */
+        return best;   /* a monomial: expanded is factored */
+    if (budget_late()) /* the caller's deadline (budget.h): no search */
+        return best;
     if (depth < CHEAP_FACTOR_DEPTH &&
         (depth == 0 ||
          (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED))) {
@@ -479,7 +482,8 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     }
     if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
         return best;
-    for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK; v++) {
+    for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK && !budget_late();
+         v++) {
         if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
             continue;
         *c->work += 2 * len;

@@ -48,7 +48,7 @@ typedef struct PTerm {
 } PTerm;
 
 struct PSum {
-    slong n;
+    slong n, alloc; // alloc: the terms t has room for (it grows by doubling)
     PTerm *t;
     fmpz_mpoly_t poly; // what the sum is, up to sign (for the total order)
     int has_param;     // it involves a param

@@ -56,7 +56,11 @@ void book_sum_free(PSum *s, const Ctx *c)
 
 PTerm *book_sum_push(PSum *s)
 {
-    s->t = pc_xrealloc(s->t, sizeof(PTerm) * (size_t)(s->n + 1));
+    if (s->n == s->alloc) { /* by doubling: an expanded form of 10^5 terms
+                               was quadratic in the copies */
+        s->alloc = s->alloc ? 2 * s->alloc : 4;
+        s->t = pc_xrealloc(s->t, sizeof(PTerm) * (size_t)s->alloc);
+    }
     term_init(&s->t[s->n]);
     return &s->t[s->n++];
 }
@@ -77,7 +81,8 @@ static void term_copy(PTerm *dst, const PTerm *src, const Ctx *c)
 PSum *book_sum_copy(const PSum *s, const Ctx *c)
 {
     PSum *r = book_sum_new(c);
-    r->t = pc_xmalloc(sizeof(PTerm) * (size_t)(s->n ? s->n : 1));
+    r->alloc = s->n ? s->n : 1;
+    r->t = pc_xmalloc(sizeof(PTerm) * (size_t)r->alloc);
     for (slong i = 0; i < s->n; i++) {
         term_init(&r->t[i]);
         term_copy(&r->t[i], &s->t[i], c);

@@ -18,6 +18,7 @@
 
 #include "base/budget.h"
 #include "base/mem.h"
+#include "base/stack.h"
 #include "base/strbuf.h"
 #include "compiler/print/absform.h"
 #include "compiler/print/book.h"
@@ -291,7 +292,9 @@ static char *weight_text(const RatFun w, const Ring *r,
 static char *weight_k(const RatFun w, const Ring *r, const Kernels *K,
                       const FormatShare *share)
 {
-    if (!absform_any(K))
+    /* it recurses into nested functions' arguments: where the stack runs
+     * low (stack.h), the weight as it is, with sign() (equal, and short) */
+    if (!absform_any(K) || stack_low())
         return weight_text(w, r, share);
     size_t nv = (size_t)(r->nvars ? r->nvars : 1);
     unsigned char *mask = pc_xcalloc(nv, 1);

@@ -134,6 +134,7 @@ static int write_outputs(const EmitArgs *a, const Plan *p, const char *file,
         emit_c_header_ex(m, p, a->prefix, file, a->functions);
         pc_xclose_memstream(m);
     }
+    budget_disarm(); /* the C is made: writing the files is not cut off */
     /* both temporaries before either rename: a failure leaves neither */
     OutFile f[2] = {{a->hpath, htext, hlen}, {a->cpath, ctext, clen}};
     int rc = a->hpath ? outfile_write_all(f, 2, out, err)
@@ -163,8 +164,10 @@ static int emit(const EmitArgs *a, const char *file, FILE *out, FILE *err)
     Derived *d = NULL;
     int rc;
     Plan *p = cli_plan_file(file, &a->budget, err, &rc, &d);
-    if (!p)
+    if (!p) {
+        budget_disarm();
         return rc;
+    }
     if (!a->dump && emit_c_check(p, d, a->prefix, err) != 0)
         rc = 1;
     if (!rc)
@@ -174,6 +177,7 @@ static int emit(const EmitArgs *a, const char *file, FILE *out, FILE *err)
     derived_free(d); /* the C is written from the Plan alone */
     if (!rc)
         rc = write_outputs(a, p, file, out, err);
+    budget_disarm();
     plan_free(p);
     return rc;
 }

@@ -308,6 +308,7 @@ int cli_eval(int argc, char **argv, FILE *out, FILE *err)
     eval_args_init(&o.args);
     int rc = args_parse(argc, argv, o.usage, &bo, &file, eval_option, &o, err);
     Plan *p = rc ? NULL : cli_plan_file(file, &bo, err, &rc, NULL);
+    budget_disarm(); /* evaluation takes what the grid asks for */
     if (p) {
         EvalSetup s;
         rc = eval_setup(&s, &o.args, p, o.usage, err);

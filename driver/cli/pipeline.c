@@ -51,7 +51,9 @@ Plan *cli_plan_file(const char *file, const BudgetOptions *b, FILE *err,
     Derived *d = derive_file_ex(file, err, NULL, &opt);
     cli_mark_file("lowering the equations to numbers"); /* at each output */
     Plan *p = d ? lower_derived(d, err) : NULL;
-    budget_disarm(); /* evaluation takes what the grid asks for */
+    /* the budget stays armed (the caller disarms it: eval before it
+     * evaluates, which takes what the grid asks for; emit-c once the C is
+     * made, before the files are written) */
     cli_mark_file("writing the result");
     *rc = p ? 0 : !d && bad_define ? 2 : 1;
     if (p && derived)

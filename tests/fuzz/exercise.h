@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "base/budget.h"
 #include "codegen/emit_c.h"
 #include "codegen/lower.h"
 #include "compiler/analyze/analyze.h"
@@ -17,6 +18,18 @@
 #include "compiler/print/format.h"
 #include "runtime/eval.h"
 #include "runtime/plot.h"
+
+/* The work budget of one input of the fuzz targets and test_fuzz: the
+ * derivation's (DeriveOptions.max_seconds) and the back ends'
+ * (budget_deadline_set: printing, lowering and the C stop at their next
+ * step once it has passed).  An input past either is abandoned cleanly,
+ * with the budget's error; test_budget.c tests that it is. */
+#ifndef FUZZ_DERIVE_SECONDS
+#define FUZZ_DERIVE_SECONDS 1.0
+#endif
+#ifndef FUZZ_BACKEND_SECONDS
+#define FUZZ_BACKEND_SECONDS 1.0
+#endif
 
 /* the largest total degree of d's outputs' equations */
 static inline slong exercise_degree(const Derived *d)
@@ -75,6 +88,25 @@ static inline void exercise_analyze(FILE *m, const Derived *d)
     free(given);
 }
 
+/* what the light fuzz target does with d (fuzz_light.c): the text printer,
+ * lowering and the C, within FUZZ_BACKEND_SECONDS */
+static inline void exercise_light(const Derived *d)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    budget_deadline_set(FUZZ_BACKEND_SECONDS);
+    format_derived(m, d, FMT_TEXT, -1);
+    Plan *p = lower_derived(d, m);
+    if (p) {
+        emit_c(m, p, NULL, d->filename);
+        plan_free(p);
+    }
+    budget_deadline_set(0);
+    fclose(m);
+    free(text);
+}
+
 /* formats d three ways (and relative to its first point), lowers it, emits
  * C and a header, evaluates every output at a few samples in 2D, and plots
  * the point outputs (a small sample budget) */
@@ -83,6 +115,7 @@ static inline void exercise_backends(const Derived *d)
     char *text = NULL;
     size_t len = 0;
     FILE *m = open_memstream(&text, &len);
+    budget_deadline_set(FUZZ_BACKEND_SECONDS);
     format_derived(m, d, FMT_TEXT, -1);
     format_derived(m, d, FMT_LATEX, -1);
     format_derived(m, d, FMT_JSON, -1);
@@ -153,6 +186,7 @@ static inline void exercise_backends(const Derived *d)
         plan_free(p);
     }
     exercise_analyze(m, d);
+    budget_deadline_set(0);
     fclose(m);
     free(text);
 }

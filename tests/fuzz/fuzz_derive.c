@@ -3,7 +3,10 @@
  * exact derivation, then every back end: tests/fuzz/exercise.h).  `make fuzz`
  * builds it with clang and runs it on the example corpus; any crash, sanitizer
  * report or inconsistent result (a NULL derivation without an error, or an
- * error with a derivation) is a bug.
+ * error with a derivation) is a bug.  Each input has a work budget
+ * (FUZZ_DERIVE_SECONDS for the derivation, FUZZ_BACKEND_SECONDS for the
+ * back ends, base/budget.h): an input past it is abandoned with the
+ * budget's error.  fuzz_light.c is the lighter target beside it.
  */
 #include <stddef.h>
 #include <stdint.h>
@@ -17,8 +20,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     int nerr = -1;
-    Derived *d =
-        derive_source("fuzz.pcs", (const char *)data, size, NULL, &nerr);
+    DeriveOptions opt = {.max_seconds = FUZZ_DERIVE_SECONDS};
+    Derived *d = derive_source_ex("fuzz.pcs", (const char *)data, size, NULL,
+                                  &nerr, &opt);
     if ((d != NULL) != (nerr == 0))
         abort();
     if (d)

@@ -18,7 +18,7 @@
  *                          thread_main (test_api_thread_cleanup)
  *   pc_scheme_load         test_api_load (examples/desargues_arc.pcs, a
  *                          missing file)
- *   pc_scheme_parse_opts   test_api_options
+ *   pc_scheme_parse_opts   test_api_options, test_api_budget_after_derive
  *   pc_scheme_load_opts    test_api_options
  *   pc_scheme_free         every test that makes a scheme (and NULL)
  *   pc_scheme_name         test_api_names_and_counts, test_api_load
@@ -62,6 +62,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "libpointcalc.h"
@@ -636,6 +637,102 @@ static void test_api_thread_cleanup(void **state)
     assert_close(res, 4);
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* 40 outputs that derive in milliseconds and lower for much longer
+ * (factoring 40 weights of degree about 60) */
+static char *slow_to_lower(void)
+{
+    char *text = malloc(4096), *p = text;
+    p += sprintf(p, "point A, B\nparam t\n");
+    for (int i = 1; i <= 40; i++)
+        p += sprintf(p, "M%d = along(A, B, (t + %d)^%d + t^3)\n", i, i,
+                     60 + i % 7);
+    p += sprintf(p, "output M1");
+    for (int i = 2; i <= 40; i++)
+        p += sprintf(p, ", M%d", i);
+    sprintf(p, "\n");
+    return text;
+}
+
+/* pc_options.max_seconds bounds pc_compile and pc_emit_c too: with a
+ * budget between the derivation's time and the lowering's (both measured
+ * here first, so the test holds on a slow machine and under valgrind),
+ * the scheme derives, and both calls stop with the located budget error,
+ * well before lowering would have ended */
+static void test_api_budget_after_derive(void **state)
+{
+    (void)state;
+    char *text = slow_to_lower(), *diag = NULL;
+    pc_options big = {.max_seconds = 600};
+    double t0 = now_s();
+    pc_scheme *s =
+        pc_scheme_parse_opts("budget.pcs", text, strlen(text), &big, &diag);
+    double t1 = now_s();
+    assert_non_null(s);
+    pc_plan *p = pc_compile(s, &diag);
+    double t2 = now_s();
+    assert_non_null(p);
+    pc_plan_free(p);
+    pc_scheme_free(s);
+    double derive = t1 - t0, lower = t2 - t1;
+    if (lower < 20 * derive)
+        skip(); /* too close to tell apart on this machine */
+    pc_options o = {.max_seconds = sqrt(derive * lower)};
+    s = pc_scheme_parse_opts("budget.pcs", text, strlen(text), &o, &diag);
+    if (!s)
+        fail_msg("%s", diag);
+    for (int emit = 0; emit < 2; emit++) {
+        double t3 = now_s();
+        char *c = emit ? pc_emit_c(s, NULL, &diag) : NULL;
+        p = emit ? NULL : pc_compile(s, &diag);
+        assert_true(now_s() - t3 < lower / 2);
+        assert_null(c);
+        assert_null(p);
+        assert_non_null(diag);
+        assert_true(strncmp(diag, "budget.pcs:", 11) == 0);
+        assert_non_null(strstr(diag, ": error: the time budget of "));
+        assert_non_null(strstr(diag, " s ran out while lowering this to "
+                                     "numbers; raise it with --max-seconds\n"));
+        free(diag);
+    }
+    pc_scheme_free(s);
+    free(text);
+}
+
+/* the time budget inside meet(): a meet whose fraction-free products
+ * each pass the size guard but add up to seconds (tests/fuzz/regressions/
+ * timeout-meet-big-result.pcs: 6 s natively, 111 s under ASan with a
+ * budget of 0.25 s) stops at the next product past the budget, at the
+ * meet (the library has no timer: the meet's loops read the clock) */
+static void test_api_budget_inside_meet(void **state)
+{
+    (void)state;
+    const char *text = "point A, B, C\nparam t, u\nconst k, h\n"
+                       "a = (t + u + k + h)^30\nb = (t / u + k - h)^40\n"
+                       "M = meet(line(A, along(B, C, a)), "
+                       "line(B, along(C, A, b)))\n";
+    char *diag = NULL;
+    pc_options o = {.max_seconds = 0.25};
+    double t0 = now_s();
+    pc_scheme *s =
+        pc_scheme_parse_opts("meet.pcs", text, strlen(text), &o, &diag);
+    double took = now_s() - t0;
+    assert_null(s);
+    assert_non_null(diag);
+    const char *want = "meet.pcs:6:5: error: the time budget of 0.25 s ran "
+                       "out while deriving this; raise it with --max-seconds\n";
+    assert_true(strncmp(diag, want, strlen(want)) == 0);
+    free(diag);
+    if (!getenv("PC_VALGRIND")) /* one product under memcheck takes long */
+        assert_true(took < 4);
+}
+
 static int teardown_group(void **state)
 {
     (void)state;
@@ -659,6 +756,8 @@ int main(void)
         cmocka_unit_test(test_api_emit_c),
         cmocka_unit_test(test_api_options),
         cmocka_unit_test(test_api_thread_cleanup),
+        cmocka_unit_test(test_api_budget_after_derive),
+        cmocka_unit_test(test_api_budget_inside_meet),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }

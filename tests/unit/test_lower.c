@@ -12,7 +12,8 @@
  * the derivation rested on, docs/eval.md), the lowering errors with their
  * exact located messages (a coefficient beyond or below the doubles, a
  * degree above 2^24, an unsolved unknown scalar), and lower_q_to_double's
- * rounding (to nearest, ties to even, subnormals included).
+ * rounding (to nearest, ties to even, subnormals included), and that
+ * lowering stops at the thread's deadline (budget.h) with its error.
  *
  * The trick of most tests: with the base points the unit vectors of
  * R^npoints, coordinate j of a point output is the weight of point j.
@@ -31,12 +32,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <flint/flint.h>
 #include <flint/fmpq.h>
 
+#include "base/budget.h"
 #include "codegen/lower.h"
 #include "compiler/derive.h"
+#include "compiler/print/format.h"
 #include "runtime/eval.h"
 #include "runtime/plan.h"
 
@@ -681,6 +685,70 @@ static int teardown_group(void **state)
     return 0;
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* the thread's deadline (budget.h): what the fuzz targets give each
+ * input after its derivation, and the C API each pc_compile.  40 outputs
+ * that derive in milliseconds and lower for much longer (a factoring each
+ * of degree about 60): with a deadline of an eighth of the lowering's
+ * time (measured here first), lowering gives up at the next recursive
+ * step with the located error and frees what it built (ASan, valgrind),
+ * well before it would have ended; the printer with a deadline already
+ * passed skips its search for short forms and still prints every output */
+static void test_lower_stops_at_the_deadline(void **state)
+{
+    (void)state;
+    char text[4096], *p = text;
+    p += sprintf(p, "point A, B\nparam t\n");
+    for (int i = 1; i <= 40; i++)
+        p += sprintf(p, "M%d = along(A, B, (t + %d)^%d + t^3)\n", i, i,
+                     60 + i % 7);
+    p += sprintf(p, "output M1");
+    for (int i = 2; i <= 40; i++)
+        p += sprintf(p, ", M%d", i);
+    sprintf(p, "\n");
+    int nerr = 0;
+    Derived *d = derive_source("slow.pcs", text, strlen(text), NULL, &nerr);
+    assert_non_null(d);
+    double t0 = now_s();
+    Plan *pl = lower_derived(d, NULL);
+    double full = now_s() - t0;
+    assert_non_null(pl);
+    plan_free(pl);
+    char *err = NULL;
+    size_t len = 0;
+    FILE *m = open_memstream(&err, &len);
+    budget_deadline_set(full / 8);
+    t0 = now_s();
+    pl = lower_derived(d, m);
+    double cut = now_s() - t0;
+    assert_true(budget_late());
+    budget_deadline_set(0);
+    assert_false(budget_late());
+    fclose(m);
+    assert_null(pl);
+    assert_true(cut < full / 2);
+    assert_true(strncmp(err, "slow.pcs:", 9) == 0);
+    assert_non_null(strstr(err, ": error: the time budget of "));
+    assert_non_null(strstr(err, " s ran out while lowering this to numbers; "
+                                "raise it with --max-seconds\n"));
+    free(err);
+    m = open_memstream(&err, &len);
+    budget_deadline_set(1e-9);
+    format_derived(m, d, FMT_TEXT, -1);
+    budget_deadline_set(0);
+    fclose(m);
+    assert_non_null(strstr(err, "M1 = "));
+    assert_non_null(strstr(err, "M40 = "));
+    free(err);
+    derived_free(d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -698,6 +766,7 @@ int main(void)
         cmocka_unit_test(test_lower_refuses_degree_above_2_24),
         cmocka_unit_test(test_lower_refuses_unsolved_unknown_scalar),
         cmocka_unit_test(test_lower_q_to_double_rounds_to_nearest_even),
+        cmocka_unit_test(test_lower_stops_at_the_deadline),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }
