@@ -75,10 +75,13 @@ for t in "$@"; do
     rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' $log | tail -1)
     cov=$(grep -o 'cov: [0-9]* ft: [0-9]*' $log | tail -1)
     echo "$t: ${runs:-?} executions, ${rate:-?} exec/s, ${cov:-no coverage line}"
-    if grep -q 'ERROR: \|Test unit written\|SUMMARY: ' $log; then
-        grep 'ERROR: \|SUMMARY: \|Test unit written' $log
+    # a crash, a leak, a timeout or an out-of-memory is a finding; a
+    # slow unit (written as slow-unit-*) is only reported
+    if grep -q '^==[0-9]*== ERROR: \|^SUMMARY: ' $log; then
+        grep '^==[0-9]*== ERROR: \|^SUMMARY: \|Test unit written' $log
         found=1
     fi
+    grep '^Slowest unit' $log | tail -1 | sed "s/^/$t: /"
 done
 ls $B/artifacts/ 2>/dev/null | sed 's/^/artifact: /'
 exit $found
