@@ -22,6 +22,7 @@
 #include "base/mem.h"
 #include "base/stack.h"
 #include "codegen/collapse.h"
+#include "codegen/lower_int.h"
 #include "compiler/algebra/kernel.h"
 
 #include <math.h>
@@ -589,26 +590,6 @@ static void lower_weights(Lower *L, const RatFunStruct *const *ws, slong n,
     pc_free(den);
 }
 
-/* the PlanFn of a kernel (the same row of base/functions.def), with the
- * root's index q in the bits above 8; -1 for the kernels that are no FN
- * (pi, atan2, the metric atoms: lowered as their own ops) */
-static int plan_fn_of(const Kernel *k)
-{
-    static const int fn_of[KF_COUNT] = {
-#define PC_FUNCTION(ID, name, ar, lang, kern, p, c, latex, dom)                \
-    PC_WHEN(kern)([KF_##ID] = PC_PICK(p)(PLAN_FN_##ID, -1), )
-#include "base/functions.def"
-#undef PC_FUNCTION
-        [KF_DIST] = -1,
-        [KF_COORD] = -1,
-        [KF_NATX] = -1,
-        [KF_NATY] = -1,
-    };
-    if (k->fn == KF_ROOT)
-        return PLAN_FN_ROOT | (int)(k->q << 8);
-    return fn_of[k->fn];
-}
-
 /* is x exactly an exp() kernel? */
 static int is_exp_kernel(const Lower *L, const RatFunStruct *x)
 {
@@ -690,22 +671,14 @@ static int kernel_reg(Lower *L, slong var)
                 bad = bad < 0 ? abad : plan_add(L->p, bad, abad);
             reg = plan_atan2(L->p, a, b);
         } else if (k->fn == KF_NATX || k->fn == KF_NATY) {
-            const fmpq *law = kernels_law(L->K, k->q);
-            double kd[KERNEL_LAW_LEN];
-            for (int j = 0; j < KERNEL_LAW_LEN; j++)
-                kd[j] = fmpq_get_d(law + j);
-            reg = plan_natural(L->p, k->fn == KF_NATY, a, kd);
-            /* NaN beyond NAT_MAX_TURNING: a domain error, said as such */
-            int dom = plan_mul(L->p, plan_isnan(L->p, reg),
-                               plan_const(L->p, PLAN_DOMAIN_FLAG));
-            bad = bad < 0 ? dom : plan_add(L->p, bad, dom);
+            reg = lower_natural(L->p, L->K, k, a, &bad);
         } else if (k->fn == KF_ROOT && is_exp_kernel(L, k->arg)) {
             /* exp(m)^(1/q) is computed as exp(m/q): no overflow of exp(m) */
             reg = plan_fn(L->p, PLAN_FN_EXP,
                           plan_mul(L->p, plan_fn_arg(L, k->arg),
                                    plan_const(L->p, 1.0 / (double)k->q)));
         } else {
-            int fn = plan_fn_of(k);
+            int fn = lower_plan_fn(k);
             reg = plan_fn(L->p, fn, a);
             if (plan_fn_has_domain(fn)) {
                 int dom = plan_mul(L->p, plan_domain(L->p, fn, a),
