@@ -12,6 +12,7 @@
 
 #include <stdlib.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "compiler/algebra/linsolve.h"
 #include "compiler/algebra/meet_ff.h"
@@ -199,8 +200,11 @@ MeetStatus construct_meet(PointEq res, const PointEq *a, slong na,
         int done = meet_fraction_free(res, (const PointEq *)gen, na, na + nb,
                                       rows, m, r);
         pc_free(rows);
+        /* a meet that ended past the derivation's deadline is stopped by
+         * it too: one product can take seconds, and the budget would
+         * otherwise depend on where the clock was read (budget.h) */
         if (done != 0)
-            return done > 0 ? MEET_OK : MEET_TOO_BIG;
+            return done > 0 && !budget_late() ? MEET_OK : MEET_TOO_BIG;
     }
     return construct_meet_general(res, a, na, b, nb, r);
 }
