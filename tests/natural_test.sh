@@ -342,5 +342,17 @@ assert len(got) == len(zeros), (got, zeros)
 assert all(abs(x - y) < 1e-9 for x, y in zip(got, zeros)), (got, zeros)
 "
 
+# what people read, written by hand: a law's trailing zero dropped, the
+# circle folded (naty(2s, -1/2) = (1 - cos(-s))/(-1/2)), the LaTeX operator
+printf 'point O, E1, E2\nparam s\nx = natx(s, 1, 2, 0)\ny = naty(2*s, -1/2)\noutput x, y\n' >"$tmp/gold.pcs"
+cat >"$tmp/gold.want" <<'EOF'
+x = natx(s, 1, 2)
+y = -2*(1 - cos(s))
+\[ x = \operatorname{natx}\left(s, 1, 2\right) \]
+\[ y = -2 \left(1 - \cos s\right) \]
+EOF
+{ "$PC" derive "$tmp/gold.pcs"; "$PC" derive "$tmp/gold.pcs" --format latex; } >"$tmp/gold.out"
+check "natx printed: text and LaTeX goldens" diff "$tmp/gold.want" "$tmp/gold.out"
+
 echo "natural_test: $pass passed, $fail failed"
 test $fail -eq 0

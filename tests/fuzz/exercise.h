@@ -7,6 +7,7 @@
 #ifndef PC_TESTS_EXERCISE_H
 #define PC_TESTS_EXERCISE_H
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -75,7 +76,7 @@ static inline void exercise_analyze(FILE *m, const Derived *d)
         xy[2 * i + 1] = (double)(i * i - 1);
         pt[i] = xy + 2 * i;
     }
-    AnSet set = {given, value, 2, pt};
+    AnSet set = {given, value, 2, pt, NULL};
     a = analyze_derived(d, NULL, 0, &set);
     analyze_print_text(m, a);
     analyze_print_json(m, a);
@@ -189,6 +190,24 @@ static inline void exercise_backends(const Derived *d)
     budget_deadline_set(0);
     fclose(m);
     free(text);
+}
+
+/* one fuzz input: derived under FUZZ_DERIVE_SECONDS, a NULL derivation
+ * without an error (or an error with a derivation) aborts, then exercise
+ * runs on what derived (the body of both libFuzzer targets) */
+static inline int fuzz_one_input(const uint8_t *data, size_t size,
+                                 void (*exercise)(const Derived *))
+{
+    int nerr = -1;
+    DeriveOptions opt = {.max_seconds = FUZZ_DERIVE_SECONDS};
+    Derived *d = derive_source_ex("fuzz.pcs", (const char *)data, size, NULL,
+                                  &nerr, &opt);
+    if ((d != NULL) != (nerr == 0))
+        abort();
+    if (d)
+        exercise(d);
+    derived_free(d);
+    return 0;
 }
 
 #endif

@@ -19,14 +19,5 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    int nerr = -1;
-    DeriveOptions opt = {.max_seconds = FUZZ_DERIVE_SECONDS};
-    Derived *d = derive_source_ex("fuzz.pcs", (const char *)data, size, NULL,
-                                  &nerr, &opt);
-    if ((d != NULL) != (nerr == 0))
-        abort();
-    if (d)
-        exercise_backends(d);
-    derived_free(d);
-    return 0;
+    return fuzz_one_input(data, size, exercise_backends);
 }

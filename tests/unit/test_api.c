@@ -62,6 +62,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "tests/unit/slow_lower.h"
 #include <time.h>
 #include <unistd.h>
 
@@ -642,22 +644,6 @@ static double now_s(void)
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* 40 outputs that derive in milliseconds and lower for much longer
- * (factoring 40 weights of degree about 60) */
-static char *slow_to_lower(void)
-{
-    char *text = malloc(4096), *p = text;
-    p += sprintf(p, "point A, B\nparam t\n");
-    for (int i = 1; i <= 40; i++)
-        p += sprintf(p, "M%d = along(A, B, (t + %d)^%d + t^3)\n", i, i,
-                     60 + i % 7);
-    p += sprintf(p, "output M1");
-    for (int i = 2; i <= 40; i++)
-        p += sprintf(p, ", M%d", i);
-    sprintf(p, "\n");
-    return text;
 }
 
 /* pc_options.max_seconds bounds pc_compile and pc_emit_c too: with a

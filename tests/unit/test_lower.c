@@ -43,6 +43,7 @@
 #include "compiler/print/format.h"
 #include "runtime/eval.h"
 #include "runtime/plan.h"
+#include "tests/unit/slow_lower.h"
 
 /* derives text (no error allowed) and lowers it (must succeed) */
 static Plan *lower_text(const char *text)
@@ -703,15 +704,7 @@ static double now_s(void)
 static void test_lower_stops_at_the_deadline(void **state)
 {
     (void)state;
-    char text[4096], *p = text;
-    p += sprintf(p, "point A, B\nparam t\n");
-    for (int i = 1; i <= 40; i++)
-        p += sprintf(p, "M%d = along(A, B, (t + %d)^%d + t^3)\n", i, i,
-                     60 + i % 7);
-    p += sprintf(p, "output M1");
-    for (int i = 2; i <= 40; i++)
-        p += sprintf(p, ", M%d", i);
-    sprintf(p, "\n");
+    char *text = slow_to_lower();
     int nerr = 0;
     Derived *d = derive_source("slow.pcs", text, strlen(text), NULL, &nerr);
     assert_non_null(d);
@@ -747,6 +740,7 @@ static void test_lower_stops_at_the_deadline(void **state)
     assert_non_null(strstr(err, "M40 = "));
     free(err);
     derived_free(d);
+    free(text);
 }
 
 int main(void)
