@@ -37,18 +37,6 @@
 
 extern char **environ;
 
-/* the scheme at path (at most 1 MiB), malloc'ed, or NULL */
-static char *read_scheme(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = malloc(1 << 20);
-    *len = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
-    fclose(f);
-    return buf;
-}
-
 /* CPU milliseconds of this process (one thread: the bench's) */
 static double cpu_now_ms(void)
 {
@@ -158,7 +146,7 @@ static void bench_whole(const char *dir, FILE *sink)
         snprintf(label, sizeof label, "%s%s%s", i < 4 ? ex[i] : "interp",
                  def ? " " : "", def ? def : "");
         size_t len;
-        char *buf = read_scheme(path, &len);
+        char *buf = bench_read_scheme(path, &len);
         if (!buf)
             continue;
         /* rounds of the four in-process columns, rotated, then as many
@@ -235,7 +223,7 @@ int main(int argc, char **argv)
         char path[1024];
         snprintf(path, sizeof path, "%s/%s", dir, names[i]);
         size_t len;
-        char *buf = read_scheme(path, &len);
+        char *buf = bench_read_scheme(path, &len);
         if (!buf)
             continue;
         double t0 = bench_now_ms();

@@ -30,23 +30,12 @@
 static const int ORDERS[] = {3, 4, 6, 8, 12, 24, 48};
 enum { NORD = sizeof ORDERS / sizeof ORDERS[0] };
 
-static char *read_file(const char *path, size_t *len)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    char *buf = malloc(1 << 20);
-    *len = fread(buf, 1, (1 << 20) - 1, f);
-    fclose(f);
-    return buf;
-}
-
 /* median ms of deriving path with define (NULL: none); *spread gets the
  * interquartile range relative to the median */
 static double time_derive(const char *path, const char *define, double *spread)
 {
     size_t len;
-    char *text = read_file(path, &len);
+    char *text = bench_read_scheme(path, &len);
     const char *defs[1] = {define};
     DeriveOptions opt = {
         .max_seconds = 600, .defines = defs, .ndefines = define ? 1 : 0};

@@ -11,6 +11,18 @@
 #include <time.h>
 
 /* wall-clock (monotonic) milliseconds */
+/* the scheme at path (at most 1 MiB), malloc'ed, or NULL */
+static inline char *bench_read_scheme(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return NULL;
+    char *buf = malloc(1 << 20);
+    *len = buf ? fread(buf, 1, (1 << 20) - 1, f) : 0;
+    fclose(f);
+    return buf;
+}
+
 static inline double bench_now_ms(void)
 {
     struct timespec ts;
