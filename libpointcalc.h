@@ -56,7 +56,9 @@ pc_scheme *pc_scheme_load(const char *path, char **diagnostics);
  * budget of S s ran out while deriving this" at the expression it was
  * deriving.  One FLINT operation is not interrupted (the library sets no
  * signal handler), but products whose size estimate is beyond the limits
- * are refused before they start, so none runs for long.  The same budget
+ * are refused before they start, so none runs for long, and a derivation
+ * that ends past the budget fails all the same (at the definition or
+ * output it worked on last).  The same budget
  * bounds each later pc_compile and pc_emit_c of the scheme, counted from
  * the call: past it they return NULL with "the time budget of S s ran out
  * while lowering this to numbers" at the output being lowered (pc_emit_c:

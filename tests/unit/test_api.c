@@ -18,7 +18,8 @@
  *                          thread_main (test_api_thread_cleanup)
  *   pc_scheme_load         test_api_load (examples/desargues_arc.pcs, a
  *                          missing file)
- *   pc_scheme_parse_opts   test_api_options, test_api_budget_after_derive
+ *   pc_scheme_parse_opts   test_api_options, test_api_budget_after_derive,
+ *                          test_api_budget_after_last_check
  *   pc_scheme_load_opts    test_api_options
  *   pc_scheme_free         every test that makes a scheme (and NULL)
  *   pc_scheme_name         test_api_names_and_counts, test_api_load
@@ -719,6 +720,40 @@ static void test_api_budget_inside_meet(void **state)
         assert_true(took < 4);
 }
 
+/* a derivation that ends past its deadline fails even when it never read
+ * the clock there: the clock is read at each node, but the power below is
+ * one FLINT call after the last node.  Its time is measured first (the
+ * faster of two runs); a budget of an eighth of it runs out inside that
+ * call, and the scheme fails with the located time-budget message (it
+ * came back whole before the derivation's last look at the clock) */
+static void test_api_budget_after_last_check(void **state)
+{
+    (void)state;
+    const char *text = "point A, B\nparam t, u\nconst k, h\n"
+                       "M = along(A, B, (t + u + k + h + 1)^40)\n";
+    char *diag = NULL;
+    pc_options big = {.max_seconds = 600};
+    double full = 1e9;
+    for (int i = 0; i < 2; i++) {
+        double t0 = now_s();
+        pc_scheme *s =
+            pc_scheme_parse_opts("pow.pcs", text, strlen(text), &big, &diag);
+        full = fmin(full, now_s() - t0);
+        assert_non_null(s);
+        pc_scheme_free(s);
+    }
+    pc_options o = {.max_seconds = full / 8};
+    pc_scheme *s =
+        pc_scheme_parse_opts("pow.pcs", text, strlen(text), &o, &diag);
+    assert_null(s);
+    assert_non_null(diag);
+    assert_true(strncmp(diag, "pow.pcs:4:", 10) == 0);
+    assert_non_null(strstr(diag, ": error: the time budget of "));
+    assert_non_null(strstr(diag, " s ran out while deriving this; raise it "
+                                 "with --max-seconds\nM = along("));
+    free(diag);
+}
+
 static int teardown_group(void **state)
 {
     (void)state;
@@ -744,6 +779,7 @@ int main(void)
         cmocka_unit_test(test_api_thread_cleanup),
         cmocka_unit_test(test_api_budget_after_derive),
         cmocka_unit_test(test_api_budget_inside_meet),
+        cmocka_unit_test(test_api_budget_after_last_check),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }
