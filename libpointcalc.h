@@ -108,7 +108,11 @@ int pc_find_point(const pc_scheme *s, const char *name);
 /* The weight of base point `point` in output `output` as reduced text
  * ("-(t-1)^3/(2*t^2-2*t+1)" or an expanded equivalent; "0" when the point
  * does not occur); for a scalar output pass point = -1 for its value.
- * NULL on a bad index.  free() the result. */
+ * NULL on a bad index, and when writing the text took longer than the
+ * scheme's max_seconds (pc_options), counted from the call: the text is
+ * written in one pass (its time is linear in its length but for
+ * coefficients of millions of digits: 10^7 digits take seconds), read
+ * against the clock when it ends.  free() the result. */
 char *pc_weight_str(const pc_scheme *s, int output, int point);
 
 /* Lowers every output to one numeric plan.  NULL when an output cannot be

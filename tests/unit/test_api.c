@@ -36,7 +36,7 @@
  *   pc_find_output         test_api_names_and_counts, test_api_load
  *   pc_find_point          test_api_names_and_counts, test_api_load
  *   pc_weight_str          test_api_weight_str, test_api_load,
- *                          test_api_options
+ *                          test_api_options, test_api_weight_str_budget
  *   pc_compile             test_api_compile_and_eval, test_api_eval_statuses,
  *                          test_api_eval_einval, test_api_compile_errors,
  *                          thread_main
@@ -754,6 +754,46 @@ static void test_api_budget_after_last_check(void **state)
     free(diag);
 }
 
+/* pc_weight_str under the scheme's budget, counted from the call: a weight
+ * with four coefficients of a million digits (x = 10^(10^6): derived in
+ * tens of milliseconds, written in about a second).  Both are timed
+ * first; with a budget between them the scheme derives, and the weight's
+ * text, which took longer than the budget, is NULL (FLINT writes it in
+ * one call: the clock is read when it ends) */
+static void test_api_weight_str_budget(void **state)
+{
+    (void)state;
+    if (getenv("PC_VALGRIND")) /* a second of GMP is minutes there */
+        skip();
+    const char *text = "point A, B\nparam t\nx = 1e1000^1000\n"
+                       "M = along(A, B, x*(t + t^2 + t^3 + t^4))\n";
+    char *diag = NULL;
+    pc_options big = {.max_seconds = 600};
+    double t0 = now_s();
+    pc_scheme *s =
+        pc_scheme_parse_opts("w.pcs", text, strlen(text), &big, &diag);
+    double t1 = now_s();
+    assert_non_null(s);
+    char *w = pc_weight_str(s, 0, 1);
+    double t2 = now_s();
+    assert_non_null(w); /* 10^(10^6)*t^4 + ... + 10^(10^6)*t */
+    assert_int_equal(strlen(w), 4 * 1000001 + strlen("*t^4+*t^3+*t^2+*t"));
+    assert_true(strncmp(w, "10000", 5) == 0);
+    assert_string_equal(w + strlen(w) - 4, "00*t");
+    free(w);
+    pc_scheme_free(s);
+    double derive = t1 - t0, print = t2 - t1;
+    if (print < 8 * derive)
+        skip(); /* too close to tell apart on this machine */
+    pc_options o = {.max_seconds = sqrt(derive * print)};
+    s = pc_scheme_parse_opts("w.pcs", text, strlen(text), &o, &diag);
+    if (!s)
+        fail_msg("%s", diag);
+    assert_null(pc_weight_str(s, 0, 1));
+    assert_null(pc_weight_str(s, 0, 0));
+    pc_scheme_free(s);
+}
+
 static int teardown_group(void **state)
 {
     (void)state;
@@ -780,6 +820,7 @@ int main(void)
         cmocka_unit_test(test_api_budget_after_derive),
         cmocka_unit_test(test_api_budget_inside_meet),
         cmocka_unit_test(test_api_budget_after_last_check),
+        cmocka_unit_test(test_api_weight_str_budget),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }

@@ -10,12 +10,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <cmocka.h>
 
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 
+#include "base/budget.h"
 #include "compiler/algebra/ring.h"
 #include "compiler/print/book.h"
 #include "compiler/print/format.h"
@@ -923,6 +925,69 @@ static void test_bar_in_sum(void **state)
            "z = (1 - t + k*t^2)^2\nw = -t^2/(1 - t)\n");
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* d printed in LaTeX under a deadline of `deadline` s (0: none): the text,
+ * its length in *len, the time in *took, and whether it was late */
+static char *latex_within(const Derived *d, double deadline, size_t *len,
+                          double *took, int *late)
+{
+    char *buf = NULL;
+    FILE *f = open_memstream(&buf, len);
+    budget_deadline_set(deadline);
+    double t0 = now_s();
+    format_derived(f, d, FMT_LATEX, -1);
+    *took = now_s() - t0;
+    *late = budget_late();
+    budget_deadline_set(0);
+    fclose(f);
+    return buf;
+}
+
+/* The printer under the caller's deadline (budget.h).  The derivative of
+ * a tower of 6 functions x_i = sin(x_(i-1)) + cos(i x_(i-1)) derives in
+ * milliseconds and prints 110 KB of LaTeX; choosing each function's
+ * argument rendered it twice per level (2^depth: 10 levels took a minute,
+ * and went on past any deadline).  Timed first: past a deadline of an
+ * eighth of that time, the call returns within half of it, late, its
+ * text cut short ("+ \ldots"); past a deadline that has already passed,
+ * a sum stops after its first term: a few dozen bytes. */
+static void test_deadline(void **state)
+{
+    (void)state;
+    char src[512], *p = src;
+    p += sprintf(p, "point A, B\nparam t\nx0 = t\n");
+    for (int i = 1; i <= 6; i++)
+        p += sprintf(p, "x%d = sin(x%d) + cos(%d*x%d)\n", i, i - 1, i, i - 1);
+    sprintf(p, "y = diff(x6, t)\nM = along(A, B, y)\n");
+    Derived *d = derive_source("g.pcs", src, strlen(src), stderr, NULL);
+    assert_non_null(d);
+    size_t len, full_len;
+    double took, full;
+    int late;
+    char *text = latex_within(d, 0, &full_len, &full, &late);
+    assert_false(late);
+    assert_true(full_len > 100000);
+    assert_null(strstr(text, "\\ldots"));
+    free(text);
+    text = latex_within(d, full / 8, &len, &took, &late);
+    assert_true(late);
+    assert_true(took < full / 2);
+    assert_non_null(strstr(text, " + \\ldots"));
+    free(text);
+    text = latex_within(d, 1e-9, &len, &took, &late);
+    assert_true(late);
+    assert_true(len < 200);
+    assert_non_null(strstr(text, " + \\ldots"));
+    free(text);
+    derived_free(d);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -947,6 +1012,7 @@ int main(void)
         cmocka_unit_test(test_named_scalars),
         cmocka_unit_test(test_latex_break),
         cmocka_unit_test(test_bar_in_sum),
+        cmocka_unit_test(test_deadline),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
