@@ -125,19 +125,12 @@ static char *kernel_arg(const Kernel *k, const char *open, const char *close,
     t.latex = 0;
     t.is_abs = NULL;
     t.mode = 0;
-    /* past the caller's deadline (budget.h): no choice, so no second
-     * rendering, which doubles at each level of nested functions (a
-     * tower of 10 sin(x) + cos(i*x) took a minute in LaTeX): the name as
-     * written, or its LaTeX expanded */
-    if (budget_late() && !c->latex)
+    /* past the caller's deadline (budget.h), which discards the text: the
+     * name as kernel.c wrote it (in LaTeX too), with no rendering, which
+     * doubles at each level of nested functions (a tower of 10 sin(x) +
+     * cos(i*x) took a minute in LaTeX) */
+    if (budget_late())
         return own;
-    if (budget_late()) {
-        pc_free(own);
-        t.latex = 1;
-        StrBuf lb = {0};
-        put_arg(&lb, k->arg, 1, &t);
-        return sb_take(&lb);
-    }
     StrBuf bk = {0};
     put_arg(&bk, k->arg, 0, &t);
     int book = bk.len < strlen(own); /* ties: as kernel.c named it */
