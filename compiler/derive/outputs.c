@@ -239,12 +239,12 @@ void derive_collect_outputs(Deriver *D, Derived *d)
  * so a derivation can end past its deadline without having read the clock
  * there.  Such a derivation fails like one stopped inside, with the
  * located time-budget message at the statement it marked last (the one
- * that ran long, or the last one).  A scheme that already has errors
- * keeps only those. */
+ * that ran long, or the last one).  Failed checks do not keep such a
+ * result (their details may have been printed past the deadline, cut
+ * short: budget.h). */
 void derive_final_deadline(Deriver *D)
 {
-    if (D->expired || D->deadline == 0 || D->diag->nerrors != 0 ||
-        derive_now_seconds() <= D->deadline)
+    if (D->expired || D->deadline == 0 || derive_now_seconds() <= D->deadline)
         return;
     const Source *src;
     Span span;
