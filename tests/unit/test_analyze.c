@@ -477,6 +477,13 @@ static void test_budget(void **state)
     assert_non_null(strstr(msg, "M1: not analysed: " AN_LATE "\n"));
     assert_null(strstr(msg, "M2"));
     free(msg);
+    m = open_memstream(&msg, &len); /* the other reports of it */
+    analyze_print_json(m, an);
+    analyze_print_latex(m, an);
+    taken(m, &msg);
+    assert_non_null(strstr(msg, "\"skipped\": \"" AN_LATE "\""));
+    assert_null(strstr(msg, "M2"));
+    free(msg);
     analysis_free(an);
     derived_free(d);
     free(text);
