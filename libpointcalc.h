@@ -56,7 +56,9 @@ pc_scheme *pc_scheme_load(const char *path, char **diagnostics);
  * budget of S s ran out while deriving this" at the expression it was
  * deriving.  One FLINT operation is not interrupted (the library sets no
  * signal handler), but products whose size estimate is beyond the limits
- * are refused before they start, so none runs for long.  The same budget
+ * are refused before they start, so none runs for long, and a derivation
+ * that ends past the budget fails all the same (at the definition or
+ * output it worked on last).  The same budget
  * bounds each later pc_compile and pc_emit_c of the scheme, counted from
  * the call: past it they return NULL with "the time budget of S s ran out
  * while lowering this to numbers" at the output being lowered (pc_emit_c:
@@ -106,7 +108,11 @@ int pc_find_point(const pc_scheme *s, const char *name);
 /* The weight of base point `point` in output `output` as reduced text
  * ("-(t-1)^3/(2*t^2-2*t+1)" or an expanded equivalent; "0" when the point
  * does not occur); for a scalar output pass point = -1 for its value.
- * NULL on a bad index.  free() the result. */
+ * NULL on a bad index, and when writing the text took longer than the
+ * scheme's max_seconds (pc_options), counted from the call: the text is
+ * written in one pass (its time is linear in its length but for
+ * coefficients of millions of digits: 10^7 digits take seconds), read
+ * against the clock when it ends.  free() the result. */
 char *pc_weight_str(const pc_scheme *s, int output, int point);
 
 /* Lowers every output to one numeric plan.  NULL when an output cannot be

@@ -50,8 +50,10 @@ const char *budget_phase_now(void);
  * recurse or loop over terms (printing, lowering, writing C) check it at
  * each step and stop: lowering and writing with a located error ("the time
  * budget of S ran out while lowering this"), printing by abandoning its
- * search for shorter forms, so that what it writes is bounded too (a
- * caller that set the deadline then discards it).  budget_deadline_seconds
+ * search for shorter forms and cutting its text short (a sum stops after
+ * its first term: "+ ..."), so that what it writes is bounded too (a
+ * caller that set the deadline then discards it), the analysis
+ * (analyze.h) by leaving the curve it was in.  budget_deadline_seconds
  * is the s given, for the message.  Per thread; the command line, which
  * has its timer, sets none. */
 void budget_deadline_set(double seconds);

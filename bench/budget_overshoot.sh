@@ -3,8 +3,9 @@
 # the command line stops (issue 23): for each phase a reproducer that
 # spends its budget there, run under a --max-seconds and a --max-memory
 # budget; prints the exit status, the phase the message names, the wall
-# clock (with start-up) and the peak RSS (GNU time).  Run it on an idle
-# core (taskset) for numbers that mean something.
+# clock (with start-up) and the peak RSS (GNU time).  Then, when it is
+# built (make bench), bench_overshoot's table of the library's phases.
+# Run it on an idle core (taskset) for numbers that mean something.
 PC=${1:-build/pointcalc}
 T=$(mktemp -d)
 trap 'rm -rf "$T"' EXIT
@@ -33,6 +34,9 @@ w("slowprint.pcs", s)
 s = "point A, B\nparam t\n" + "".join(f"M{i} = along(A, B, (t + {i})^{i % 7 + 40} + t^3)\n" for i in range(1, 301))
 s += "output " + ", ".join(f"M{i}" for i in range(1, 301)) + "\n"
 w("slowlower.pcs", s)
+s = "point A, B, C\nparam t in [0, 1]\n" + "".join(f"M{i} = along(along(A, B, t^{11 + i % 3} + {i}*t - 1), C, (t^{9 + i % 2} + 3*t + {i})/(t^2 + {i}))\n" for i in range(1, 61))
+s += "output " + ", ".join(f"M{i}" for i in range(1, 61)) + "\n"
+w("slowanalyze.pcs", s)
 PY
 run() { # LABEL CMD...: one row
     local label=$1
@@ -69,3 +73,10 @@ run "lowering, time" "$PC" emit-c "$T/slowlower.pcs" --max-seconds 1
 run "lowering, memory" "$PC" emit-c "$T/slowlower.pcs" --max-memory 16M
 run "writing C, time" "$PC" emit-c "$T/diff30.pcs" --max-seconds 1.5
 run "writing C, memory" "$PC" emit-c "$T/diff30.pcs" --max-memory 24M
+run "analysing, time" "$PC" analyze "$T/slowanalyze.pcs" --max-seconds 1
+# the library's phases (no timer: the clock read between steps)
+LIB=$(dirname "$PC")/bench/bench_overshoot
+if [ -x "$LIB" ]; then
+    echo
+    "$LIB"
+fi

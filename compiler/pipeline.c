@@ -142,6 +142,7 @@ Derived *derive_source_ex(const char *filename, const char *text, size_t len,
                 derive_record_steps(&D, c.d, &c.src);
             derive_record_named(&D, c.d, &c.src);
         }
+        derive_final_deadline(&D);
         deriver_clear(&D);
     }
     budget_derive_until(0);

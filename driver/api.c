@@ -227,8 +227,13 @@ char *pc_weight_str(const pc_scheme *s, int output, int point)
             return copy_str("0");
         w = o->w + k;
     }
+    /* one FLINT call per polynomial writes it, not interrupted: the
+     * scheme's budget, counted from the call, is looked at when it ends */
+    budget_deadline_set(s->max_seconds);
     char *f = ratfun_get_str(w, &d->ring);
-    char *r = copy_str(f);
+    int late = budget_late();
+    budget_deadline_set(0);
+    char *r = late ? NULL : copy_str(f);
     flint_free(f);
     return r;
 }

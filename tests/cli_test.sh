@@ -187,6 +187,14 @@ tb=0.2
 check "time budget: exit 1" test $? -eq 1
 check "time budget: nothing on stdout" test ! -s "$tmp/out"
 check "time budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the time budget of $tb s ran out while deriving this; raise it with --max-seconds" "$tmp/err"
+# a derivation whose last exact operation (one power: no clock read
+# inside) ends past the budget fails there, as deriving, at the definition
+# (derive_final_deadline), not later in the printing
+printf 'point A, B\nparam t, u\nconst k, h\nM = along(A, B, (t + u + k + h + 1)^40)\n' >"$tmp/pow40.pcs"
+"$PCB" derive "$tmp/pow40.pcs" --max-seconds 0.001 >"$tmp/out" 2>"$tmp/err"
+check "time budget, one long operation: exit 1" test $? -eq 1
+check "time budget, one long operation: nothing on stdout" test ! -s "$tmp/out"
+check "time budget, one long operation: located, deriving" grep -q "pow40.pcs:4:[0-9]*: error: the time budget of 0.001 s ran out while deriving this; raise it with --max-seconds" "$tmp/err"
 "$PCB" derive "$tmp/chain.pcs" --max-memory 20M >"$tmp/out" 2>"$tmp/err"
 check "memory budget: exit 1" test $? -eq 1
 check "memory budget: located" grep -q "chain.pcs:[0-9]*:[0-9]*: error: the memory budget of 20 MiB ran out while deriving this; raise it with --max-memory" "$tmp/err"

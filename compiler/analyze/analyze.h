@@ -133,7 +133,14 @@ typedef struct Analysis {
                            // with (given, or the generic rule below)
     unsigned char *cgiven; // 1: from AnSet (--set); 0: the generic value
     unsigned char *cused;  // 1: an analysed output depends on it
+    int late;              // 1: the thread's deadline passed (budget_late): the
+    Span late_at;          // analysis stopped at this output or definition (its
+                  // curve skipped, AN_LATE; the curves after it and the
+                  // definitions not analysed)
 } Analysis;
+
+/* AnCurve.skip of a curve left at the deadline */
+#define AN_LATE "the time budget ran out before it was analysed"
 
 /* The value of const k that has none from --set: a generic one, chosen
  * so that nothing special happens there (docs/analyze.md, "Consts"):
@@ -159,9 +166,20 @@ typedef struct AnSet {
  * NULL: every output), and the poles of d's steps when d has them
  * (DeriveOptions.keep_steps), with the consts that set gives (NULL: none)
  * replaced by their values.  Never fails: a curve it cannot analyse says
- * why (AnCurve.skip). */
+ * why (AnCurve.skip).  Past the thread's deadline (base/budget.h, set by
+ * the caller) it stops at the next step (Analysis.late). */
 Analysis *analyze_derived(const Derived *d, const int *sel, int nsel,
                           const AnSet *set);
+/* The same under a time budget of max_seconds (0: none), counted from the
+ * call (budget_deadline_set; the thread has no deadline after it): NULL
+ * when it ran out, after "FILE:LINE:COL: error: the time budget of S s
+ * ran out while analysing this; raise it with --max-seconds" at the
+ * output (or definition) being analysed, written to err (NULL:
+ * nowhere).  Steps are checked, not single FLINT calls: a resultant or a
+ * factorisation that started before the deadline ends first. */
+Analysis *analyze_derived_within(const Derived *d, const int *sel, int nsel,
+                                 const AnSet *set, double max_seconds,
+                                 FILE *err);
 void analysis_free(Analysis *a);
 
 /* the report: text for people, JSON for programs (docs/analyze.md) */

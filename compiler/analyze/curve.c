@@ -3,6 +3,13 @@
  * param (AnPolys), then the invariants of analyze.h read from them, all in
  * Z[t] (fmpz_poly) but the index, a gcd in Z[s, t] (fmpz_mpoly).  The ends
  * are ends.c, the implicit equation implicit.c, the report print.c.
+ *
+ * The thread's deadline (base/budget.h: budget_late) is read between the
+ * steps of a curve and in its loops: past it the curve is left (skipped,
+ * AN_LATE) with the ones after it, and the Analysis says where it stopped
+ * (Analysis.late); analyze_derived_within turns that into a located
+ * error.  One FLINT call (a resultant, a factorisation) is not
+ * interrupted.
  */
 #include "compiler/analyze/analyze.h"
 
@@ -12,6 +19,7 @@
 
 #include <flint/fmpz_mat.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "base/strbuf.h"
 #include "compiler/algebra/kernel.h"
@@ -204,7 +212,7 @@ static slong trace_index(const AnPolys *p)
     fmpz_mpoly_init(f, ctx);
     fmpz_mpoly_set_fmpz_poly(a, p->n + 0, 0, ctx); /* n_0(t) */
     fmpz_mpoly_set_fmpz_poly(b, p->n + 0, 1, ctx); /* n_0(s) */
-    for (slong i = 1; i < p->len; i++) {
+    for (slong i = 1; i < p->len && !budget_late(); i++) {
         fmpz_mpoly_set_fmpz_poly(c, p->n + i, 0, ctx);
         fmpz_mpoly_set_fmpz_poly(e, p->n + i, 1, ctx);
         fmpz_mpoly_mul(c, c, b, ctx);
@@ -304,7 +312,7 @@ static void passages(AnCurve *c, const AnPolys *p, const fmpq *lo,
     fmpz_poly_t g;
     fmpz_poly_init(g);
     c->pass = pc_xcalloc((size_t)p->len, sizeof *c->pass);
-    for (slong j = 0; j < p->len; j++) {
+    for (slong j = 0; j < p->len && !budget_late(); j++) {
         fmpz_poly_zero(g);
         for (slong i = 0; i < p->len; i++)
             if (i != j)
@@ -324,6 +332,17 @@ static void passages(AnCurve *c, const AnPolys *p, const fmpq *lo,
     fmpz_poly_clear(g);
 }
 
+/* 1 (and c skipped, with the reason AN_LATE) once the thread's deadline
+ * has passed */
+static int late(AnCurve *c)
+{
+    if (!budget_late())
+        return 0;
+    if (!c->skip)
+        c->skip = pc_xstrdup(AN_LATE);
+    return 1;
+}
+
 /* everything about a point curve but its poles and ends */
 static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
                         const fmpq *hi, const Derived *d, const AnSet *set)
@@ -335,15 +354,16 @@ static void point_curve(AnCurve *c, const AnPolys *p, const fmpq *lo,
     fmpz_poly_init(g);
     fmpz_poly_init(excl);
     stop_poly(g, p);
-    if (fmpz_poly_degree(g) >= 1)
+    if (fmpz_poly_degree(g) >= 1 && !late(c))
         roots_real(&c->stops, g, lo, hi, p->den);
-    if (c->dim == 2) {
+    if (c->dim == 2 && !late(c)) {
         fmpz_poly_mul(excl, g, p->den);
         inflections(c, p, lo, hi, excl);
-        if (p->len == 3 && c->order >= 2)
+        if (p->len == 3 && c->order >= 2 && !late(c))
             analyze_implicit(c, p, d, set);
     }
-    passages(c, p, lo, hi);
+    if (!late(c))
+        passages(c, p, lo, hi);
     fmpz_poly_clear(excl);
     fmpz_poly_clear(g);
 }
@@ -403,12 +423,15 @@ static void curve_polys(AnCurve *c, const Derived *d, const PointEq eq,
     c->bounded = param_range(lo, hi, d, c->param);
     const fmpq *plo = c->bounded ? lo : NULL, *phi = c->bounded ? hi : NULL;
     c->degree = poly_degree_max(&p);
-    if (fmpz_poly_degree(p.den) >= 1)
+    if (fmpz_poly_degree(p.den) >= 1 && !late(c))
         roots_real(&c->poles, p.den, plo, phi, NULL);
-    if (c->kind == KIND_POINT)
+    if (c->kind == KIND_POINT && !late(c))
         point_curve(c, &p, plo, phi, d, set);
-    analyze_ends(c, &p, plo, phi, d->npoints);
-    analyze_metric(c, &p, plo, phi, set);
+    if (!late(c))
+        analyze_ends(c, &p, plo, phi, d->npoints);
+    if (!late(c))
+        analyze_metric(c, &p, plo, phi, set);
+    late(c);
     fmpq_clear(hi);
     fmpq_clear(lo);
     polys_clear(&p);
@@ -553,18 +576,49 @@ Analysis *analyze_derived(const Derived *d, const int *sel, int nsel,
     for (slong i = 0; i < n; i++) {
         const DerivedOutput *o = d->outputs + (sel ? sel[i] : i);
         analyze_curve(a->curves + i, d, o, &full);
+        if (budget_late()) { /* this one and those after: not analysed */
+            late(a->curves + i);
+            a->ncurves = i + 1;
+            a->late = 1;
+            a->late_at = o->span;
+            break;
+        }
         if (a->curves[i].numeric) /* consts inside its functions too */
             memset(a->cused, 1, (size_t)d->nconsts + 1);
         else if (!a->curves[i].skip)
             mark_consts(a, o);
     }
     a->defs = pc_xcalloc((size_t)d->nsteps + 1, sizeof *a->defs);
-    for (slong i = 0; i < d->nsteps; i++)
+    for (slong i = 0; i < d->nsteps && !a->late; i++) {
         if (!d->steps[i].pending &&
             analyze_def(a->defs + a->ndefs, d, &d->steps[i].value, &full))
             a->ndefs++;
+        if (budget_late()) {
+            a->late = 1;
+            a->late_at = d->steps[i].value.span;
+        }
+    }
     pc_free(all);
     return a;
+}
+
+Analysis *analyze_derived_within(const Derived *d, const int *sel, int nsel,
+                                 const AnSet *set, double max_seconds,
+                                 FILE *err)
+{
+    budget_deadline_set(max_seconds);
+    Analysis *a = analyze_derived(d, sel, nsel, set);
+    budget_deadline_set(0);
+    if (!a->late)
+        return a;
+    char secs[48];
+    budget_format_seconds(secs, sizeof secs, max_seconds);
+    derived_error(d, err, a->late_at,
+                  "the time budget of %s ran out while analysing this; raise "
+                  "it with --max-seconds",
+                  secs);
+    analysis_free(a);
+    return NULL;
 }
 
 void analysis_free(Analysis *a)

@@ -21,6 +21,7 @@
 #include <flint/fmpz_factor.h>
 #include <flint/fmpz_poly_factor.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "base/strbuf.h"
 
@@ -283,7 +284,7 @@ typedef struct Isolate {
 /* the roots in (a, b], count of them: bisect until one each */
 static void isolate(Isolate *is, const fmpq_t a, const fmpq_t b, slong count)
 {
-    if (count <= 0)
+    if (count <= 0 || budget_late()) /* past the deadline: left (curve.c) */
         return;
     if (count == 1) {
         double v = refine(is->st, a, b);
@@ -381,7 +382,7 @@ void roots_real(AnRoots *res, const fmpz_poly_t p, const fmpq *lo,
     fmpz_poly_factor_init(fac);
     fmpz_poly_init(q);
     fmpz_poly_factor(fac, p);
-    for (slong i = 0; i < fac->num; i++) {
+    for (slong i = 0; i < fac->num && !budget_late(); i++) {
         const fmpz_poly_struct *f = fac->p + i;
         if (excl && !fmpz_poly_is_zero(excl) && fmpz_poly_divides(q, excl, f))
             continue;

@@ -151,6 +151,7 @@ void derive_output_fill(DerivedOutput *o, const char *name, Span span,
                         const Value *v, const Source *src, const Ring *r);
 void derive_output_clear(DerivedOutput *o, const Ring *r);
 void derive_collect_outputs(Deriver *D, Derived *d);
+void derive_final_deadline(Deriver *D);
 void derive_step_clear(DerivedStep *st, const Ring *r);
 void derive_record_steps(Deriver *D, Derived *d, const Source *src);
 void derive_record_named(Deriver *D, Derived *d, const Source *src);

@@ -4,13 +4,15 @@
  * ranges, and each output as a DerivedOutput (kind, reduced weights).
  *
  * The pass after derive (pipeline.c); steps_rec.c and derived.c share
- * derive_output_fill and derive_output_clear.
+ * derive_output_fill and derive_output_clear.  derive_final_deadline is
+ * the derivation's last look at the clock.
  */
 #include "compiler/derive/derive_int.h"
 
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 
 /* 1 when p depends on ring variable var */
@@ -61,9 +63,14 @@ static int check_no_unknown(Deriver *D, const Sym *o, const Value *v)
 }
 
 /* o = the value v, as derive prints it and codegen lowers it: kind from
- * the weight sum, each weight reduced on its own (DerivedOutput) */
-void derive_output_fill(DerivedOutput *o, const char *name, Span span,
-                        const Value *v, const Source *src, const Ring *r)
+ * the weight sum, each weight reduced on its own (DerivedOutput).  With
+ * may_stop, the weights past the derivation's deadline (budget_late) are
+ * left unreduced (equal values, copied in linear time): one reduction is
+ * a gcd of the whole equation's size, and the caller then reports the
+ * derivation out of time. */
+static void output_fill(DerivedOutput *o, const char *name, Span span,
+                        const Value *v, const Source *src, const Ring *r,
+                        int may_stop)
 {
     int line, col;
     o->name = pc_xstrdup(name);
@@ -84,13 +91,23 @@ void derive_output_fill(DerivedOutput *o, const char *name, Span span,
         pteq_set(o->eq, v->p, r);
         o->w = flint_malloc(sizeof(RatFunStruct) *
                             (size_t)FLINT_MAX(o->eq->len, 1));
-        for (slong k = 0; k < o->eq->len; k++)
+        for (slong k = 0; k < o->eq->len; k++) {
             ratfun_init(o->w + k, r);
-        pteq_get_weights(o->w, o->eq, r);
+            fmpz_mpoly_set(o->w[k].num, o->eq->terms[k].num, r->ctx);
+            fmpz_mpoly_set(o->w[k].den, o->eq->den, r->ctx);
+            if (!may_stop || !budget_late())
+                ratfun_canonicalise(o->w + k, r);
+        }
     } else {
         o->kind = KIND_SCALAR;
         ratfun_set(o->scalar, v->s, r);
     }
+}
+
+void derive_output_fill(DerivedOutput *o, const char *name, Span span,
+                        const Value *v, const Source *src, const Ring *r)
+{
+    output_fill(o, name, span, v, src, r, 0);
 }
 
 void derive_output_clear(DerivedOutput *o, const Ring *r)
@@ -170,7 +187,10 @@ static void fill_outputs(Deriver *D, Derived *d)
             uv.s[0] = D->ssol[s->index];
             v = &uv;
         }
-        derive_output_fill(o, s->name, s->span, v, D->src, r);
+        /* marked: a budget that runs out here is reported at it */
+        budget_statement(D->src, s->span);
+        output_fill(o, s->name, s->span, v, D->src, r, 1);
+        derive_out_of_time_at(D, s->span);
         const unsigned char *as = s->kind == SYM_UNKNOWN ? D->uassume[s->index]
                                                          : D->dassume[s->index];
         if (as) {
@@ -212,4 +232,22 @@ void derive_collect_outputs(Deriver *D, Derived *d)
 
     if (D->diag->nerrors == 0)
         fill_outputs(D, d);
+}
+
+/* The derivation's last look at the clock: one FLINT call (a product in
+ * along, subst, diff or solve, a weight's reduction) is not interrupted,
+ * so a derivation can end past its deadline without having read the clock
+ * there.  Such a derivation fails like one stopped inside, with the
+ * located time-budget message at the statement it marked last (the one
+ * that ran long, or the last one).  Failed checks do not keep such a
+ * result (their details may have been printed past the deadline, cut
+ * short: budget.h). */
+void derive_final_deadline(Deriver *D)
+{
+    if (D->expired || D->deadline == 0 || derive_now_seconds() <= D->deadline)
+        return;
+    const Source *src;
+    Span span;
+    budget_where(&src, &span);
+    derive_out_of_time_at(D, src == D->src ? span : BUDGET_WHOLE_FILE);
 }

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "compiler/print/absform.h"
 #include "compiler/print/latexbreak.h"
@@ -600,10 +601,12 @@ static void put_lhs(StrBuf *b, const DerivedOutput *o, const Ctx *c)
 }
 
 /* one line of a multline* (and the line break after it unless last),
- * itself broken where it is wider than the page (latexbreak.h) */
+ * itself broken where it is wider than the page (latexbreak.h); not past
+ * the caller's deadline (budget.h: the text is discarded, and breaking it
+ * is a pass over all of it) */
 static void put_line(StrBuf *b, const char *line, int last)
 {
-    if (latex_width(line, strlen(line)) > LATEX_LINE_UNITS) {
+    if (!budget_late() && latex_width(line, strlen(line)) > LATEX_LINE_UNITS) {
         char **ls;
         size_t n = latex_break(&ls, line, LATEX_LINE_UNITS);
         for (size_t i = 0; i < n; i++) {

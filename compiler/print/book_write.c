@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/mem.h"
 #include "compiler/print/absform.h"
 
@@ -124,6 +125,12 @@ static char *kernel_arg(const Kernel *k, const char *open, const char *close,
     t.latex = 0;
     t.is_abs = NULL;
     t.mode = 0;
+    /* past the caller's deadline (budget.h), which discards the text: the
+     * name as kernel.c wrote it (in LaTeX too), with no rendering, which
+     * doubles at each level of nested functions (a tower of 10 sin(x) +
+     * cos(i*x) took a minute in LaTeX) */
+    if (budget_late())
+        return own;
     StrBuf bk = {0};
     put_arg(&bk, k->arg, 0, &t);
     int book = bk.len < strlen(own); /* ties: as kernel.c named it */
@@ -303,6 +310,13 @@ void book_put_sum(StrBuf *b, const PSum *s, const Ctx *c)
     }
     for (slong i = 0; i < s->n; i++) {
         const PTerm *t = &s->t[i];
+        if (i > 0 && budget_late()) {
+            /* past the caller's deadline (budget.h) the text is cut short
+             * (the caller discards it): what is written after it is
+             * bounded by one term per level of nesting */
+            sb_puts(b, c->latex ? " + \\ldots" : " + ...");
+            return;
+        }
         if (i == 0)
             sb_puts(b, t->neg ? "-" : "");
         else

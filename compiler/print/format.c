@@ -85,12 +85,13 @@ static int factor_before(const fmpz_mpoly_t a, const fmpz_mpoly_t b,
 
 /* p's factoring (ring_factor's, through the factors shared by the
  * scheme's weights when share is given: book_factor), its factors in
- * factor_before's order (an insertion sort: a few) */
+ * factor_before's order (an insertion sort: a few); none past the caller's
+ * deadline (budget.h: p is then written unfactored, in linear time) */
 static int factor_ordered(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
                           const Ring *r, const FormatShare *share)
 {
-    if (!(share ? book_factor(f, p, share->d, share->memo)
-                : ring_factor(f, p, r)))
+    if (budget_late() || !(share ? book_factor(f, p, share->d, share->memo)
+                                 : ring_factor(f, p, r)))
         return 0;
     for (slong i = 1; i < f->num; i++)
         for (slong j = i;

@@ -8,6 +8,11 @@
  * json:   contract section 4: {"scheme":..,"points":..,"params":..,
  *         "consts":..,"outputs":[{"name":..,"kind":..,"terms":{..}}]}
  *         (scalar outputs carry "value" instead of "terms").
+ *
+ * Past the thread's deadline (base/budget.h: budget_deadline_set) the
+ * text and LaTeX printers stop choosing forms and cut their text short (a
+ * sum ends "+ ..." after its first term): a caller that set a deadline
+ * reads budget_late() after the call and discards the text when it is 1.
  */
 #ifndef PC_FORMAT_H
 #define PC_FORMAT_H

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/json.h"
 #include "base/mem.h"
 #include "compiler/print/book.h"
@@ -451,7 +452,8 @@ static void put_rows(FILE *out, const char *body)
         if (nl)
             row[--rn] = '\0';
         char *amp = strchr(row, '&');
-        if (amp && left + latex_width(amp, strlen(amp)) > LATEX_LINE_UNITS) {
+        if (amp && !budget_late() && /* (past the deadline: discarded) */
+            left + latex_width(amp, strlen(amp)) > LATEX_LINE_UNITS) {
             /* the head: through "&=" or "&\quad" */
             char *rest = amp + 1;
             if (*rest == '=')

@@ -202,14 +202,18 @@ static void exact_coordinates(fmpq **qpt, int dim, const AnalyzeArgs *a,
     }
 }
 
-/* the report, made in memory and written in one piece (as derive's) */
-static void report(FILE *out, const AnalyzeArgs *a, const Derived *d,
-                   const int *sel, int nsel, const AnSet *set)
+/* the report, made in memory and written in one piece (as derive's); 1
+ * when the exact analysis ran out of the time budget (reported to err at
+ * the output: the timer's message would only name the file) */
+static int report(FILE *out, FILE *err, const AnalyzeArgs *a, const Derived *d,
+                  const int *sel, int nsel, const AnSet *set, double seconds)
 {
+    Analysis *an = analyze_derived_within(d, sel, nsel, set, seconds, err);
+    if (!an)
+        return 1;
     char *text = NULL;
     size_t len = 0;
     FILE *m = pc_xopen_memstream(&text, &len);
-    Analysis *an = analyze_derived(d, sel, nsel, set);
     analyze_numeric(an, set);
     if (a->json == 1)
         analyze_print_json(m, an);
@@ -221,6 +225,7 @@ static void report(FILE *out, const AnalyzeArgs *a, const Derived *d,
     pc_xclose_memstream(m);
     fwrite(text, 1, len, out);
     pc_free(text);
+    return 0;
 }
 
 static void args_clear(AnalyzeArgs *a)
@@ -271,7 +276,7 @@ int cli_analyze(int argc, char **argv, FILE *out, FILE *err)
          * of a big curve are not bounded by themselves */
         budget_arm(bo.max_seconds, bo.max_memory);
         budget_phase("analysing the curves");
-        report(out, &a, d, sel, nsel, &set);
+        rc = report(out, err, &a, d, sel, nsel, &set, bo.max_seconds);
         budget_disarm();
     }
     for (slong k = 0; k < d->npoints; k++) {

@@ -24,7 +24,8 @@
  *     C at t -> oo, d/ds = B - C (s = 1/t);
  *   - what is not analysed, and why; consts given values (--set);
  *   - with coordinates, the curvature and the arc length of the parabola
- *     y = x^2 over [0, 1].
+ *     y = x^2 over [0, 1];
+ *   - the time budget (analyze_derived_within), measured first.
  */
 /* cmocka.h needs these first, in this order */
 // clang-format off
@@ -39,9 +40,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <flint/fmpz_poly.h>
 
+#include "base/budget.h"
 #include "compiler/analyze/analyze.h"
 #include "compiler/derive.h"
 
@@ -384,6 +387,113 @@ static void test_metric(void **state)
     derived_free(d);
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* 24 plane curves of degree 9 to 11 over A, B, C, each with its implicit
+ * equation (a resultant and a factorisation: milliseconds each) */
+static char *many_curves(void)
+{
+    char *text = malloc(8192), *p = text;
+    p += sprintf(p, "point A, B, C\nparam t in [0, 1]\n");
+    for (int i = 1; i <= 24; i++)
+        p += sprintf(p,
+                     "M%d = along(along(A, B, t^%d + %d*t - 1), C, "
+                     "(t^%d + 3*t + %d)/(t^2 + %d))\n",
+                     i, 9 + i % 3, i, 7 + i % 2, i, i);
+    p += sprintf(p, "output M1");
+    for (int i = 2; i <= 24; i++)
+        p += sprintf(p, ", M%d", i);
+    sprintf(p, "\n");
+    return text;
+}
+
+/* what err received (closed here) */
+static char *taken(FILE *m, char **buf)
+{
+    fclose(m);
+    return *buf;
+}
+
+/* The time budget of analyze_derived_within, counted from the call.  The
+ * whole analysis is timed first (budget 0: none; the fastest of three);
+ * with an eighth of that it stops, at the next step past the deadline,
+ * well before the whole would have ended,
+ * NULL with the located message at the output it was analysing; with
+ * 1 ns, at the first output.  analyze_derived under a deadline the caller
+ * set keeps what it found before it: the curve it stopped in is skipped
+ * (AN_LATE), none after it is listed. */
+static void test_budget(void **state)
+{
+    (void)state;
+    char *text = many_curves(), *msg = NULL;
+    Derived *d = derive_text(text);
+    double full = 1e9, t0; /* the fastest of three: a loaded machine */
+    Analysis *an;
+    for (int k = 0; k < 3; k++) {
+        t0 = now_s();
+        an = analyze_derived_within(d, NULL, 0, NULL, 0, stderr);
+        full = fmin(full, now_s() - t0);
+        assert_non_null(an);
+        assert_int_equal(an->ncurves, 24);
+        assert_false(an->late);
+        for (slong i = 0; i < 24; i++)
+            assert_non_null(an->curves[i].implicit);
+        analysis_free(an);
+    }
+
+    size_t len;
+    FILE *m = open_memstream(&msg, &len);
+    t0 = now_s();
+    an = analyze_derived_within(d, NULL, 0, NULL, full / 8, m);
+    double took = now_s() - t0;
+    assert_null(an);
+    assert_true(took < 0.75 * full);
+    taken(m, &msg);
+    assert_true(strncmp(msg, "a.pcs:", 6) == 0);
+    assert_non_null(strstr(msg, ":1: error: the time budget of "));
+    assert_non_null(strstr(msg, " s ran out while analysing this; raise it "
+                                "with --max-seconds\nM"));
+    free(msg);
+
+    m = open_memstream(&msg, &len);
+    assert_null(analyze_derived_within(d, NULL, 0, NULL, 1e-9, m));
+    taken(m, &msg);
+    assert_string_equal(msg, "a.pcs:3:1: error: the time budget of 1e-09 s "
+                             "ran out while analysing this; raise it with "
+                             "--max-seconds\nM1 = along(along(A, B, t^10 + "
+                             "1*t - 1), C, (t^8 + 3*t + 1)/(t^2 + 1))\n"
+                             "^~\n");
+    free(msg);
+
+    budget_deadline_set(1e-9);
+    an = analyze_derived(d, NULL, 0, NULL);
+    budget_deadline_set(0);
+    assert_true(an->late);
+    assert_int_equal(an->ncurves, 1);
+    assert_string_equal(an->curves[0].skip, AN_LATE);
+    m = open_memstream(&msg, &len);
+    analyze_print_text(m, an);
+    taken(m, &msg);
+    assert_non_null(strstr(msg, "M1: not analysed: " AN_LATE "\n"));
+    assert_null(strstr(msg, "M2"));
+    free(msg);
+    m = open_memstream(&msg, &len); /* the other reports of it */
+    analyze_print_json(m, an);
+    analyze_print_latex(m, an);
+    taken(m, &msg);
+    assert_non_null(strstr(msg, "\"skipped\": \"" AN_LATE "\""));
+    assert_null(strstr(msg, "M2"));
+    free(msg);
+    analysis_free(an);
+    derived_free(d);
+    free(text);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -391,6 +501,7 @@ int main(void)
         cmocka_unit_test(test_contour_arc), cmocka_unit_test(test_traced_twice),
         cmocka_unit_test(test_infinity),    cmocka_unit_test(test_skipped),
         cmocka_unit_test(test_set),         cmocka_unit_test(test_metric),
+        cmocka_unit_test(test_budget),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     flint_cleanup_master();

@@ -18,7 +18,8 @@
  *                          thread_main (test_api_thread_cleanup)
  *   pc_scheme_load         test_api_load (examples/desargues_arc.pcs, a
  *                          missing file)
- *   pc_scheme_parse_opts   test_api_options, test_api_budget_after_derive
+ *   pc_scheme_parse_opts   test_api_options, test_api_budget_after_derive,
+ *                          test_api_budget_after_last_check
  *   pc_scheme_load_opts    test_api_options
  *   pc_scheme_free         every test that makes a scheme (and NULL)
  *   pc_scheme_name         test_api_names_and_counts, test_api_load
@@ -35,7 +36,7 @@
  *   pc_find_output         test_api_names_and_counts, test_api_load
  *   pc_find_point          test_api_names_and_counts, test_api_load
  *   pc_weight_str          test_api_weight_str, test_api_load,
- *                          test_api_options
+ *                          test_api_options, test_api_weight_str_budget
  *   pc_compile             test_api_compile_and_eval, test_api_eval_statuses,
  *                          test_api_eval_einval, test_api_compile_errors,
  *                          thread_main
@@ -719,6 +720,84 @@ static void test_api_budget_inside_meet(void **state)
         assert_true(took < 4);
 }
 
+/* a derivation that ends past its deadline fails even when it never read
+ * the clock there: the clock is read at each node, but the power below is
+ * one FLINT call after the last node.  Its time is measured first (the
+ * faster of two runs); a budget of an eighth of it runs out inside that
+ * call, and the scheme fails with the located time-budget message (it
+ * came back whole before the derivation's last look at the clock) */
+static void test_api_budget_after_last_check(void **state)
+{
+    (void)state;
+    const char *text = "point A, B\nparam t, u\nconst k, h\n"
+                       "M = along(A, B, (t + u + k + h + 1)^40)\n";
+    char *diag = NULL;
+    pc_options big = {.max_seconds = 600};
+    double full = 1e9;
+    for (int i = 0; i < 2; i++) {
+        double t0 = now_s();
+        pc_scheme *s =
+            pc_scheme_parse_opts("pow.pcs", text, strlen(text), &big, &diag);
+        full = fmin(full, now_s() - t0);
+        assert_non_null(s);
+        pc_scheme_free(s);
+    }
+    pc_options o = {.max_seconds = full / 8};
+    pc_scheme *s =
+        pc_scheme_parse_opts("pow.pcs", text, strlen(text), &o, &diag);
+    assert_null(s);
+    assert_non_null(diag);
+    assert_true(strncmp(diag, "pow.pcs:4:", 10) == 0);
+    assert_non_null(strstr(diag, ": error: the time budget of "));
+    assert_non_null(strstr(diag, " s ran out while deriving this; raise it "
+                                 "with --max-seconds\nM = along("));
+    free(diag);
+}
+
+/* pc_weight_str under the scheme's budget, counted from the call: a weight
+ * with four coefficients of a million digits (x = 10^(10^6): derived in
+ * tens of milliseconds, written in about a second).  Both are timed
+ * first (each the fastest of two runs); with a budget between them the
+ * scheme derives, and the weight's text, which took longer than the
+ * budget, is NULL (FLINT writes it in one call: the clock is read when it
+ * ends) */
+static void test_api_weight_str_budget(void **state)
+{
+    (void)state;
+    if (getenv("PC_VALGRIND")) /* a second of GMP is minutes there */
+        skip();
+    const char *text = "point A, B\nparam t\nx = 1e1000^1000\n"
+                       "M = along(A, B, x*(t + t^2 + t^3 + t^4))\n";
+    char *diag = NULL;
+    pc_options big = {.max_seconds = 600};
+    double derive = 1e9, print = 1e9;
+    for (int k = 0; k < 2; k++) {
+        double t0 = now_s();
+        pc_scheme *s =
+            pc_scheme_parse_opts("w.pcs", text, strlen(text), &big, &diag);
+        double t1 = now_s();
+        assert_non_null(s);
+        char *w = pc_weight_str(s, 0, 1);
+        derive = fmin(derive, t1 - t0);
+        print = fmin(print, now_s() - t1);
+        assert_non_null(w); /* 10^(10^6)*t^4 + ... + 10^(10^6)*t */
+        assert_int_equal(strlen(w), 4 * 1000001 + strlen("*t^4+*t^3+*t^2+*t"));
+        assert_true(strncmp(w, "10000", 5) == 0);
+        assert_string_equal(w + strlen(w) - 4, "00*t");
+        free(w);
+        pc_scheme_free(s);
+    }
+    if (print < 8 * derive)
+        skip(); /* too close to tell apart on this machine */
+    pc_options o = {.max_seconds = sqrt(derive * print)};
+    pc_scheme *s = pc_scheme_parse_opts("w.pcs", text, strlen(text), &o, &diag);
+    if (!s)
+        fail_msg("%s", diag);
+    assert_null(pc_weight_str(s, 0, 1));
+    assert_null(pc_weight_str(s, 0, 0));
+    pc_scheme_free(s);
+}
+
 static int teardown_group(void **state)
 {
     (void)state;
@@ -744,6 +823,8 @@ int main(void)
         cmocka_unit_test(test_api_thread_cleanup),
         cmocka_unit_test(test_api_budget_after_derive),
         cmocka_unit_test(test_api_budget_inside_meet),
+        cmocka_unit_test(test_api_budget_after_last_check),
+        cmocka_unit_test(test_api_weight_str_budget),
     };
     return cmocka_run_group_tests(tests, NULL, teardown_group);
 }

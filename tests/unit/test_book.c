@@ -3,6 +3,7 @@
  * every rule of book.h with its expected text written by hand from the
  * mathematics, not taken from the printer.
  */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,12 +11,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <cmocka.h>
 
 #include <flint/fmpz_mpoly_factor.h>
 #include <flint/fmpz_poly_factor.h>
 
+#include "base/budget.h"
 #include "compiler/algebra/ring.h"
 #include "compiler/print/book.h"
 #include "compiler/print/format.h"
@@ -923,6 +926,127 @@ static void test_bar_in_sum(void **state)
            "z = (1 - t + k*t^2)^2\nw = -t^2/(1 - t)\n");
 }
 
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* d printed in style st under a deadline of `deadline` s (0: none): the
+ * text, its length in *len, the time in *took, and whether it was late */
+static char *printed_within(const Derived *d, FormatStyle st, double deadline,
+                            size_t *len, double *took, int *late)
+{
+    char *buf = NULL;
+    FILE *f = open_memstream(&buf, len);
+    budget_deadline_set(deadline);
+    double t0 = now_s();
+    format_derived(f, d, st, -1);
+    *took = now_s() - t0;
+    *late = budget_late();
+    budget_deadline_set(0);
+    fclose(f);
+    return buf;
+}
+
+/* The printer under the caller's deadline (budget.h).  The derivative of
+ * a tower of 6 functions x_i = sin(x_(i-1)) + cos(i x_(i-1)) derives in
+ * milliseconds and prints 110 KB of LaTeX; choosing each function's
+ * argument rendered it twice per level (2^depth: 10 levels took a minute,
+ * and went on past any deadline).  Timed first (the fastest of three):
+ * past a deadline of an eighth of that time, the call returns well before
+ * the whole would have, late, its text cut short ("+ \ldots"); past a deadline
+ * that has already passed, a sum stops after its first term: a few dozen bytes.
+ */
+static void test_deadline(void **state)
+{
+    (void)state;
+    char src[512], *p = src;
+    p += sprintf(p, "point A, B\nparam t\nx0 = t\n");
+    for (int i = 1; i <= 6; i++)
+        p += sprintf(p, "x%d = sin(x%d) + cos(%d*x%d)\n", i, i - 1, i, i - 1);
+    sprintf(p, "y = diff(x6, t)\nM = along(A, B, y)\n");
+    Derived *d = derive_source("g.pcs", src, strlen(src), stderr, NULL);
+    assert_non_null(d);
+    size_t len, full_len;
+    double took, full;
+    int late;
+    char *text = NULL;
+    full = 1e9;
+    for (int k = 0; k < 3; k++) { /* the fastest of three */
+        free(text);
+        text = printed_within(d, FMT_LATEX, 0, &full_len, &took, &late);
+        full = fmin(full, took);
+        assert_false(late);
+    }
+    assert_true(full_len > 100000);
+    assert_null(strstr(text, "\\ldots"));
+    free(text);
+    text = printed_within(d, FMT_LATEX, full / 8, &len, &took, &late);
+    assert_true(late);
+    assert_true(took < 0.75 * full);
+    assert_non_null(strstr(text, " + \\ldots"));
+    free(text);
+    text = printed_within(d, FMT_LATEX, 1e-9, &len, &took, &late);
+    assert_true(late);
+    assert_true(len < 200);
+    assert_non_null(strstr(text, " + \\ldots"));
+    free(text);
+    derived_free(d);
+}
+
+/* JSON under the caller's deadline: its factors (shared between the
+ * weights: book_factor) are looked for only before it.  60 products of
+ * two polynomials, timed first (the fastest of three); past an eighth of
+ * that time the rest is written expanded, and the call returns well
+ * before the whole would have; past a deadline that has already passed, a
+ * weight is its expanded product */
+static void test_deadline_json(void **state)
+{
+    (void)state;
+    char *src = malloc(16384), *p = src;
+    p += sprintf(p, "param t, u\n");
+    for (int i = 1; i <= 60; i++)
+        p += sprintf(p,
+                     "s%d = (t^9 + u^7 + t^2*u^3 + t*u + %d)*(t^7*u^4 + u^9 + "
+                     "t^3*u + t + %d)\n",
+                     i, i, 2 * i + 1);
+    p += sprintf(p, "output s1");
+    for (int i = 2; i <= 60; i++)
+        p += sprintf(p, ", s%d", i);
+    sprintf(p, "\n");
+    Derived *d = derive_source("g.pcs", src, strlen(src), stderr, NULL);
+    assert_non_null(d);
+    size_t len;
+    double took, full;
+    int late;
+    char *text = NULL;
+    full = 1e9;
+    for (int k = 0; k < 3; k++) { /* the fastest of three */
+        free(text);
+        text = printed_within(d, FMT_JSON, 0, &len, &took, &late);
+        full = fmin(full, took);
+        assert_false(late);
+    }
+    assert_non_null(strstr(
+        text,
+        "\"value\": \"(t^9+u^7+t^2*u^3+t*u+1)*(t^7*u^4+u^9+t^3*u+t+3)\""));
+    free(text);
+    text = printed_within(d, FMT_JSON, full / 8, &len, &took, &late);
+    assert_true(late);
+    assert_true(took < 0.75 * full);
+    free(text);
+    text = printed_within(d, FMT_JSON, 1e-9, &len, &took, &late);
+    assert_true(late);
+    assert_null(strstr(
+        text,
+        "\"value\": \"(t^9+u^7+t^2*u^3+t*u+1)*(t^7*u^4+u^9+t^3*u+t+3)\""));
+    free(text);
+    derived_free(d);
+    free(src);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -947,6 +1071,8 @@ int main(void)
         cmocka_unit_test(test_named_scalars),
         cmocka_unit_test(test_latex_break),
         cmocka_unit_test(test_bar_in_sum),
+        cmocka_unit_test(test_deadline),
+        cmocka_unit_test(test_deadline_json),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
