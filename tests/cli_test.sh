@@ -244,15 +244,18 @@ elapsed_ms() { # the wall time of a command, in ms (its output to $tmp/out)
     echo $(((t1 - t0) / 1000000))
 }
 lim=2000 # ms: --max-seconds 1 and a second
-[ -n "${PC_VALGRIND:-}" ] && lim=60000
+mb=1      # the budget these must print within
+# under valgrind (suites side by side, maybe a loaded machine) the work
+# itself can take a few seconds: the results are still checked
+[ -n "${PC_VALGRIND:-}" ] && lim=60000 && mb=30
 # a = t^1000, a^30 = t^30000: along(A, B, x) = A*(1 - x) + B*x
 printf 'point A, B\nparam t\na = t^1000\nM = along(A, B, a^30)\n' >"$tmp/deg.pcs"
-ms=$(elapsed_ms "$PCB" derive "$tmp/deg.pcs" --max-seconds 1)
+ms=$(elapsed_ms "$PCB" derive "$tmp/deg.pcs" --max-seconds $mb)
 check "t^30000: printed, exit 0" test "$(cat "$tmp/rc")" -eq 0
 check "t^30000: A*(1 - x) + B*x" grep -qx 'M = A\*(1 - t^30000) + B\*t^30000' "$tmp/out"
 check "t^30000: within the budget and a second ($ms ms)" test "$ms" -lt "$lim"
 for fmt in latex json; do
-    ms=$(elapsed_ms "$PCB" derive "$tmp/deg.pcs" --max-seconds 1 --format $fmt)
+    ms=$(elapsed_ms "$PCB" derive "$tmp/deg.pcs" --max-seconds $mb --format $fmt)
     check "t^30000 $fmt: within the budget ($ms ms)" test "$(cat "$tmp/rc")" -eq 0 -a "$ms" -lt "$lim"
 done
 # 30 outputs along(A, B, x) of x = (t^1000 - i)/(t^997 + t + i): over the
@@ -267,7 +270,7 @@ for i in $(seq 1 30); do
     printf 'M%d = (A*(%d + t + t^997 - t^1000) + B*(t^1000 - %d))/(%d + t + t^997)\n' \
         "$i" $((2 * i)) "$i" "$i"
 done >"$tmp/deg30.want"
-ms=$(elapsed_ms "$PCB" derive "$tmp/deg30.pcs" --max-seconds 1)
+ms=$(elapsed_ms "$PCB" derive "$tmp/deg30.pcs" --max-seconds $mb)
 check "30 outputs of degree 1000: exit 0" test "$(cat "$tmp/rc")" -eq 0
 check "30 outputs of degree 1000: each A*(d - n) + B*n over d" cmp -s "$tmp/out" "$tmp/deg30.want"
 check "30 outputs of degree 1000: within the budget ($ms ms)" test "$ms" -lt "$lim"

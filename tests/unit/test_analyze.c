@@ -341,7 +341,7 @@ static void test_set(void **state)
     fmpq value[1];
     fmpq_init(value);
     fmpq_set_si(value, 1, 2);
-    AnSet set = {given, value, 0, NULL};
+    AnSet set = {given, value, 0, NULL, NULL};
     Analysis *a = analyze_derived(d, NULL, 0, &set);
     assert_null(a->curves[0].skip);
     assert_roots(&a->curves[0].poles, "1/2");
@@ -367,7 +367,7 @@ static void test_metric(void **state)
                              "M = bezier(t, A, C, B)\n");
     const double a[2] = {0, 0}, b[2] = {1, 1}, c[2] = {0.5, 0};
     const double *pt[3] = {a, b, c};
-    AnSet set = {NULL, NULL, 2, pt};
+    AnSet set = {NULL, NULL, 2, pt, NULL};
     Analysis *an = analyze_derived(d, NULL, 0, &set);
     const AnCurve *m = an->curves;
     assert_true(m->has_metric);
