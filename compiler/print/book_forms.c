@@ -315,37 +315,47 @@ static size_t text_len(const PSum *s, const Ctx *c)
     return book_sum_text_len(s, &text);
 }
 
-/* keeps the better of *best and cand: fewer leaves; then factored before
+/* the best form so far: its model (NULL while it is the expanded form,
+ * which is built only if it wins: most polynomials have a better one), its
+ * leaves, its rank (R_FACTORED ...) and its text length ((size_t)-1 until
+ * measured) */
+enum { R_FACTORED, R_EXPANDED, R_BERNSTEIN, R_POWERS };
+typedef struct Best {
+    PSum *s;
+    slong leaves;
+    int rank;
+    size_t len;
+} Best;
+
+/* keeps the better of b and cand: fewer leaves; then factored before
  * expanded before collected; among collected forms the shorter text, then
  * Bernstein before powers; then the earlier candidate.  Lengths are those
- * of the text form whatever the style, so text and LaTeX agree (*best_len:
- * (size_t)-1 until measured). */
-static void keep_better(PSum **best, int *best_rank, size_t *best_len,
-                        PSum *cand, int rank, const Ctx *c)
+ * of the text form whatever the style, so text and LaTeX agree (the
+ * expanded form never needs its length: it ranks alone). */
+static void keep_better(Best *b, PSum *cand, int rank, const Ctx *c)
 {
     if (!cand)
         return;
     size_t len = (size_t)-1;
-    if (*best) {
-        slong lb = book_sum_leaves(*best), lc = book_sum_leaves(cand);
-        int kb = *best_rank < 2 ? *best_rank : 2;
-        int kc = rank < 2 ? rank : 2;
-        int better = lc < lb || (lc == lb && kc < kb);
-        if (lc == lb && kc == kb && kc == 2) {
-            if (*best_len == (size_t)-1)
-                *best_len = text_len(*best, c);
-            len = text_len(cand, c);
-            better = len < *best_len || (len == *best_len && rank < *best_rank);
-        }
-        if (!better) {
-            book_sum_free(cand, c);
-            return;
-        }
-        book_sum_free(*best, c);
+    slong lc = book_sum_leaves(cand);
+    int kb = b->rank < 2 ? b->rank : 2;
+    int kc = rank < 2 ? rank : 2;
+    int better = lc < b->leaves || (lc == b->leaves && kc < kb);
+    if (lc == b->leaves && kc == kb && kc == 2) {
+        if (b->len == (size_t)-1)
+            b->len = text_len(b->s, c);
+        len = text_len(cand, c);
+        better = len < b->len || (len == b->len && rank < b->rank);
     }
-    *best = cand;
-    *best_rank = rank;
-    *best_len = len;
+    if (!better) {
+        book_sum_free(cand, c);
+        return;
+    }
+    book_sum_free(b->s, c);
+    b->s = cand;
+    b->leaves = lc;
+    b->rank = rank;
+    b->len = len;
 }
 
 static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c);
@@ -447,9 +457,14 @@ static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return s;
 }
 
+/* b's form, built now if it is the expanded one */
+static PSum *best_take(Best *b, const fmpz_mpoly_t p, const Ctx *c)
+{
+    return b->s ? b->s : book_form_expanded(p, c);
+}
+
 static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
-    enum { R_FACTORED, R_EXPANDED, R_BERNSTEIN, R_POWERS };
     const Ring *r = c->r;
     slong len = fmpz_mpoly_length(p, r->ctx);
     if (c->is_abs) { /* |x| in it: by the knots, as the text writes it */
@@ -459,48 +474,39 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
             return k;
         }
     }
-    PSum *best = book_form_expanded(p, c);
     if (len == 0 || fmpz_mpoly_is_fmpz(p, r->ctx))
-        return best;
-    int rank = R_EXPANDED;
-    size_t blen = (size_t)-1;
+        return book_form_expanded(p, c);
+    Best b = {NULL, len, R_EXPANDED, (size_t)-1};
     *c->work += len;
     if (len < 2)
-        return best;   /* a monomial: expanded is factored */
+        return best_take(&b, p, c); /* a monomial: expanded is factored */
     if (budget_late()) /* the caller's deadline (budget.h): no search */
-        return best;
+        return best_take(&b, p, c);
     if (depth < CHEAP_FACTOR_DEPTH &&
         (depth == 0 ||
          (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED))) {
         *c->work += FACTOR_WORK + 20 * len;
-        keep_better(&best, &rank, &blen, book_form_factored(p, depth, c),
-                    R_FACTORED, c);
+        keep_better(&b, book_form_factored(p, depth, c), R_FACTORED, c);
     } else if (depth >= CHEAP_FACTOR_DEPTH) {
         *c->work += 4 * len;
-        keep_better(&best, &rank, &blen, book_form_factored_cheap(p, depth, c),
-                    R_FACTORED, c);
+        keep_better(&b, book_form_factored_cheap(p, depth, c), R_FACTORED, c);
     }
     if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
-        return best;
+        return best_take(&b, p, c);
     for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK && !budget_late();
          v++) {
         if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
             continue;
         *c->work += 2 * len;
         if (book_is_param(c, v))
-            keep_better(
-                &best, &rank, &blen,
-                book_form_bernstein(p, v, depth, book_sum_leaves(best), c),
-                R_BERNSTEIN, c);
+            keep_better(&b, book_form_bernstein(p, v, depth, b.leaves, c),
+                        R_BERNSTEIN, c);
         slong w = c->K ? book_cos_companion(v, c) : -1;
         if (w >= 0)
-            keep_better(
-                &best, &rank, &blen,
-                book_form_sin2(p, v, w, depth, book_sum_leaves(best), c),
-                R_BERNSTEIN, c);
-        keep_better(&best, &rank, &blen,
-                    book_form_powers(p, v, depth, book_sum_leaves(best), c),
-                    R_POWERS, c);
+            keep_better(&b, book_form_sin2(p, v, w, depth, b.leaves, c),
+                        R_BERNSTEIN, c);
+        keep_better(&b, book_form_powers(p, v, depth, b.leaves, c), R_POWERS,
+                    c);
     }
-    return best;
+    return best_take(&b, p, c);
 }
