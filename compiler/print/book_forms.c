@@ -360,8 +360,6 @@ static void keep_better(Best *b, PSum *cand, int rank, const Ctx *c)
 
 static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c);
 
-enum { MEMO_MAX = 1024 };
-
 /* p in its best form (see book.h), remembered per output */
 static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c);
 
@@ -413,8 +411,9 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return s;
 }
 
-/* a hash of p (its length and coefficients: equal polynomials may pack
- * their exponents differently), the depth and the mode */
+/* a hash of p (its length, coefficients and degrees in each variable:
+ * equal polynomials may pack their exponents differently, so not the
+ * packed words), the depth and the mode */
 static ulong memo_key(const fmpz_mpoly_t p, slong len, int depth, const Ctx *c)
 {
     ulong h = (ulong)len * 0x9E3779B97F4A7C15u ^ (ulong)depth ^ c->mode << 8;
@@ -425,35 +424,72 @@ static ulong memo_key(const fmpz_mpoly_t p, slong len, int depth, const Ctx *c)
                                           (ulong)mpz_sgn(COEFF_TO_PTR(*x));
         h = (h ^ w) * 0x100000001B3u;
     }
-    return h;
+    enum { FEW_VARS = 16 };
+    slong nv = c->r->nvars, deg[FEW_VARS];
+    if (nv > 0 && nv <= FEW_VARS && fmpz_mpoly_degrees_fit_si(p, c->r->ctx)) {
+        fmpz_mpoly_degrees_si(deg, p, c->r->ctx);
+        for (slong v = 0; v < nv; v++)
+            h = (h ^ (ulong)deg[v]) * 0x100000001B3u;
+    }
+    return h ^ h >> 29;
+}
+
+/* the memo's entry for p at depth (in c's mode), or NULL; *key: its key */
+static const MemoEntry *memo_find(const fmpz_mpoly_t p, slong len, int depth,
+                                  const Ctx *c, ulong *key)
+{
+    const Memo *m = c->memo;
+    *key = memo_key(p, len, depth, c);
+    if (!m->slot)
+        return NULL;
+    for (ulong i = *key & (MEMO_SLOTS - 1);; i = (i + 1) & (MEMO_SLOTS - 1)) {
+        slong j = m->slot[i] - 1;
+        if (j < 0)
+            return NULL;
+        const MemoEntry *e = &m->e[j];
+        if (e->key == *key && e->depth == depth && e->mode == c->mode &&
+            fmpz_mpoly_equal(e->poly, p, c->r->ctx))
+            return e;
+    }
+}
+
+/* remembers s as p's form at depth (the first MEMO_MAX only) */
+static void memo_add(const fmpz_mpoly_t p, ulong key, int depth, const PSum *s,
+                     const Ctx *c)
+{
+    Memo *m = c->memo;
+    if (m->n >= MEMO_MAX)
+        return;
+    if (!m->slot)
+        m->slot = pc_xcalloc(MEMO_SLOTS, sizeof(slong));
+    if (m->n == m->alloc) {
+        m->alloc = m->alloc ? 2 * m->alloc : 32;
+        m->e = pc_xrealloc(m->e, sizeof(MemoEntry) * (size_t)m->alloc);
+    }
+    MemoEntry *e = &m->e[m->n++];
+    fmpz_mpoly_init(e->poly, c->r->ctx);
+    fmpz_mpoly_set(e->poly, p, c->r->ctx);
+    e->key = key;
+    e->depth = depth;
+    e->mode = c->mode;
+    e->sum = book_sum_copy(s, c);
+    ulong i = key & (MEMO_SLOTS - 1);
+    while (m->slot[i])
+        i = (i + 1) & (MEMO_SLOTS - 1);
+    m->slot[i] = m->n;
 }
 
 static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
-    Memo *m = c->memo;
     slong len = fmpz_mpoly_length(p, c->r->ctx);
-    if (len < 2 || !m)
+    if (len < 2 || !c->memo)
         return render_new(p, depth, c);
-    ulong key = memo_key(p, len, depth, c);
-    for (slong i = 0; i < m->n; i++)
-        if (m->e[i].key == key && m->e[i].depth == depth &&
-            m->e[i].mode == c->mode &&
-            fmpz_mpoly_equal(m->e[i].poly, p, c->r->ctx))
-            return book_sum_copy(m->e[i].sum, c);
+    ulong key;
+    const MemoEntry *e = memo_find(p, len, depth, c, &key);
+    if (e)
+        return book_sum_copy(e->sum, c);
     PSum *s = render_new(p, depth, c);
-    if (m->n < MEMO_MAX) {
-        if (m->n == m->alloc) {
-            m->alloc = m->alloc ? 2 * m->alloc : 32;
-            m->e = pc_xrealloc(m->e, sizeof(MemoEntry) * (size_t)m->alloc);
-        }
-        MemoEntry *e = &m->e[m->n++];
-        fmpz_mpoly_init(e->poly, c->r->ctx);
-        fmpz_mpoly_set(e->poly, p, c->r->ctx);
-        e->key = key;
-        e->depth = depth;
-        e->mode = c->mode;
-        e->sum = book_sum_copy(s, c);
-    }
+    memo_add(p, key, depth, s, c);
     return s;
 }
 

@@ -84,9 +84,16 @@ typedef struct MemoEntry {
     struct PSum *sum;
 } MemoEntry;
 
+enum {
+    MEMO_MAX = 1024,  // entries remembered (the first ones)
+    MEMO_SLOTS = 2048 // the hash table's slots: a power of 2 > MEMO_MAX
+};
+
 typedef struct Memo {
     MemoEntry *e;
     slong n, alloc;
+    slong *slot; // MEMO_SLOTS: 1 + the index of an entry in e, or 0; by key
+                 // (open addressing), allocated with the first entry
     fmpz_mpoly_struct *fac; // irreducible factors (not monomials, positive
     slong nfac, facalloc;   // leading coefficient) of the polynomials
                             // factored fully so far (book_factor.c)
