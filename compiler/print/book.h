@@ -55,6 +55,8 @@ typedef struct BookOptions {
     int width;      // LaTeX: break equations longer than this (0: 80)
     slong origin;   // a base point to write relative to, or -1
     BookMemo *memo; // NULL: each call chooses afresh
+    int exhaustive; // tests only: every collected form built whole, none
+                    // given up by a bound (the same forms are chosen)
 } BookOptions;
 
 /* one output's right-hand side (malloc'd) */

@@ -544,6 +544,7 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
     c->named = d->named;
     c->nnamed = d->nnamed;
     c->line = 0; /* set per output: no names until then */
+    c->exhaustive = opt->exhaustive;
 }
 
 static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,

@@ -493,6 +493,60 @@ static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return s;
 }
 
+/* could p (two terms or more) be c*m*(1 - x)^e*(1 - y)^f*..., a number
+ * times a monomial times powers of 1 - x of params and consts: a form of
+ * one leaf?  0 when surely not: its coefficients do not sum to 0 (p
+ * would vanish at x = 1), a var other than those has two exponents, or
+ * the count of its terms is not the product of the exponent ranges
+ * (e + 1)(f + 1)...  1 otherwise (perhaps). */
+static int bar_monomial_possible(const fmpz_mpoly_t p, slong len, const Ctx *c)
+{
+    if (!polyfactor_vanishes_at_ones(p, c->r))
+        return 0;
+    enum { FEW_VARS = 16 };
+    slong nv = c->r->nvars;
+    if (nv > FEW_VARS || !fmpz_mpoly_degrees_fit_si(p, c->r->ctx))
+        return 1;
+    ulong e[FEW_VARS], lo[FEW_VARS], hi[FEW_VARS];
+    for (slong k = 0; k < len; k++) {
+        fmpz_mpoly_get_term_exp_ui(e, p, k, c->r->ctx);
+        for (slong v = 0; v < nv; v++) {
+            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
+            hi[v] = k == 0 || e[v] > hi[v] ? e[v] : hi[v];
+        }
+    }
+    double terms = 1;
+    for (slong v = 0; v < nv; v++) {
+        if (v >= c->nparams + c->nconsts && lo[v] != hi[v])
+            return 0;
+        terms *= (double)(hi[v] - lo[v] + 1);
+    }
+    return terms == (double)len;
+}
+
+slong book_leaves_lower(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    slong len = fmpz_mpoly_length(p, c->r->ctx);
+    if (len < 2 || c->has_sign || c->is_abs || c->exhaustive)
+        return 1; /* (through |x|, one leaf may write a sum: (t - 1)*|t - 1|) */
+    if (c->memo) { /* chosen already: exactly */
+        ulong key;
+        const MemoEntry *e = memo_find(p, len, depth, c, &key);
+        if (e)
+            return book_sum_leaves(e->sum);
+    }
+    /* a sum sits in a product only with two terms or more (book_model.c),
+     * so a form of one leaf is one product of vars and 1 - x's */
+    return bar_monomial_possible(p, len, c) ? 1 : 2;
+}
+
+/* the leaves a collected form must not exceed to compete with b (none in
+ * the tests' exhaustive search) */
+static slong limit(const Best *b, const Ctx *c)
+{
+    return c->exhaustive ? WORD_MAX : b->leaves;
+}
+
 /* b's form, built now if it is the expanded one */
 static PSum *best_take(Best *b, const fmpz_mpoly_t p, const Ctx *c)
 {
@@ -535,14 +589,14 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
             continue;
         *c->work += 2 * len;
         if (book_is_param(c, v))
-            keep_better(&b, book_form_bernstein(p, v, depth, b.leaves, c),
+            keep_better(&b, book_form_bernstein(p, v, depth, limit(&b, c), c),
                         R_BERNSTEIN, c);
         slong w = c->K ? book_cos_companion(v, c) : -1;
         if (w >= 0)
-            keep_better(&b, book_form_sin2(p, v, w, depth, b.leaves, c),
+            keep_better(&b, book_form_sin2(p, v, w, depth, limit(&b, c), c),
                         R_BERNSTEIN, c);
-        keep_better(&b, book_form_powers(p, v, depth, b.leaves, c), R_POWERS,
-                    c);
+        keep_better(&b, book_form_powers(p, v, depth, limit(&b, c), c),
+                    R_POWERS, c);
     }
     return best_take(&b, p, c);
 }

@@ -1,0 +1,167 @@
+/*
+ * test_book_bound.c - the printer's bounds on its form search
+ * (compiler/print/book_forms.c, book_collect.c) never change what it
+ * chooses: a collected form is given up once the leaves it has plus a
+ * lower bound on those still to come (book_leaves_lower: 2 for a
+ * coefficient that cannot be one product of vars and 1 - x's, the exact
+ * count for one already chosen) exceed the best form's, and the tests
+ * compare every print against the exhaustive search (BookOptions.
+ * exhaustive: every collected form built whole) on random polynomials
+ * made to have such coefficients, in text and LaTeX.
+ */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "base/mem.h"
+#include "base/strbuf.h"
+#include "compiler/print/book.h"
+#include "libpointcalc.h"
+#include "tests/unit/rand_algebra.h"
+
+/* every output of src printed by book_output, the search exhaustive or
+ * not (in style latex); malloc'd */
+static char *printed(const Derived *d, int latex, int exhaustive)
+{
+    StrBuf b = {0};
+    BookOptions o = {.latex = latex, .origin = -1, .exhaustive = exhaustive};
+    o.memo = book_memo_new(); /* shared by the outputs, as format.c does */
+    for (slong i = 0; i < d->noutputs; i++) {
+        char *s = book_output(d, &d->outputs[i], &o);
+        sb_puts(&b, s);
+        pc_free(s);
+    }
+    book_memo_free(o.memo, d);
+    return sb_take(&b);
+}
+
+static void put_int(StrBuf *b, int k)
+{
+    char x[16];
+    snprintf(x, sizeof x, "%d", k);
+    sb_puts(b, x);
+}
+
+/* one random product: a small integer times powers of t, u, a, b and of
+ * 1 - t, 1 - a (one leaf each way it is written), now and then times a
+ * sum of two terms (two leaves at least) */
+static void rand_product(StrBuf *b, flint_rand_t st)
+{
+    static const char *const atom[] = {"t", "u",       "a",
+                                       "b", "(1 - t)", "(1 - a)"};
+    put_int(b, 1 + (int)n_randint(st, 4));
+    for (int i = 0; i < 6; i++) {
+        ulong e = n_randint(st, 4);
+        if (e > 2)
+            e = 0; /* half the atoms absent */
+        if (e > 0) {
+            sb_puts(b, "*");
+            sb_puts(b, atom[i]);
+            sb_puts(b, "^");
+            put_int(b, (int)e);
+        }
+    }
+    if (n_randint(st, 4) == 0) {
+        sb_puts(b, "*(");
+        put_int(b, 1 + (int)n_randint(st, 3));
+        sb_puts(b, "*");
+        sb_puts(b, atom[n_randint(st, 4)]);
+        sb_puts(b, " + ");
+        sb_puts(b, atom[n_randint(st, 6)]);
+        sb_puts(b, ")");
+    }
+}
+
+/* a random sum of 1 to 5 products, signs mixed */
+static void rand_sum(StrBuf *b, flint_rand_t st)
+{
+    int n = 1 + (int)n_randint(st, 5);
+    for (int i = 0; i < n; i++) {
+        if (i > 0)
+            sb_puts(b, n_randint(st, 3) == 0 ? " - " : " + ");
+        rand_product(b, st);
+    }
+}
+
+/* a scalar and a point equation over a denominator, both random, printed
+ * with and without the bounds: the same text */
+static void test_bound_keeps_the_winner(void **state)
+{
+    (void)state;
+    flint_rand_t st;
+    rand_init(st);
+    slong iters = rand_iters(150), differ = 0;
+    for (slong k = 0; k < iters; k++) {
+        StrBuf src = {0};
+        sb_puts(&src, "point A, B\nparam t in [0, 1]\nparam u\nconst a, b\n"
+                      "s = ");
+        rand_sum(&src, st);
+        sb_puts(&src, "\nM = (A*(");
+        rand_sum(&src, st);
+        sb_puts(&src, ") + B*(");
+        rand_sum(&src, st);
+        sb_puts(&src, "))/(");
+        rand_sum(&src, st);
+        sb_puts(&src, ")\noutput s\noutput M\n");
+        Derived *d = derive_source("r.pcs", src.s, src.len, NULL, NULL);
+        if (!d) { /* a zero denominator, say: another */
+            pc_free(src.s);
+            continue;
+        }
+        for (int latex = 0; latex < 2; latex++) {
+            char *fast = printed(d, latex, 0);
+            char *full = printed(d, latex, 1);
+            if (strcmp(fast, full) != 0) {
+                fprintf(stderr, "bounded search differs on\n%s\n%s\n%s\n",
+                        src.s, fast, full);
+                differ++;
+            }
+            pc_free(fast);
+            pc_free(full);
+        }
+        derived_free(d);
+        pc_free(src.s);
+    }
+    flint_randclear(st);
+    assert_int_equal(differ, 0);
+}
+
+/* the bound's cases by hand, where the one-leaf coefficients decide:
+ * collected by u (a param, before the const a: the first of equal forms),
+ * the coefficients are 1 + t^2 + a^2*t*(1 - t)^2 (three leaves, itself
+ * collected by a, its terms joining the sum) and 2*a*(1 - t) (one leaf: the
+ * bound may not count it as two); 4 leaves against the expanded form's 9
+ * terms; the exhaustive search agrees */
+static void test_one_leaf_coefficients(void **state)
+{
+    (void)state;
+    static const char src[] = "param t in [0, 1]\nparam u\nconst a\n"
+                              "s = a^2*t*(1 - t)^2 + 2*a*u*(1 - t) + 1 + t^2\n";
+    Derived *d = derive_source("h.pcs", src, strlen(src), NULL, NULL);
+    assert_non_null(d);
+    char *fast = printed(d, 0, 0);
+    char *full = printed(d, 0, 1);
+    assert_string_equal(full, fast);
+    assert_string_equal(fast, "s = 1 + t^2 + a^2*t*(1 - t)^2 + "
+                              "2*a*(1 - t)*u\n");
+    pc_free(fast);
+    pc_free(full);
+    derived_free(d);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_bound_keeps_the_winner),
+        cmocka_unit_test(test_one_leaf_coefficients),
+    };
+    int rc = cmocka_run_group_tests(tests, NULL, NULL);
+    pc_cleanup();
+    return rc;
+}
