@@ -737,3 +737,20 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     pc_free(lhs.s);
     return sb_take(&b);
 }
+
+slong book_test_leaves(const Derived *d, const fmpz_mpoly_t p, int depth,
+                       slong *lower)
+{
+    BookOptions opt = {.origin = -1};
+    Ctx c;
+    long work;
+    Memo memo;
+    ctx_init(&c, d, &opt, &work, &memo);
+    lower[0] = book_leaves_lower(p, depth, &c);
+    PSum *s = book_render(p, depth, &c);
+    slong n = book_sum_leaves(s);
+    lower[1] = book_leaves_lower(p, depth, &c);
+    book_sum_free(s, &c);
+    book_memo_clear(&memo, &c);
+    return n;
+}

@@ -78,9 +78,39 @@ static void rand_product(StrBuf *b, flint_rand_t st)
     }
 }
 
-/* a random sum of 1 to 5 products, signs mixed */
+/* a random sum in powers of the const a whose coefficients are one
+ * product each of t, u, 1 - t and 1 - u (one leaf, several terms): the
+ * case the bound must count as one leaf */
+static void rand_collected(StrBuf *b, flint_rand_t st)
+{
+    static const char *const atom[] = {"t", "u", "(1 - t)", "(1 - u)"};
+    int n = 2 + (int)n_randint(st, 3);
+    for (int k = 0; k < n; k++) {
+        if (k > 0)
+            sb_puts(b, n_randint(st, 3) == 0 ? " - " : " + ");
+        put_int(b, 1 + (int)n_randint(st, 3));
+        sb_puts(b, "*a^");
+        put_int(b, k);
+        for (int i = 0; i < 4; i++) {
+            ulong e = n_randint(st, 3);
+            if (e > 0) {
+                sb_puts(b, "*");
+                sb_puts(b, atom[i]);
+                sb_puts(b, "^");
+                put_int(b, (int)e);
+            }
+        }
+    }
+}
+
+/* a random sum of 1 to 5 products, signs mixed, or (one time in three)
+ * one collected in powers of a */
 static void rand_sum(StrBuf *b, flint_rand_t st)
 {
+    if (n_randint(st, 3) == 0) {
+        rand_collected(b, st);
+        return;
+    }
     int n = 1 + (int)n_randint(st, 5);
     for (int i = 0; i < n; i++) {
         if (i > 0)
@@ -132,6 +162,41 @@ static void test_bound_keeps_the_winner(void **state)
     assert_int_equal(differ, 0);
 }
 
+/* the bound itself, on random polynomials at every depth: never above
+ * the leaves of the form chosen, and exact once that is remembered */
+static void test_bound_below_the_leaves(void **state)
+{
+    (void)state;
+    flint_rand_t st;
+    rand_init(st);
+    slong iters = rand_iters(300), checked = 0, twos = 0;
+    for (slong k = 0; k < iters; k++) {
+        StrBuf src = {0};
+        sb_puts(&src, "param t in [0, 1]\nparam u\nconst a, b\ns = ");
+        rand_sum(&src, st);
+        sb_puts(&src, "\noutput s\n");
+        Derived *d = derive_source("r.pcs", src.s, src.len, NULL, NULL);
+        assert_non_null(d);
+        for (int depth = 0; depth <= 2; depth++) {
+            slong lower[2];
+            slong n =
+                book_test_leaves(d, d->outputs[0].scalar->num, depth, lower);
+            if (lower[0] > n || lower[1] != n)
+                fprintf(stderr, "%s: depth %d, %ld leaves, bound %ld, %ld\n",
+                        src.s, depth, (long)n, (long)lower[0], (long)lower[1]);
+            assert_true(lower[0] <= n);
+            assert_int_equal(lower[1], n);
+            checked++;
+            twos += lower[0] == 2;
+        }
+        derived_free(d);
+        pc_free(src.s);
+    }
+    flint_randclear(st);
+    assert_true(checked > 0);
+    assert_true(twos > 0); /* the bound is not only 1 */
+}
+
 /* the bound's cases by hand, where the one-leaf coefficients decide:
  * collected by u (a param, before the const a: the first of equal forms),
  * the coefficients are 1 + t^2 + a^2*t*(1 - t)^2 (three leaves, itself
@@ -159,6 +224,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bound_keeps_the_winner),
+        cmocka_unit_test(test_bound_below_the_leaves),
         cmocka_unit_test(test_one_leaf_coefficients),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
