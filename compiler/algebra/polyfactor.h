@@ -31,7 +31,8 @@ int polyfactor_quadratic_irreducible(const fmpz_poly_t u);
 int polyfactor_irreducible_mod_small_prime(const fmpz_poly_t u);
 
 /* p (of r, not linear) proved irreducible and primitive, by its content in
- * one variable and an irreducible univariate image */
+ * one variable and an irreducible univariate image, or by the degrees of
+ * its images on lines modulo small primes */
 int polyfactor_surely_irreducible(const fmpz_mpoly_t p, const Ring *r);
 
 #endif

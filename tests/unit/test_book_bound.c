@@ -8,6 +8,10 @@
  * compare every print against the exhaustive search (BookOptions.
  * exhaustive: every collected form built whole) on random polynomials
  * made to have such coefficients, in text and LaTeX.
+ *
+ * Also the printer's cheapest proof of irreducibility, by images on lines
+ * modulo small primes (compiler/algebra/polyfactor.c): it proves what no
+ * single variable could, and never claims a product irreducible.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -21,6 +25,7 @@
 
 #include "base/mem.h"
 #include "base/strbuf.h"
+#include "compiler/algebra/ring.h"
 #include "compiler/print/book.h"
 #include "libpointcalc.h"
 #include "tests/unit/rand_algebra.h"
@@ -220,12 +225,92 @@ static void test_one_leaf_coefficients(void **state)
     derived_free(d);
 }
 
+static const char *const names[] = {"x", "y", "z"};
+
+static void set_str(fmpz_mpoly_t p, const char *s, const Ring *r)
+{
+    assert_int_equal(
+        fmpz_mpoly_set_str_pretty(p, s, (const char **)names, r->ctx), 0);
+}
+
+/* dense in each variable (every coefficient of every power has two terms
+ * or more, no variable of degree 1): only the lines prove these
+ * irreducible (irreducible by SymPy's factor_list) */
+static void test_irreducible_on_lines(void **state)
+{
+    (void)state;
+    Ring r;
+    ring_init(&r, 3, names);
+    fmpz_mpoly_t p;
+    fmpz_mpoly_init(p, r.ctx);
+    set_str(p, "x^2*y + x^2 + x*y^2 + x + y^2 + y + 1", &r);
+    assert_true(book_test_surely_irreducible(p, &r));
+    set_str(p, "x^2*y^2 + x^2*y + x^2 + x*y^2 + 2*x*y + x + y^2 + y + 3", &r);
+    assert_true(book_test_surely_irreducible(p, &r));
+    /* the product of the two (and a square) is no such thing */
+    fmpz_mpoly_t f, g;
+    fmpz_mpoly_init(f, r.ctx);
+    fmpz_mpoly_init(g, r.ctx);
+    set_str(f, "x^2*y + x^2 + x*y^2 + x + y^2 + y + 1", &r);
+    fmpz_mpoly_mul(g, f, p, r.ctx);
+    assert_false(book_test_surely_irreducible(g, &r));
+    fmpz_mpoly_mul(g, f, f, r.ctx);
+    assert_false(book_test_surely_irreducible(g, &r));
+    fmpz_mpoly_clear(g, r.ctx);
+    fmpz_mpoly_clear(f, r.ctx);
+    fmpz_mpoly_clear(p, r.ctx);
+    ring_clear(&r);
+}
+
+/* random products of two polynomials dense in x, y, z (each coefficient
+ * of two terms or more, as above, of total degree 2 to 6): never proved
+ * irreducible, by the lines or any other way */
+static void test_lines_never_claim_a_product(void **state)
+{
+    (void)state;
+    flint_rand_t st;
+    rand_init(st);
+    Ring r;
+    ring_init(&r, 3, names);
+    fmpz_mpoly_t f[2], p;
+    fmpz_mpoly_init(f[0], r.ctx);
+    fmpz_mpoly_init(f[1], r.ctx);
+    fmpz_mpoly_init(p, r.ctx);
+    slong iters = rand_iters(400);
+    for (slong k = 0; k < iters; k++) {
+        for (int j = 0; j < 2; j++) {
+            fmpz_mpoly_zero(f[j], r.ctx);
+            slong nv = 2 + (slong)n_randint(st, 2);
+            for (int t = 0; t < 8; t++) {
+                ulong e[3] = {n_randint(st, 3), n_randint(st, 3), 0};
+                if (nv == 3)
+                    e[2] = n_randint(st, 2);
+                fmpz_mpoly_set_coeff_si_ui(f[j], 1 + (slong)n_randint(st, 4), e,
+                                           r.ctx);
+            }
+            fmpz_mpoly_add_si(f[j], f[j], 1, r.ctx); /* no monomial factor */
+        }
+        fmpz_mpoly_mul(p, f[0], f[1], r.ctx);
+        if (fmpz_mpoly_total_degree_si(f[0], r.ctx) < 1 ||
+            fmpz_mpoly_total_degree_si(f[1], r.ctx) < 1)
+            continue;
+        assert_false(book_test_surely_irreducible(p, &r));
+    }
+    fmpz_mpoly_clear(p, r.ctx);
+    fmpz_mpoly_clear(f[1], r.ctx);
+    fmpz_mpoly_clear(f[0], r.ctx);
+    ring_clear(&r);
+    flint_randclear(st);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_bound_keeps_the_winner),
         cmocka_unit_test(test_bound_below_the_leaves),
         cmocka_unit_test(test_one_leaf_coefficients),
+        cmocka_unit_test(test_irreducible_on_lines),
+        cmocka_unit_test(test_lines_never_claim_a_product),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
