@@ -446,23 +446,17 @@ PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
     PSum *s = book_sum_new(c);
     PTerm *t = book_sum_push(s);
     int found = 0;
-    /* integer content, with the sign of the first (ascending) term */
-    _fmpz_vec_content(t->coeff, p->coeffs, fmpz_mpoly_length(p, r->ctx));
-    fmpz_mpoly_scalar_divexact_fmpz(q, p, t->coeff, r->ctx);
-    found |= !fmpz_is_one(t->coeff);
-    /* the monomial content */
-    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
-    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
-    for (slong k = 0; k < fmpz_mpoly_length(q, r->ctx); k++) {
-        fmpz_mpoly_get_term_exp_ui(e, q, k, r->ctx);
-        for (slong v = 0; v < nv; v++)
-            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
+    /* the integer content (positive) and the monomial content: q =
+     * p/(content*monomial) */
+    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)(r->ctx->minfo->nvars + 1));
+    primitive_split(q, t->coeff, lo, p, c);
+    if (fmpz_sgn(t->coeff) < 0) {
+        fmpz_neg(t->coeff, t->coeff);
+        fmpz_mpoly_neg(q, q, r->ctx);
     }
+    found |= !fmpz_is_one(t->coeff);
     for (slong v = 0; v < nv; v++)
         if (lo[v]) {
-            fmpz_mpoly_gen(m, v, r->ctx);
-            fmpz_mpoly_pow_ui(m, m, lo[v], r->ctx);
-            fmpz_mpoly_divides(q, q, m, r->ctx);
             book_term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, lo[v]});
             found = 1;
         }
@@ -485,7 +479,6 @@ PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
         }
     }
     pc_free(lo);
-    pc_free(e);
     if (fmpz_mpoly_is_fmpz(q, r->ctx)) {
         /* what is left is a unit: its sign */
         if (fmpz_sgn(q->coeffs) < 0)
