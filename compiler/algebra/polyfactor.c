@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <flint/fmpq_vec.h>
 #include <flint/fmpz_poly_factor.h>
 #include <flint/fmpz_vec.h>
 #include <flint/nmod_poly.h>
@@ -96,6 +97,104 @@ int polyfactor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
     pc_free(deg);
     pc_free(to_small);
     pc_free(to_big);
+    return ok;
+}
+
+/* the one variable p uses (-1: none or several); *lo its lowest power */
+static slong one_var(const fmpz_mpoly_t p, ulong *lo, const Ring *r)
+{
+    slong nv = r->ctx->minfo->nvars, x = -1;
+    for (slong v = 0; v < nv; v++)
+        if (fmpz_mpoly_degree_si(p, v, r->ctx) > 0) {
+            if (x >= 0)
+                return -1;
+            x = v;
+        }
+    if (x < 0)
+        return -1;
+    *lo = fmpz_mpoly_get_term_var_exp_ui(p, 0, x, r->ctx);
+    for (slong k = 1; k < fmpz_mpoly_length(p, r->ctx); k++) {
+        ulong e = fmpz_mpoly_get_term_var_exp_ui(p, k, x, r->ctx);
+        *lo = e < *lo ? e : *lo;
+    }
+    return x;
+}
+
+int polyfactor_split_linear(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
+                            const Ring *r)
+{
+    /* a prime of 16 bits (a small one: finding the roots costs powers of
+     * x to about P): fractions of numerator and denominator up to 180 come
+     * back from their residues (others are left to FLINT) */
+    static const ulong P = 65521;
+    slong len = fmpz_mpoly_length(p, r->ctx);
+    ulong lo;
+    slong x = one_var(p, &lo, r);
+    if (x < 0 || len < 2 || !ring_factor_affordable(p, r))
+        return 0;
+    slong n = fmpz_mpoly_degree_si(p, x, r->ctx) - (slong)lo;
+    if (n < 2)
+        return 0;
+    fmpz_t g, m;
+    fmpz_init(g);
+    fmpz_init_set_ui(m, P);
+    _fmpz_vec_content(g, p->coeffs, len);
+    if (fmpz_sgn(p->coeffs + 0) < 0) /* the sign of the leading term */
+        fmpz_neg(g, g);
+    fmpz_poly_t u, w, lin;
+    fmpz_poly_init(u);
+    fmpz_poly_init(w);
+    fmpz_poly_init(lin);
+    fmpz_t c;
+    fmpz_init(c);
+    for (slong k = 0; k < len; k++) { /* u = p/(g x^lo), in x */
+        fmpz_divexact(c, p->coeffs + k, g);
+        fmpz_poly_set_coeff_fmpz(
+            u, (slong)(fmpz_mpoly_get_term_var_exp_ui(p, k, x, r->ctx) - lo),
+            c);
+    }
+    nmod_poly_t um;
+    nmod_poly_init(um, P);
+    fmpz_poly_get_nmod_poly(um, u);
+    ulong *root = pc_xmalloc(sizeof(ulong) * (size_t)n);
+    fmpq *q = _fmpq_vec_init(n);
+    int ok = nmod_poly_degree(um) == n &&
+             nmod_poly_find_distinct_nonzero_roots(root, um);
+    fmpz_poly_one(w);
+    for (slong i = 0; ok && i < n; i++) { /* each root a fraction b/a */
+        fmpz_set_ui(c, root[i]);
+        ok = fmpq_reconstruct_fmpz(q + i, c, m);
+        fmpz_poly_set_coeff_fmpz(lin, 1, fmpq_denref(q + i));
+        fmpz_neg(c, fmpq_numref(q + i));
+        fmpz_poly_set_coeff_fmpz(lin, 0, c);
+        fmpz_poly_mul(w, w, lin);
+    }
+    ok = ok && fmpz_poly_equal(w, u); /* the proof: u = prod (a x - b) */
+    if (ok) {
+        fmpz_mpoly_factor_fit_length(f, n + 1, r->ctx);
+        fmpz_swap(f->constant, g);
+        f->num = 0;
+        if (lo > 0) {
+            fmpz_mpoly_gen(f->poly + f->num, x, r->ctx);
+            fmpz_set_ui(f->exp + f->num++, lo);
+        }
+        for (slong i = 0; i < n; i++) {
+            fmpz_mpoly_struct *h = f->poly + f->num;
+            fmpz_mpoly_gen(h, x, r->ctx);
+            fmpz_mpoly_scalar_mul_fmpz(h, h, fmpq_denref(q + i), r->ctx);
+            fmpz_mpoly_sub_fmpz(h, h, fmpq_numref(q + i), r->ctx);
+            fmpz_one(f->exp + f->num++);
+        }
+    }
+    _fmpq_vec_clear(q, n);
+    pc_free(root);
+    nmod_poly_clear(um);
+    fmpz_clear(c);
+    fmpz_poly_clear(lin);
+    fmpz_poly_clear(w);
+    fmpz_poly_clear(u);
+    fmpz_clear(m);
+    fmpz_clear(g);
     return ok;
 }
 

@@ -88,7 +88,7 @@ int book_factor(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, const Derived *d,
 int book_test_surely_irreducible(const fmpz_mpoly_t p, const Ring *r);
 int book_test_irreducible_mod_small_prime(const fmpz_poly_t u);
 int book_test_quadratic_irreducible(const fmpz_poly_t u);
-/* for tests/unit/test_book_bound.c only: the leaves of p's form at depth
+/* for tests/unit/test_book_fast.c only: the leaves of p's form at depth
  * (p of d's ring) and the printer's lower bound on them, before (lower[0])
  * and after (lower[1], remembered then) the form is chosen */
 slong book_test_leaves(const Derived *d, const fmpz_mpoly_t p, int depth,

@@ -366,7 +366,7 @@ static int factor_shared(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
 {
     if (factor_known(f, p, c) || factor_by_known(f, p, c))
         return 1;
-    if (!polyfactor_compact(f, p, c->r))
+    if (!polyfactor_split_linear(f, p, c->r) && !polyfactor_compact(f, p, c->r))
         return 0;
     if (c->memo && ring_factor_affordable(p, c->r))
         remember_factors(f, c);

@@ -1,5 +1,6 @@
 /*
- * test_book_bound.c - the printer's bounds on its form search
+ * test_book_fast.c - the printer's shortcuts choose what the long way
+ * chooses.  Its bounds on the form search
  * (compiler/print/book_forms.c, book_collect.c) never change what it
  * chooses: a collected form is given up once the leaves it has plus a
  * lower bound on those still to come (book_leaves_lower: 2 for a
@@ -11,7 +12,9 @@
  *
  * Also the printer's cheapest proof of irreducibility, by images on lines
  * modulo small primes (compiler/algebra/polyfactor.c): it proves what no
- * single variable could, and never claims a product irreducible.
+ * single variable could, and never claims a product irreducible; and its
+ * split of a polynomial in one variable into linear factors by its roots
+ * modulo a prime, which gives FLINT's factors or nothing.
  */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -25,6 +28,7 @@
 
 #include "base/mem.h"
 #include "base/strbuf.h"
+#include "compiler/algebra/polyfactor.h"
 #include "compiler/algebra/ring.h"
 #include "compiler/print/book.h"
 #include "libpointcalc.h"
@@ -303,6 +307,106 @@ static void test_lines_never_claim_a_product(void **state)
     flint_randclear(st);
 }
 
+/* f and g hold the same factors with the same powers (in any order) and
+ * the same constant */
+static int same_factoring(const fmpz_mpoly_factor_t f,
+                          const fmpz_mpoly_factor_t g, const Ring *r)
+{
+    if (f->num != g->num || !fmpz_equal(f->constant, g->constant))
+        return 0;
+    for (slong i = 0; i < f->num; i++) {
+        int found = 0;
+        for (slong j = 0; j < g->num && !found; j++)
+            found = fmpz_mpoly_equal(f->poly + i, g->poly + j, r->ctx) &&
+                    fmpz_equal(f->exp + i, g->exp + j);
+        if (!found)
+            return 0;
+    }
+    return 1;
+}
+
+/* random c * x^k * prod (a x - b): split by the roots as FLINT factors it;
+ * with a repeated root, an irreducible quadratic factor or a root past
+ * the prime's reach (b = 1000), not split (FLINT's factoring does it) */
+static void test_split_linear(void **state)
+{
+    (void)state;
+    flint_rand_t st;
+    rand_init(st);
+    Ring r;
+    ring_init(&r, 3, names);
+    fmpz_mpoly_t p, lin;
+    fmpz_mpoly_init(p, r.ctx);
+    fmpz_mpoly_init(lin, r.ctx);
+    fmpz_mpoly_factor_t f, g;
+    slong iters = rand_iters(200), split = 0;
+    for (slong k = 0; k < iters; k++) {
+        int kind = (int)n_randint(st, 5); /* 0, 1: linear; 2: repeated
+                                           * root; 3: quadratic; 4: far */
+        slong x = (slong)n_randint(st, 3);
+        fmpz_mpoly_set_si(p, (slong)n_randint(st, 7) - 3, r.ctx);
+        if (fmpz_mpoly_is_zero(p, r.ctx))
+            fmpz_mpoly_one(p, r.ctx);
+        fmpz_mpoly_gen(lin, x, r.ctx);
+        fmpz_mpoly_pow_ui(lin, lin, n_randint(st, 3), r.ctx);
+        fmpz_mpoly_mul(p, p, lin, r.ctx);
+        slong n = 2 + (slong)n_randint(st, 8), ra[10], rb[10];
+        for (slong i = 0; i < n; i++) { /* (a x - b), b != 0, b/a new */
+            slong a, b;
+            int again;
+            do {
+                a = 1 + (slong)n_randint(st, 12);
+                b = (1 + (slong)n_randint(st, 60)) *
+                    (n_randint(st, 2) ? 1 : -1);
+                again = n_gcd((ulong)a, (ulong)labs(b)) != 1;
+                for (slong j = 0; j < i && !again; j++)
+                    again = ra[j] == a && rb[j] == b;
+            } while (again);
+            ra[i] = a;
+            rb[i] = b;
+            fmpz_mpoly_gen(lin, x, r.ctx);
+            fmpz_mpoly_scalar_mul_si(lin, lin, a, r.ctx);
+            fmpz_mpoly_sub_si(lin, lin, b, r.ctx);
+            fmpz_mpoly_mul(p, p, lin, r.ctx);
+        }
+        if (kind >= 2) {
+            fmpz_mpoly_gen(lin, x, r.ctx);
+            if (kind == 2)
+                fmpz_mpoly_sub_si(lin, lin, 1, r.ctx);
+            if (kind == 3)
+                fmpz_mpoly_mul(lin, lin, lin, r.ctx);
+            fmpz_mpoly_add_si(lin, lin, kind == 4 ? 1000 : 3, r.ctx);
+            if (kind == 2)
+                fmpz_mpoly_mul(lin, lin, lin, r.ctx); /* (x + 2)^2 */
+            fmpz_mpoly_mul(p, p, lin, r.ctx);
+        }
+        fmpz_mpoly_factor_init(f, r.ctx);
+        fmpz_mpoly_factor_init(g, r.ctx);
+        int ok = polyfactor_split_linear(f, p, &r);
+        assert_true(ring_factor(g, p, &r));
+        if (kind < 2) {
+            assert_true(ok);
+            split++;
+        }
+        if (kind >= 2)
+            assert_false(ok);
+        if (ok)
+            assert_true(same_factoring(f, g, &r));
+        fmpz_mpoly_factor_clear(g, r.ctx);
+        fmpz_mpoly_factor_clear(f, r.ctx);
+    }
+    assert_true(split > 0);
+    /* in two variables: not this way */
+    set_str(p, "(x - 1)*(y - 2)", &r);
+    fmpz_mpoly_factor_init(f, r.ctx);
+    assert_false(polyfactor_split_linear(f, p, &r));
+    fmpz_mpoly_factor_clear(f, r.ctx);
+    fmpz_mpoly_clear(lin, r.ctx);
+    fmpz_mpoly_clear(p, r.ctx);
+    ring_clear(&r);
+    flint_randclear(st);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -311,6 +415,7 @@ int main(void)
         cmocka_unit_test(test_one_leaf_coefficients),
         cmocka_unit_test(test_irreducible_on_lines),
         cmocka_unit_test(test_lines_never_claim_a_product),
+        cmocka_unit_test(test_split_linear),
     };
     int rc = cmocka_run_group_tests(tests, NULL, NULL);
     pc_cleanup();
