@@ -540,11 +540,14 @@ slong book_leaves_lower(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return bar_monomial_possible(p, len, c) ? 1 : 2;
 }
 
-/* the leaves a collected form must not exceed to compete with b (none in
+/* the leaves a collected form must not exceed to compete with b: b's,
+ * or one fewer when b is factored or expanded, which win a tie (none in
  * the tests' exhaustive search) */
 static slong limit(const Best *b, const Ctx *c)
 {
-    return c->exhaustive ? WORD_MAX : b->leaves;
+    if (c->exhaustive)
+        return WORD_MAX;
+    return b->rank < R_BERNSTEIN ? b->leaves - 1 : b->leaves;
 }
 
 /* b's form, built now if it is the expanded one */
