@@ -682,13 +682,12 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     put_lhs(&lhs, o, &c);
     int width = opt->width > 0 ? opt->width : 80;
     if (opt->latex && o->kind != KIND_SCALAR && opt->origin < 0) {
-        /* the parts of the equation, once: its line and its width (a
-         * fraction is as wide as the longer of its two lines) */
+        /* the parts of the equation, once: its width (a fraction is as
+         * wide as the longer of its two lines), then its lines */
         PointEqStruct tmp;
         const PointEqStruct *eq = eq_form(&tmp, d, o, &c);
         EqParts P;
         eq_parts(&P, d, o, eq, &c);
-        rhs_equation(&rb, &P, &c);
         StrBuf n = {0}, dn = {0}, cm = {0};
         book_put_sum(&n, P.items, &c);
         if (P.den)
@@ -703,10 +702,10 @@ char *book_output(const Derived *d, const DerivedOutput *o,
             eq_parts_clear(&P, &c);
             eq_form_clear(&tmp, eq, &c);
             book_memo_clear(&memo, &c);
-            pc_free(rb.s);
             pc_free(lhs.s);
             return sb_take(&b);
         }
+        rhs_equation(&rb, &P, &c); /* on one line */
         eq_parts_clear(&P, &c);
         eq_form_clear(&tmp, eq, &c);
     } else {
