@@ -325,14 +325,16 @@ typedef struct Best {
     slong leaves;
     int rank;
     size_t len;
+    slong pos; // the var a collected form is by: the first wins a tie
 } Best;
 
 /* keeps the better of b and cand: fewer leaves; then factored before
  * expanded before collected; among collected forms the shorter text, then
- * Bernstein before powers; then the earlier candidate.  Lengths are those
+ * Bernstein before powers; then the one by the earlier variable (the
+ * order they are tried in does not matter).  Lengths are those
  * of the text form whatever the style, so text and LaTeX agree (the
  * expanded form never needs its length: it ranks alone). */
-static void keep_better(Best *b, PSum *cand, int rank, const Ctx *c)
+static void keep_better(Best *b, PSum *cand, int rank, slong pos, const Ctx *c)
 {
     if (!cand)
         return;
@@ -345,7 +347,9 @@ static void keep_better(Best *b, PSum *cand, int rank, const Ctx *c)
         if (b->len == (size_t)-1)
             b->len = text_len(b->s, c);
         len = text_len(cand, c);
-        better = len < b->len || (len == b->len && rank < b->rank);
+        better = len < b->len ||
+                 (len == b->len &&
+                  (rank < b->rank || (rank == b->rank && pos < b->pos)));
     }
     if (!better) {
         book_sum_free(cand, c);
@@ -356,6 +360,7 @@ static void keep_better(Best *b, PSum *cand, int rank, const Ctx *c)
     b->leaves = lc;
     b->rank = rank;
     b->len = len;
+    b->pos = pos;
 }
 
 static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c);
@@ -569,7 +574,7 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     }
     if (len == 0 || fmpz_mpoly_is_fmpz(p, r->ctx))
         return book_form_expanded(p, c);
-    Best b = {NULL, len, R_EXPANDED, (size_t)-1};
+    Best b = {NULL, len, R_EXPANDED, (size_t)-1, -1};
     *c->work += len;
     if (len < 2)
         return best_take(&b, p, c); /* a monomial: expanded is factored */
@@ -579,27 +584,35 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
         (depth == 0 ||
          (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED))) {
         *c->work += FACTOR_WORK + 20 * len;
-        keep_better(&b, book_form_factored(p, depth, c), R_FACTORED, c);
+        keep_better(&b, book_form_factored(p, depth, c), R_FACTORED, -1, c);
     } else if (depth >= CHEAP_FACTOR_DEPTH) {
         *c->work += 4 * len;
-        keep_better(&b, book_form_factored_cheap(p, depth, c), R_FACTORED, c);
+        keep_better(&b, book_form_factored_cheap(p, depth, c), R_FACTORED, -1,
+                    c);
     }
     if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
         return best_take(&b, p, c);
+    /* the powers first (the Bernstein forms, given up against them, cost
+     * more to build) */
     for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK && !budget_late();
          v++) {
         if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
             continue;
         *c->work += 2 * len;
+        keep_better(&b, book_form_powers(p, v, depth, limit(&b, c), c),
+                    R_POWERS, v, c);
+    }
+    for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK && !budget_late();
+         v++) {
+        if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
+            continue;
         if (book_is_param(c, v))
             keep_better(&b, book_form_bernstein(p, v, depth, limit(&b, c), c),
-                        R_BERNSTEIN, c);
+                        R_BERNSTEIN, v, c);
         slong w = c->K ? book_cos_companion(v, c) : -1;
         if (w >= 0)
             keep_better(&b, book_form_sin2(p, v, w, depth, limit(&b, c), c),
-                        R_BERNSTEIN, c);
-        keep_better(&b, book_form_powers(p, v, depth, limit(&b, c), c),
-                    R_POWERS, c);
+                        R_BERNSTEIN, v, c);
     }
     return best_take(&b, p, c);
 }
