@@ -360,11 +360,18 @@ static int factor_by_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
 
 /* p's factoring as ring_factor makes it (ring_factor.h), up to the order
  * of the factors, with the irreducible factors of a full factoring
- * remembered in c->memo and divided out of later polynomials first */
+ * remembered in c->memo and divided out of later polynomials first
+ * (those proved irreducible without FLINT too: the five-point conic's
+ * coefficients are products of them) */
 static int factor_shared(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
                          const Ctx *c)
 {
-    if (factor_known(f, p, c) || factor_by_known(f, p, c))
+    if (factor_known(f, p, c)) {
+        if (c->memo && ring_factor_affordable(p, c->r))
+            remember_factors(f, c);
+        return 1;
+    }
+    if (factor_by_known(f, p, c))
         return 1;
     if (!polyfactor_split_linear(f, p, c->r) && !polyfactor_compact(f, p, c->r))
         return 0;
