@@ -179,7 +179,10 @@ static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
         fmpz_mpoly_t bar, quo;
         fmpz_mpoly_init(bar, r->ctx);
         fmpz_mpoly_init(quo, r->ctx);
-        for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
+        int ones = polyfactor_vanishes_at_ones(q, r);
+        for (slong v = 0; ones && v < c->nparams + c->nconsts && v < nv; v++) {
+            if (fmpz_mpoly_degree_si(q, v, r->ctx) < 1)
+                continue;
             fmpz_mpoly_gen(bar, v, r->ctx);
             fmpz_mpoly_sub_ui(bar, bar, 1, r->ctx);
             while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
@@ -189,6 +192,8 @@ static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
                 bars[v]++;
             }
             nbars += bars[v] > 0;
+            if (bars[v] > 0)
+                ones = polyfactor_vanishes_at_ones(q, r);
         }
         fmpz_mpoly_clear(quo, r->ctx);
         fmpz_mpoly_clear(bar, r->ctx);
@@ -467,9 +472,12 @@ PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
             book_term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, lo[v]});
             found = 1;
         }
-    /* (1 - x)^k */
-    for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
+    /* (1 - x)^k (none unless q(1, ..., 1) = 0) */
+    int ones = polyfactor_vanishes_at_ones(q, r);
+    for (slong v = 0; ones && v < c->nparams + c->nconsts && v < nv; v++) {
         ulong k = 0;
+        if (fmpz_mpoly_degree_si(q, v, r->ctx) < 1)
+            continue;
         fmpz_mpoly_gen(bar, v, r->ctx);
         fmpz_mpoly_neg(bar, bar, r->ctx);
         fmpz_mpoly_add_si(bar, bar, 1, r->ctx);
@@ -483,6 +491,7 @@ PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
         if (k) {
             book_term_push(t, (Atom){AT_BAR, v, NULL, NULL, NULL, k});
             found = 1;
+            ones = polyfactor_vanishes_at_ones(q, r);
         }
     }
     pc_free(lo);
