@@ -330,8 +330,8 @@ typedef struct Best {
 
 /* keeps the better of b and cand: fewer leaves; then factored before
  * expanded before collected; among collected forms the shorter text, then
- * Bernstein before powers; then the one by the earlier variable (the
- * order they are tried in does not matter).  Lengths are those
+ * Bernstein before powers; then the one by the earlier variable.  Lengths
+ * are those
  * of the text form whatever the style, so text and LaTeX agree (the
  * expanded form never needs its length: it ranks alone). */
 static void keep_better(Best *b, PSum *cand, int rank, slong pos, const Ctx *c)
@@ -592,20 +592,16 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
     }
     if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
         return best_take(&b, p, c);
-    /* the powers first (the Bernstein forms, given up against them, cost
-     * more to build) */
     for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK && !budget_late();
          v++) {
         if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
             continue;
         *c->work += 2 * len;
+        /* the powers first: the Bernstein form (dearer) is then given up
+         * against them the sooner (the order does not change the choice:
+         * Bernstein wins a tie of leaves and length by its rank) */
         keep_better(&b, book_form_powers(p, v, depth, limit(&b, c), c),
                     R_POWERS, v, c);
-    }
-    for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK && !budget_late();
-         v++) {
-        if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
-            continue;
         if (book_is_param(c, v))
             keep_better(&b, book_form_bernstein(p, v, depth, limit(&b, c), c),
                         R_BERNSTEIN, v, c);
