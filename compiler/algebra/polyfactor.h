@@ -20,6 +20,16 @@
 int polyfactor_compact(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
                        const Ring *r);
 
+/* p (of r) in one variable x, a product of distinct linear factors over
+ * Q (times its integer content and a power of x): f as ring_factor would
+ * make it, up to the order of the factors (the content with the sign of
+ * p's leading term, x^k, the factors a*x - b, a > 0), found by p's roots
+ * modulo a prime of 16 bits, each read as a fraction b/a, and proved by
+ * their product.  Only where ring_factor factors fully
+ * (ring_factor_affordable).  0: not so, or not found (f untouched). */
+int polyfactor_split_linear(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
+                            const Ring *r);
+
 /* q(1, ..., 1) == 0: necessary for x - 1 to divide q */
 int polyfactor_vanishes_at_ones(const fmpz_mpoly_t q, const Ring *r);
 
@@ -31,7 +41,8 @@ int polyfactor_quadratic_irreducible(const fmpz_poly_t u);
 int polyfactor_irreducible_mod_small_prime(const fmpz_poly_t u);
 
 /* p (of r, not linear) proved irreducible and primitive, by its content in
- * one variable and an irreducible univariate image */
+ * one variable and an irreducible univariate image, or by the degrees of
+ * its images on lines modulo small primes */
 int polyfactor_surely_irreducible(const fmpz_mpoly_t p, const Ring *r);
 
 #endif

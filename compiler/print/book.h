@@ -55,6 +55,8 @@ typedef struct BookOptions {
     int width;      // LaTeX: break equations longer than this (0: 80)
     slong origin;   // a base point to write relative to, or -1
     BookMemo *memo; // NULL: each call chooses afresh
+    int exhaustive; // tests only: every collected form built whole, none
+                    // given up by a bound (the same forms are chosen)
 } BookOptions;
 
 /* one output's right-hand side (malloc'd) */
@@ -86,5 +88,10 @@ int book_factor(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p, const Derived *d,
 int book_test_surely_irreducible(const fmpz_mpoly_t p, const Ring *r);
 int book_test_irreducible_mod_small_prime(const fmpz_poly_t u);
 int book_test_quadratic_irreducible(const fmpz_poly_t u);
+/* for tests/unit/test_book_fast.c only: the leaves of p's form at depth
+ * (p of d's ring) and the printer's lower bound on them, before (lower[0])
+ * and after (lower[1], remembered then) the form is chosen */
+slong book_test_leaves(const Derived *d, const fmpz_mpoly_t p, int depth,
+                       slong *lower);
 
 #endif

@@ -91,7 +91,7 @@ static void coeffs_clear(Coeffs *k, const Ctx *c)
 
 /* s, being built, with more leaves to come (at least more), would have
  * more leaves than limit: it cannot win (book_render keeps a form with
- * fewer leaves, and a term never has fewer than one); s is freed */
+ * fewer leaves); s is freed */
 static int beyond(PSum **s, slong more, slong limit, const Ctx *c)
 {
     slong have = (*s)->n ? book_sum_leaves(*s) : 0;
@@ -102,19 +102,36 @@ static int beyond(PSum **s, slong more, slong limit, const Ctx *c)
     return 1;
 }
 
+/* more[j]: a lower bound on the leaves that a[j..n) will make as
+ * coefficients at depth (book_leaves_lower; more[n] = 0) */
+static slong *leaves_to_come(const fmpz_mpoly_struct *a, slong n, int depth,
+                             const Ctx *c)
+{
+    slong *more = pc_xmalloc(sizeof(slong) * (size_t)(n + 1));
+    more[n] = 0;
+    for (slong j = n - 1; j >= 0; j--)
+        more[j] = more[j + 1] + (fmpz_mpoly_is_zero(a + j, c->r->ctx)
+                                     ? 0
+                                     : book_leaves_lower(a + j, depth, c));
+    return more;
+}
+
 PSum *book_form_powers(const fmpz_mpoly_t p, slong x, int depth, slong limit,
                        const Ctx *c)
 {
     Coeffs k;
     coeffs_init(&k, p, x, c);
     PSum *s = book_sum_new(c);
-    /* each nonzero coefficient makes at least one term */
-    for (slong j = 0; j < k.n && !beyond(&s, k.n - j, limit, c); j++) {
+    slong *more = k.n <= limit ? leaves_to_come(k.a, k.n, depth + 1, c) : NULL;
+    if (!more)
+        beyond(&s, k.n, limit, c);
+    for (slong j = 0; s && j < k.n && !beyond(&s, more[j], limit, c); j++) {
         Atom xa = {AT_VAR, x, NULL, NULL, NULL, k.e[j]};
         push_collected(s, k.a + j, &xa, 1, depth, c);
     }
     if (s)
         beyond(&s, 0, limit, c);
+    pc_free(more);
     coeffs_clear(&k, c);
     if (s)
         book_sum_finish(s, p, c);
@@ -137,13 +154,13 @@ static PSum *bernstein(const Coeffs *k, ulong n, const Basis *B, int depth,
                        slong limit, const Ctx *c)
 {
     const Ring *r = c->r;
-    PSum *s = book_sum_new(c);
     fmpz *bin = _fmpz_vec_init(k->n);
-    fmpz_mpoly_t bk, tmp;
-    fmpz_mpoly_init(bk, r->ctx);
+    fmpz_mpoly_struct *b =
+        pc_xmalloc(sizeof(fmpz_mpoly_struct) * (size_t)(n + 1));
+    fmpz_mpoly_t tmp;
     fmpz_mpoly_init(tmp, r->ctx);
-    for (ulong kk = 0; kk <= n && s; kk++) {
-        fmpz_mpoly_zero(bk, r->ctx);
+    for (ulong kk = 0; kk <= n; kk++) {
+        fmpz_mpoly_init(b + kk, r->ctx);
         for (slong j = 0; j < k->n && k->e[j] <= kk; j++) {
             ulong m = n - k->e[j], i = kk - k->e[j];
             if (i == 0) {
@@ -153,18 +170,34 @@ static PSum *bernstein(const Coeffs *k, ulong n, const Basis *B, int depth,
                 fmpz_divexact_ui(bin + j, bin + j, i);
             }
             fmpz_mpoly_scalar_mul_fmpz(tmp, k->a + j, bin + j, r->ctx);
-            fmpz_mpoly_add(bk, bk, tmp, r->ctx);
+            fmpz_mpoly_add(b + kk, b + kk, tmp, r->ctx);
         }
-        if (fmpz_mpoly_is_zero(bk, r->ctx))
+    }
+    fmpz_mpoly_clear(tmp, r->ctx);
+    _fmpz_vec_clear(bin, k->n);
+    /* each b_k != 0 makes a term: given up before any is rendered when
+     * they are too many */
+    PSum *s = book_sum_new(c);
+    slong nz = 0;
+    for (ulong kk = 0; kk <= n; kk++)
+        nz += !fmpz_mpoly_is_zero(b + kk, r->ctx);
+    slong *more =
+        nz <= limit ? leaves_to_come(b, (slong)n + 1, depth + 1, c) : NULL;
+    if (!more)
+        beyond(&s, nz, limit, c);
+    for (ulong kk = 0; kk <= n && s && !beyond(&s, more[kk], limit, c); kk++) {
+        if (fmpz_mpoly_is_zero(b + kk, r->ctx))
             continue;
         Atom xs[2] = {{AT_VAR, B->u, NULL, NULL, NULL, B->scale * kk},
                       {B->vkind, B->v, NULL, NULL, NULL, B->scale * (n - kk)}};
-        push_collected(s, bk, xs, 2, depth, c);
-        beyond(&s, 0, limit, c);
+        push_collected(s, b + kk, xs, 2, depth, c);
     }
-    fmpz_mpoly_clear(tmp, r->ctx);
-    fmpz_mpoly_clear(bk, r->ctx);
-    _fmpz_vec_clear(bin, k->n);
+    if (s)
+        beyond(&s, 0, limit, c);
+    pc_free(more);
+    for (ulong kk = 0; kk <= n; kk++)
+        fmpz_mpoly_clear(b + kk, r->ctx);
+    pc_free(b);
     return s;
 }
 

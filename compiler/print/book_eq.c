@@ -545,6 +545,7 @@ static void ctx_init(Ctx *c, const Derived *d, const BookOptions *opt,
     c->named = d->named;
     c->nnamed = d->nnamed;
     c->line = 0; /* set per output: no names until then */
+    c->exhaustive = opt->exhaustive;
 }
 
 static void rhs_into(StrBuf *b, const Derived *d, const DerivedOutput *o,
@@ -682,11 +683,10 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     c.line = o->line;
     StrBuf b = {0}, lhs = {0}, rb = {0};
     put_lhs(&lhs, o, &c);
-    rhs_into(&rb, d, o, opt, &c);
-    char *rhs = sb_take(&rb);
     int width = opt->width > 0 ? opt->width : 80;
     if (opt->latex && o->kind != KIND_SCALAR && opt->origin < 0) {
-        /* a fraction is as wide as the longer of its two lines */
+        /* the parts of the equation, once: its width (a fraction is as
+         * wide as the longer of its two lines), then its lines */
         PointEqStruct tmp;
         const PointEqStruct *eq = eq_form(&tmp, d, o, &c);
         EqParts P;
@@ -705,13 +705,16 @@ char *book_output(const Derived *d, const DerivedOutput *o,
             eq_parts_clear(&P, &c);
             eq_form_clear(&tmp, eq, &c);
             book_memo_clear(&memo, &c);
-            pc_free(rhs);
             pc_free(lhs.s);
             return sb_take(&b);
         }
+        rhs_equation(&rb, &P, &c); /* on one line */
         eq_parts_clear(&P, &c);
         eq_form_clear(&tmp, eq, &c);
+    } else {
+        rhs_into(&rb, d, o, opt, &c);
     }
+    char *rhs = sb_take(&rb);
     if (opt->latex) {
         StrBuf eq = {0};
         sb_puts(&eq, lhs.s);
@@ -738,4 +741,21 @@ char *book_output(const Derived *d, const DerivedOutput *o,
     pc_free(rhs);
     pc_free(lhs.s);
     return sb_take(&b);
+}
+
+slong book_test_leaves(const Derived *d, const fmpz_mpoly_t p, int depth,
+                       slong *lower)
+{
+    BookOptions opt = {.origin = -1};
+    Ctx c;
+    long work;
+    Memo memo;
+    ctx_init(&c, d, &opt, &work, &memo);
+    lower[0] = book_leaves_lower(p, depth, &c);
+    PSum *s = book_render(p, depth, &c);
+    slong n = book_sum_leaves(s);
+    lower[1] = book_leaves_lower(p, depth, &c);
+    book_sum_free(s, &c);
+    book_memo_clear(&memo, &c);
+    return n;
 }

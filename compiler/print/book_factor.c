@@ -179,7 +179,10 @@ static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
         fmpz_mpoly_t bar, quo;
         fmpz_mpoly_init(bar, r->ctx);
         fmpz_mpoly_init(quo, r->ctx);
-        for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
+        int ones = polyfactor_vanishes_at_ones(q, r);
+        for (slong v = 0; ones && v < c->nparams + c->nconsts && v < nv; v++) {
+            if (fmpz_mpoly_degree_si(q, v, r->ctx) < 1)
+                continue;
             fmpz_mpoly_gen(bar, v, r->ctx);
             fmpz_mpoly_sub_ui(bar, bar, 1, r->ctx);
             while (fmpz_mpoly_degree_si(q, v, r->ctx) > 0 &&
@@ -189,6 +192,8 @@ static int factor_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
                 bars[v]++;
             }
             nbars += bars[v] > 0;
+            if (bars[v] > 0)
+                ones = polyfactor_vanishes_at_ones(q, r);
         }
         fmpz_mpoly_clear(quo, r->ctx);
         fmpz_mpoly_clear(bar, r->ctx);
@@ -360,13 +365,20 @@ static int factor_by_known(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
 
 /* p's factoring as ring_factor makes it (ring_factor.h), up to the order
  * of the factors, with the irreducible factors of a full factoring
- * remembered in c->memo and divided out of later polynomials first */
+ * remembered in c->memo and divided out of later polynomials first
+ * (those proved irreducible without FLINT too: the five-point conic's
+ * coefficients are products of them) */
 static int factor_shared(fmpz_mpoly_factor_t f, const fmpz_mpoly_t p,
                          const Ctx *c)
 {
-    if (factor_known(f, p, c) || factor_by_known(f, p, c))
+    if (factor_known(f, p, c)) {
+        if (c->memo && ring_factor_affordable(p, c->r))
+            remember_factors(f, c);
         return 1;
-    if (!polyfactor_compact(f, p, c->r))
+    }
+    if (factor_by_known(f, p, c))
+        return 1;
+    if (!polyfactor_split_linear(f, p, c->r) && !polyfactor_compact(f, p, c->r))
         return 0;
     if (c->memo && ring_factor_affordable(p, c->r))
         remember_factors(f, c);
@@ -446,29 +458,26 @@ PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
     PSum *s = book_sum_new(c);
     PTerm *t = book_sum_push(s);
     int found = 0;
-    /* integer content, with the sign of the first (ascending) term */
-    _fmpz_vec_content(t->coeff, p->coeffs, fmpz_mpoly_length(p, r->ctx));
-    fmpz_mpoly_scalar_divexact_fmpz(q, p, t->coeff, r->ctx);
-    found |= !fmpz_is_one(t->coeff);
-    /* the monomial content */
-    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
-    ulong *e = pc_xmalloc(sizeof(ulong) * (size_t)(nv ? nv : 1));
-    for (slong k = 0; k < fmpz_mpoly_length(q, r->ctx); k++) {
-        fmpz_mpoly_get_term_exp_ui(e, q, k, r->ctx);
-        for (slong v = 0; v < nv; v++)
-            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
+    /* the integer content (positive) and the monomial content: q =
+     * p/(content*monomial) */
+    ulong *lo = pc_xmalloc(sizeof(ulong) * (size_t)(r->ctx->minfo->nvars + 1));
+    primitive_split(q, t->coeff, lo, p, c);
+    if (fmpz_sgn(t->coeff) < 0) {
+        fmpz_neg(t->coeff, t->coeff);
+        fmpz_mpoly_neg(q, q, r->ctx);
     }
+    found |= !fmpz_is_one(t->coeff);
     for (slong v = 0; v < nv; v++)
         if (lo[v]) {
-            fmpz_mpoly_gen(m, v, r->ctx);
-            fmpz_mpoly_pow_ui(m, m, lo[v], r->ctx);
-            fmpz_mpoly_divides(q, q, m, r->ctx);
             book_term_push(t, (Atom){AT_VAR, v, NULL, NULL, NULL, lo[v]});
             found = 1;
         }
-    /* (1 - x)^k */
-    for (slong v = 0; v < c->nparams + c->nconsts && v < nv; v++) {
+    /* (1 - x)^k (none unless q(1, ..., 1) = 0) */
+    int ones = polyfactor_vanishes_at_ones(q, r);
+    for (slong v = 0; ones && v < c->nparams + c->nconsts && v < nv; v++) {
         ulong k = 0;
+        if (fmpz_mpoly_degree_si(q, v, r->ctx) < 1)
+            continue;
         fmpz_mpoly_gen(bar, v, r->ctx);
         fmpz_mpoly_neg(bar, bar, r->ctx);
         fmpz_mpoly_add_si(bar, bar, 1, r->ctx);
@@ -482,10 +491,10 @@ PSum *book_form_factored_cheap(const fmpz_mpoly_t p, int depth, const Ctx *c)
         if (k) {
             book_term_push(t, (Atom){AT_BAR, v, NULL, NULL, NULL, k});
             found = 1;
+            ones = polyfactor_vanishes_at_ones(q, r);
         }
     }
     pc_free(lo);
-    pc_free(e);
     if (fmpz_mpoly_is_fmpz(q, r->ctx)) {
         /* what is left is a unit: its sign */
         if (fmpz_sgn(q->coeffs) < 0)

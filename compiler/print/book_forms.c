@@ -315,42 +315,55 @@ static size_t text_len(const PSum *s, const Ctx *c)
     return book_sum_text_len(s, &text);
 }
 
-/* keeps the better of *best and cand: fewer leaves; then factored before
+/* the best form so far: its model (NULL while it is the expanded form,
+ * which is built only if it wins: most polynomials have a better one), its
+ * leaves, its rank (R_FACTORED ...) and its text length ((size_t)-1 until
+ * measured) */
+enum { R_FACTORED, R_EXPANDED, R_BERNSTEIN, R_POWERS };
+typedef struct Best {
+    PSum *s;
+    slong leaves;
+    int rank;
+    size_t len;
+    slong pos; // the var a collected form is by: the first wins a tie
+} Best;
+
+/* keeps the better of b and cand: fewer leaves; then factored before
  * expanded before collected; among collected forms the shorter text, then
- * Bernstein before powers; then the earlier candidate.  Lengths are those
- * of the text form whatever the style, so text and LaTeX agree (*best_len:
- * (size_t)-1 until measured). */
-static void keep_better(PSum **best, int *best_rank, size_t *best_len,
-                        PSum *cand, int rank, const Ctx *c)
+ * Bernstein before powers; then the one by the earlier variable.  Lengths
+ * are those
+ * of the text form whatever the style, so text and LaTeX agree (the
+ * expanded form never needs its length: it ranks alone). */
+static void keep_better(Best *b, PSum *cand, int rank, slong pos, const Ctx *c)
 {
     if (!cand)
         return;
     size_t len = (size_t)-1;
-    if (*best) {
-        slong lb = book_sum_leaves(*best), lc = book_sum_leaves(cand);
-        int kb = *best_rank < 2 ? *best_rank : 2;
-        int kc = rank < 2 ? rank : 2;
-        int better = lc < lb || (lc == lb && kc < kb);
-        if (lc == lb && kc == kb && kc == 2) {
-            if (*best_len == (size_t)-1)
-                *best_len = text_len(*best, c);
-            len = text_len(cand, c);
-            better = len < *best_len || (len == *best_len && rank < *best_rank);
-        }
-        if (!better) {
-            book_sum_free(cand, c);
-            return;
-        }
-        book_sum_free(*best, c);
+    slong lc = book_sum_leaves(cand);
+    int kb = b->rank < 2 ? b->rank : 2;
+    int kc = rank < 2 ? rank : 2;
+    int better = lc < b->leaves || (lc == b->leaves && kc < kb);
+    if (lc == b->leaves && kc == kb && kc == 2) {
+        if (b->len == (size_t)-1)
+            b->len = text_len(b->s, c);
+        len = text_len(cand, c);
+        better = len < b->len ||
+                 (len == b->len &&
+                  (rank < b->rank || (rank == b->rank && pos < b->pos)));
     }
-    *best = cand;
-    *best_rank = rank;
-    *best_len = len;
+    if (!better) {
+        book_sum_free(cand, c);
+        return;
+    }
+    book_sum_free(b->s, c);
+    b->s = cand;
+    b->leaves = lc;
+    b->rank = rank;
+    b->len = len;
+    b->pos = pos;
 }
 
 static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c);
-
-enum { MEMO_MAX = 1024 };
 
 /* p in its best form (see book.h), remembered per output */
 static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c);
@@ -403,8 +416,9 @@ PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c)
     return s;
 }
 
-/* a hash of p (its length and coefficients: equal polynomials may pack
- * their exponents differently), the depth and the mode */
+/* a hash of p (its length, coefficients and degrees in each variable:
+ * equal polynomials may pack their exponents differently, so not the
+ * packed words), the depth and the mode */
 static ulong memo_key(const fmpz_mpoly_t p, slong len, int depth, const Ctx *c)
 {
     ulong h = (ulong)len * 0x9E3779B97F4A7C15u ^ (ulong)depth ^ c->mode << 8;
@@ -415,41 +429,140 @@ static ulong memo_key(const fmpz_mpoly_t p, slong len, int depth, const Ctx *c)
                                           (ulong)mpz_sgn(COEFF_TO_PTR(*x));
         h = (h ^ w) * 0x100000001B3u;
     }
-    return h;
+    enum { FEW_VARS = 16 };
+    slong nv = c->r->nvars, deg[FEW_VARS];
+    if (nv > 0 && nv <= FEW_VARS && fmpz_mpoly_degrees_fit_si(p, c->r->ctx)) {
+        fmpz_mpoly_degrees_si(deg, p, c->r->ctx);
+        for (slong v = 0; v < nv; v++)
+            h = (h ^ (ulong)deg[v]) * 0x100000001B3u;
+    }
+    return h ^ h >> 29;
+}
+
+/* the memo's entry for p at depth (in c's mode), or NULL; *key: its key */
+static const MemoEntry *memo_find(const fmpz_mpoly_t p, slong len, int depth,
+                                  const Ctx *c, ulong *key)
+{
+    const Memo *m = c->memo;
+    *key = memo_key(p, len, depth, c);
+    if (!m->slot)
+        return NULL;
+    for (ulong i = *key & (MEMO_SLOTS - 1);; i = (i + 1) & (MEMO_SLOTS - 1)) {
+        slong j = m->slot[i] - 1;
+        if (j < 0)
+            return NULL;
+        const MemoEntry *e = &m->e[j];
+        if (e->key == *key && e->depth == depth && e->mode == c->mode &&
+            fmpz_mpoly_equal(e->poly, p, c->r->ctx))
+            return e;
+    }
+}
+
+/* remembers s as p's form at depth (the first MEMO_MAX only) */
+static void memo_add(const fmpz_mpoly_t p, ulong key, int depth, const PSum *s,
+                     const Ctx *c)
+{
+    Memo *m = c->memo;
+    if (m->n >= MEMO_MAX)
+        return;
+    if (!m->slot)
+        m->slot = pc_xcalloc(MEMO_SLOTS, sizeof(slong));
+    if (m->n == m->alloc) {
+        m->alloc = m->alloc ? 2 * m->alloc : 32;
+        m->e = pc_xrealloc(m->e, sizeof(MemoEntry) * (size_t)m->alloc);
+    }
+    MemoEntry *e = &m->e[m->n++];
+    fmpz_mpoly_init(e->poly, c->r->ctx);
+    fmpz_mpoly_set(e->poly, p, c->r->ctx);
+    e->key = key;
+    e->depth = depth;
+    e->mode = c->mode;
+    e->sum = book_sum_copy(s, c);
+    ulong i = key & (MEMO_SLOTS - 1);
+    while (m->slot[i])
+        i = (i + 1) & (MEMO_SLOTS - 1);
+    m->slot[i] = m->n;
 }
 
 static PSum *render_memo(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
-    Memo *m = c->memo;
     slong len = fmpz_mpoly_length(p, c->r->ctx);
-    if (len < 2 || !m)
+    if (len < 2 || !c->memo)
         return render_new(p, depth, c);
-    ulong key = memo_key(p, len, depth, c);
-    for (slong i = 0; i < m->n; i++)
-        if (m->e[i].key == key && m->e[i].depth == depth &&
-            m->e[i].mode == c->mode &&
-            fmpz_mpoly_equal(m->e[i].poly, p, c->r->ctx))
-            return book_sum_copy(m->e[i].sum, c);
+    ulong key;
+    const MemoEntry *e = memo_find(p, len, depth, c, &key);
+    if (e)
+        return book_sum_copy(e->sum, c);
     PSum *s = render_new(p, depth, c);
-    if (m->n < MEMO_MAX) {
-        if (m->n == m->alloc) {
-            m->alloc = m->alloc ? 2 * m->alloc : 32;
-            m->e = pc_xrealloc(m->e, sizeof(MemoEntry) * (size_t)m->alloc);
-        }
-        MemoEntry *e = &m->e[m->n++];
-        fmpz_mpoly_init(e->poly, c->r->ctx);
-        fmpz_mpoly_set(e->poly, p, c->r->ctx);
-        e->key = key;
-        e->depth = depth;
-        e->mode = c->mode;
-        e->sum = book_sum_copy(s, c);
-    }
+    memo_add(p, key, depth, s, c);
     return s;
+}
+
+/* could p (two terms or more) be c*m*(1 - x)^e*(1 - y)^f*..., a number
+ * times a monomial times powers of 1 - x of params and consts: a form of
+ * one leaf?  0 when surely not: its coefficients do not sum to 0 (p
+ * would vanish at x = 1), a var other than those has two exponents, or
+ * the count of its terms is not the product of the exponent ranges
+ * (e + 1)(f + 1)...  1 otherwise (perhaps). */
+static int bar_monomial_possible(const fmpz_mpoly_t p, slong len, const Ctx *c)
+{
+    if (!polyfactor_vanishes_at_ones(p, c->r))
+        return 0;
+    enum { FEW_VARS = 16 };
+    slong nv = c->r->nvars;
+    if (nv > FEW_VARS || !fmpz_mpoly_degrees_fit_si(p, c->r->ctx))
+        return 1;
+    ulong e[FEW_VARS], lo[FEW_VARS], hi[FEW_VARS];
+    for (slong k = 0; k < len; k++) {
+        fmpz_mpoly_get_term_exp_ui(e, p, k, c->r->ctx);
+        for (slong v = 0; v < nv; v++) {
+            lo[v] = k == 0 || e[v] < lo[v] ? e[v] : lo[v];
+            hi[v] = k == 0 || e[v] > hi[v] ? e[v] : hi[v];
+        }
+    }
+    double terms = 1;
+    for (slong v = 0; v < nv; v++) {
+        if (v >= c->nparams + c->nconsts && lo[v] != hi[v])
+            return 0;
+        terms *= (double)(hi[v] - lo[v] + 1);
+    }
+    return terms == (double)len;
+}
+
+slong book_leaves_lower(const fmpz_mpoly_t p, int depth, const Ctx *c)
+{
+    slong len = fmpz_mpoly_length(p, c->r->ctx);
+    if (len < 2 || c->has_sign || c->is_abs || c->exhaustive)
+        return 1; /* (through |x|, one leaf may write a sum: (t - 1)*|t - 1|) */
+    if (c->memo) { /* chosen already: exactly */
+        ulong key;
+        const MemoEntry *e = memo_find(p, len, depth, c, &key);
+        if (e)
+            return book_sum_leaves(e->sum);
+    }
+    /* a sum sits in a product only with two terms or more (book_model.c),
+     * so a form of one leaf is one product of vars and 1 - x's */
+    return bar_monomial_possible(p, len, c) ? 1 : 2;
+}
+
+/* the leaves a collected form must not exceed to compete with b: b's,
+ * or one fewer when b is factored or expanded, which win a tie (none in
+ * the tests' exhaustive search) */
+static slong limit(const Best *b, const Ctx *c)
+{
+    if (c->exhaustive)
+        return WORD_MAX;
+    return b->rank < R_BERNSTEIN ? b->leaves - 1 : b->leaves;
+}
+
+/* b's form, built now if it is the expanded one */
+static PSum *best_take(Best *b, const fmpz_mpoly_t p, const Ctx *c)
+{
+    return b->s ? b->s : book_form_expanded(p, c);
 }
 
 static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
 {
-    enum { R_FACTORED, R_EXPANDED, R_BERNSTEIN, R_POWERS };
     const Ring *r = c->r;
     slong len = fmpz_mpoly_length(p, r->ctx);
     if (c->is_abs) { /* |x| in it: by the knots, as the text writes it */
@@ -459,48 +572,43 @@ static PSum *render_new(const fmpz_mpoly_t p, int depth, const Ctx *c)
             return k;
         }
     }
-    PSum *best = book_form_expanded(p, c);
     if (len == 0 || fmpz_mpoly_is_fmpz(p, r->ctx))
-        return best;
-    int rank = R_EXPANDED;
-    size_t blen = (size_t)-1;
+        return book_form_expanded(p, c);
+    Best b = {NULL, len, R_EXPANDED, (size_t)-1, -1};
     *c->work += len;
     if (len < 2)
-        return best;   /* a monomial: expanded is factored */
+        return best_take(&b, p, c); /* a monomial: expanded is factored */
     if (budget_late()) /* the caller's deadline (budget.h): no search */
-        return best;
+        return best_take(&b, p, c);
     if (depth < CHEAP_FACTOR_DEPTH &&
         (depth == 0 ||
          (*c->work < RENDER_WORK && len <= MAX_FACTOR_TERMS_NESTED))) {
         *c->work += FACTOR_WORK + 20 * len;
-        keep_better(&best, &rank, &blen, book_form_factored(p, depth, c),
-                    R_FACTORED, c);
+        keep_better(&b, book_form_factored(p, depth, c), R_FACTORED, -1, c);
     } else if (depth >= CHEAP_FACTOR_DEPTH) {
         *c->work += 4 * len;
-        keep_better(&best, &rank, &blen, book_form_factored_cheap(p, depth, c),
-                    R_FACTORED, c);
+        keep_better(&b, book_form_factored_cheap(p, depth, c), R_FACTORED, -1,
+                    c);
     }
     if (depth >= MAX_DEPTH || len > MAX_COLLECT_TERMS || len < 2)
-        return best;
+        return best_take(&b, p, c);
     for (slong v = 0; v < r->nvars && *c->work < RENDER_WORK && !budget_late();
          v++) {
         if (fmpz_mpoly_degree_si(p, v, r->ctx) < 1)
             continue;
         *c->work += 2 * len;
+        /* the powers first: the Bernstein form (dearer) is then given up
+         * against them the sooner (the order does not change the choice:
+         * Bernstein wins a tie of leaves and length by its rank) */
+        keep_better(&b, book_form_powers(p, v, depth, limit(&b, c), c),
+                    R_POWERS, v, c);
         if (book_is_param(c, v))
-            keep_better(
-                &best, &rank, &blen,
-                book_form_bernstein(p, v, depth, book_sum_leaves(best), c),
-                R_BERNSTEIN, c);
+            keep_better(&b, book_form_bernstein(p, v, depth, limit(&b, c), c),
+                        R_BERNSTEIN, v, c);
         slong w = c->K ? book_cos_companion(v, c) : -1;
         if (w >= 0)
-            keep_better(
-                &best, &rank, &blen,
-                book_form_sin2(p, v, w, depth, book_sum_leaves(best), c),
-                R_BERNSTEIN, c);
-        keep_better(&best, &rank, &blen,
-                    book_form_powers(p, v, depth, book_sum_leaves(best), c),
-                    R_POWERS, c);
+            keep_better(&b, book_form_sin2(p, v, w, depth, limit(&b, c), c),
+                        R_BERNSTEIN, v, c);
     }
-    return best;
+    return best_take(&b, p, c);
 }

@@ -72,6 +72,7 @@ typedef struct Ctx {
     const DerivedName *named; // the scheme's named kernel powers, and the
     slong nnamed;             // line of the definition being printed:
     int line;                 // names defined before it print for them
+    int exhaustive; // BookOptions.exhaustive: no form given up by a bound
 } Ctx;
 
 /* render() of a polynomial at a depth, kept: the same coefficients and
@@ -84,9 +85,16 @@ typedef struct MemoEntry {
     struct PSum *sum;
 } MemoEntry;
 
+enum {
+    MEMO_MAX = 1024,  // entries remembered (the first ones)
+    MEMO_SLOTS = 2048 // the hash table's slots: a power of 2 > MEMO_MAX
+};
+
 typedef struct Memo {
     MemoEntry *e;
     slong n, alloc;
+    slong *slot; // MEMO_SLOTS: 1 + the index of an entry in e, or 0; by key
+                 // (open addressing), allocated with the first entry
     fmpz_mpoly_struct *fac; // irreducible factors (not monomials, positive
     slong nfac, facalloc;   // leading coefficient) of the polynomials
                             // factored fully so far (book_factor.c)
@@ -150,6 +158,9 @@ size_t book_sum_text_len(const PSum *s, const Ctx *c); // in c's style
 PSum *book_form_expanded(const fmpz_mpoly_t p, const Ctx *c);
 /* p in its best form at depth (0: the top level) */
 PSum *book_render(const fmpz_mpoly_t p, int depth, const Ctx *c);
+/* a lower bound on the leaves of book_render(p, depth, c), without
+ * rendering it: 1 or 2, or the leaves of the form in the memo */
+slong book_leaves_lower(const fmpz_mpoly_t p, int depth, const Ctx *c);
 
 /* ---- book_factor.c: the factored forms ----------------------------------- */
 

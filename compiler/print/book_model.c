@@ -103,6 +103,8 @@ void book_memo_clear(Memo *m, const Ctx *c)
     pc_free(m->e);
     m->e = NULL;
     m->n = m->alloc = 0;
+    pc_free(m->slot);
+    m->slot = NULL;
     for (slong i = 0; i < m->nfac; i++)
         fmpz_mpoly_clear(m->fac + i, c->r->ctx);
     pc_free(m->fac);

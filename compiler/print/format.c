@@ -372,7 +372,8 @@ char *format_weight(const RatFun w, const Ring *r)
 char *format_output_rhs(const Derived *d, const DerivedOutput *o,
                         FormatStyle st, slong origin)
 {
-    BookOptions opt = {st == FMT_LATEX, 0, origin, NULL};
+    BookOptions opt = {
+        .latex = st == FMT_LATEX, .width = 0, .origin = origin, .memo = NULL};
     return book_rhs(d, o, &opt);
 }
 
@@ -416,7 +417,10 @@ void format_derived_width(FILE *out, const Derived *d, FormatStyle st,
         format_json(out, d);
         return;
     }
-    BookOptions opt = {st == FMT_LATEX, width, origin, book_memo_new()};
+    BookOptions opt = {.latex = st == FMT_LATEX,
+                       .width = width,
+                       .origin = origin,
+                       .memo = book_memo_new()};
     for (slong i = 0; i < d->noutputs; i++) {
         derived_mark(d, i); /* blamed if a budget runs out */
         char *line = book_output(d, &d->outputs[i], &opt);

@@ -220,6 +220,16 @@ static void words_push(Words *ws, char *pre, char *core, char *post)
            latex_width(post, strlen(post));
 }
 
+/* appends x as it is (its width known) */
+static void words_keep(Words *ws, const Word *x)
+{
+    if (ws->n == ws->cap) {
+        ws->cap = ws->cap ? 2 * ws->cap : 16;
+        ws->w = pc_xrealloc(ws->w, sizeof(Word) * ws->cap);
+    }
+    ws->w[ws->n++] = *x;
+}
+
 static char *cat(const char *a, const char *b)
 {
     size_t la = strlen(a), lb = strlen(b);
@@ -444,7 +454,7 @@ size_t latex_break(char ***lines, const char *s, double width)
                 pc_free(x->post);
                 changed = 1;
             } else {
-                words_push(&next, x->pre, x->core, x->post);
+                words_keep(&next, x); /* not measured again */
             }
         }
         pc_free(ws.w);

@@ -35,7 +35,8 @@ static char *printed_ex(const char *src, FormatStyle st, int width,
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (width > 0) {
-        BookOptions o = {st == FMT_LATEX, width, origin, NULL};
+        BookOptions o = {
+            .latex = st == FMT_LATEX, .width = width, .origin = origin};
         for (slong i = 0; i < d->noutputs; i++) {
             char *s = book_output(d, &d->outputs[i], &o);
             fputs(s, f);
